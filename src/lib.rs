@@ -1,0 +1,35 @@
+//! # wisp: a CPU engine that animates and renders human hair
+//!
+//! Pipeline (one frame, data flowing one way; see `docs/DESIGN.md`):
+//!
+//! ```text
+//! motion   glTF clip -> head (and body-sphere) transforms at time t
+//! sim      rigid-link guide strands: roots on the moving scalp, gravity, damping, bending,
+//!          head/body collisions, repulsion out of over-dense map cells (Bertails 2005 §4.1)
+//! interp   render strands from their wisp's 3 guides, Catmull-Rom smoothing, curls
+//! map      light-oriented, modulo-indexed grid: fill, column sweep -> Tf, σ̄f², direct fraction
+//! shade    per render-strand vertex: filtered map lookup -> fibre shader
+//! raster   camera, depth-tested anti-aliased lines, the head -> framebuffer
+//! output   PNG frames (temporary name + rename) from a writer thread, or a window
+//! ```
+//!
+//! ## Conventions (stated once)
+//! - SI units inside: metres, seconds, radians. Degrees only at the edges (JSON, CLI), in names
+//!   ending `_deg`.
+//! - World: right-handed, Y up (as glTF). The head frame of a hairstyle: origin at the head
+//!   ellipsoid's centre, +Y up, +Z toward the face, +X to the head's left.
+//! - Hair frame (Marschner 2003 §2.2): `u` is the unit tangent from root to tip; θ is measured
+//!   from the normal plane (sin θ = ω·u); ωi points to the light, ωo to the camera.
+//! - A directional light travels along `L`; the map's X axis is `L`.
+//! - Colours are linear RGB until the PNG encoder converts to 8-bit sRGB.
+
+pub mod fiber;
+pub mod frame;
+pub mod hairstyle;
+pub mod interp;
+pub mod map;
+pub mod motion;
+pub mod output;
+pub mod raster;
+pub mod shade;
+pub mod sim;
