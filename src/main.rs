@@ -1,1 +1,4 @@
-fn main() {}
+//! The `wisp` command line: see `wisp --help`.
+fn main() -> std::process::ExitCode {
+    wisp::app::main()
+}

@@ -67,7 +67,11 @@ impl FiberParams {
     /// Checks every field; the error names the field (relative to `fiber.`) and the rule.
     pub fn validate(&self) -> Result<(), String> {
         let finite_pos = |name: &str, v: f32| {
-            if v.is_finite() && v > 0.0 { Ok(()) } else { Err(format!("{name} must be finite and > 0 (got {v})")) }
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(format!("{name} must be finite and > 0 (got {v})"))
+            }
         };
         finite_pos("radius_m", self.radius_m)?;
         if !(self.eta.is_finite() && self.eta > 1.0 && self.eta < 4.0) {
@@ -75,7 +79,9 @@ impl FiberParams {
         }
         for (c, v) in self.sigma_a.iter().enumerate() {
             if !(v.is_finite() && *v >= 0.0 && *v <= 1.0e3) {
-                return Err(format!("sigma_a[{c}] must be finite and in [0, 1000] (got {v})"));
+                return Err(format!(
+                    "sigma_a[{c}] must be finite and in [0, 1000] (got {v})"
+                ));
             }
         }
         Ok(())
@@ -107,8 +113,11 @@ pub struct LightAtPoint {
 
 impl LightAtPoint {
     /// Light that crossed no fibre at all.
-    pub const UNSHADOWED: Self =
-        Self { direct_fraction: 1.0, tf: Vec3::ONE, sigma_f2: Vec3::ZERO };
+    pub const UNSHADOWED: Self = Self {
+        direct_fraction: 1.0,
+        tf: Vec3::ONE,
+        sigma_f2: Vec3::ZERO,
+    };
 }
 
 /// Per-crossing forward-scattering quantities at one fibre inclination.
@@ -132,7 +141,10 @@ impl Fiber {
     pub fn new(params: &FiberParams) -> Self {
         let s = Vec3::from(params.sigma_a);
         let base_color = Vec3::new((-2.0 * s.x).exp(), (-2.0 * s.y).exp(), (-2.0 * s.z).exp());
-        Self { params: params.clone(), base_color }
+        Self {
+            params: params.clone(),
+            base_color,
+        }
     }
 
     pub fn params(&self) -> &FiberParams {
@@ -142,12 +154,22 @@ impl Fiber {
     /// Per-crossing forward scattering for light whose direction makes `sin_theta` (= ω·u)
     /// with the fibre tangent.
     pub fn forward_scatter(&self, _sin_theta: f32) -> ForwardScatter {
-        ForwardScatter { a_f: self.base_color * 0.8, beta_f2: Vec3::splat(0.01) }
+        ForwardScatter {
+            a_f: self.base_color * 0.8,
+            beta_f2: Vec3::splat(0.01),
+        }
     }
 
     /// Outgoing radiance toward `wo` per unit irradiance arriving from `wi` (both unit, away
     /// from the fibre), for a fibre with unit tangent `u`, given what the map says of the light.
-    pub fn shade(&self, mode: ShadingMode, u: Vec3, wi: Vec3, wo: Vec3, light: &LightAtPoint) -> Vec3 {
+    pub fn shade(
+        &self,
+        mode: ShadingMode,
+        u: Vec3,
+        wi: Vec3,
+        wo: Vec3,
+        light: &LightAtPoint,
+    ) -> Vec3 {
         let _ = mode;
         let sin_i = wi.dot(u).clamp(-1.0, 1.0);
         let cos_i = (1.0 - sin_i * sin_i).max(0.0).sqrt();

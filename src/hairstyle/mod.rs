@@ -144,19 +144,32 @@ pub struct CurlSpec {
 #[derive(Debug, thiserror::Error)]
 pub enum HairstyleError {
     #[error("{file}: cannot read: {source}")]
-    Io { file: String, source: std::io::Error },
+    Io {
+        file: String,
+        source: std::io::Error,
+    },
     #[error("{file}: field `{field}`: {message}")]
-    Parse { file: String, field: String, message: String },
+    Parse {
+        file: String,
+        field: String,
+        message: String,
+    },
     #[error("{file}: field `{field}`: {rule}")]
-    Invalid { file: String, field: String, rule: String },
+    Invalid {
+        file: String,
+        field: String,
+        rule: String,
+    },
 }
 
 impl Hairstyle {
     /// Reads and validates a hairstyle file.
     pub fn load(path: &Path) -> Result<Self, HairstyleError> {
         let file = path.display().to_string();
-        let text = std::fs::read_to_string(path)
-            .map_err(|source| HairstyleError::Io { file: file.clone(), source })?;
+        let text = std::fs::read_to_string(path).map_err(|source| HairstyleError::Io {
+            file: file.clone(),
+            source,
+        })?;
         Self::from_json(&text, &file)
     }
 
@@ -177,15 +190,21 @@ impl Hairstyle {
             let field = e.path().to_string();
             HairstyleError::Parse {
                 file: file.to_string(),
-                field: if field == "." { "(top level)".into() } else { field },
+                field: if field == "." {
+                    "(top level)".into()
+                } else {
+                    field
+                },
                 message: e.into_inner().to_string(),
             }
         })?;
-        style.validate().map_err(|(field, rule)| HairstyleError::Invalid {
-            file: file.to_string(),
-            field,
-            rule,
-        })?;
+        style
+            .validate()
+            .map_err(|(field, rule)| HairstyleError::Invalid {
+                file: file.to_string(),
+                field,
+                rule,
+            })?;
         Ok(style)
     }
 
@@ -194,22 +213,46 @@ impl Hairstyle {
         fn bad(field: &str, rule: String) -> Result<(), (String, String)> {
             Err((field.to_string(), rule))
         }
-        fn in_range(field: &str, v: f32, lo: f32, hi: f32, lo_open: bool) -> Result<(), (String, String)> {
+        fn in_range(
+            field: &str,
+            v: f32,
+            lo: f32,
+            hi: f32,
+            lo_open: bool,
+        ) -> Result<(), (String, String)> {
             let ok = v.is_finite() && (if lo_open { v > lo } else { v >= lo }) && v <= hi;
             if ok {
                 Ok(())
             } else {
                 let open = if lo_open { "(" } else { "[" };
-                bad(field, format!("must be a finite number in {open}{lo}, {hi}] (got {v})"))
+                bad(
+                    field,
+                    format!("must be a finite number in {open}{lo}, {hi}] (got {v})"),
+                )
             }
         }
         for (i, r) in self.head.radii_m.iter().enumerate() {
             in_range(&format!("head.radii_m[{i}]"), *r, 0.0, 1.0, true)?;
         }
-        in_range("scalp.max_polar_deg", self.scalp.max_polar_deg, 0.0, 150.0, true)?;
-        in_range("scalp.front_polar_deg", self.scalp.front_polar_deg, 0.0, self.scalp.max_polar_deg.max(0.0), true)?;
+        in_range(
+            "scalp.max_polar_deg",
+            self.scalp.max_polar_deg,
+            0.0,
+            150.0,
+            true,
+        )?;
+        in_range(
+            "scalp.front_polar_deg",
+            self.scalp.front_polar_deg,
+            0.0,
+            self.scalp.max_polar_deg.max(0.0),
+            true,
+        )?;
         if self.wisps.count == 0 || self.wisps.count > MAX_WISPS {
-            return bad("wisps.count", format!("must be in [1, {MAX_WISPS}] (got {})", self.wisps.count));
+            return bad(
+                "wisps.count",
+                format!("must be in [1, {MAX_WISPS}] (got {})", self.wisps.count),
+            );
         }
         in_range("wisps.radius_m", self.wisps.radius_m, 0.0, 0.1, true)?;
         if self.wisps.strands_per_wisp == 0 {
@@ -219,33 +262,75 @@ impl Hairstyle {
         if strands > MAX_STRANDS {
             return bad(
                 "wisps.strands_per_wisp",
-                format!("wisps.count x strands_per_wisp = {strands} render strands exceeds the limit {MAX_STRANDS}"),
+                format!(
+                    "wisps.count x strands_per_wisp = {strands} render strands exceeds the limit {MAX_STRANDS}"
+                ),
             );
         }
         if self.guides.links == 0 || self.guides.links > MAX_GUIDE_LINKS {
-            return bad("guides.links", format!("must be in [1, {MAX_GUIDE_LINKS}] (got {})", self.guides.links));
+            return bad(
+                "guides.links",
+                format!(
+                    "must be in [1, {MAX_GUIDE_LINKS}] (got {})",
+                    self.guides.links
+                ),
+            );
         }
         in_range("guides.length_m", self.guides.length_m, 0.0, 2.0, true)?;
-        in_range("guides.length_jitter", self.guides.length_jitter, 0.0, 0.9, false)?;
-        in_range("guides.wave_amplitude_m", self.guides.wave_amplitude_m, 0.0, 0.2, false)?;
-        in_range("guides.wave_period_m", self.guides.wave_period_m, 0.0, 10.0, true)?;
+        in_range(
+            "guides.length_jitter",
+            self.guides.length_jitter,
+            0.0,
+            0.9,
+            false,
+        )?;
+        in_range(
+            "guides.wave_amplitude_m",
+            self.guides.wave_amplitude_m,
+            0.0,
+            0.2,
+            false,
+        )?;
+        in_range(
+            "guides.wave_period_m",
+            self.guides.wave_period_m,
+            0.0,
+            10.0,
+            true,
+        )?;
         if self.strands.points < 2 {
-            return bad("strands.points", format!("must be >= 2 (got {})", self.strands.points));
+            return bad(
+                "strands.points",
+                format!("must be >= 2 (got {})", self.strands.points),
+            );
         }
         let points = strands * self.strands.points as u64;
         if points > MAX_RENDER_POINTS {
             return bad(
                 "strands.points",
-                format!("{strands} strands x {} points = {points} exceeds the limit {MAX_RENDER_POINTS}", self.strands.points),
+                format!(
+                    "{strands} strands x {} points = {points} exceeds the limit {MAX_RENDER_POINTS}",
+                    self.strands.points
+                ),
             );
         }
-        in_range("strands.fibers_per_strand", self.strands.fibers_per_strand, 0.0, 1.0e5, true)?;
+        in_range(
+            "strands.fibers_per_strand",
+            self.strands.fibers_per_strand,
+            0.0,
+            1.0e5,
+            true,
+        )?;
         in_range("curl.radius_m", self.curl.radius_m, 0.0, 0.1, false)?;
         if self.curl.radius_m > 0.0 {
             in_range("curl.period_m", self.curl.period_m, 0.0, 10.0, true)?;
         }
-        self.fiber.validate().map_err(|rule| field_of("fiber", rule))?;
-        self.dynamics.validate().map_err(|rule| field_of("dynamics", rule))?;
+        self.fiber
+            .validate()
+            .map_err(|rule| field_of("fiber", rule))?;
+        self.dynamics
+            .validate()
+            .map_err(|rule| field_of("dynamics", rule))?;
         Ok(())
     }
 

@@ -38,7 +38,10 @@ impl SimParams {
     /// Checks every field; the error names the field (relative to `dynamics.`) and the rule.
     pub fn validate(&self) -> Result<(), String> {
         if !(self.step_s.is_finite() && self.step_s > 1e-5 && self.step_s <= 0.05) {
-            return Err(format!("step_s must be in (1e-5, 0.05] seconds (got {})", self.step_s));
+            return Err(format!(
+                "step_s must be in (1e-5, 0.05] seconds (got {})",
+                self.step_s
+            ));
         }
         for (name, v) in [
             ("gravity_m_s2", self.gravity_m_s2),
@@ -51,7 +54,10 @@ impl SimParams {
             }
         }
         if !(self.bending_stiffness.is_finite() && (0.0..=1.0).contains(&self.bending_stiffness)) {
-            return Err(format!("bending_stiffness must be in [0, 1] (got {})", self.bending_stiffness));
+            return Err(format!(
+                "bending_stiffness must be in [0, 1] (got {})",
+                self.bending_stiffness
+            ));
         }
         Ok(())
     }
