@@ -1,7 +1,285 @@
-//! Rest-pose generation (in progress).
-use super::{GuideSet, Hairstyle, StrandLayout};
+//! Rest-pose generation: wisp roots on the scalp, guides draped around the head under gravity,
+//! and the render-strand layout inside each wisp.
+//!
+//! Roots: a Fibonacci lattice on the unit sphere, kept where the polar angle from +Y is inside
+//! the scalp region (the limit blends from `front_polar_deg` at the face to `max_polar_deg` at
+//! the back), then projected radially onto the head ellipsoid. The lattice gives even spacing
+//! without a relaxation pass and is deterministic.
+//!
+//! Guides: each link leaves along a direction that starts as the scalp normal and turns toward
+//! gravity (and, for roots near the face, toward the back, as combed hair); every new particle is
+//! pushed out of the head ellipsoid inflated by a small layer offset, so the rest pose drapes
+//! over the head instead of passing through it. The simulation then settles it.
+//!
+//! Render strands: barycentric weights drawn uniformly inside the triangle of the wisp's 3 guide
+//! roots (Bertails 2005 §4.1: strands interpolated from the guides of their wisp).
 
-/// Builds guides in their rest pose and the render-strand layout of a validated hairstyle.
-pub fn generate(_style: &Hairstyle) -> (GuideSet, StrandLayout) {
-    unimplemented!("in progress")
+use super::{GuideSet, Hairstyle, StrandLayout};
+use glam::Vec3;
+
+/// A small deterministic generator (SplitMix64): placement must not depend on a crate's
+/// version of its random streams.
+pub(crate) struct SplitMix64(u64);
+
+impl SplitMix64 {
+    pub(crate) fn new(seed: u64) -> Self {
+        Self(seed)
+    }
+    pub(crate) fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    /// Uniform in [0, 1).
+    pub(crate) fn unit(&mut self) -> f32 {
+        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
+/// Point on the ellipsoid with semi-axes `r` in direction `d` (unit), and its outward unit normal.
+fn ellipsoid_point(r: Vec3, d: Vec3) -> (Vec3, Vec3) {
+    let s = 1.0 / (d / r).length();
+    let p = d * s;
+    (p, (p / (r * r)).normalize())
+}
+
+/// Pushes `p` out of the ellipsoid with semi-axes `r` (approximately: along the scaled radial
+/// direction), so that its normalised radius is at least 1.
+fn push_outside(p: Vec3, r: Vec3) -> Vec3 {
+    let q = p / r;
+    let len = q.length();
+    if len >= 1.0 || len < 1e-9 { p } else { p / len }
+}
+
+/// Polar angle limit (radians) of roots at azimuth `phi` (0 = face, +Z).
+fn polar_limit(style: &Hairstyle, phi: f32) -> f32 {
+    let front = style.scalp.front_polar_deg.to_radians();
+    let back = style.scalp.max_polar_deg.to_radians();
+    let t = 0.5 * (1.0 - phi.cos()); // 0 at the face, 1 at the back
+    front + (back - front) * t.powf(0.7)
+}
+
+/// Unit directions of the wisp centres: `count` points of a Fibonacci lattice inside the scalp.
+fn root_directions(style: &Hairstyle) -> Vec<Vec3> {
+    let count = style.wisps.count as usize;
+    let golden = std::f32::consts::PI * (3.0 - 5f32.sqrt());
+    let inside = |n: usize, i: usize| -> Option<Vec3> {
+        let y = 1.0 - 2.0 * (i as f32 + 0.5) / n as f32;
+        let rad = (1.0 - y * y).max(0.0).sqrt();
+        let a = golden * i as f32;
+        let d = Vec3::new(rad * a.sin(), y, rad * a.cos());
+        let polar = y.clamp(-1.0, 1.0).acos();
+        let phi = d.x.atan2(d.z);
+        (polar <= polar_limit(style, phi)).then_some(d)
+    };
+    // Grow the lattice until the region holds enough points (the region's area fraction is
+    // at least ~10% for valid specs, so this ends within a few rounds).
+    let mut n = count.max(4) * 2;
+    loop {
+        let dirs: Vec<Vec3> = (0..n).filter_map(|i| inside(n, i)).collect();
+        if dirs.len() >= count {
+            // Keep an even subset: take evenly spaced indices.
+            let m = dirs.len();
+            return (0..count).map(|k| dirs[k * m / count]).collect();
+        }
+        n = n * 3 / 2 + 8;
+    }
+}
+
+/// Builds guides in their rest pose (head frame) and the render-strand layout.
+pub fn generate(style: &Hairstyle) -> (GuideSet, StrandLayout) {
+    let radii = Vec3::from(style.head.radii_m);
+    let links = style.guides.links as usize;
+    let ppg = links + 1;
+    let mut rng = SplitMix64::new(style.seed);
+    let dirs = root_directions(style);
+    let wisps = dirs.len();
+
+    let mut rest = Vec::with_capacity(wisps * 3 * ppg);
+    let mut link_length_m = Vec::with_capacity(wisps * 3);
+    let mut root_normal = Vec::with_capacity(wisps * 3);
+    let mut wisp_guides = Vec::with_capacity(wisps);
+
+    for (w, &d) in dirs.iter().enumerate() {
+        let (centre, normal) = ellipsoid_point(radii, d);
+        // Tangent frame at the wisp centre.
+        let side = Vec3::Y.cross(normal).try_normalize().unwrap_or(Vec3::X);
+        let fwd = normal.cross(side);
+        let length =
+            style.guides.length_m * (1.0 + style.guides.length_jitter * (2.0 * rng.unit() - 1.0));
+        let layer = 0.002 + 0.006 * rng.unit(); // metres above the scalp where hair lies
+        let wave_phase = std::f32::consts::TAU * rng.unit();
+        let spin = std::f32::consts::TAU * rng.unit();
+        let g0 = link_length_m.len() as u32;
+        for k in 0..3 {
+            let a = spin + k as f32 * std::f32::consts::TAU / 3.0;
+            let offset = style.wisps.radius_m * (a.cos() * side + a.sin() * fwd);
+            let (root, n) = ellipsoid_point(radii, (centre + offset).normalize());
+            let l = length / links as f32;
+            push_guide(style, radii, root, n, side, l, layer, wave_phase, &mut rest);
+            link_length_m.push(l);
+            root_normal.push(n);
+        }
+        wisp_guides.push([g0, g0 + 1, g0 + 2]);
+        let _ = w;
+    }
+
+    let spw = style.wisps.strands_per_wisp as usize;
+    let mut strand_wisp = Vec::with_capacity(wisps * spw);
+    let mut strand_weights = Vec::with_capacity(wisps * spw);
+    let mut strand_phase = Vec::with_capacity(wisps * spw);
+    for w in 0..wisps {
+        for _ in 0..spw {
+            // Uniform point in a triangle: (1 - √r1, √r1 (1 - r2), √r1 r2).
+            let s1 = rng.unit().sqrt();
+            let r2 = rng.unit();
+            strand_wisp.push(w as u32);
+            strand_weights.push([1.0 - s1, s1 * (1.0 - r2), s1 * r2]);
+            strand_phase.push(std::f32::consts::TAU * rng.unit());
+        }
+    }
+
+    (
+        GuideSet {
+            points_per_guide: ppg,
+            rest,
+            link_length_m,
+            root_normal,
+        },
+        StrandLayout {
+            wisp_guides,
+            strand_wisp,
+            strand_weights,
+            strand_phase,
+            points_per_strand: style.strands.points as usize,
+        },
+    )
+}
+
+/// Appends the particles of one guide, root first, each link of length `l` metres.
+#[allow(clippy::too_many_arguments)]
+fn push_guide(
+    style: &Hairstyle,
+    radii: Vec3,
+    root: Vec3,
+    normal: Vec3,
+    side: Vec3,
+    l: f32,
+    layer: f32,
+    wave_phase: f32,
+    out: &mut Vec<Vec3>,
+) {
+    let links = style.guides.links as usize;
+    let inflated = radii + Vec3::splat(layer);
+    // Combing: hair rooted toward the face is brushed back and to the side.
+    let comb = Vec3::new(normal.x * 0.6, 0.0, -normal.z.max(0.0) * 1.2 - 0.15);
+    let mut p = root;
+    let mut dir = normal;
+    out.push(p);
+    let amp = style.guides.wave_amplitude_m;
+    let mut prev_wave = 0.0;
+    for i in 1..=links {
+        let s = i as f32 * l; // arc length at the new particle
+        // The first link leaves along the normal; later ones turn toward gravity.
+        let t = (s / 0.06).min(1.0);
+        let want = (normal * (1.0 - t) + (Vec3::NEG_Y + comb * (1.0 - 0.5 * t)) * t).normalize();
+        dir = (dir + want).normalize();
+        let mut next = p + dir * l;
+        if amp > 0.0 {
+            let ramp = (s / 0.05).min(1.0);
+            let wave = amp
+                * ramp
+                * (std::f32::consts::TAU * s / style.guides.wave_period_m + wave_phase).sin();
+            next += side * (wave - prev_wave);
+            prev_wave = wave;
+        }
+        // Push out of the head, then restore the link length (keeps links rigid in the rest
+        // pose too); a few rounds converge because the previous particle is outside.
+        for _ in 0..4 {
+            next = push_outside(next, inflated);
+            next = p + (next - p).normalize_or(dir) * l;
+        }
+        dir = (next - p) / l;
+        out.push(next);
+        p = next;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn smooth_preset_has_paper_scale_counts() {
+        let style = Hairstyle::default_smooth();
+        let (g, s) = generate(&style);
+        assert_eq!(g.count(), 134 * 3);
+        assert_eq!(s.count(), 134 * 25);
+        // Bertails 2005 §5: 3350 strands and about 100K segments.
+        assert!(
+            (95_000..=105_000).contains(&s.segments()),
+            "{}",
+            s.segments()
+        );
+        let curly = generate(&Hairstyle::default_curly()).1;
+        assert!(
+            (190_000..=210_000).contains(&curly.segments()),
+            "{}",
+            curly.segments()
+        );
+    }
+
+    #[test]
+    fn links_are_rigid_roots_on_scalp_and_no_particle_inside_the_head() {
+        for style in [Hairstyle::default_smooth(), Hairstyle::default_curly()] {
+            let (g, _) = generate(&style);
+            let r = Vec3::from(style.head.radii_m);
+            for k in 0..g.count() {
+                let pts = g.guide(k);
+                let root_radius = (pts[0] / r).length();
+                assert!(
+                    (root_radius - 1.0).abs() < 1e-4,
+                    "root off the scalp: {root_radius}"
+                );
+                for w in pts.windows(2) {
+                    let len = (w[1] - w[0]).length();
+                    assert!((len / g.link_length_m[k] - 1.0).abs() < 1e-4);
+                }
+                for p in &pts[1..] {
+                    assert!((*p / r).length() >= 0.999, "particle inside the head");
+                }
+                // The first link leaves the scalp outward.
+                assert!((pts[1] - pts[0]).dot(g.root_normal[k]) > 0.5 * g.link_length_m[k]);
+            }
+        }
+    }
+
+    #[test]
+    fn weights_are_barycentric_and_generation_is_deterministic() {
+        let style = Hairstyle::default_smooth();
+        let (g1, s1) = generate(&style);
+        let (g2, s2) = generate(&style);
+        assert_eq!(g1.rest, g2.rest);
+        assert_eq!(s1.strand_weights, s2.strand_weights);
+        for w in &s1.strand_weights {
+            assert!(w.iter().all(|x| *x >= 0.0));
+            assert!((w.iter().sum::<f32>() - 1.0).abs() < 1e-5);
+        }
+    }
+
+    #[test]
+    fn hair_hangs_down() {
+        let style = Hairstyle::default_smooth();
+        let (g, _) = generate(&style);
+        let tips_below = (0..g.count())
+            .filter(|&k| g.guide(k).last().unwrap().y < -0.05)
+            .count();
+        assert!(
+            tips_below * 10 >= g.count() * 8,
+            "{tips_below} of {} tips hang below the head centre",
+            g.count()
+        );
+    }
 }
