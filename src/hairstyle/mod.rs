@@ -8,7 +8,7 @@
 mod generate;
 mod model;
 
-pub use generate::generate;
+pub use generate::{SplitMix64, generate};
 pub use model::{GuideSet, StrandLayout};
 
 use crate::fiber::FiberParams;

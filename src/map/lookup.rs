@@ -1,0 +1,124 @@
+//! Reading the map: the trilinear filter of Bertails 2005 §3.3 and the cell density used by
+//! self-collision (§4.1).
+
+use super::{Cell, LightMap};
+use crate::fiber::LightAtPoint;
+use glam::Vec3;
+
+/// Light leaving a far face: (direct fraction, T_f, σ̄f²) as plain arrays for blending.
+#[derive(Clone, Copy)]
+struct Face {
+    direct: f32,
+    tf: Vec3,
+    sigma2: Vec3,
+}
+
+const OPEN: Face = Face {
+    direct: 1.0,
+    tf: Vec3::ONE,
+    sigma2: Vec3::ZERO,
+};
+
+impl From<&Cell> for Face {
+    #[inline]
+    fn from(c: &Cell) -> Self {
+        Face {
+            direct: c.direct,
+            tf: Vec3::from(c.tf),
+            sigma2: Vec3::from(c.sigma2),
+        }
+    }
+}
+
+impl LightMap {
+    /// Light reaching world point `p`, filtered trilinearly: along X between the far faces of
+    /// cells i−1 and i (the light entering and leaving the point's cell), across X between
+    /// column centres. Non-finite points and points before the hair read as unshadowed.
+    pub fn light_at(&self, p: Vec3) -> LightAtPoint {
+        let c = self.cell_coords(p);
+        if !(c.abs().max_element() < 1.0e12) {
+            return LightAtPoint::UNSHADOWED;
+        }
+        let i = c.x.floor();
+        let lambda = c.x - i;
+        let d = i as i64 - self.first_slice;
+        let (yj, zk) = (c.y - 0.5, c.z - 0.5);
+        let (j0, k0) = (yj.floor(), zk.floor());
+        let (wy, wz) = (yj - j0, zk - k0);
+        let (j0, k0) = (j0 as i64, k0 as i64);
+        let mut acc = Face {
+            direct: 0.0,
+            tf: Vec3::ZERO,
+            sigma2: Vec3::ZERO,
+        };
+        for (dj, wj) in [(0, 1.0 - wy), (1, wy)] {
+            for (dk, wk) in [(0, 1.0 - wz), (1, wz)] {
+                let w = wj * wk;
+                if w == 0.0 {
+                    continue;
+                }
+                let (before, after) = self.faces(self.column(j0 + dj, k0 + dk), d);
+                let wb = w * (1.0 - lambda);
+                let wa = w * lambda;
+                acc.direct += wb * before.direct + wa * after.direct;
+                acc.tf += wb * before.tf + wa * after.tf;
+                acc.sigma2 += wb * before.sigma2 + wa * after.sigma2;
+            }
+        }
+        LightAtPoint {
+            direct_fraction: acc.direct.clamp(0.0, 1.0),
+            tf: acc.tf.clamp(Vec3::ZERO, Vec3::ONE),
+            sigma_f2: acc.sigma2.max(Vec3::ZERO),
+        }
+    }
+
+    /// The light entering (far face of slice d−1) and leaving (far face of slice d) the cell at
+    /// unwrapped distance `d` slices from the first slice, in column `col`.
+    #[inline]
+    fn faces(&self, col: usize, d: i64) -> (Face, Face) {
+        let cells = self.column_cells(col);
+        if d < 0 || cells.is_empty() {
+            return (OPEN, OPEN);
+        }
+        let rel = d.rem_euclid(self.geom.n as i64) as u32;
+        // Cells with slice <= rel; merged-away entries carry u32::MAX and sort last.
+        let k = cells.partition_point(|c| c.slice <= rel);
+        if k == 0 {
+            return (OPEN, OPEN);
+        }
+        let leaving = Face::from(&cells[k - 1]);
+        let entering = if cells[k - 1].slice == rel {
+            if k >= 2 {
+                Face::from(&cells[k - 2])
+            } else {
+                OPEN
+            }
+        } else {
+            leaving
+        };
+        if rel == 0 {
+            return (OPEN, leaving);
+        }
+        (entering, leaving)
+    }
+
+    /// Hair volume fraction of the cell holding world point `p` and that cell's centre (world),
+    /// or `None` when the cell is empty (Bertails §4.1 self-collision).
+    pub fn cell_density(&self, p: Vec3) -> Option<(f32, Vec3)> {
+        let c = self.cell_coords(p);
+        if !(c.abs().max_element() < 1.0e12) {
+            return None;
+        }
+        let f = c.floor();
+        let d = f.x as i64 - self.first_slice;
+        if d < 0 {
+            return None;
+        }
+        let rel = d.rem_euclid(self.geom.n as i64) as u32;
+        let cells = self.column_cells(self.column(f.y as i64, f.z as i64));
+        let k = cells.partition_point(|c| c.slice < rel);
+        let cell = cells.get(k).filter(|c| c.slice == rel)?;
+        let centre = self.frame.to_world((f + Vec3::splat(0.5)) * self.geom.ds_m);
+        Some((cell.volume_fraction, centre))
+    }
+}

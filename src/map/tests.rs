@@ -1,0 +1,101 @@
+//! Unit tests of the map's sweep and filter on hand-made columns.
+
+use super::*;
+use crate::fiber::{Fiber, FiberParams, LightAtPoint};
+
+fn fiber() -> Fiber {
+    Fiber::new(&FiberParams::default())
+}
+
+/// One sample per point, all fibres perpendicular to the light (which travels along +X).
+fn build(points: &[Vec3], len: f32, n: u32, ds: f32) -> LightMap {
+    let f = fiber();
+    let mut map = LightMap::new(MapGeometry { n, ds_m: ds }, CountModel::Poisson);
+    let tangents = vec![Vec3::Y; points.len()];
+    let lengths = vec![len; points.len()];
+    map.build(&MapBuildInput {
+        positions: points,
+        tangents: &tangents,
+        lengths_m: &lengths,
+        fibers_per_strand: 10.0,
+        light_dir: Vec3::X,
+        fiber: &f,
+    });
+    map
+}
+
+#[test]
+fn empty_map_is_unshadowed_everywhere() {
+    let map = build(&[], 0.01, 16, 0.01);
+    assert_eq!(map.stats().filled_cells, 0);
+    assert_eq!(
+        map.light_at(Vec3::new(0.3, 0.1, -0.2)),
+        LightAtPoint::UNSHADOWED
+    );
+    assert!(map.cell_density(Vec3::ZERO).is_none());
+}
+
+#[test]
+fn merge_counts_cells_and_sweep_is_monotonic() {
+    let ds = 0.01;
+    // Three samples in one cell, two in the next along the light, one far behind.
+    let pts = [
+        Vec3::new(0.001, 0.005, 0.005),
+        Vec3::new(0.002, 0.005, 0.005),
+        Vec3::new(0.003, 0.005, 0.005),
+        Vec3::new(0.012, 0.005, 0.005),
+        Vec3::new(0.015, 0.005, 0.005),
+        Vec3::new(0.095, 0.005, 0.005),
+    ];
+    let map = build(&pts, 0.01, 16, ds);
+    assert_eq!(map.stats().filled_cells, 3);
+    assert_eq!(map.stats().columns, 1);
+    let c0 = map.cell_coords(pts[0]).floor();
+    let col = map.column_cells(map.column(c0.y as i64, c0.z as i64));
+    let live: Vec<&Cell> = col.iter().filter(|c| c.slice != u32::MAX).collect();
+    assert_eq!(
+        live.iter().map(|c| c.slice).collect::<Vec<_>>(),
+        vec![0, 1, 9]
+    );
+    for w in live.windows(2) {
+        assert!(w[1].direct <= w[0].direct);
+        for ch in 0..3 {
+            assert!(w[1].tf[ch] <= w[0].tf[ch]);
+            assert!(w[1].sigma2[ch] >= w[0].sigma2[ch]);
+        }
+    }
+    // Volume fraction of the first cell: 3 samples x F·ℓ·πr² / ds³.
+    let r = FiberParams::default().radius_m;
+    let expect = 3.0 * 10.0 * 0.01 * std::f32::consts::PI * r * r / (ds * ds * ds);
+    let (vf, centre) = map.cell_density(pts[0]).unwrap();
+    assert!((vf / expect - 1.0).abs() < 1e-5, "{vf} vs {expect}");
+    let frac = map.cell_coords(centre) - c0;
+    assert!(
+        (frac - Vec3::splat(0.5)).abs().max_element() < 1e-4,
+        "{frac}"
+    );
+}
+
+#[test]
+fn non_finite_samples_are_skipped_and_never_reach_a_lookup() {
+    let pts = [
+        Vec3::new(f32::NAN, 0.0, 0.0),
+        Vec3::splat(f32::INFINITY),
+        Vec3::new(0.001, 0.001, 0.001),
+    ];
+    let map = build(&pts, 0.01, 8, 0.01);
+    assert_eq!(map.stats().skipped, 2);
+    assert_eq!(map.stats().samples, 1);
+    for p in [Vec3::NAN, Vec3::splat(1e30), Vec3::new(0.02, 0.001, 0.001)] {
+        let l = map.light_at(p);
+        assert!(l.direct_fraction.is_finite() && l.tf.is_finite() && l.sigma_f2.is_finite());
+    }
+}
+
+#[test]
+fn overflow_is_reported_when_hair_exceeds_the_span() {
+    let pts = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 0.5, 0.0)];
+    assert!(build(&pts, 0.01, 8, 0.01).stats().overflow);
+    let pts = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 0.05, 0.0)];
+    assert!(!build(&pts, 0.01, 8, 0.01).stats().overflow);
+}
