@@ -1,0 +1,168 @@
+//! The cell convention and the filter agree (Bertails 2005 §3.2-3.3): a flat slab of hair
+//! perpendicular to the light reads exactly 1 in front of it and the analytic attenuation
+//! behind it; and the light never grows along the light direction.
+
+mod common;
+use common::*;
+use glam::Vec3;
+use wisp::hairstyle::Hairstyle;
+use wisp::interp::StrandGeometry;
+use wisp::map::{LightFrame, MapGeometry};
+
+const DS: f32 = 1.0 / 128.0;
+const FIBERS: f32 = 20.0;
+const LEN: f32 = 0.002;
+/// Samples per cell: a 2x2x2 lattice.
+const PER_CELL: f32 = 8.0;
+
+/// A slab filling slices 10..14 (4 cells) and lateral columns -8..8, fibres along map Y.
+fn slab(frame: &LightFrame) -> StrandGeometry {
+    let mut geo = StrandGeometry {
+        points_per_strand: 1,
+        ..Default::default()
+    };
+    for i in 10..14 {
+        for j in -8..8 {
+            for k in -8..8 {
+                for s in 0..8 {
+                    let sub =
+                        Vec3::new((s & 1) as f32, ((s >> 1) & 1) as f32, ((s >> 2) & 1) as f32);
+                    let m = (Vec3::new(i as f32, j as f32, k as f32) + 0.25 + 0.5 * sub) * DS;
+                    geo.positions.push(frame.to_world(m));
+                    geo.tangents.push(frame.y);
+                    geo.lengths_m.push(LEN);
+                }
+            }
+        }
+    }
+    geo
+}
+
+#[test]
+fn slab_reads_one_in_front_and_the_analytic_attenuation_behind() {
+    let light = Vec3::new(0.3, -1.0, 0.2);
+    let frame = LightFrame::new(light);
+    let fiber = default_fiber();
+    let map = build_map(
+        &slab(&frame),
+        &fiber,
+        MapGeometry { n: 128, ds_m: DS },
+        light,
+        FIBERS,
+    );
+    // Expected crossings per cell: 8 samples x F·ℓ·2r / ds² (fibres perpendicular to L).
+    let r = fiber.params().radius_m;
+    let n_cell = PER_CELL * FIBERS * LEN * 2.0 * r / (DS * DS);
+    let fs = fiber.forward_scatter(0.0);
+    let expect = |cells: f32| {
+        let n = cells * n_cell;
+        (
+            (-n).exp(),
+            (-(Vec3::ONE - fs.a_f) * n).exp(),
+            fs.beta_f2 * n,
+        )
+    };
+    let at = |x_cells: f32| map.light_at(frame.to_world(Vec3::new(x_cells, 0.3, -0.6) * DS));
+    // In front, and exactly at the entry face: no attenuation at all.
+    for x in [2.0, 9.0, 9.99, 10.0] {
+        let l = at(x);
+        assert_eq!(
+            (l.direct_fraction, l.tf, l.sigma_f2),
+            (1.0, Vec3::ONE, Vec3::ZERO),
+            "x = {x} cells"
+        );
+    }
+    // At each face inside and behind: the analytic values after the cells crossed.
+    for (x, cells) in [
+        (11.0, 1.0),
+        (12.0, 2.0),
+        (14.0, 4.0),
+        (20.0, 4.0),
+        (60.0, 4.0),
+    ] {
+        let l = at(x);
+        let (d, tf, s2) = expect(cells);
+        assert!(
+            (l.direct_fraction - d).abs() < 1e-5 * d.max(1e-3),
+            "x {x}: direct {} vs {d}",
+            l.direct_fraction
+        );
+        assert!(
+            (l.tf - tf).abs().max_element() < 1e-5,
+            "x {x}: Tf {} vs {tf}",
+            l.tf
+        );
+        assert!(
+            (l.sigma_f2 - s2).abs().max_element() < 1e-5 * s2.max_element().max(1e-6),
+            "x {x}"
+        );
+    }
+    // Between two faces the filter is linear in x (Bertails §3.3).
+    let (mid, a, b) = (at(12.25), at(12.0), at(13.0));
+    let lin = a.tf * 0.75 + b.tf * 0.25;
+    assert!((mid.tf - lin).abs().max_element() < 1e-5);
+    // The slab is thick enough to matter.
+    assert!(
+        expect(4.0).0 < 0.5,
+        "direct fraction behind the slab {}",
+        expect(4.0).0
+    );
+}
+
+#[test]
+fn light_never_increases_along_the_light_in_any_column() {
+    let style = Hairstyle::default_curly();
+    let geo = rest_strands(&style);
+    let fiber = default_fiber();
+    let light = Vec3::new(-0.5, -0.7, 0.5);
+    let frame = LightFrame::new(light);
+    let geom = MapGeometry::with_resolution(
+        MapGeometry::span_m(style.max_length_m(), style.head_size_m()),
+        96,
+    );
+    let map = build_map(&geo, &fiber, geom, light, style.strands.fibers_per_strand);
+    // Rays along the light through a lattice of lateral positions covering the hair, stepping
+    // a seventh of a cell (so every cell and both filter regimes are visited).
+    let lo = geo
+        .positions
+        .iter()
+        .fold(Vec3::splat(f32::MAX), |a, p| a.min(frame.to_map(*p)));
+    let hi = geo
+        .positions
+        .iter()
+        .fold(Vec3::splat(f32::MIN), |a, p| a.max(frame.to_map(*p)));
+    let mut rays = 0;
+    let mut darkened = 0;
+    for a in 0..40 {
+        for b in 0..40 {
+            let y = lo.y + (hi.y - lo.y) * (a as f32 + 0.5) / 40.0;
+            let z = lo.z + (hi.z - lo.z) * (b as f32 + 0.5) / 40.0;
+            let mut prev = map.light_at(frame.to_world(Vec3::new(lo.x - geom.ds_m, y, z)));
+            // Tolerance 1e-5: the 8-term blend of equal face values rounds by a few ulps.
+            let steps = ((hi.x - lo.x) / geom.ds_m * 7.0) as usize + 14;
+            for s in 0..steps {
+                let x = lo.x - geom.ds_m + s as f32 * geom.ds_m / 7.0;
+                let l = map.light_at(frame.to_world(Vec3::new(x, y, z)));
+                assert!(
+                    l.direct_fraction <= prev.direct_fraction + 1e-5,
+                    "ray ({a},{b}) step {s} of {steps}: {} after {}, x {x}",
+                    l.direct_fraction,
+                    prev.direct_fraction
+                );
+                assert!(
+                    l.tf.cmple(prev.tf + Vec3::splat(1e-5)).all(),
+                    "Tf grew at ray ({a},{b}) step {s}"
+                );
+                assert!(l.sigma_f2.cmpge(prev.sigma_f2 - Vec3::splat(1e-5)).all());
+                prev = l;
+            }
+            rays += 1;
+            darkened += (prev.tf.x < 0.9) as usize;
+        }
+    }
+    assert_eq!(rays, 1600);
+    assert!(
+        darkened > 100,
+        "only {darkened} rays were shadowed: the test would prove nothing"
+    );
+}
