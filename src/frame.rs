@@ -1,1 +1,350 @@
-//! (in progress)
+//! One frame of the pipeline, stage by stage, with per-stage timings.
+//!
+//! ```text
+//! animation   motion.sample(t)                -> head and body-sphere transforms
+//! simulation  sim.advance(t, colliders, map)  -> guide particles (self-collision reads the
+//!                                                map of the previous frame, Bertails §4.1)
+//! interp      interpolate(guides)             -> render strands (positions, tangents)
+//! map         map.build(strands, light)       -> Tf, σ̄f², direct fraction per cell
+//! shading     shade_vertices(map, fiber)      -> vertex colours
+//! raster      head, body spheres, hair lines  -> framebuffer
+//! ```
+//!
+//! [`Engine`] owns every buffer, so after the first frame no stage allocates. Each stage is a
+//! plain function of explicit inputs (see the modules); the engine only sequences them and
+//! times them.
+
+use crate::fiber::Fiber;
+use crate::hairstyle::{GuideSet, Hairstyle, StrandLayout, generate};
+use crate::interp::{StrandGeometry, interpolate};
+use crate::map::{CountModel, LightMap, MapGeometry, MapStats};
+use crate::motion::{Motion, Pose};
+use crate::raster::{Camera, Framebuffer, LineScratch, LineStyle, Polylines, draw_ellipsoid, draw_polylines};
+use crate::shade::{Lighting, shade_skin, shade_vertices};
+use crate::sim::{Colliders, DensityField, NoDensity, SimState, Simulator, SphereCollider, StepStats};
+use glam::{Affine3A, Vec3};
+use std::time::Instant;
+
+/// Seconds spent in each stage of one frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StageTimings {
+    pub animation_s: f64,
+    pub simulation_s: f64,
+    pub interpolation_s: f64,
+    pub map_s: f64,
+    pub shading_s: f64,
+    pub raster_s: f64,
+}
+
+impl StageTimings {
+    pub const NAMES: [&'static str; 6] = ["animation", "simulation", "interpolation", "map", "shading", "raster"];
+
+    pub fn as_array(&self) -> [f64; 6] {
+        [self.animation_s, self.simulation_s, self.interpolation_s, self.map_s, self.shading_s, self.raster_s]
+    }
+    pub fn total_s(&self) -> f64 {
+        self.as_array().iter().sum()
+    }
+    pub fn add(&mut self, o: &StageTimings) {
+        self.animation_s += o.animation_s;
+        self.simulation_s += o.simulation_s;
+        self.interpolation_s += o.interpolation_s;
+        self.map_s += o.map_s;
+        self.shading_s += o.shading_s;
+        self.raster_s += o.raster_s;
+    }
+    pub fn scaled(&self, k: f64) -> StageTimings {
+        let a = self.as_array().map(|v| v * k);
+        StageTimings {
+            animation_s: a[0],
+            simulation_s: a[1],
+            interpolation_s: a[2],
+            map_s: a[3],
+            shading_s: a[4],
+            raster_s: a[5],
+        }
+    }
+}
+
+/// Everything about a run that is not the hairstyle or the motion.
+#[derive(Clone, Debug)]
+pub struct EngineConfig {
+    /// Image size in pixels.
+    pub width: u32,
+    pub height: u32,
+    /// Light and shader.
+    pub lighting: Lighting,
+    /// Map cells per axis; `None` sizes the map from the scene (`MapGeometry::for_scene`).
+    pub map_res: Option<u32>,
+    /// Density-based self-collision (Bertails §4.1).
+    pub self_collision: bool,
+    /// Simulate the guides; `false` keeps them in their rest pose riding on the head.
+    pub simulate: bool,
+    /// Seconds of simulated time with the head held at the first pose before frame 0, so the
+    /// hair starts settled.
+    pub settle_s: f64,
+    /// Hair line width in pixels and coverage multiplier.
+    pub line: LineStyle,
+    /// Background colour (linear RGB).
+    pub background: Vec3,
+}
+
+impl Default for EngineConfig {
+    fn default() -> Self {
+        Self {
+            width: 800,
+            height: 800,
+            lighting: Lighting::default(),
+            map_res: None,
+            self_collision: true,
+            simulate: true,
+            settle_s: 2.0,
+            line: LineStyle { width_px: 1.0, opacity: 0.85 },
+            background: Vec3::new(0.012, 0.014, 0.018),
+        }
+    }
+}
+
+/// Skin albedo of the head and the body spheres.
+const SKIN: Vec3 = Vec3::new(0.55, 0.38, 0.30);
+const CLOTH: Vec3 = Vec3::new(0.10, 0.14, 0.22);
+
+/// The whole engine: hairstyle, motion, simulation state, map and image buffers.
+pub struct Engine {
+    pub style: Hairstyle,
+    pub fiber: Fiber,
+    pub guides: GuideSet,
+    pub layout: StrandLayout,
+    pub motion: Motion,
+    pub config: EngineConfig,
+    pose: Pose,
+    colliders: Colliders,
+    sim: Simulator,
+    pub state: SimState,
+    map: LightMap,
+    map_valid: bool,
+    pub strands: StrandGeometry,
+    colors: Vec<Vec3>,
+    camera: Camera,
+    fb: Framebuffer,
+    scratch: LineScratch,
+    /// Timings of the last frame.
+    pub timings: StageTimings,
+    /// Figures of the last simulation advance.
+    pub step_stats: StepStats,
+}
+
+impl Engine {
+    /// Builds the hair, settles it on the first pose of the motion and frames the camera.
+    pub fn new(style: Hairstyle, motion: Motion, config: EngineConfig) -> Self {
+        let fiber = Fiber::new(&style.fiber);
+        let (guides, layout) = generate(&style);
+        let radii = Vec3::from(style.head.radii_m);
+        let pose = motion.sample(0.0);
+        let colliders = colliders_of(&pose, radii);
+        let sim = Simulator::new(&style.dynamics, &guides, radii);
+        let state = SimState::at_rest(&guides, &colliders, -config.settle_s);
+        let geom = match config.map_res {
+            Some(n) => MapGeometry::with_resolution(MapGeometry::span_m(style.max_length_m(), style.head_size_m()), n),
+            None => MapGeometry::for_scene(
+                style.max_length_m(),
+                style.head_size_m(),
+                layout.count(),
+                scalp_area_m2(&style),
+            ),
+        };
+        let camera = placeholder_camera(&config);
+        let fb = Framebuffer::new(config.width, config.height, config.background);
+        let mut engine = Self {
+            style,
+            fiber,
+            guides,
+            layout,
+            motion,
+            pose,
+            colliders,
+            sim,
+            state,
+            map: LightMap::new(geom, CountModel::Poisson),
+            map_valid: false,
+            strands: StrandGeometry::default(),
+            colors: Vec::new(),
+            camera,
+            fb,
+            scratch: LineScratch::default(),
+            timings: StageTimings::default(),
+            step_stats: StepStats::default(),
+            config,
+        };
+        // Settle with the head held at the first pose (the simulation starts at −settle_s).
+        engine.advance(0.0);
+        engine.camera = engine.frame_camera();
+        engine
+    }
+
+    /// Map geometry in use.
+    pub fn map_geometry(&self) -> MapGeometry {
+        self.map.geometry()
+    }
+    /// Figures of the last map build.
+    pub fn map_stats(&self) -> &MapStats {
+        self.map.stats()
+    }
+    pub fn map(&self) -> &LightMap {
+        &self.map
+    }
+    pub fn camera(&self) -> &Camera {
+        &self.camera
+    }
+    pub fn framebuffer(&self) -> &Framebuffer {
+        &self.fb
+    }
+    pub fn pose(&self) -> &Pose {
+        &self.pose
+    }
+
+    /// Animation, simulation and interpolation up to time `t_s` (seconds of the motion).
+    pub fn advance(&mut self, t_s: f64) {
+        let t0 = Instant::now();
+        self.motion.sample_into(t_s as f32, &mut self.pose);
+        let radii = Vec3::from(self.style.head.radii_m);
+        self.colliders = colliders_of(&self.pose, radii);
+        let t1 = Instant::now();
+        if self.config.simulate {
+            let motion = &self.motion;
+            let mut scratch_pose = self.pose.clone();
+            let colliders_at = |t: f64, c: &mut Colliders| {
+                motion.sample_into(t.max(0.0) as f32, &mut scratch_pose);
+                write_colliders(&scratch_pose, radii, c);
+            };
+            self.step_stats = if self.config.self_collision && self.map_valid {
+                self.sim.advance(&mut self.state, t_s, colliders_at, &self.map)
+            } else {
+                self.sim.advance(&mut self.state, t_s, colliders_at, &NoDensity)
+            };
+        } else {
+            let head = self.pose.head;
+            for (p, r) in self.state.positions.iter_mut().zip(&self.guides.rest) {
+                *p = head.transform_point3(*r);
+            }
+            self.state.time_s = t_s;
+        }
+        let t2 = Instant::now();
+        interpolate(&self.guides, &self.layout, &self.style.curl, &self.state.positions, &mut self.strands);
+        let t3 = Instant::now();
+        self.timings.animation_s = (t1 - t0).as_secs_f64();
+        self.timings.simulation_s = (t2 - t1).as_secs_f64();
+        self.timings.interpolation_s = (t3 - t2).as_secs_f64();
+    }
+
+    /// Map, shading and raster of the current hair; returns the image.
+    pub fn render(&mut self) -> &Framebuffer {
+        let t0 = Instant::now();
+        self.build_map();
+        let t1 = Instant::now();
+        let eye = self.camera.eye();
+        shade_vertices(
+            &self.fiber,
+            &self.map,
+            &self.config.lighting,
+            eye,
+            &self.strands.positions,
+            &self.strands.tangents,
+            &mut self.colors,
+        );
+        let t2 = Instant::now();
+        self.fb.clear(self.config.background);
+        let (map, lighting) = (&self.map, &self.config.lighting);
+        let head = self.pose.head * Affine3A::from_scale(Vec3::from(self.style.head.radii_m));
+        draw_ellipsoid(&mut self.fb, &self.camera, head, |p, n| shade_skin(map, lighting, SKIN, p, n));
+        for s in &self.pose.spheres {
+            let m = Affine3A::from_scale_rotation_translation(Vec3::splat(s.radius_m), glam::Quat::IDENTITY, s.center);
+            draw_ellipsoid(&mut self.fb, &self.camera, m, |p, n| shade_skin(map, lighting, CLOTH, p, n));
+        }
+        let lines = Polylines {
+            points: &self.strands.positions,
+            colors: &self.colors,
+            points_per_line: self.strands.points_per_strand,
+        };
+        draw_polylines(&mut self.fb, &self.camera, &lines, &self.config.line, &mut self.scratch);
+        let t3 = Instant::now();
+        self.timings.map_s = (t1 - t0).as_secs_f64();
+        self.timings.shading_s = (t2 - t1).as_secs_f64();
+        self.timings.raster_s = (t3 - t2).as_secs_f64();
+        &self.fb
+    }
+
+    /// One whole frame at time `t_s`.
+    pub fn frame(&mut self, t_s: f64) -> &Framebuffer {
+        self.advance(t_s);
+        self.render()
+    }
+
+    /// Rebuilds the light-oriented map from the current render strands.
+    pub fn build_map(&mut self) {
+        self.map.build(&crate::map::MapBuildInput {
+            positions: &self.strands.positions,
+            tangents: &self.strands.tangents,
+            lengths_m: &self.strands.lengths_m,
+            fibers_per_strand: self.style.strands.fibers_per_strand,
+            light_dir: self.config.lighting.light_dir,
+            fiber: &self.fiber,
+        });
+        self.map_valid = true;
+    }
+
+    /// A fixed camera that frames the settled hair and the head's travel over the clip, from
+    /// three-quarters front of the first pose.
+    fn frame_camera(&self) -> Camera {
+        let pts = &self.strands.positions;
+        let (lo, hi) = pts.iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), p| {
+            if p.is_finite() { (lo.min(*p), hi.max(*p)) } else { (lo, hi) }
+        });
+        let head0 = self.pose.head.translation.into();
+        let (lo, hi) = if lo.x <= hi.x { (lo, hi) } else { (head0, head0) };
+        let centre = 0.5 * (lo + hi);
+        let mut radius = 0.5 * (hi - lo).length();
+        // Travel of the head over the clip (60 samples).
+        let d = self.motion.duration_s().max(1e-3);
+        let mut travel = 0.0f32;
+        for i in 0..60 {
+            let p = self.motion.sample(d * i as f32 / 60.0).head.translation;
+            travel = travel.max((Vec3::from(p) - head0).length());
+        }
+        radius = radius * 1.05 + travel;
+        let view = self.pose.head.transform_vector3(Vec3::new(0.55, 0.12, 1.0)).normalize_or(Vec3::Z);
+        Camera::framing(centre, radius.max(0.05), view, 30f32.to_radians(), self.config.width, self.config.height)
+    }
+}
+
+/// Rough scalp area: the ellipsoid's mean radius over the cap of the mean polar limit.
+fn scalp_area_m2(style: &Hairstyle) -> f32 {
+    let r = style.head.radii_m.iter().sum::<f32>() / 3.0;
+    let polar = 0.5 * (style.scalp.front_polar_deg + style.scalp.max_polar_deg);
+    2.0 * std::f32::consts::PI * r * r * (1.0 - polar.to_radians().cos())
+}
+
+fn placeholder_camera(config: &EngineConfig) -> Camera {
+    Camera::framing(Vec3::ZERO, 0.5, Vec3::Z, 30f32.to_radians(), config.width, config.height)
+}
+
+fn colliders_of(pose: &Pose, radii: Vec3) -> Colliders {
+    let mut c = Colliders { head: pose.head, head_radii_m: radii, spheres: Vec::new() };
+    write_colliders(pose, radii, &mut c);
+    c
+}
+
+fn write_colliders(pose: &Pose, radii: Vec3, c: &mut Colliders) {
+    c.head = pose.head;
+    c.head_radii_m = radii;
+    c.spheres.clear();
+    c.spheres.extend(pose.spheres.iter().map(|s| SphereCollider { center: s.center, radius_m: s.radius_m }));
+}
+
+/// The map answers the simulation's density queries (Bertails §4.1).
+impl DensityField for LightMap {
+    #[inline]
+    fn cell_density(&self, p: Vec3) -> Option<(f32, Vec3)> {
+        LightMap::cell_density(self, p)
+    }
+}

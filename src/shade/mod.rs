@@ -1,1 +1,84 @@
-//! (in progress)
+//! Shading: the colour of every render-strand vertex and of the head's skin.
+//!
+//! Per vertex: a filtered map lookup (Bertails 2005 §3.3) gives what the light went through
+//! to get there (direct fraction, T_f, σ̄f²); the fibre shader turns that into outgoing
+//! radiance toward the camera (Zinke 2008 Figure 5, or the comparison modes). A constant
+//! ambient term stands for the sky (Bertails' Φ_Ambient), coloured by one pass through the
+//! fibre so that it reads as the hair's own colour.
+//!
+//! Work is split over vertices in fixed-size chunks; each vertex is independent, so the
+//! result does not depend on the thread count.
+
+use crate::fiber::{Fiber, LightAtPoint, ShadingMode};
+use crate::map::LightMap;
+use glam::Vec3;
+use rayon::prelude::*;
+
+/// Lighting of a frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lighting {
+    /// Direction the light travels (unit).
+    pub light_dir: Vec3,
+    /// Irradiance of the directional light on a surface facing it, linear RGB (1 = white).
+    pub irradiance: Vec3,
+    /// Ambient (sky) radiance, linear RGB.
+    pub ambient: Vec3,
+    /// Fibre shader.
+    pub mode: ShadingMode,
+}
+
+impl Default for Lighting {
+    fn default() -> Self {
+        Self {
+            light_dir: Vec3::new(-0.75, -0.55, -0.35).normalize(),
+            irradiance: Vec3::splat(3.2),
+            ambient: Vec3::new(0.035, 0.04, 0.05),
+            mode: ShadingMode::DualScattering,
+        }
+    }
+}
+
+/// Colour of light after one pass through a fibre at normal incidence: the chord is two radii,
+/// so exp(−2σa) with σa per unit radius. Used to tint the ambient term only.
+pub fn fibre_tint(fiber: &Fiber) -> Vec3 {
+    (-2.0 * Vec3::from(fiber.params().sigma_a)).exp()
+}
+
+/// Shades every vertex: `colors[i]` is the linear RGB radiance of vertex `i` seen from `eye`.
+/// Non-finite results (which the fibre model must never produce) are replaced by black, so
+/// nothing invalid can reach a pixel.
+pub fn shade_vertices(
+    fiber: &Fiber,
+    map: &LightMap,
+    lighting: &Lighting,
+    eye: Vec3,
+    positions: &[Vec3],
+    tangents: &[Vec3],
+    colors: &mut Vec<Vec3>,
+) {
+    colors.resize(positions.len(), Vec3::ZERO);
+    let wi = -lighting.light_dir.normalize_or(Vec3::NEG_Y);
+    let ambient = lighting.ambient * fibre_tint(fiber);
+    colors
+        .par_chunks_mut(4096)
+        .zip(positions.par_chunks(4096).zip(tangents.par_chunks(4096)))
+        .for_each(|(out, (pos, tan))| {
+            for ((c, p), u) in out.iter_mut().zip(pos).zip(tan) {
+                let light = map.light_at(*p);
+                let wo = (eye - *p).normalize_or(wi);
+                let v = lighting.irradiance * fiber.shade(lighting.mode, *u, wi, wo, &light) + ambient;
+                *c = if v.is_finite() { v.max(Vec3::ZERO) } else { Vec3::ZERO };
+            }
+        });
+}
+
+/// Skin: Lambertian with albedo `albedo`, lit through the hair (the map's T_f at the skin
+/// point: hair casts its shadow on the head), plus ambient.
+#[inline]
+pub fn shade_skin(map: &LightMap, lighting: &Lighting, albedo: Vec3, p: Vec3, normal: Vec3) -> Vec3 {
+    let wi = -lighting.light_dir;
+    let cos = normal.dot(wi).max(0.0);
+    let light = if cos > 0.0 { map.light_at(p) } else { LightAtPoint::UNSHADOWED };
+    let v = albedo * (lighting.irradiance * light.tf * cos * std::f32::consts::FRAC_1_PI + lighting.ambient);
+    if v.is_finite() { v } else { Vec3::ZERO }
+}
