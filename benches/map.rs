@@ -21,9 +21,15 @@ fn bench_map(c: &mut Criterion) {
     let light = Vec3::new(-0.75, -0.55, -0.35);
     for style in [Hairstyle::default_smooth(), Hairstyle::default_curly()] {
         let geo = strands(&style);
-        let geom = MapGeometry::with_resolution(MapGeometry::span_m(style.max_length_m(), style.head_size_m()), 128);
+        let geom = MapGeometry::with_resolution(
+            MapGeometry::span_m(style.max_length_m(), style.head_size_m()),
+            128,
+        );
         for threads in [1usize, 2] {
-            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("pool");
             let mut map = LightMap::new(geom, CountModel::Poisson);
             let input = MapBuildInput {
                 positions: &geo.positions,
@@ -33,17 +39,24 @@ fn bench_map(c: &mut Criterion) {
                 light_dir: light,
                 fiber: &fiber,
             };
-            c.bench_function(&format!("map_build/{}/threads_{threads}", style.name), |b| {
-                pool.install(|| b.iter(|| map.build(black_box(&input))))
-            });
-            c.bench_function(&format!("map_lookup_all_vertices/{}/threads_{threads}", style.name), |b| {
-                pool.install(|| {
-                    b.iter(|| {
-                        use rayon::prelude::*;
-                        geo.positions.par_iter().map(|p| map.light_at(*p).tf.x).sum::<f32>()
+            c.bench_function(
+                &format!("map_build/{}/threads_{threads}", style.name),
+                |b| pool.install(|| b.iter(|| map.build(black_box(&input)))),
+            );
+            c.bench_function(
+                &format!("map_lookup_all_vertices/{}/threads_{threads}", style.name),
+                |b| {
+                    pool.install(|| {
+                        b.iter(|| {
+                            use rayon::prelude::*;
+                            geo.positions
+                                .par_iter()
+                                .map(|p| map.light_at(*p).tf.x)
+                                .sum::<f32>()
+                        })
                     })
-                })
-            });
+                },
+            );
         }
     }
 }

@@ -201,6 +201,30 @@ impl LightMap {
             })
             .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
 
+        // Slot tables: per column, the last filled cell at or before each slice of its span.
+        self.slots.clear();
+        for c in 0..cols {
+            self.slot_start[c] = self.slots.len() as u32;
+            let (a, b) = (self.col_start[c] as usize, self.col_start[c + 1] as usize);
+            if a == b {
+                continue;
+            }
+            let base = self.cells[a].slice;
+            let mut idx = a;
+            for cell in a..b {
+                let s = self.cells[cell].slice;
+                if s == u32::MAX {
+                    break;
+                }
+                while (self.slots.len() - self.slot_start[c] as usize) < (s - base) as usize {
+                    self.slots.push(idx as u32);
+                }
+                self.slots.push(cell as u32);
+                idx = cell;
+            }
+        }
+        self.slot_start[cols] = self.slots.len() as u32;
+
         let mut peak = 0.0f32;
         for c in self.cells.iter().filter(|c| c.slice != u32::MAX) {
             peak = peak.max(c.volume_fraction);

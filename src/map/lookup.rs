@@ -76,29 +76,25 @@ impl LightMap {
     /// unwrapped distance `d` slices from the first slice, in column `col`.
     #[inline]
     fn faces(&self, col: usize, d: i64) -> (Face, Face) {
-        let cells = self.column_cells(col);
-        if d < 0 || cells.is_empty() {
+        if d < 0 {
             return (OPEN, OPEN);
         }
         let rel = d.rem_euclid(self.geom.n as i64) as u32;
-        // Cells with slice <= rel; merged-away entries carry u32::MAX and sort last.
-        let k = cells.partition_point(|c| c.slice <= rel);
-        if k == 0 {
+        let Some(k) = self.last_at_or_before(col, rel) else {
             return (OPEN, OPEN);
-        }
-        let leaving = Face::from(&cells[k - 1]);
-        let entering = if cells[k - 1].slice == rel {
-            if k >= 2 {
-                Face::from(&cells[k - 2])
-            } else {
-                OPEN
-            }
-        } else {
-            leaving
         };
-        if rel == 0 {
-            return (OPEN, leaving);
+        let cell = &self.cells[k];
+        let leaving = Face::from(cell);
+        if cell.slice != rel {
+            return (leaving, leaving);
         }
+        // The cell itself is filled: the light entering it left the previous filled cell of
+        // the column (if any, and not across the wrap).
+        let entering = if rel > 0 && k > self.col_start[col] as usize {
+            Face::from(&self.cells[k - 1])
+        } else {
+            OPEN
+        };
         (entering, leaving)
     }
 
@@ -115,9 +111,8 @@ impl LightMap {
             return None;
         }
         let rel = d.rem_euclid(self.geom.n as i64) as u32;
-        let cells = self.column_cells(self.column(f.y as i64, f.z as i64));
-        let k = cells.partition_point(|c| c.slice < rel);
-        let cell = cells.get(k).filter(|c| c.slice == rel)?;
+        let k = self.last_at_or_before(self.column(f.y as i64, f.z as i64), rel)?;
+        let cell = Some(&self.cells[k]).filter(|c| c.slice == rel)?;
         let centre = self.frame.to_world((f + Vec3::splat(0.5)) * self.geom.ds_m);
         Some((cell.volume_fraction, centre))
     }

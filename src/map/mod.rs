@@ -155,6 +155,12 @@ pub struct LightMap {
     col_start: Vec<u32>,
     /// Filled cells grouped by column, each column sorted by relative slice.
     cells: Vec<Cell>,
+    /// Per column, offsets into `slots` (N² + 1 entries).
+    slot_start: Vec<u32>,
+    /// For each column, one slot per slice from its first to its last filled slice: the index
+    /// in `cells` of the last filled cell at or before that slice. Makes a lookup O(1); its
+    /// size is the sum of the filled columns' spans, never N³.
+    slots: Vec<u32>,
     scratch: build::Scratch,
     stats: MapStats,
 }
@@ -171,6 +177,8 @@ impl LightMap {
             first_slice: 0,
             col_start: vec![0; cols + 1],
             cells: Vec::new(),
+            slot_start: vec![0; cols + 1],
+            slots: Vec::new(),
             scratch: build::Scratch::default(),
             stats: MapStats::default(),
         }
@@ -201,8 +209,25 @@ impl LightMap {
 
     /// The filled cells of column `c`, sorted by slice (merged-away entries at the end).
     #[inline]
+    #[cfg(test)]
     fn column_cells(&self, c: usize) -> &[Cell] {
         &self.cells[self.col_start[c] as usize..self.col_start[c + 1] as usize]
+    }
+
+    /// Index in `cells` of the last filled cell of column `c` at or before relative slice
+    /// `rel`, or `None` when the column has no cell that early.
+    #[inline]
+    fn last_at_or_before(&self, c: usize, rel: u32) -> Option<usize> {
+        let (s0, s1) = (self.slot_start[c] as usize, self.slot_start[c + 1] as usize);
+        if s0 == s1 {
+            return None;
+        }
+        let base = self.cells[self.col_start[c] as usize].slice;
+        if rel < base {
+            return None;
+        }
+        let off = (rel - base) as usize;
+        Some(self.slots[(s0 + off).min(s1 - 1)] as usize)
     }
 }
 

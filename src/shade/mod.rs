@@ -66,8 +66,13 @@ pub fn shade_vertices(
             for ((c, p), u) in out.iter_mut().zip(pos).zip(tan) {
                 let light = map.light_at(*p);
                 let wo = (eye - *p).normalize_or(wi);
-                let v = lighting.irradiance * fiber.shade(lighting.mode, *u, wi, wo, &light) + ambient;
-                *c = if v.is_finite() { v.max(Vec3::ZERO) } else { Vec3::ZERO };
+                let v =
+                    lighting.irradiance * fiber.shade(lighting.mode, *u, wi, wo, &light) + ambient;
+                *c = if v.is_finite() {
+                    v.max(Vec3::ZERO)
+                } else {
+                    Vec3::ZERO
+                };
             }
         });
 }
@@ -75,10 +80,21 @@ pub fn shade_vertices(
 /// Skin: Lambertian with albedo `albedo`, lit through the hair (the map's T_f at the skin
 /// point: hair casts its shadow on the head), plus ambient.
 #[inline]
-pub fn shade_skin(map: &LightMap, lighting: &Lighting, albedo: Vec3, p: Vec3, normal: Vec3) -> Vec3 {
+pub fn shade_skin(
+    map: &LightMap,
+    lighting: &Lighting,
+    albedo: Vec3,
+    p: Vec3,
+    normal: Vec3,
+) -> Vec3 {
     let wi = -lighting.light_dir;
     let cos = normal.dot(wi).max(0.0);
-    let light = if cos > 0.0 { map.light_at(p) } else { LightAtPoint::UNSHADOWED };
-    let v = albedo * (lighting.irradiance * light.tf * cos * std::f32::consts::FRAC_1_PI + lighting.ambient);
+    let light = if cos > 0.0 {
+        map.light_at(p)
+    } else {
+        LightAtPoint::UNSHADOWED
+    };
+    let v = albedo
+        * (lighting.irradiance * light.tf * cos * std::f32::consts::FRAC_1_PI + lighting.ambient);
     if v.is_finite() { v } else { Vec3::ZERO }
 }
