@@ -3,6 +3,7 @@
 //! Exit codes: 0 success, 2 bad input (flags or files), 1 any other failure.
 
 pub mod fiber_cmd;
+pub mod play_cmd;
 pub mod render_cmd;
 
 use crate::fiber::ShadingMode;
@@ -28,6 +29,8 @@ pub struct Cli {
 pub enum Command {
     /// Render the dance (default: the embedded dance and the `smooth` hairstyle) to PNG frames.
     Render(render_cmd::RenderArgs),
+    /// Play the dance live in a window (needs a display; see `render` otherwise).
+    Play(play_cmd::PlayArgs),
     /// Inspect the fibre scattering model: evaluate, tabulate, plot.
     Fiber(fiber_cmd::FiberArgs),
 }
@@ -209,6 +212,7 @@ pub fn main() -> ExitCode {
     }
     let result = match cli.command {
         Command::Render(args) => render_cmd::run(args),
+        Command::Play(args) => play_cmd::run(args),
         Command::Fiber(args) => fiber_cmd::run(args),
     };
     match result {
