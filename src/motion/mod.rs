@@ -293,6 +293,7 @@ pub struct Motion {
     pub(crate) duration_s: f32,
     pub(crate) speed: f32,
     pub(crate) fit: Fit,
+    pub(crate) fit_method: fit::FitMethod,
     pub(crate) nodes: Vec<ChainNode>,
     pub(crate) head: JointChain,
     /// Body spheres: joint, offset (pose metres, joint frame), radius (pose metres).
@@ -337,6 +338,7 @@ impl Motion {
             duration_s: 0.0,
             speed: 1.0,
             fit: Fit::IDENTITY,
+            fit_method: fit::FitMethod::Given,
             nodes: vec![ChainNode {
                 rest_matrix: Some(head),
                 rest_t: Vec3::ZERO,
@@ -369,6 +371,11 @@ impl Motion {
     /// The fit in use (given or estimated).
     pub fn fit(&self) -> Fit {
         self.fit
+    }
+
+    /// How the fit was obtained (given, or which automatic estimate).
+    pub fn fit_method(&self) -> fit::FitMethod {
+        self.fit_method
     }
 
     /// Playback rate.
