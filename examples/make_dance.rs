@@ -264,7 +264,7 @@ fn build() -> Vec<u8> {
     }
     b.channel(neck, "rotation", "CUBICSPLINE", &cub, &neck_v);
 
-    while b.bin.len() % 4 != 0 {
+    while !b.bin.len().is_multiple_of(4) {
         b.bin.push(0);
     }
     let doc = json!({
@@ -284,7 +284,7 @@ fn build() -> Vec<u8> {
 /// GLB 2.0 container: 12-byte header, JSON chunk padded with spaces, BIN chunk padded with 0.
 fn glb(json: &[u8], bin: &[u8]) -> Vec<u8> {
     let mut json = json.to_vec();
-    while json.len() % 4 != 0 {
+    while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
     let total = 12 + 8 + json.len() + 8 + bin.len();
