@@ -5,158 +5,22 @@
 //! Reference numbers are derived in the comments next to them (Hermite basis values, rotations
 //! composed by hand) or come from `../shared/data/README.md` (RobotExpressive: clip "Dance"
 //! 3.33 s, joint "Head").
+//!
+//! Helpers are in `motion/fixture.rs`, loader-error tests in `motion/errors.rs`.
+
+#[path = "motion/errors.rs"]
+mod errors;
+#[path = "motion/fixture.rs"]
+mod fixture;
 
 use std::f32::consts::{FRAC_PI_2, PI};
 use std::path::{Path, PathBuf};
 
+use fixture::{Fx, angle_between, assert_rigid, fixed_fit, load, one_channel};
 use glam::{Affine3A, Quat, Vec3};
-use serde_json::{Value, json};
+use serde_json::json;
 use wisp::motion::fit::FitMethod;
-use wisp::motion::{Fit, JointRef, Motion, MotionError, MotionOptions, Pose, SphereSpec};
-
-// ---------------------------------------------------------------- fixtures
-
-/// A glTF under construction: nodes, one clip, f32 data in one buffer.
-#[derive(Default)]
-struct Fx {
-    nodes: Vec<Value>,
-    bin: Vec<u8>,
-    views: Vec<Value>,
-    accessors: Vec<Value>,
-    samplers: Vec<Value>,
-    channels: Vec<Value>,
-}
-
-fn base64(bytes: &[u8]) -> String {
-    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut s = String::new();
-    for c in bytes.chunks(3) {
-        let n = (c[0] as u32) << 16
-            | (*c.get(1).unwrap_or(&0) as u32) << 8
-            | *c.get(2).unwrap_or(&0) as u32;
-        for k in 0..4 {
-            if k <= c.len() {
-                s.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
-            } else {
-                s.push('=');
-            }
-        }
-    }
-    s
-}
-
-impl Fx {
-    /// Adds a node; returns its index.
-    fn node(&mut self, n: Value) -> usize {
-        self.nodes.push(n);
-        self.nodes.len() - 1
-    }
-
-    fn accessor(&mut self, data: &[f32], kind: &str) -> usize {
-        let comps = match kind {
-            "SCALAR" => 1,
-            "VEC3" => 3,
-            _ => 4,
-        };
-        let offset = self.bin.len();
-        for v in data {
-            self.bin.extend_from_slice(&v.to_le_bytes());
-        }
-        self.views
-            .push(json!({"buffer": 0, "byteOffset": offset, "byteLength": data.len() * 4}));
-        self.accessors.push(json!({
-            "bufferView": self.views.len() - 1, "componentType": 5126,
-            "count": data.len() / comps, "type": kind,
-        }));
-        self.accessors.len() - 1
-    }
-
-    fn channel(&mut self, node: usize, path: &str, interp: &str, times: &[f32], values: &[f32]) {
-        let kind = if path == "rotation" { "VEC4" } else { "VEC3" };
-        let input = self.accessor(times, "SCALAR");
-        let output = self.accessor(values, kind);
-        self.samplers
-            .push(json!({"input": input, "output": output, "interpolation": interp}));
-        self.channels.push(
-            json!({"sampler": self.samplers.len() - 1, "target": {"node": node, "path": path}}),
-        );
-    }
-
-    /// The glTF JSON; `clips` names the copies of the clip (none = no animations).
-    fn json(&self, clips: &[&str]) -> Value {
-        let anims: Vec<Value> = clips
-            .iter()
-            .map(|n| json!({"name": n, "samplers": self.samplers, "channels": self.channels}))
-            .collect();
-        let mut doc = json!({
-            "asset": {"version": "2.0"},
-            "scenes": [{"nodes": [0]}],
-            "nodes": self.nodes,
-            "accessors": self.accessors,
-            "bufferViews": self.views,
-            "buffers": [{
-                "byteLength": self.bin.len(),
-                "uri": format!("data:application/octet-stream;base64,{}", base64(&self.bin)),
-            }],
-        });
-        if !anims.is_empty() {
-            doc["animations"] = json!(anims);
-        }
-        doc
-    }
-
-    fn bytes(&self, clips: &[&str]) -> Vec<u8> {
-        self.json(clips).to_string().into_bytes()
-    }
-}
-
-fn load(bytes: &[u8], opts: &MotionOptions) -> Result<Motion, MotionError> {
-    Motion::from_glb_bytes(bytes, "fixture.gltf", opts)
-}
-
-fn fixed_fit() -> MotionOptions {
-    MotionOptions {
-        fit: Some(Fit::IDENTITY),
-        body_spheres: Some(vec![]),
-        ..Default::default()
-    }
-}
-
-/// A single "Head" node with one animated property.
-fn one_channel(path: &str, interp: &str, times: &[f32], values: &[f32]) -> Vec<u8> {
-    let mut fx = Fx::default();
-    let head = fx.node(json!({"name": "Head"}));
-    fx.channel(head, path, interp, times, values);
-    fx.bytes(&["Dance"])
-}
-
-fn angle_between(a: &Affine3A, b: &Affine3A) -> f32 {
-    let qa = Quat::from_mat3a(&a.matrix3);
-    let qb = Quat::from_mat3a(&b.matrix3);
-    qa.angle_between(qb)
-}
-
-fn temp_dir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("wisp-motion-{}-{tag}", std::process::id()));
-    std::fs::create_dir_all(&d).expect("temp dir");
-    d
-}
-
-fn assert_rigid(h: &Affine3A, what: &str) {
-    let m = h.matrix3;
-    let mtm = m.transpose() * m;
-    let err = (mtm - glam::Mat3A::IDENTITY)
-        .to_cols_array()
-        .iter()
-        .map(|v| v.abs())
-        .fold(0.0, f32::max);
-    assert!(err < 1e-4, "{what}: MᵀM differs from I by {err}");
-    assert!(
-        (m.determinant() - 1.0).abs() < 1e-4,
-        "{what}: det {}",
-        m.determinant()
-    );
-}
+use wisp::motion::{Fit, JointRef, Motion, MotionOptions, Pose, SphereSpec};
 
 // ---------------------------------------------------------------- samplers through glTF
 
@@ -353,6 +217,38 @@ fn fit_scales_the_world_and_keeps_the_head_rigid() {
 }
 
 #[test]
+fn z_up_centimetre_export_stands_upright_at_human_scale() {
+    // A Z-up exporter's root: −90° about X and ×0.01 (centimetres). The head joint sits at
+    // z = 157 cm, its HeadTop_End 18 cm above: world head joint at y = 1.57 m, automatic fit
+    // radius 0.09 m (scale 1), centre 0.09 m above the joint along world +Y.
+    let mut fx = Fx::default();
+    let root_q = Quat::from_rotation_x(-FRAC_PI_2);
+    fx.node(
+        json!({"name": "Armature", "children": [1], "rotation": root_q.to_array(),
+                   "scale": [0.01, 0.01, 0.01]}),
+    );
+    fx.node(json!({"name": "Head", "children": [2], "translation": [0.0, 0.0, 157.0]}));
+    let top = fx.node(json!({"name": "HeadTop_End", "translation": [0.0, 0.0, 18.0]}));
+    fx.channel(
+        top,
+        "translation",
+        "LINEAR",
+        &[0.0, 1.0],
+        &[0., 0., 18., 0., 0., 18.],
+    );
+    let m = load(&fx.bytes(&["Dance"]), &MotionOptions::default()).expect("loads");
+    assert_eq!(m.fit_method(), FitMethod::HeadChild);
+    assert!((m.fit().scale - 1.0).abs() < 1e-4, "{:?}", m.fit());
+    let h = m.sample(0.5).head;
+    assert_rigid(&h, "z-up head");
+    assert!(
+        (Vec3::from(h.translation) - Vec3::new(0.0, 1.66, 0.0)).length() < 1e-4,
+        "{h:?}"
+    );
+    assert!(Quat::from_mat3a(&h.matrix3).angle_between(Quat::IDENTITY) < 1e-4);
+}
+
+#[test]
 fn body_spheres_follow_their_joints() {
     let spec = SphereSpec {
         joint: JointRef::Name("root".into()),
@@ -467,7 +363,8 @@ fn robot_expressive_dance() {
     let Some(path) = robot() else { return };
     let m = Motion::load(&path, &MotionOptions::default()).expect("RobotExpressive loads");
     assert_eq!(m.clip_name(), "Dance");
-    assert_eq!(m.head_joint().1, "Head");
+    // Node 12 is the "Head" joint; node 13, also named "Head", is the (non-joint) head mesh.
+    assert_eq!(m.head_joint(), (12, "Head"));
     // ../shared/data/README.md: Dance lasts 3.33 s.
     assert!((m.duration_s() - 3.33).abs() < 0.01, "{}", m.duration_s());
     assert!(
@@ -551,198 +448,4 @@ fn robot_expressive_truncated_is_an_error() {
         let r = Motion::from_glb_bytes(&bytes[..len], "cut.glb", &MotionOptions::default());
         assert!(r.is_err(), "{len} bytes loaded");
     }
-}
-
-// ---------------------------------------------------------------- loader errors
-
-#[test]
-fn missing_file_is_an_io_error() {
-    let p = Path::new("/nonexistent/wisp/dance.glb");
-    let e = Motion::load(p, &MotionOptions::default()).expect_err("missing");
-    assert!(matches!(e, MotionError::Io { .. }));
-    assert!(e.to_string().contains("/nonexistent/wisp/dance.glb"), "{e}");
-}
-
-#[test]
-fn random_bytes_are_not_gltf() {
-    // A fixed xorshift stream (deterministic "random" bytes).
-    let mut x = 0x9E37_79B9u32;
-    let bytes: Vec<u8> = (0..4096)
-        .map(|_| {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            x as u8
-        })
-        .collect();
-    let e = load(&bytes, &MotionOptions::default()).expect_err("random");
-    assert!(matches!(e, MotionError::NotGltf { .. }), "{e}");
-    assert!(e.to_string().contains("fixture.gltf"));
-    assert!(matches!(
-        load(b"", &MotionOptions::default()),
-        Err(MotionError::NotGltf { .. })
-    ));
-    let e = load(b"{ not json", &MotionOptions::default()).expect_err("bad json");
-    assert!(matches!(e, MotionError::Invalid { .. }), "{e}");
-}
-
-#[test]
-fn gltf_without_animations() {
-    let mut fx = Fx::default();
-    fx.node(json!({"name": "Head"}));
-    let e = load(&fx.bytes(&[]), &MotionOptions::default()).expect_err("no clip");
-    assert!(matches!(e, MotionError::NoAnimations { .. }), "{e}");
-    assert!(e.to_string().contains("no animations"));
-}
-
-#[test]
-fn unknown_clip_lists_the_clips() {
-    let mut fx = Fx::default();
-    let h = fx.node(json!({"name": "Head"}));
-    fx.channel(h, "translation", "LINEAR", &[0.0, 1.0], &[0.0; 6]);
-    let bytes = fx.bytes(&["Idle", "Salsa"]);
-    let opts = MotionOptions {
-        clip: Some("Tango".into()),
-        ..Default::default()
-    };
-    let e = load(&bytes, &opts).expect_err("unknown clip");
-    let msg = e.to_string();
-    assert!(
-        msg.contains("Tango") && msg.contains("Idle") && msg.contains("Salsa"),
-        "{msg}"
-    );
-    // No "Dance": the first clip is the default; names also match case-insensitively.
-    assert_eq!(
-        load(&bytes, &MotionOptions::default())
-            .expect("ok")
-            .clip_name(),
-        "Idle"
-    );
-    let opts = MotionOptions {
-        clip: Some("salsa".into()),
-        ..Default::default()
-    };
-    assert_eq!(load(&bytes, &opts).expect("ok").clip_name(), "Salsa");
-}
-
-#[test]
-fn unknown_head_joint_lists_the_joints() {
-    let mut fx = Fx::default();
-    let root = fx.node(json!({"name": "Pelvis", "children": [1]}));
-    fx.node(json!({"name": "Skull"}));
-    fx.channel(root, "translation", "LINEAR", &[0.0, 1.0], &[0.0; 6]);
-    let bytes = fx.bytes(&["Dance"]);
-    // No joint named like "head" and none requested.
-    let e = load(&bytes, &MotionOptions::default()).expect_err("no head");
-    let msg = e.to_string();
-    assert!(msg.contains("0 Pelvis") && msg.contains("1 Skull"), "{msg}");
-    let opts = MotionOptions {
-        head_joint: Some(JointRef::Name("Kopf".into())),
-        ..Default::default()
-    };
-    let msg = load(&bytes, &opts).expect_err("unknown").to_string();
-    assert!(msg.contains("Kopf") && msg.contains("1 Skull"), "{msg}");
-    let opts = MotionOptions {
-        head_joint: Some(JointRef::Index(7)),
-        ..Default::default()
-    };
-    assert!(matches!(
-        load(&bytes, &opts),
-        Err(MotionError::UnknownJoint { .. })
-    ));
-    let opts = MotionOptions {
-        head_joint: Some(JointRef::Index(1)),
-        ..Default::default()
-    };
-    assert_eq!(
-        load(&bytes, &opts).expect("by index").head_joint(),
-        (1, "Skull")
-    );
-}
-
-#[test]
-fn truncated_glb_never_panics() {
-    let bytes = wisp::motion::dance::DANCE_GLB;
-    let mut lens: Vec<usize> = (0..bytes.len()).step_by(53).collect();
-    lens.extend([
-        1,
-        4,
-        8,
-        11,
-        12,
-        16,
-        19,
-        20,
-        21,
-        bytes.len() - 4,
-        bytes.len() - 1,
-    ]);
-    for len in lens {
-        let r = Motion::from_glb_bytes(&bytes[..len], "cut.glb", &MotionOptions::default());
-        let e = r.err().unwrap_or_else(|| panic!("{len} bytes loaded"));
-        assert!(e.to_string().contains("cut.glb"), "{e}");
-    }
-    // A header that claims fewer bytes than its own header (would underflow a naive reader).
-    let mut bad = bytes.to_vec();
-    bad[8..12].copy_from_slice(&4u32.to_le_bytes());
-    assert!(Motion::from_glb_bytes(&bad, "bad.glb", &MotionOptions::default()).is_err());
-}
-
-#[test]
-fn gltf_with_a_relative_bin_file() {
-    let mut fx = Fx::default();
-    let h = fx.node(json!({"name": "Head"}));
-    fx.channel(
-        h,
-        "translation",
-        "LINEAR",
-        &[0.0, 1.0],
-        &[0., 0., 0., 0., 1., 0.],
-    );
-    let mut doc = fx.json(&["Dance"]);
-    doc["buffers"][0]["uri"] = json!("dance%20data.bin");
-    let dir = temp_dir("relative");
-    std::fs::write(dir.join("dance data.bin"), &fx.bin).expect("write bin");
-    let path = dir.join("motion.gltf");
-    std::fs::write(&path, doc.to_string()).expect("write gltf");
-    let m = Motion::load(&path, &fixed_fit()).expect("relative buffer loads");
-    assert!((m.sample(0.5).head.translation.y - 0.5).abs() < 1e-6);
-
-    // Without a folder (bytes only) a relative URI is a clear error; other schemes are refused.
-    let e = load(doc.to_string().as_bytes(), &fixed_fit()).expect_err("no folder");
-    assert!(matches!(e, MotionError::Buffer { index: 0, .. }), "{e}");
-    doc["buffers"][0]["uri"] = json!("https://example.com/x.bin");
-    let e = load(doc.to_string().as_bytes(), &fixed_fit()).expect_err("https");
-    assert!(e.to_string().contains("not supported"), "{e}");
-    let _ = std::fs::remove_dir_all(dir);
-}
-
-#[test]
-fn malformed_clip_data_is_an_error() {
-    // Decreasing key times.
-    let bytes = one_channel("translation", "LINEAR", &[1.0, 0.0], &[0.0; 6]);
-    assert!(matches!(
-        load(&bytes, &fixed_fit()),
-        Err(MotionError::BadClip { .. })
-    ));
-    // An accessor that runs past its buffer.
-    let mut doc: Value = serde_json::from_slice(&one_channel(
-        "translation",
-        "LINEAR",
-        &[0.0, 1.0],
-        &[0.0; 6],
-    ))
-    .expect("json");
-    doc["accessors"][1]["count"] = json!(1000);
-    let e = load(doc.to_string().as_bytes(), &fixed_fit()).expect_err("overrun");
-    assert!(e.to_string().contains("fixture.gltf"), "{e}");
-    // Bad options.
-    let opts = MotionOptions {
-        speed: f32::NAN,
-        ..fixed_fit()
-    };
-    assert!(matches!(
-        load(&bytes, &opts),
-        Err(MotionError::BadOption { .. })
-    ));
 }

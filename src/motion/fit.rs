@@ -24,7 +24,8 @@
 use glam::{Affine3A, Mat4, Vec3};
 use gltf::Semantic;
 
-use super::load::{Loaded, Skeleton, read_accessor};
+use super::gltf_io::{Loaded, read_accessor};
+use super::load::Skeleton;
 use super::{Fit, HAIRSTYLE_HEAD_RADIUS_M};
 
 /// Where a [`Fit`] came from.

@@ -38,6 +38,7 @@
 
 pub mod dance;
 pub mod fit;
+mod gltf_io;
 mod load;
 pub mod sampler;
 
