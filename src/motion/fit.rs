@@ -18,6 +18,14 @@
 //!    above the joint.
 //! 4. Otherwise identity ([`FitMethod::Default`]).
 //!
+//! # Default body colliders
+//! When [`super::MotionOptions::body_spheres`] is `None`: spheres centred on the nearest
+//! ancestors of the head named like "neck" ([`NECK_RADIUS_M`]) and "chest" / "torso" / "spine"
+//! ([`CHEST_RADIUS_M`]), and on the topmost joints named like "shoulder" / "clavicle", at most
+//! two ([`SHOULDER_RADIUS_M`]). Each radius is shrunk so that, at rest, the sphere stays outside
+//! the fitted 0.09 m head sphere; below [`MIN_SPHERE_RADIUS_M`] it is dropped (on cartoon
+//! proportions, such as RobotExpressive's, the chest sphere is dropped this way).
+//!
 //! Meshes that cannot be read (sparse accessors, missing attributes) are skipped: the fit is a
 //! best effort and must not make an otherwise playable clip fail.
 

@@ -132,7 +132,7 @@ pub struct MotionOptions {
     /// Hairstyle-to-joint fit. Default (`None`): automatic, see [`fit`].
     pub fit: Option<Fit>,
     /// Body colliders. `None` = a default set on joints named like neck, chest/torso/spine and
-    /// shoulders when found (see [`fit::default_sphere_specs`]); `Some(vec![])` = none.
+    /// shoulders when found (radii and rules in [`fit`]); `Some(vec![])` = none.
     pub body_spheres: Option<Vec<SphereSpec>>,
     /// Playback rate (1 = real time; negative plays backwards). Must be finite.
     pub speed: f32,
