@@ -1,0 +1,250 @@
+//! Automatic fit of a 0.09 m hairstyle head onto the model's head joint, and the default body
+//! colliders.
+//!
+//! # The head-size estimate (in order of preference)
+//! 1. **Mesh bounds** ([`FitMethod::MeshBounds`]): at the rest pose, gather the vertices that
+//!    belong to the head: meshes on nodes in the head joint's subtree (rigidly attached heads,
+//!    as in RobotExpressive), and skinned vertices whose largest weight is on a joint in that
+//!    subtree (skinned with `Σ wᵢ·Jᵢ·IBMᵢ·v / Σ wᵢ`, since real files have weights that do not
+//!    sum to 1). Their bounding box, in the joint frame (rest world axes, origin at the joint),
+//!    gives the centre (`offset_m`) and the radius as the geometric mean of the half-extents
+//!    (a human head's [0.075, 0.10, 0.095] m gives 0.089 m, the 0.09 m hairstyles are made
+//!    for). `scale = radius / 0.09`.
+//! 2. **Head child** ([`FitMethod::HeadChild`]): no head mesh, but the head joint has
+//!    descendants (a `Head_end` / `HeadTop_End` bone at the top of the skull): the farthest one
+//!    at distance d gives radius d/2 and the centre half-way.
+//! 3. **Neck length** ([`FitMethod::NeckLength`]): only a parent: radius = 0.9·|head − parent|
+//!    (adult: head joint ~0.10 m above the neck joint, head radius ~0.09 m), centre that far
+//!    above the joint.
+//! 4. Otherwise identity ([`FitMethod::Default`]).
+//!
+//! # Default body colliders
+//! When [`super::MotionOptions::body_spheres`] is `None`: spheres centred on the nearest
+//! ancestors of the head named like "neck" ([`NECK_RADIUS_M`]) and "chest" / "torso" / "spine"
+//! ([`CHEST_RADIUS_M`]), and on the topmost joints named like "shoulder" / "clavicle", at most
+//! two ([`SHOULDER_RADIUS_M`]). Each radius is shrunk so that, at rest, the sphere stays outside
+//! the fitted 0.09 m head sphere; below [`MIN_SPHERE_RADIUS_M`] it is dropped (on cartoon
+//! proportions, such as RobotExpressive's, the chest sphere is dropped this way).
+//!
+//! Meshes that cannot be read (sparse accessors, missing attributes) are skipped: the fit is a
+//! best effort and must not make an otherwise playable clip fail.
+
+use glam::{Affine3A, Mat4, Vec3};
+use gltf::Semantic;
+
+use super::gltf_io::{Loaded, read_accessor};
+use super::load::Skeleton;
+use super::{Fit, HAIRSTYLE_HEAD_RADIUS_M};
+
+/// Where a [`Fit`] came from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FitMethod {
+    /// Given in [`super::MotionOptions::fit`].
+    Given,
+    /// Bounding box of this many head vertices.
+    MeshBounds {
+        /// Vertices used.
+        vertices: usize,
+    },
+    /// Distance to the head joint's farthest descendant node.
+    HeadChild,
+    /// Distance to the head joint's parent.
+    NeckLength,
+    /// Nothing to measure: identity.
+    Default,
+}
+
+/// Default radii of the body colliders, in pose metres (adult proportions: neck ~0.10–0.12 m
+/// across, upper chest ~0.25 m deep, deltoid ~0.12 m).
+pub const NECK_RADIUS_M: f32 = 0.05;
+/// See [`NECK_RADIUS_M`].
+pub const CHEST_RADIUS_M: f32 = 0.12;
+/// See [`NECK_RADIUS_M`].
+pub const SHOULDER_RADIUS_M: f32 = 0.06;
+/// A default collider is shrunk so that, at rest, it stays outside the fitted 0.09 m head
+/// sphere; below this radius (metres) it is dropped.
+pub const MIN_SPHERE_RADIUS_M: f32 = 0.01;
+
+/// Estimates the fit (see the module doc).
+pub(crate) fn estimate(loaded: &Loaded, skel: &Skeleton, head: usize) -> (Fit, FitMethod) {
+    let origin = skel.rest_world(head).translation;
+    let verts = head_vertices(loaded, skel, head);
+    if verts.len() >= 4 {
+        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        for v in &verts {
+            lo = lo.min(*v);
+            hi = hi.max(*v);
+        }
+        let half = (hi - lo) * 0.5;
+        let radius = if half.min_element() > 1e-6 * half.max_element() {
+            (half.x * half.y * half.z).cbrt()
+        } else {
+            (half.x + half.y + half.z) / 3.0
+        };
+        if radius.is_finite() && radius > 0.0 {
+            let fit = Fit {
+                scale: radius / HAIRSTYLE_HEAD_RADIUS_M,
+                offset_m: (lo + hi) * 0.5 - Vec3::from(origin),
+            };
+            return (
+                fit,
+                FitMethod::MeshBounds {
+                    vertices: verts.len(),
+                },
+            );
+        }
+    }
+    let farthest = (0..skel.names.len())
+        .filter(|&i| i != head && skel.is_in_subtree(i, head))
+        .map(|i| Vec3::from(skel.rest_world(i).translation - origin))
+        .max_by(|a, b| a.length().total_cmp(&b.length()));
+    if let Some(d) = farthest.filter(|d| d.length() > 1e-6) {
+        let fit = Fit {
+            scale: 0.5 * d.length() / HAIRSTYLE_HEAD_RADIUS_M,
+            offset_m: 0.5 * d,
+        };
+        return (fit, FitMethod::HeadChild);
+    }
+    if let Some(p) = skel.parents[head] {
+        let len = (skel.rest_world(p).translation - origin).length();
+        if len > 1e-6 && len.is_finite() {
+            let radius = 0.9 * len;
+            let fit = Fit {
+                scale: radius / HAIRSTYLE_HEAD_RADIUS_M,
+                offset_m: Vec3::new(0.0, radius, 0.0),
+            };
+            return (fit, FitMethod::NeckLength);
+        }
+    }
+    (Fit::IDENTITY, FitMethod::Default)
+}
+
+/// Rest-pose world positions of the head's vertices (see the module doc).
+fn head_vertices(loaded: &Loaded, skel: &Skeleton, head: usize) -> Vec<Vec3> {
+    let mut out = Vec::new();
+    for node in loaded.doc.nodes() {
+        let Some(mesh) = node.mesh() else { continue };
+        if let Some(skin) = node.skin() {
+            let joints: Vec<usize> = skin.joints().map(|j| j.index()).collect();
+            let in_head: Vec<bool> = joints
+                .iter()
+                .map(|&j| skel.is_in_subtree(j, head))
+                .collect();
+            if !in_head.contains(&true) {
+                continue;
+            }
+            let ibm: Vec<Affine3A> = skin
+                .inverse_bind_matrices()
+                .and_then(|a| read_accessor(&a, &loaded.buffers).ok())
+                .filter(|(v, c)| *c == 16 && v.len() == 16 * joints.len())
+                .map(|(v, _)| {
+                    v.chunks_exact(16)
+                        .map(|m| Affine3A::from_mat4(Mat4::from_cols_slice(m)))
+                        .collect()
+                })
+                .unwrap_or_else(|| vec![Affine3A::IDENTITY; joints.len()]);
+            let mats: Vec<Affine3A> = joints
+                .iter()
+                .zip(&ibm)
+                .map(|(&j, b)| skel.rest_world(j) * *b)
+                .collect();
+            for prim in mesh.primitives() {
+                let read = |s: Semantic| {
+                    prim.get(&s)
+                        .and_then(|a| read_accessor(&a, &loaded.buffers).ok())
+                };
+                let (Some((pos, 3)), Some((jnt, 4)), Some((wgt, 4))) = (
+                    read(Semantic::Positions),
+                    read(Semantic::Joints(0)),
+                    read(Semantic::Weights(0)),
+                ) else {
+                    continue;
+                };
+                for ((p, j), w) in pos
+                    .chunks_exact(3)
+                    .zip(jnt.chunks_exact(4))
+                    .zip(wgt.chunks_exact(4))
+                {
+                    let v = Vec3::new(p[0], p[1], p[2]);
+                    let dominant = (0..4).max_by(|&a, &b| w[a].total_cmp(&w[b])).unwrap_or(0);
+                    if !in_head.get(j[dominant] as usize).copied().unwrap_or(false) {
+                        continue;
+                    }
+                    let (mut acc, mut total) = (Vec3::ZERO, 0.0);
+                    for k in 0..4 {
+                        if let Some(m) = mats.get(j[k] as usize).filter(|_| w[k] > 0.0) {
+                            acc += w[k] * m.transform_point3(v);
+                            total += w[k];
+                        }
+                    }
+                    if total > 0.0 && acc.is_finite() {
+                        out.push(acc / total);
+                    }
+                }
+            }
+        } else if skel.is_in_subtree(node.index(), head) {
+            let m = skel.rest_world(node.index());
+            for prim in mesh.primitives() {
+                if let Some((pos, 3)) = prim
+                    .get(&Semantic::Positions)
+                    .and_then(|a| read_accessor(&a, &loaded.buffers).ok())
+                {
+                    out.extend(
+                        pos.chunks_exact(3)
+                            .map(|p| m.transform_point3(Vec3::new(p[0], p[1], p[2])))
+                            .filter(|p| p.is_finite()),
+                    );
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Default colliders `(joint, offset in pose metres, radius in pose metres)`: the nearest
+/// ancestors of the head named like "neck" and like "chest" / "torso" / "spine", and the
+/// topmost joints named like "shoulder" / "clavicle" (at most two), centred on the joints. Each
+/// radius is shrunk to stay outside the fitted head sphere at rest (see
+/// [`MIN_SPHERE_RADIUS_M`]).
+pub(crate) fn default_spheres(skel: &Skeleton, head: usize, fit: &Fit) -> Vec<(usize, Vec3, f32)> {
+    let lower: Vec<String> = skel.names.iter().map(|n| n.to_lowercase()).collect();
+    let ancestors: Vec<usize> = skel
+        .chain(head)
+        .unwrap_or_default()
+        .into_iter()
+        .rev()
+        .skip(1)
+        .collect();
+    let is_shoulder = |i: usize| lower[i].contains("shoulder") || lower[i].contains("clavicle");
+    let neck = ancestors
+        .iter()
+        .copied()
+        .find(|&i| lower[i].contains("neck"));
+    let chest = ancestors.iter().copied().find(|&i| {
+        Some(i) != neck
+            && ["chest", "torso", "spine"]
+                .iter()
+                .any(|k| lower[i].contains(k))
+    });
+    let shoulders = (0..skel.names.len())
+        .filter(|&i| skel.is_joint[i] && is_shoulder(i) && !skel.is_in_subtree(i, head))
+        .filter(|&i| !skel.parents[i].is_some_and(is_shoulder))
+        .take(2);
+
+    let head_center = (Vec3::from(skel.rest_world(head).translation) + fit.offset_m) / fit.scale;
+    let mut out = Vec::new();
+    let wanted = neck
+        .map(|j| (j, NECK_RADIUS_M))
+        .into_iter()
+        .chain(chest.map(|j| (j, CHEST_RADIUS_M)))
+        .chain(shoulders.map(|j| (j, SHOULDER_RADIUS_M)));
+    for (joint, radius_m) in wanted {
+        let center = Vec3::from(skel.rest_world(joint).translation) / fit.scale;
+        let room_m = center.distance(head_center) - HAIRSTYLE_HEAD_RADIUS_M;
+        let r = radius_m.min(room_m);
+        if r >= MIN_SPHERE_RADIUS_M {
+            out.push((joint, Vec3::ZERO, r));
+        }
+    }
+    out
+}

@@ -1,0 +1,393 @@
+//! Building a [`super::Motion`] from a parsed glTF: node hierarchy at rest, clip and joint
+//! choice, the clip's tracks, and the evaluated chains (root to joint) that `sample_into`
+//! walks. Container and accessor reading live in [`super::gltf_io`].
+
+use std::path::Path;
+
+use glam::{Affine3A, Mat4, Quat, Vec3, Vec4};
+use gltf::animation::{Interpolation as GltfInterpolation, Property};
+
+use super::fit::{self, FitMethod};
+use super::gltf_io::{Loaded, invalid, parse, read_accessor};
+use super::sampler::{Interpolation, Track};
+use super::{ChainNode, JointChain, JointRef, Motion, MotionError, MotionOptions};
+
+/// Node hierarchy of the file at rest (node default transforms).
+pub(crate) struct Skeleton {
+    pub(crate) names: Vec<String>,
+    pub(crate) parents: Vec<Option<usize>>,
+    pub(crate) rest_local: Vec<Affine3A>,
+    /// Node is a joint of some skin (all true when the file has no skin).
+    pub(crate) is_joint: Vec<bool>,
+}
+
+impl Skeleton {
+    /// Node indices from the root to `node` (inclusive); `None` on a cycle.
+    pub(crate) fn chain(&self, node: usize) -> Option<Vec<usize>> {
+        let mut chain = vec![node];
+        let mut at = node;
+        while let Some(p) = self.parents[at] {
+            if chain.len() > self.parents.len() {
+                return None;
+            }
+            chain.push(p);
+            at = p;
+        }
+        chain.reverse();
+        Some(chain)
+    }
+
+    /// World matrix of `node` at rest; identity for a node on a cycle (reported earlier).
+    pub(crate) fn rest_world(&self, node: usize) -> Affine3A {
+        self.chain(node)
+            .map(|c| {
+                c.iter()
+                    .fold(Affine3A::IDENTITY, |m, &i| m * self.rest_local[i])
+            })
+            .unwrap_or(Affine3A::IDENTITY)
+    }
+
+    /// Whether `node` is `ancestor` or lies below it.
+    pub(crate) fn is_in_subtree(&self, node: usize, ancestor: usize) -> bool {
+        self.chain(node).is_some_and(|c| c.contains(&ancestor))
+    }
+
+    /// "index name" list of the joints, for error messages.
+    fn joint_list(&self) -> String {
+        let list: Vec<String> = (0..self.names.len())
+            .filter(|&i| self.is_joint[i])
+            .map(|i| format!("{i} {}", self.names[i]))
+            .collect();
+        list.join(", ")
+    }
+}
+
+fn rest_trs(node: &gltf::Node) -> (Vec3, Quat, Vec3, Affine3A) {
+    match node.transform() {
+        gltf::scene::Transform::Decomposed {
+            translation,
+            rotation,
+            scale,
+        } => {
+            let (t, r, s) = (
+                Vec3::from(translation),
+                Quat::from_array(rotation).normalize(),
+                Vec3::from(scale),
+            );
+            (t, r, s, Affine3A::from_scale_rotation_translation(s, r, t))
+        }
+        gltf::scene::Transform::Matrix { matrix } => {
+            let m = Affine3A::from_mat4(Mat4::from_cols_array_2d(&matrix));
+            let (s, r, t) = m.to_scale_rotation_translation();
+            (t, r, s, m)
+        }
+    }
+}
+
+fn build_skeleton(doc: &gltf::Document, file: &str) -> Result<Skeleton, MotionError> {
+    let n = doc.nodes().len();
+    let mut parents = vec![None; n];
+    for node in doc.nodes() {
+        for child in node.children() {
+            if parents[child.index()].is_some() {
+                return Err(invalid(
+                    file,
+                    format!("node {} has two parents", child.index()),
+                ));
+            }
+            parents[child.index()] = Some(node.index());
+        }
+    }
+    let mut is_joint = vec![doc.skins().len() == 0; n];
+    for skin in doc.skins() {
+        for j in skin.joints() {
+            is_joint[j.index()] = true;
+        }
+    }
+    let skel = Skeleton {
+        names: doc
+            .nodes()
+            .map(|nd| {
+                nd.name()
+                    .map_or_else(|| format!("#{}", nd.index()), str::to_string)
+            })
+            .collect(),
+        parents,
+        rest_local: doc.nodes().map(|nd| rest_trs(&nd).3).collect(),
+        is_joint,
+    };
+    if (0..n).any(|i| skel.chain(i).is_none()) {
+        return Err(invalid(file, "the node hierarchy has a cycle"));
+    }
+    Ok(skel)
+}
+
+/// Resolves a [`JointRef`]: exact name, then case-insensitive; joints before other nodes.
+fn resolve_joint(
+    skel: &Skeleton,
+    r: &JointRef,
+    file: &str,
+    role: &str,
+) -> Result<usize, MotionError> {
+    let found = match r {
+        JointRef::Index(i) => (*i < skel.names.len()).then_some(*i),
+        JointRef::Name(name) => {
+            let by = |pred: &dyn Fn(usize) -> bool| (0..skel.names.len()).find(|&i| pred(i));
+            by(&|i| skel.is_joint[i] && skel.names[i] == *name)
+                .or_else(|| by(&|i| skel.names[i] == *name))
+                .or_else(|| by(&|i| skel.is_joint[i] && skel.names[i].eq_ignore_ascii_case(name)))
+                .or_else(|| by(&|i| skel.names[i].eq_ignore_ascii_case(name)))
+        }
+    };
+    found.ok_or_else(|| MotionError::UnknownJoint {
+        file: file.to_string(),
+        role: role.to_string(),
+        requested: match r {
+            JointRef::Index(i) => format!(
+                "with node index {i} (the file has {} nodes)",
+                skel.names.len()
+            ),
+            JointRef::Name(n) => format!("named {n:?}"),
+        },
+        available: skel.joint_list(),
+    })
+}
+
+/// Default head: a joint named "head" (any case), else the shortest joint name containing
+/// "head" but neither "end" nor "top" (skips `Head_end`, `HeadTop_End`).
+fn default_head(skel: &Skeleton, file: &str) -> Result<usize, MotionError> {
+    let lower: Vec<String> = skel.names.iter().map(|n| n.to_lowercase()).collect();
+    let joints = || (0..skel.names.len()).filter(|&i| skel.is_joint[i]);
+    joints()
+        .find(|&i| lower[i] == "head")
+        .or_else(|| {
+            joints()
+                .filter(|&i| {
+                    lower[i].contains("head")
+                        && !lower[i].contains("end")
+                        && !lower[i].contains("top")
+                })
+                .min_by_key(|&i| (lower[i].len(), i))
+        })
+        .ok_or_else(|| MotionError::UnknownJoint {
+            file: file.to_string(),
+            role: "head joint".to_string(),
+            requested: "named like \"head\" (give MotionOptions::head_joint)".to_string(),
+            available: skel.joint_list(),
+        })
+}
+
+/// Picks the clip: requested name (exact, then any case), else "Dance", else the first.
+fn choose_clip<'a>(
+    doc: &'a gltf::Document,
+    requested: Option<&str>,
+    file: &str,
+) -> Result<gltf::Animation<'a>, MotionError> {
+    let anims: Vec<gltf::Animation> = doc.animations().collect();
+    if anims.is_empty() {
+        return Err(MotionError::NoAnimations {
+            file: file.to_string(),
+        });
+    }
+    let name = |a: &gltf::Animation| {
+        a.name()
+            .map_or_else(|| format!("#{}", a.index()), str::to_string)
+    };
+    let find = |want: &str| {
+        anims
+            .iter()
+            .find(|a| name(a) == want)
+            .or_else(|| anims.iter().find(|a| name(a).eq_ignore_ascii_case(want)))
+            .cloned()
+    };
+    match requested {
+        Some(want) => find(want).ok_or_else(|| MotionError::UnknownClip {
+            file: file.to_string(),
+            requested: want.to_string(),
+            available: anims.iter().map(name).collect(),
+        }),
+        None => Ok(find("Dance").unwrap_or_else(|| anims[0].clone())),
+    }
+}
+
+/// The clip's tracks per node: `[translation, rotation, scale]`, and the key range.
+type NodeTracks = Vec<[Option<Track>; 3]>;
+
+fn read_clip(
+    anim: &gltf::Animation,
+    loaded: &Loaded,
+    n_nodes: usize,
+    file: &str,
+    clip: &str,
+) -> Result<(NodeTracks, f32, f32), MotionError> {
+    let bad = |reason: String| MotionError::BadClip {
+        file: file.to_string(),
+        clip: clip.to_string(),
+        reason,
+    };
+    let mut tracks: NodeTracks = (0..n_nodes).map(|_| [None, None, None]).collect();
+    let (mut start_s, mut end_s) = (f32::INFINITY, f32::NEG_INFINITY);
+    for (ci, ch) in anim.channels().enumerate() {
+        let sampler = ch.sampler();
+        let (times, _) = read_accessor(&sampler.input(), &loaded.buffers)
+            .map_err(|e| bad(format!("channel {ci} input: {e}")))?;
+        if let (Some(&a), Some(&b)) = (times.first(), times.last()) {
+            start_s = start_s.min(a);
+            end_s = end_s.max(b);
+        }
+        let slot = match ch.target().property() {
+            Property::Translation => 0,
+            Property::Rotation => 1,
+            Property::Scale => 2,
+            Property::MorphTargetWeights => continue,
+        };
+        let (vals, comps) = read_accessor(&sampler.output(), &loaded.buffers)
+            .map_err(|e| bad(format!("channel {ci} output: {e}")))?;
+        let want = if slot == 1 { 4 } else { 3 };
+        if comps != want {
+            return Err(bad(format!(
+                "channel {ci}: output has {comps} components, expected {want}"
+            )));
+        }
+        let values: Vec<Vec4> = vals
+            .chunks_exact(comps)
+            .map(|c| {
+                if comps == 4 {
+                    Vec4::new(c[0], c[1], c[2], c[3])
+                } else {
+                    Vec4::new(c[0], c[1], c[2], 0.0)
+                }
+            })
+            .collect();
+        let interp = match sampler.interpolation() {
+            GltfInterpolation::Linear => Interpolation::Linear,
+            GltfInterpolation::Step => Interpolation::Step,
+            GltfInterpolation::CubicSpline => Interpolation::CubicSpline,
+        };
+        let node = ch.target().node().index();
+        let track = Track::new(times, values, interp)
+            .map_err(|e| bad(format!("channel {ci} (node {node}): {e}")))?;
+        tracks[node][slot] = Some(track);
+    }
+    if !start_s.is_finite() || !end_s.is_finite() {
+        return Err(bad("the clip has no keys".to_string()));
+    }
+    Ok((tracks, start_s, end_s))
+}
+
+/// Full load: container, clip, joints, fit, spheres.
+pub(crate) fn from_bytes(
+    bytes: &[u8],
+    file: &str,
+    base_dir: Option<&Path>,
+    opts: &MotionOptions,
+) -> Result<Motion, MotionError> {
+    let bad_option = |reason: String| MotionError::BadOption {
+        file: file.to_string(),
+        reason,
+    };
+    if !opts.speed.is_finite() {
+        return Err(bad_option(format!("speed {} is not finite", opts.speed)));
+    }
+    let loaded = parse(bytes, file, base_dir)?;
+    let doc = &loaded.doc;
+    let skel = build_skeleton(doc, file)?;
+    let anim = choose_clip(doc, opts.clip.as_deref(), file)?;
+    let clip_name = anim
+        .name()
+        .map_or_else(|| format!("#{}", anim.index()), str::to_string);
+    let head = match &opts.head_joint {
+        Some(r) => resolve_joint(&skel, r, file, "head joint")?,
+        None => default_head(&skel, file)?,
+    };
+    let (mut tracks, start_s, end_s) =
+        read_clip(&anim, &loaded, skel.names.len(), file, &clip_name)?;
+
+    let (fit, fit_method) = match opts.fit {
+        Some(f) => {
+            if !(f.scale.is_finite() && f.scale > 0.0 && f.offset_m.is_finite()) {
+                return Err(bad_option(format!(
+                    "fit {f:?}: scale must be finite and > 0"
+                )));
+            }
+            (f, FitMethod::Given)
+        }
+        None => fit::estimate(&loaded, &skel, head),
+    };
+
+    let sphere_specs: Vec<(usize, Vec3, f32)> = match &opts.body_spheres {
+        None => fit::default_spheres(&skel, head, &fit),
+        Some(specs) => {
+            let mut out = Vec::with_capacity(specs.len());
+            for s in specs {
+                if !(s.radius_m.is_finite() && s.radius_m > 0.0 && s.offset_m.is_finite()) {
+                    return Err(bad_option(format!(
+                        "body sphere {s:?}: radius must be > 0, values finite"
+                    )));
+                }
+                out.push((
+                    resolve_joint(&skel, &s.joint, file, "body sphere joint")?,
+                    s.offset_m,
+                    s.radius_m,
+                ));
+            }
+            out
+        }
+    };
+
+    // Evaluated nodes: the union of the chains, each node once.
+    let mut nodes: Vec<ChainNode> = Vec::new();
+    let mut slot_of: Vec<Option<usize>> = vec![None; skel.names.len()];
+    let mut make_chain = |joint: usize| -> JointChain {
+        let chain = skel.chain(joint).unwrap_or_else(|| vec![joint]);
+        let mut idx = Vec::with_capacity(chain.len());
+        for &n in &chain {
+            let slot = *slot_of[n].get_or_insert_with(|| {
+                let [t, r, s] = std::mem::take(&mut tracks[n]);
+                let nd = doc.nodes().nth(n);
+                let (rt, rr, rs, m) = nd.as_ref().map_or(
+                    (Vec3::ZERO, Quat::IDENTITY, Vec3::ONE, Affine3A::IDENTITY),
+                    rest_trs,
+                );
+                let is_matrix = nd.is_some_and(|nd| {
+                    matches!(nd.transform(), gltf::scene::Transform::Matrix { .. })
+                });
+                let animated = t.is_some() || r.is_some() || s.is_some();
+                nodes.push(ChainNode {
+                    rest_matrix: (is_matrix && !animated).then_some(m),
+                    rest_t: rt,
+                    rest_r: rr,
+                    rest_s: rs,
+                    translation: t,
+                    rotation: r,
+                    scale: s,
+                });
+                nodes.len() - 1
+            });
+            idx.push(slot);
+        }
+        JointChain {
+            chain: idx,
+            rest_align: super::rigid_rotation(&skel.rest_world(joint)).inverse(),
+        }
+    };
+    let head_chain = make_chain(head);
+    let spheres: Vec<(JointChain, Vec3, f32)> = sphere_specs
+        .into_iter()
+        .map(|(j, off, r)| (make_chain(j), off, r))
+        .collect();
+
+    Ok(Motion {
+        clip_name,
+        start_s,
+        duration_s: (end_s - start_s).max(0.0),
+        speed: opts.speed,
+        fit,
+        fit_method,
+        nodes,
+        head: head_chain,
+        spheres,
+        head_joint_name: skel.names[head].clone(),
+        head_joint_index: head,
+    })
+}
