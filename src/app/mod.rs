@@ -128,7 +128,7 @@ impl SceneArgs {
                             "--clip and --head-joint need --animation FILE (the embedded dance has one clip)"
                         )));
                     }
-                    Motion::default_dance().with_speed(self.speed)
+                    crate::motion::dance::try_dance(&opts).map_err(AppError::other)?
                 }
             }
         };
