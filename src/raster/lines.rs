@@ -1,0 +1,493 @@
+//! Anti-aliased, depth-tested, depth-sorted polylines (hair) into a [`Framebuffer`].
+//!
+//! What: [`draw_polylines`] draws every segment of equally long polylines with per-vertex
+//! colours, a width in pixels and an opacity, hidden where the opaque depth buffer (the head)
+//! is nearer, and composited back to front over whatever is already in the colour buffer.
+//!
+//! How, in three passes:
+//! 1. **Set-up** (parallel over fixed chunks of segments): each segment goes to view space, is
+//!    clipped to the near plane *in view space* (before the perspective division, which would
+//!    flip or blow up points behind the eye), projected, then clipped in float to a guard
+//!    rectangle a little larger than the image. Clipping in float before any conversion to
+//!    integers is what makes NaN, ±inf and 1e30-metre points harmless: only finite values of at
+//!    most a few image sizes ever reach `as usize`, and the per-pixel arithmetic keeps its
+//!    precision. Result: a `Seg` per input segment (screen end points, 1/depth, colours, end-cap
+//!    flags, covered row range) or "invisible".
+//! 2. **Binning** (sequential, in input order): each visible segment's key — its mid-point
+//!    1/depth bits in the high 32 bits, its index in the low 32 — is pushed to every band of
+//!    `BAND_ROWS` image rows it touches. Bands are whole rows so that each band owns a disjoint
+//!    `&mut` slice of the framebuffer (no `unsafe`, no locks).
+//! 3. **Raster** (parallel over bands): a band sorts its keys (far to near; ties by index, so
+//!    the order is a total order fixed by the input alone) and draws each segment over the rows
+//!    it touches, pixel centres inside the segment's expanded rectangle only.
+//!
+//! Coverage is a box filter in line-aligned coordinates: across the line, the overlap of the
+//! pixel's unit box with the line's width (`max(0, min(|d| + ½, w/2) − max(|d| − ½, −w/2))`,
+//! which integrates to exactly `w`); along the line, the overlap of the unit box with
+//! the segment at the two free ends of a polyline, and a hard half-open partition
+//! `0 ≤ s < len` at the joints, so that consecutive segments of one hair tile it without
+//! double-blending the joint pixel (box ramps at joints would composite two 50% layers into
+//! 75%, a visible beading of opaque lines). Depth is 1/depth interpolated linearly in screen
+//! space (exact for perspective), compared without division as `(1/z)·z_buffer > 1`; colour is
+//! interpolated linearly in screen space within a segment (segments are a few pixels long),
+//! perspective-correctly at clip points.
+//!
+//! Hair over hair: hair does not write depth. Each band composites its segments with "over"
+//! (`dst += (src − dst)·α`, α = coverage × opacity) sorted back to front by segment mid-point
+//! depth, so nearer hair is always on top regardless of input order, and the result depends
+//! only on the input, never on the thread count (each pixel belongs to one band, processed by
+//! one thread in one order). Per-segment sorting is the classic approach for hair (Sintorn &
+//! Assarsson 2008 sort hair segments for the same reason); it misorders only segments that
+//! cross in depth within one pixel. Rejected: a hair z-buffer (depth write + "over" in input
+//! order) drops hair behind the anti-aliased fringe of nearer hair, leaving dark halos, and
+//! makes the picture depend on strand order; weighted blended OIT is order independent but
+//! does not make near hair opaque over far hair, so dense hair turns into an average colour.
+//! The cost of sorting, measured at 100K segments, 1280x720: see BENCH notes in `mod.rs`.
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use super::camera::{Camera, View};
+use super::framebuffer::Framebuffer;
+
+/// Image rows per band (the unit of parallel work and of binning).
+const BAND_ROWS: usize = 16;
+/// Segments per parallel set-up task.
+const SETUP_CHUNK: usize = 4096;
+/// Widest line drawn, pixels; the coverage model is meant for thin lines.
+pub const MAX_WIDTH_PX: f32 = 64.0;
+
+/// Polylines sharing one point count: line `l` is `points[l*n .. (l+1)*n]` with
+/// `n = points_per_line`. Points in world metres, colours linear RGB, one per point. Trailing
+/// points that do not make a whole line, and lines without a colour for every point, are
+/// ignored.
+#[derive(Clone, Copy, Debug)]
+pub struct Polylines<'a> {
+    pub points: &'a [Vec3],
+    pub colors: &'a [Vec3],
+    pub points_per_line: usize,
+}
+
+impl Polylines<'_> {
+    /// Number of whole lines that have a point and a colour for every vertex.
+    pub fn line_count(&self) -> usize {
+        match self.points_per_line {
+            0 => 0,
+            n => self.points.len().min(self.colors.len()) / n,
+        }
+    }
+
+    /// Number of segments drawn: `line_count() * (points_per_line − 1)`.
+    pub fn segment_count(&self) -> usize {
+        self.line_count() * self.points_per_line.saturating_sub(1)
+    }
+}
+
+/// How lines look.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LineStyle {
+    /// Line width in pixels, default 1; at most [`MAX_WIDTH_PX`]; ≤ 0 or NaN draws nothing.
+    pub width_px: f32,
+    /// Coverage multiplier in (0, 1], default 1; ≤ 0 or NaN draws nothing, > 1 acts as 1.
+    pub opacity: f32,
+}
+
+impl Default for LineStyle {
+    fn default() -> Self {
+        LineStyle {
+            width_px: 1.0,
+            opacity: 1.0,
+        }
+    }
+}
+
+/// Buffers reused between frames, so a warmed-up frame allocates nothing.
+#[derive(Debug, Default)]
+pub struct LineScratch {
+    /// One prepared segment per input segment.
+    segs: Vec<Seg>,
+    /// Per band: sort keys of the segments touching it. Inner capacities persist.
+    bands: Vec<Vec<u64>>,
+}
+
+/// A segment ready to rasterise, in pixel coordinates.
+#[derive(Clone, Copy, Debug, Default)]
+struct Seg {
+    x0: f32,
+    y0: f32,
+    /// Unit direction on screen, `(1, 0)` for a zero-length segment.
+    ux: f32,
+    uy: f32,
+    len: f32,
+    /// `1 / len`, 0 for a zero-length segment.
+    inv_len: f32,
+    /// 1 / view depth at the two ends, 1/m.
+    iz0: f32,
+    iz1: f32,
+    c0: Vec3,
+    c1: Vec3,
+    /// Free end of a polyline (box-filtered end) at the start / end.
+    cap0: bool,
+    cap1: bool,
+    /// Covered rows, inclusive; `row_lo > row_hi` when invisible.
+    row_lo: u32,
+    row_hi: u32,
+    /// Mid-point 1/depth bits: sort key (positive floats order like their bits).
+    key: u32,
+}
+
+impl Seg {
+    const INVISIBLE: Seg = Seg {
+        x0: 0.0,
+        y0: 0.0,
+        ux: 1.0,
+        uy: 0.0,
+        len: 0.0,
+        inv_len: 0.0,
+        iz0: 0.0,
+        iz1: 0.0,
+        c0: Vec3::ZERO,
+        c1: Vec3::ZERO,
+        cap0: false,
+        cap1: false,
+        row_lo: 1,
+        row_hi: 0,
+        key: 0,
+    };
+
+    fn visible(&self) -> bool {
+        self.row_lo <= self.row_hi
+    }
+}
+
+/// Per-frame constants of the set-up and raster passes.
+struct Params {
+    view: View,
+    /// Half line width, pixels.
+    half_w: f32,
+    /// Distance from the axis beyond which coverage is 0: `half_w + 0.5`.
+    reach: f32,
+    opacity: f32,
+    width: usize,
+    height: usize,
+}
+
+/// Draws `lines` into `fb` (see the module doc for the scheme). Deterministic: the result is
+/// bit-identical for any rayon thread count. Never panics on any input; segments with
+/// non-finite points or colours, or entirely nearer than the near plane, draw nothing.
+/// At most `u32::MAX` segments are drawn.
+pub fn draw_polylines(
+    fb: &mut Framebuffer,
+    cam: &Camera,
+    lines: &Polylines,
+    style: &LineStyle,
+    scratch: &mut LineScratch,
+) {
+    let (width, height) = (fb.width as usize, fb.height as usize);
+    if width == 0 || height == 0 || !fb.is_consistent() {
+        return;
+    }
+    if !(style.width_px > 0.0) || !(style.opacity > 0.0) {
+        return;
+    }
+    let view = Camera {
+        width: fb.width,
+        height: fb.height,
+        ..*cam
+    }
+    .view();
+    if !(view.focal_px > 0.0) || !view.focal_px.is_finite() || !view.eye.is_finite() {
+        return;
+    }
+    let half_w = 0.5 * style.width_px.min(MAX_WIDTH_PX);
+    let params = Params {
+        view,
+        half_w,
+        reach: half_w + 0.5,
+        opacity: style.opacity.min(1.0),
+        width,
+        height,
+    };
+    let seg_count = lines.segment_count().min(u32::MAX as usize);
+    if seg_count == 0 {
+        return;
+    }
+
+    // 1. Set-up, parallel over fixed chunks (the chunking does not affect the result).
+    let segs = &mut scratch.segs;
+    segs.clear();
+    segs.resize(seg_count, Seg::INVISIBLE);
+    segs.par_chunks_mut(SETUP_CHUNK)
+        .enumerate()
+        .for_each(|(chunk, out)| {
+            let first = chunk * SETUP_CHUNK;
+            for (j, seg) in out.iter_mut().enumerate() {
+                *seg = setup_segment(&params, lines, first + j);
+            }
+        });
+
+    // 2. Binning in input order.
+    let band_count = height.div_ceil(BAND_ROWS);
+    if scratch.bands.len() < band_count {
+        scratch.bands.resize_with(band_count, Vec::new);
+    }
+    let bands = &mut scratch.bands[..band_count];
+    for band in bands.iter_mut() {
+        band.clear();
+    }
+    for (k, seg) in segs.iter().enumerate() {
+        if !seg.visible() {
+            continue;
+        }
+        let key = (u64::from(seg.key) << 32) | k as u64;
+        let (b0, b1) = (
+            seg.row_lo as usize / BAND_ROWS,
+            seg.row_hi as usize / BAND_ROWS,
+        );
+        for band in &mut bands[b0..=b1] {
+            band.push(key);
+        }
+    }
+
+    // 3. Raster, parallel over bands; each band sorts far to near and composites in order.
+    let segs = &scratch.segs[..];
+    fb.color
+        .par_chunks_mut(width * BAND_ROWS)
+        .zip(fb.depth.par_chunks(width * BAND_ROWS))
+        .zip(bands.par_iter_mut())
+        .enumerate()
+        .for_each(|(b, ((color, depth), keys))| {
+            keys.sort_unstable();
+            let band = Band {
+                row0: b * BAND_ROWS,
+                color,
+                depth,
+            };
+            draw_band(&params, segs, keys, band);
+        });
+}
+
+/// One band's pixels: rows `row0 ..` of the framebuffer.
+struct Band<'a> {
+    row0: usize,
+    color: &'a mut [Vec3],
+    depth: &'a [f32],
+}
+
+/// Clips and projects segment `k` of `lines`.
+fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Seg {
+    let n = lines.points_per_line;
+    let segs_per_line = n - 1; // n >= 2 since segment_count() > 0
+    let (line, i) = (k / segs_per_line, k % segs_per_line);
+    let a = line * n + i;
+    let (Some(&w0), Some(&w1), Some(&c0), Some(&c1)) = (
+        lines.points.get(a),
+        lines.points.get(a + 1),
+        lines.colors.get(a),
+        lines.colors.get(a + 1),
+    ) else {
+        return Seg::INVISIBLE;
+    };
+    if !(c0.is_finite() && c1.is_finite()) {
+        return Seg::INVISIBLE;
+    }
+    let view = &p.view;
+    let (mut v0, mut v1) = (view.to_view(w0), view.to_view(w1));
+    let (mut c0, mut c1) = (c0, c1);
+    if !(v0.is_finite() && v1.is_finite()) {
+        return Seg::INVISIBLE;
+    }
+    let (mut cap0, mut cap1) = (i == 0, i + 1 == segs_per_line);
+
+    // Near plane, in view space: the perspective division is only meaningful for depth > 0.
+    let near = view.near_m;
+    if v0.z < near && v1.z < near {
+        return Seg::INVISIBLE;
+    }
+    if v0.z < near || v1.z < near {
+        let t = (near - v0.z) / (v1.z - v0.z);
+        let v = v0.lerp(v1, t);
+        let c = c0.lerp(c1, t);
+        let v = Vec3::new(v.x, v.y, near);
+        if v0.z < near {
+            (v0, c0, cap0) = (v, c, false);
+        } else {
+            (v1, c1, cap1) = (v, c, false);
+        }
+    }
+    let (mut x0, mut y0) = view.view_to_pixel(v0);
+    let (mut x1, mut y1) = view.view_to_pixel(v1);
+    let (mut iz0, mut iz1) = (1.0 / v0.z, 1.0 / v1.z);
+    let (dx, dy) = (x1 - x0, y1 - y0);
+    // A projection that overflows f32 (points ~1e30 m off axis) is dropped here.
+    if !(dx.is_finite() && dy.is_finite() && iz0.is_finite() && iz1.is_finite()) {
+        return Seg::INVISIBLE;
+    }
+
+    // Guard rectangle, in float, before anything becomes an integer (Liang-Barsky).
+    let g = p.reach + 2.0;
+    let (lo_x, hi_x) = (-g, p.width as f32 + g);
+    let (lo_y, hi_y) = (-g, p.height as f32 + g);
+    let (mut t0, mut t1) = (0.0_f32, 1.0_f32);
+    for (q, r) in [
+        (-dx, x0 - lo_x),
+        (dx, hi_x - x0),
+        (-dy, y0 - lo_y),
+        (dy, hi_y - y0),
+    ] {
+        if q == 0.0 {
+            if r < 0.0 {
+                return Seg::INVISIBLE;
+            }
+        } else {
+            let t = r / q;
+            if q < 0.0 {
+                t0 = t0.max(t);
+            } else {
+                t1 = t1.min(t);
+            }
+        }
+    }
+    if !(t0 <= t1) {
+        return Seg::INVISIBLE;
+    }
+    if t0 > 0.0 || t1 < 1.0 {
+        // Colour is perspective-correct at the clip points: c/z and 1/z are screen-linear.
+        let at = |t: f32| {
+            let iz = iz0 + (iz1 - iz0) * t;
+            let c = (c0 * iz0).lerp(c1 * iz1, t) / iz;
+            (x0 + dx * t, y0 + dy * t, iz, c)
+        };
+        let (ax, ay, aiz, ac) = at(t0);
+        let (bx, by, biz, bc) = at(t1);
+        if t0 > 0.0 {
+            cap0 = false;
+        }
+        if t1 < 1.0 {
+            cap1 = false;
+        }
+        (x0, y0, iz0, c0, x1, y1, iz1, c1) = (ax, ay, aiz, ac, bx, by, biz, bc);
+        if !(c0.is_finite() && c1.is_finite() && iz0 > 0.0 && iz1 > 0.0) {
+            return Seg::INVISIBLE;
+        }
+    }
+
+    let (dx, dy) = (x1 - x0, y1 - y0);
+    let len = (dx * dx + dy * dy).sqrt();
+    let (ux, uy, inv_len) = if len > 1e-6 {
+        (dx / len, dy / len, 1.0 / len)
+    } else {
+        (1.0, 0.0, 0.0)
+    };
+    let len = if inv_len > 0.0 { len } else { 0.0 };
+
+    // Rows whose centre (j + 0.5) lies within `reach` of the segment's y extent.
+    let r = p.reach;
+    let (ymin, ymax) = (y0.min(y1) - r, y0.max(y1) + r);
+    let (xmin, xmax) = (x0.min(x1) - r, x0.max(x1) + r);
+    let last_row = (p.height - 1) as f32;
+    let row_lo = (ymin - 0.5).ceil().max(0.0);
+    let row_hi = (ymax - 0.5).floor().min(last_row);
+    if !(row_lo <= row_hi) || xmax < 0.0 || xmin > p.width as f32 {
+        return Seg::INVISIBLE;
+    }
+    Seg {
+        x0,
+        y0,
+        ux,
+        uy,
+        len,
+        inv_len,
+        iz0,
+        iz1,
+        c0,
+        c1,
+        cap0,
+        cap1,
+        row_lo: row_lo as u32,
+        row_hi: row_hi as u32,
+        key: (0.5 * (iz0 + iz1)).to_bits(),
+    }
+}
+
+/// `x` interval where `a·x + b ∈ [lo, hi]` (possibly empty: start > end).
+#[inline]
+fn solve_interval(a: f32, b: f32, lo: f32, hi: f32) -> (f32, f32) {
+    if a.abs() > 1e-6 {
+        let (p, q) = ((lo - b) / a, (hi - b) / a);
+        (p.min(q), p.max(q))
+    } else if b >= lo && b <= hi {
+        (f32::NEG_INFINITY, f32::INFINITY)
+    } else {
+        (f32::INFINITY, f32::NEG_INFINITY)
+    }
+}
+
+/// Draws the segments `keys` (sorted far to near) into one band.
+fn draw_band(p: &Params, segs: &[Seg], keys: &[u64], band: Band) {
+    let w = p.width;
+    let rows = band.color.len() / w;
+    let (row0, row_end) = (band.row0, band.row0 + rows);
+    let (hw, reach, opacity) = (p.half_w, p.reach, p.opacity);
+    let last_col = (w - 1) as f32;
+    for &key in keys {
+        let Some(s) = segs.get((key & 0xFFFF_FFFF) as usize) else {
+            continue;
+        };
+        let e0 = if s.cap0 { 0.5 } else { 0.0 };
+        let e1 = if s.cap1 { 0.5 } else { 0.0 };
+        let (j0, j1) = (
+            (s.row_lo as usize).max(row0),
+            (s.row_hi as usize + 1).min(row_end),
+        );
+        for j in j0..j1 {
+            let ry = j as f32 + 0.5 - s.y0;
+            // Perpendicular distance d(x) = −uy·(x − x0) + ux·ry, along s(x) = ux·(x − x0) + uy·ry.
+            let (pa, pb) = solve_interval(-s.uy, s.uy * s.x0 + s.ux * ry, -reach, reach);
+            let (qa, qb) = solve_interval(
+                s.ux,
+                -s.ux * s.x0 + s.uy * ry,
+                -e0 - 0.01,
+                s.len + e1 + 0.01,
+            );
+            // Pixel centres i + 0.5 in [xa, xb], clamped in float before the cast.
+            let i0 = (pa.max(qa) - 0.5).ceil().max(0.0);
+            let i1 = (pb.min(qb) - 0.5).floor().min(last_col);
+            if !(i0 <= i1) {
+                continue;
+            }
+            let row = (j - row0) * w;
+            let color = &mut band.color[row..row + w];
+            let depth = &band.depth[row..row + w];
+            for i in i0 as usize..=i1 as usize {
+                let rx = i as f32 + 0.5 - s.x0;
+                let d = (s.ux * ry - s.uy * rx).abs();
+                let along_pos = s.ux * rx + s.uy * ry;
+                let across = ((d + 0.5).min(hw) - (d - 0.5).max(-hw)).max(0.0);
+                let lo = if s.cap0 {
+                    (along_pos + 0.5).clamp(0.0, 1.0)
+                } else {
+                    f32::from(u8::from(along_pos >= 0.0))
+                };
+                let hi = if s.cap1 {
+                    (s.len - along_pos + 0.5).clamp(0.0, 1.0)
+                } else {
+                    f32::from(u8::from(along_pos < s.len))
+                };
+                let alpha = across * (lo + hi - 1.0).max(0.0) * opacity;
+                if !(alpha > 0.0) {
+                    continue;
+                }
+                let t = (along_pos * s.inv_len).clamp(0.0, 1.0);
+                let iz = s.iz0 + (s.iz1 - s.iz0) * t;
+                // Nearer than the opaque surface: 1/z_hair > 1/z_buffer, without a division.
+                if !(iz * depth[i] > 1.0) {
+                    continue;
+                }
+                let c = s.c0 + (s.c1 - s.c0) * t;
+                let dst = &mut color[i];
+                *dst += (c - *dst) * alpha;
+            }
+        }
+    }
+}
