@@ -257,8 +257,8 @@ fn hair_scene(strands: usize, n: usize, r: f32) -> (Vec<Vec3>, Vec<Vec3>) {
 fn render_scene(threads: usize, w: u32, h: u32) -> Framebuffer {
     let (pts, cols) = hair_scene(600, 40, 0.1);
     let cam = Camera::framing(
-        Vec3::new(0.0, -0.08, 0.0),
-        0.28,
+        Vec3::new(0.0, -0.06, 0.0),
+        0.19,
         Vec3::new(0.3, 0.1, 1.0),
         0.6,
         w,
@@ -318,6 +318,19 @@ fn scene_png() {
     let fb = render_scene(2, 640, 480);
     let path = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("raster_scene.png");
     wisp::output::write_png_rgb8(&path, fb.width, fb.height, &fb.to_srgb8()).unwrap();
+    // A 4x nearest-neighbour zoom of the head's upper-left edge, to judge anti-aliasing.
+    let (x0, y0, cw, ch, zoom) = (200, 100, 120, 90, 4);
+    let rgb = fb.to_srgb8();
+    let mut crop = Vec::with_capacity(cw * ch * zoom * zoom * 3);
+    for y in 0..ch * zoom {
+        for x in 0..cw * zoom {
+            let i = 3 * ((y0 + y / zoom) * fb.width as usize + x0 + x / zoom);
+            crop.extend_from_slice(&rgb[i..i + 3]);
+        }
+    }
+    let crop_path = path.with_file_name("raster_scene_zoom.png");
+    let (zw, zh) = ((cw * zoom) as u32, (ch * zoom) as u32);
+    wisp::output::write_png_rgb8(&crop_path, zw, zh, &crop).unwrap();
     assert!(fb.color.iter().all(|c| c.is_finite()));
     let head_pixels = fb.depth.iter().filter(|d| d.is_finite()).count();
     assert!(head_pixels > 10_000, "{head_pixels}");
