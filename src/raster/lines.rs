@@ -104,14 +104,33 @@ impl Default for LineStyle {
 /// Buffers reused between frames, so a warmed-up frame allocates nothing.
 #[derive(Debug, Default)]
 pub struct LineScratch {
-    /// One prepared segment per input segment.
-    segs: Vec<Seg>,
-    /// Per band: sort keys of the segments touching it. Inner capacities persist.
-    bands: Vec<Vec<u64>>,
+    /// Per set-up chunk, per band: the chunk's visible segments touching the band, in input
+    /// order. Inner capacities persist across frames.
+    chunks: Vec<Vec<Vec<Seg>>>,
+    /// Per band: its segments gathered contiguously in input order, and their sort keys
+    /// (see `band_key`). Capacities persist.
+    bands: Vec<(Vec<Seg>, Vec<u64>)>,
+}
+
+impl LineScratch {
+    /// Bytes of heap held (capacities), to check that warmed-up frames do not grow it.
+    pub fn capacity_bytes(&self) -> usize {
+        let segs: usize = self
+            .chunks
+            .iter()
+            .map(|c| c.iter().map(Vec::capacity).sum::<usize>() + c.capacity())
+            .sum();
+        let band_segs: usize = self.bands.iter().map(|(s, _)| s.capacity()).sum();
+        let keys: usize = self.bands.iter().map(|(_, k)| k.capacity()).sum();
+        (segs + band_segs) * size_of::<Seg>()
+            + keys * 8
+            + self.chunks.capacity()
+            + self.bands.capacity()
+    }
 }
 
 /// A segment ready to rasterise, in pixel coordinates.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug)]
 struct Seg {
     x0: f32,
     y0: f32,
@@ -121,6 +140,12 @@ struct Seg {
     len: f32,
     /// `1 / len`, 0 for a zero-length segment.
     inv_len: f32,
+    /// Row spans: the axis crosses row centre y at `x0 + (y − y0)·ux/uy`, the strip of
+    /// half-width `reach` is `reach/|uy|` wide either side; 0 and +inf when `uy` ≈ 0.
+    dxdy: f32,
+    half_span: f32,
+    /// `1/ux`, 0 when `ux` ≈ 0.
+    inv_ux: f32,
     /// 1 / view depth at the two ends, 1/m.
     iz0: f32,
     iz1: f32,
@@ -129,35 +154,9 @@ struct Seg {
     /// Free end of a polyline (box-filtered end) at the start / end.
     cap0: bool,
     cap1: bool,
-    /// Covered rows, inclusive; `row_lo > row_hi` when invisible.
+    /// Covered rows, inclusive.
     row_lo: u32,
     row_hi: u32,
-    /// Mid-point 1/depth bits: sort key (positive floats order like their bits).
-    key: u32,
-}
-
-impl Seg {
-    const INVISIBLE: Seg = Seg {
-        x0: 0.0,
-        y0: 0.0,
-        ux: 1.0,
-        uy: 0.0,
-        len: 0.0,
-        inv_len: 0.0,
-        iz0: 0.0,
-        iz1: 0.0,
-        c0: Vec3::ZERO,
-        c1: Vec3::ZERO,
-        cap0: false,
-        cap1: false,
-        row_lo: 1,
-        row_hi: 0,
-        key: 0,
-    };
-
-    fn visible(&self) -> bool {
-        self.row_lo <= self.row_hi
-    }
 }
 
 /// Per-frame constants of the set-up and raster passes.
@@ -172,10 +171,22 @@ struct Params {
     height: usize,
 }
 
+/// Sort key of a segment in a band: far to near, then input order. The high 32 bits are the
+/// bits of the mid-point 1/depth (positive floats order like their bits), the low 32 bits the
+/// segment's position in the band's list, which is in input order.
+#[inline]
+fn band_key(s: &Seg, pos: usize) -> u64 {
+    let iz_mid = (0.5 * (s.iz0 + s.iz1)).to_bits();
+    (u64::from(iz_mid) << 32) | pos as u64
+}
+
+/// Most segments drawn per call: the sort key holds a position in 32 bits.
+pub const MAX_SEGMENTS: usize = u32::MAX as usize;
+
 /// Draws `lines` into `fb` (see the module doc for the scheme). Deterministic: the result is
 /// bit-identical for any rayon thread count. Never panics on any input; segments with
 /// non-finite points or colours, or entirely nearer than the near plane, draw nothing.
-/// At most `u32::MAX` segments are drawn.
+/// At most [`MAX_SEGMENTS`] (2³² − 1) segments are drawn.
 pub fn draw_polylines(
     fb: &mut Framebuffer,
     cam: &Camera,
@@ -208,55 +219,63 @@ pub fn draw_polylines(
         width,
         height,
     };
-    let seg_count = lines.segment_count().min(u32::MAX as usize);
+    let seg_count = lines.segment_count().min(MAX_SEGMENTS);
     if seg_count == 0 {
         return;
     }
+    let band_count = height.div_ceil(BAND_ROWS);
+    let chunk_count = seg_count.div_ceil(SETUP_CHUNK);
 
-    // 1. Set-up, parallel over fixed chunks (the chunking does not affect the result).
-    let segs = &mut scratch.segs;
-    segs.clear();
-    segs.resize(seg_count, Seg::INVISIBLE);
-    segs.par_chunks_mut(SETUP_CHUNK)
+    // 1. Set-up and binning, parallel over fixed chunks of segments (the chunking is fixed,
+    //    so it does not depend on the thread count): each chunk bins into its own lists.
+    if scratch.chunks.len() < chunk_count {
+        scratch.chunks.resize_with(chunk_count, Vec::new);
+    }
+    scratch.chunks[..chunk_count]
+        .par_iter_mut()
         .enumerate()
-        .for_each(|(chunk, out)| {
+        .for_each(|(chunk, bins)| {
+            if bins.len() < band_count {
+                bins.resize_with(band_count, Vec::new);
+            }
+            let bins = &mut bins[..band_count];
+            for bin in bins.iter_mut() {
+                bin.clear();
+            }
             let first = chunk * SETUP_CHUNK;
-            for (j, seg) in out.iter_mut().enumerate() {
-                *seg = setup_segment(&params, lines, first + j);
+            for k in first..(first + SETUP_CHUNK).min(seg_count) {
+                if let Some(seg) = setup_segment(&params, lines, k) {
+                    let (b0, b1) = (
+                        seg.row_lo as usize / BAND_ROWS,
+                        seg.row_hi as usize / BAND_ROWS,
+                    );
+                    for bin in &mut bins[b0..=b1] {
+                        bin.push(seg);
+                    }
+                }
             }
         });
 
-    // 2. Binning in input order.
-    let band_count = height.div_ceil(BAND_ROWS);
+    // 2. Raster, parallel over bands: gather the band's segments contiguously in input order
+    //    (the sorted walk then stays within one cache-resident array), sort far to near, draw.
     if scratch.bands.len() < band_count {
-        scratch.bands.resize_with(band_count, Vec::new);
+        scratch.bands.resize_with(band_count, Default::default);
     }
-    let bands = &mut scratch.bands[..band_count];
-    for band in bands.iter_mut() {
-        band.clear();
-    }
-    for (k, seg) in segs.iter().enumerate() {
-        if !seg.visible() {
-            continue;
-        }
-        let key = (u64::from(seg.key) << 32) | k as u64;
-        let (b0, b1) = (
-            seg.row_lo as usize / BAND_ROWS,
-            seg.row_hi as usize / BAND_ROWS,
-        );
-        for band in &mut bands[b0..=b1] {
-            band.push(key);
-        }
-    }
-
-    // 3. Raster, parallel over bands; each band sorts far to near and composites in order.
-    let segs = &scratch.segs[..];
+    let chunks = &scratch.chunks[..chunk_count];
     fb.color
         .par_chunks_mut(width * BAND_ROWS)
         .zip(fb.depth.par_chunks(width * BAND_ROWS))
-        .zip(bands.par_iter_mut())
+        .zip(scratch.bands[..band_count].par_iter_mut())
         .enumerate()
-        .for_each(|(b, ((color, depth), keys))| {
+        .for_each(|(b, ((color, depth), (segs, keys)))| {
+            segs.clear();
+            for bins in chunks {
+                if let Some(bin) = bins.get(b) {
+                    segs.extend_from_slice(bin);
+                }
+            }
+            keys.clear();
+            keys.extend(segs.iter().enumerate().map(|(pos, s)| band_key(s, pos)));
             keys.sort_unstable();
             let band = Band {
                 row0: b * BAND_ROWS,
@@ -274,35 +293,28 @@ struct Band<'a> {
     depth: &'a [f32],
 }
 
-/// Clips and projects segment `k` of `lines`.
-fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Seg {
+/// Clips and projects segment `k` of `lines`; `None` when nothing of it can be seen.
+fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<Seg> {
     let n = lines.points_per_line;
-    let segs_per_line = n - 1; // n >= 2 since segment_count() > 0
+    let segs_per_line = n.checked_sub(1).filter(|&s| s > 0)?;
     let (line, i) = (k / segs_per_line, k % segs_per_line);
     let a = line * n + i;
-    let (Some(&w0), Some(&w1), Some(&c0), Some(&c1)) = (
-        lines.points.get(a),
-        lines.points.get(a + 1),
-        lines.colors.get(a),
-        lines.colors.get(a + 1),
-    ) else {
-        return Seg::INVISIBLE;
-    };
+    let (w0, w1) = (*lines.points.get(a)?, *lines.points.get(a + 1)?);
+    let (mut c0, mut c1) = (*lines.colors.get(a)?, *lines.colors.get(a + 1)?);
     if !(c0.is_finite() && c1.is_finite()) {
-        return Seg::INVISIBLE;
+        return None;
     }
     let view = &p.view;
     let (mut v0, mut v1) = (view.to_view(w0), view.to_view(w1));
-    let (mut c0, mut c1) = (c0, c1);
     if !(v0.is_finite() && v1.is_finite()) {
-        return Seg::INVISIBLE;
+        return None;
     }
     let (mut cap0, mut cap1) = (i == 0, i + 1 == segs_per_line);
 
     // Near plane, in view space: the perspective division is only meaningful for depth > 0.
     let near = view.near_m;
     if v0.z < near && v1.z < near {
-        return Seg::INVISIBLE;
+        return None;
     }
     if v0.z < near || v1.z < near {
         let t = (near - v0.z) / (v1.z - v0.z);
@@ -321,7 +333,7 @@ fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Seg {
     let (dx, dy) = (x1 - x0, y1 - y0);
     // A projection that overflows f32 (points ~1e30 m off axis) is dropped here.
     if !(dx.is_finite() && dy.is_finite() && iz0.is_finite() && iz1.is_finite()) {
-        return Seg::INVISIBLE;
+        return None;
     }
 
     // Guard rectangle, in float, before anything becomes an integer (Liang-Barsky).
@@ -337,7 +349,7 @@ fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Seg {
     ] {
         if q == 0.0 {
             if r < 0.0 {
-                return Seg::INVISIBLE;
+                return None;
             }
         } else {
             let t = r / q;
@@ -349,7 +361,7 @@ fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Seg {
         }
     }
     if !(t0 <= t1) {
-        return Seg::INVISIBLE;
+        return None;
     }
     if t0 > 0.0 || t1 < 1.0 {
         // Colour is perspective-correct at the clip points: c/z and 1/z are screen-linear.
@@ -360,44 +372,48 @@ fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Seg {
         };
         let (ax, ay, aiz, ac) = at(t0);
         let (bx, by, biz, bc) = at(t1);
-        if t0 > 0.0 {
-            cap0 = false;
-        }
-        if t1 < 1.0 {
-            cap1 = false;
-        }
+        cap0 &= t0 <= 0.0;
+        cap1 &= t1 >= 1.0;
         (x0, y0, iz0, c0, x1, y1, iz1, c1) = (ax, ay, aiz, ac, bx, by, biz, bc);
         if !(c0.is_finite() && c1.is_finite() && iz0 > 0.0 && iz1 > 0.0) {
-            return Seg::INVISIBLE;
+            return None;
         }
     }
 
     let (dx, dy) = (x1 - x0, y1 - y0);
     let len = (dx * dx + dy * dy).sqrt();
-    let (ux, uy, inv_len) = if len > 1e-6 {
-        (dx / len, dy / len, 1.0 / len)
+    let (ux, uy, len, inv_len) = if len > 1e-6 {
+        (dx / len, dy / len, len, 1.0 / len)
     } else {
-        (1.0, 0.0, 0.0)
+        (1.0, 0.0, 0.0, 0.0)
     };
-    let len = if inv_len > 0.0 { len } else { 0.0 };
+    let r = p.reach;
+    let (dxdy, half_span) = if uy.abs() > 1e-6 {
+        (ux / uy, r / uy.abs())
+    } else {
+        (0.0, f32::INFINITY)
+    };
+    let inv_ux = if ux.abs() > 1e-6 { 1.0 / ux } else { 0.0 };
 
     // Rows whose centre (j + 0.5) lies within `reach` of the segment's y extent.
-    let r = p.reach;
     let (ymin, ymax) = (y0.min(y1) - r, y0.max(y1) + r);
     let (xmin, xmax) = (x0.min(x1) - r, x0.max(x1) + r);
     let last_row = (p.height - 1) as f32;
     let row_lo = (ymin - 0.5).ceil().max(0.0);
     let row_hi = (ymax - 0.5).floor().min(last_row);
     if !(row_lo <= row_hi) || xmax < 0.0 || xmin > p.width as f32 {
-        return Seg::INVISIBLE;
+        return None;
     }
-    Seg {
+    Some(Seg {
         x0,
         y0,
         ux,
         uy,
         len,
         inv_len,
+        dxdy,
+        half_span,
+        inv_ux,
         iz0,
         iz1,
         c0,
@@ -406,88 +422,143 @@ fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Seg {
         cap1,
         row_lo: row_lo as u32,
         row_hi: row_hi as u32,
-        key: (0.5 * (iz0 + iz1)).to_bits(),
-    }
+    })
 }
 
-/// `x` interval where `a·x + b ∈ [lo, hi]` (possibly empty: start > end).
+/// `ceil(v)` for `0 ≤ v < 2³¹` as an index; avoids a libm call on baseline x86-64, and the
+/// saturating f32 -> usize conversion, which costs a dozen instructions where f32 -> i32 costs
+/// one (callgrind: the two conversions per row were 6% of all instructions).
 #[inline]
-fn solve_interval(a: f32, b: f32, lo: f32, hi: f32) -> (f32, f32) {
-    if a.abs() > 1e-6 {
-        let (p, q) = ((lo - b) / a, (hi - b) / a);
-        (p.min(q), p.max(q))
-    } else if b >= lo && b <= hi {
-        (f32::NEG_INFINITY, f32::INFINITY)
-    } else {
-        (f32::INFINITY, f32::NEG_INFINITY)
-    }
+fn ceil_index(v: f32) -> usize {
+    let t = v as i32;
+    (t + i32::from((t as f32) < v)) as usize
 }
 
-/// Draws the segments `keys` (sorted far to near) into one band.
+/// `min` and `max` as `minss`/`maxss`: the result is `b` when either is NaN. `f32::min/max`
+/// return the non-NaN operand, which takes three extra instructions per call; the hot loop
+/// only sees finite values.
+#[inline(always)]
+fn fmin(a: f32, b: f32) -> f32 {
+    if a < b { a } else { b }
+}
+
+#[inline(always)]
+fn fmax(a: f32, b: f32) -> f32 {
+    if a > b { a } else { b }
+}
+
+/// Draws the segments of band `b`, whose keys are sorted far to near.
 fn draw_band(p: &Params, segs: &[Seg], keys: &[u64], band: Band) {
     let w = p.width;
     let rows = band.color.len() / w;
     let (row0, row_end) = (band.row0, band.row0 + rows);
-    let (hw, reach, opacity) = (p.half_w, p.reach, p.opacity);
+    let (hw, opacity) = (p.half_w, p.opacity);
     let last_col = (w - 1) as f32;
     for &key in keys {
         let Some(s) = segs.get((key & 0xFFFF_FFFF) as usize) else {
             continue;
         };
-        let e0 = if s.cap0 { 0.5 } else { 0.0 };
-        let e1 = if s.cap1 { 0.5 } else { 0.0 };
+        // Along-axis extent in which a pixel centre can have coverage.
+        let s_lo = if s.cap0 { -0.5 } else { 0.0 };
+        let s_hi = s.len + if s.cap1 { 0.5 } else { 0.0 };
         let (j0, j1) = (
             (s.row_lo as usize).max(row0),
             (s.row_hi as usize + 1).min(row_end),
         );
         for j in j0..j1 {
             let ry = j as f32 + 0.5 - s.y0;
-            // Perpendicular distance d(x) = −uy·(x − x0) + ux·ry, along s(x) = ux·(x − x0) + uy·ry.
-            let (pa, pb) = solve_interval(-s.uy, s.uy * s.x0 + s.ux * ry, -reach, reach);
-            let (qa, qb) = solve_interval(
-                s.ux,
-                -s.ux * s.x0 + s.uy * ry,
-                -e0 - 0.01,
-                s.len + e1 + 0.01,
-            );
-            // Pixel centres i + 0.5 in [xa, xb], clamped in float before the cast.
-            let i0 = (pa.max(qa) - 0.5).ceil().max(0.0);
-            let i1 = (pb.min(qb) - 0.5).floor().min(last_col);
-            if !(i0 <= i1) {
+            // Pixel centres x + 0.5 with |d(x)| ≤ reach: around the axis crossing of this row.
+            let xc = s.x0 + ry * s.dxdy;
+            let (mut xa, mut xb) = (xc - s.half_span, xc + s.half_span);
+            // ... and with s(x) = ux·(x − x0) + uy·ry within [s_lo, s_hi] (± a hair of slack).
+            if s.inv_ux != 0.0 {
+                let p0 = s.x0 + (s_lo - 0.01 - s.uy * ry) * s.inv_ux;
+                let p1 = s.x0 + (s_hi + 0.01 - s.uy * ry) * s.inv_ux;
+                xa = xa.max(p0.min(p1));
+                xb = xb.min(p0.max(p1));
+            }
+            // Clamp in float before converting to indices (`max`/`min` also absorb ±inf).
+            let (fa, fb) = ((xa - 0.5).max(0.0), (xb - 0.5).min(last_col));
+            if !(fa <= fb) {
                 continue;
             }
+            // `fa` ≥ 0 and `fb` ≤ last column < 2³¹ here (framebuffer sizes are u32 and fit).
+            let (i0, i1) = (ceil_index(fa), fb as i32 as usize);
             let row = (j - row0) * w;
-            let color = &mut band.color[row..row + w];
-            let depth = &band.depth[row..row + w];
-            for i in i0 as usize..=i1 as usize {
-                let rx = i as f32 + 0.5 - s.x0;
+            let (Some(color), Some(depth)) = (
+                band.color.get_mut(row + i0..=row + i1),
+                band.depth.get(row + i0..=row + i1),
+            ) else {
+                continue;
+            };
+            let mut rx = i0 as f32 + 0.5 - s.x0;
+            for (dst, &z) in color.iter_mut().zip(depth) {
                 let d = (s.ux * ry - s.uy * rx).abs();
-                let along_pos = s.ux * rx + s.uy * ry;
-                let across = ((d + 0.5).min(hw) - (d - 0.5).max(-hw)).max(0.0);
+                let along = s.ux * rx + s.uy * ry;
+                rx += 1.0;
+                let across = fmax(fmin(d + 0.5, hw) - fmax(d - 0.5, -hw), 0.0);
                 let lo = if s.cap0 {
-                    (along_pos + 0.5).clamp(0.0, 1.0)
+                    fmin(fmax(along + 0.5, 0.0), 1.0)
                 } else {
-                    f32::from(u8::from(along_pos >= 0.0))
+                    f32::from(u8::from(along >= 0.0))
                 };
                 let hi = if s.cap1 {
-                    (s.len - along_pos + 0.5).clamp(0.0, 1.0)
+                    fmin(fmax(s.len - along + 0.5, 0.0), 1.0)
                 } else {
-                    f32::from(u8::from(along_pos < s.len))
+                    f32::from(u8::from(along < s.len))
                 };
-                let alpha = across * (lo + hi - 1.0).max(0.0) * opacity;
+                let alpha = across * fmax(lo + hi - 1.0, 0.0) * opacity;
                 if !(alpha > 0.0) {
                     continue;
                 }
-                let t = (along_pos * s.inv_len).clamp(0.0, 1.0);
+                let t = fmin(fmax(along * s.inv_len, 0.0), 1.0);
                 let iz = s.iz0 + (s.iz1 - s.iz0) * t;
                 // Nearer than the opaque surface: 1/z_hair > 1/z_buffer, without a division.
-                if !(iz * depth[i] > 1.0) {
+                if !(iz * z > 1.0) {
                     continue;
                 }
                 let c = s.c0 + (s.c1 - s.c0) * t;
-                let dst = &mut color[i];
                 *dst += (c - *dst) * alpha;
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ceil_index_matches_ceil() {
+        for v in [0.0_f32, 0.2, 1.0, 1.5, 7.999, 1e6, 1.5e9] {
+            assert_eq!(ceil_index(v), v.ceil() as usize, "{v}");
+        }
+    }
+
+    /// After a warm-up frame, drawing the same (or a smaller) scene again allocates nothing.
+    #[test]
+    fn warmed_up_scratch_does_not_grow() {
+        let cam = Camera::look_at(Vec3::new(0.0, 0.0, 2.0), Vec3::ZERO, Vec3::Y, 0.9, 160, 120);
+        let pts: Vec<Vec3> = (0..400)
+            .map(|i| {
+                let a = i as f32 * 0.37;
+                Vec3::new(a.sin(), (i % 20) as f32 * 0.05 - 0.5, a.cos()) * 0.5
+            })
+            .collect();
+        let cols = vec![Vec3::ONE; pts.len()];
+        let lines = Polylines {
+            points: &pts,
+            colors: &cols,
+            points_per_line: 20,
+        };
+        let mut fb = Framebuffer::new(160, 120, Vec3::ZERO);
+        let mut scratch = LineScratch::default();
+        draw_polylines(&mut fb, &cam, &lines, &LineStyle::default(), &mut scratch);
+        let warm = scratch.capacity_bytes();
+        assert!(warm > 0);
+        for _ in 0..3 {
+            draw_polylines(&mut fb, &cam, &lines, &LineStyle::default(), &mut scratch);
+            assert_eq!(scratch.capacity_bytes(), warm);
         }
     }
 }
