@@ -126,7 +126,7 @@ fn diagonal_line_coverage_is_close_to_length_times_width() {
             2,
             LineStyle::default(),
         );
-        let len = f64::from(((b.0 - a.0) as f32).hypot((b.1 - a.1) as f32));
+        let len = f64::from((b.0 - a.0).hypot(b.1 - a.1));
         let got = coverage_sum(&fb);
         assert!((got - len).abs() < 0.02 * len, "{got} vs {len}");
         assert!(fb.color.iter().all(|c| c.x <= 1.0 + 1e-6));

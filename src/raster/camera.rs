@@ -103,7 +103,7 @@ impl Camera {
         let up = if dir.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
         let mut cam = Camera::look_at(center + dir * dist, center, up, fov_y_rad, width, height);
         // Keep the near plane in front of the sphere but small against it.
-        cam.near_m = (0.01 * dist).min(DEFAULT_NEAR_M).max(1e-4);
+        cam.near_m = (0.01 * dist).clamp(1e-4, DEFAULT_NEAR_M);
         cam
     }
 

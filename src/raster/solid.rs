@@ -58,7 +58,7 @@ pub fn draw_ellipsoid(
         ..*cam
     };
     let view = cam.view();
-    if !(view.focal_px > 0.0 && view.focal_px.is_finite()) || !view.eye.is_finite() {
+    if !(view.focal_px > 0.0 && view.focal_px.is_finite() && view.eye.is_finite()) {
         return;
     }
     let m = unit_sphere_to_world;
