@@ -4,7 +4,9 @@
 //!   segments), 1-px lines at opacity 0.8, around and behind an opaque head ellipsoid framed at
 //!   1280x720, in a rayon pool of N threads. The framebuffer is not cleared between iterations
 //!   (the work does not depend on the colours already there), so only the line drawing is timed.
-//! - `draw_ellipsoid/head_1280x720/threads=N`: the shaded head alone.
+//! - `draw_ellipsoid/head_1280x720/threads=N`: the shaded head alone (includes a frame clear,
+//!   timed alone as `draw_ellipsoid/clear_1280x720`).
+//! - `framebuffer/to_argb_u32_1280x720`: linear -> sRGB conversion of a rendered frame.
 
 use std::hint::black_box;
 
@@ -137,6 +139,17 @@ fn bench_raster(c: &mut Criterion) {
     let mut fb = Framebuffer::new(W, H, Vec3::splat(0.02));
     group.bench_function("clear_1280x720", |b| {
         b.iter(|| fb.clear(black_box(Vec3::splat(0.02))))
+    });
+    group.finish();
+
+    // Conversion for the window / PNG, on the rendered scene (hair, head and background).
+    let mut fb = Framebuffer::new(W, H, Vec3::splat(0.02));
+    draw_ellipsoid(&mut fb, &cam, head(), shade);
+    draw_polylines(&mut fb, &cam, &lines, &style, &mut LineScratch::default());
+    let mut group = c.benchmark_group("framebuffer");
+    let mut argb = Vec::new();
+    group.bench_function("to_argb_u32_1280x720", |b| {
+        b.iter(|| black_box(&fb).to_argb_u32_into(&mut argb))
     });
     group.finish();
 }
