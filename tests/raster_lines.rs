@@ -459,3 +459,74 @@ fn near_plane_clipping_keeps_the_visible_part() {
         }
     }
 }
+
+/// A line piercing a sphere obliquely, with strong perspective (depth 1.5 m to 4.5 m): on
+/// every pixel of its row, the line shows exactly where its true depth on that pixel's ray is
+/// less than the sphere's. Screen-linear depth interpolation would move the crossing points
+/// by several pixels.
+#[test]
+fn depth_is_perspective_correct_against_the_head() {
+    let (w, h) = (200, 101); // odd height: y = 0 projects onto the centre of row 50
+    let cam = axis_camera(w, h);
+    let (centre, radius) = (Vec3::new(0.0, 0.0, -3.0), 0.5_f32);
+    let skin = Vec3::new(0.2, 0.8, 0.2);
+    let mut fb = Framebuffer::new(w, h, Vec3::ZERO);
+    draw_ellipsoid(
+        &mut fb,
+        &cam,
+        Affine3A::from_scale_rotation_translation(
+            Vec3::splat(radius),
+            glam::Quat::IDENTITY,
+            centre,
+        ),
+        |_, _| skin,
+    );
+    let head_only = fb.clone();
+    let (a, b) = (Vec3::new(-1.0, 0.0, -1.5), Vec3::new(1.0, 0.0, -4.5));
+    let red = Vec3::X;
+    draw(&mut fb, &cam, &[a, b], &[red; 2], 2, LineStyle::default());
+    let f = cam.focal_px();
+    let (mut shown, mut hidden) = (0, 0);
+    for i in 0..w {
+        let xs = (i as f32 + 0.5 - 0.5 * w as f32) / f;
+        // Ray (xs, 0, −1)·s meets the line A + t (B − A) where A.x + t dx = xs · (−A.z − t dz).
+        let d = b - a;
+        let t = (-xs * a.z - a.x) / (d.x + xs * d.z);
+        if !(0.02..=0.98).contains(&t) {
+            continue; // near the end caps
+        }
+        let line_depth = -(a.z + t * d.z);
+        // Sphere along the ray p = s·(xs, 0, −1): |p − c|² = r², depth = s.
+        let dir = Vec3::new(xs, 0.0, -1.0);
+        let (qa, qb, qc) = (
+            dir.dot(dir),
+            dir.dot(centre),
+            centre.dot(centre) - radius * radius,
+        );
+        let disc = qb * qb - qa * qc;
+        let sphere_depth = if disc > 0.0 {
+            (qb - disc.sqrt()) / qa
+        } else {
+            f32::INFINITY
+        };
+        let px = fb.pixel(i, 50).unwrap();
+        if sphere_depth.is_finite() && (line_depth - sphere_depth).abs() < 0.02 {
+            continue; // the crossing pixel itself
+        }
+        if line_depth < sphere_depth {
+            assert_eq!(
+                px, red,
+                "pixel {i}: line at {line_depth} in front of {sphere_depth}"
+            );
+            shown += 1;
+        } else {
+            let head = head_only.pixel(i, 50).unwrap();
+            assert_eq!(
+                px, head,
+                "pixel {i}: line at {line_depth} behind {sphere_depth}"
+            );
+            hidden += 1;
+        }
+    }
+    assert!(shown > 20 && hidden > 5, "shown {shown}, hidden {hidden}");
+}
