@@ -112,6 +112,9 @@ struct RaySetup {
     dy: Vec3,
     /// `|o|² − 1` (> 0 when the eye is outside).
     c: f32,
+    /// `o·dx`, `o·dy`: derivatives of `b = o·d` per pixel.
+    o_dx: f32,
+    o_dy: f32,
     /// Transpose of the inverse linear part: unit-sphere normal -> world normal direction.
     normal_map: Mat3,
 }
@@ -132,12 +135,15 @@ impl RaySetup {
         let inv_f = 1.0 / view.focal_px;
         // World ray direction: forward + right·(x − cx)/f − up·(y − cy)/f.
         let d0w = view.forward - view.right * (view.cx * inv_f) + view.up * (view.cy * inv_f);
+        let (dx, dy) = (l * (view.right * inv_f), l * (-view.up * inv_f));
         let s = RaySetup {
             o,
             d0: l * d0w,
-            dx: l * (view.right * inv_f),
-            dy: l * (-view.up * inv_f),
+            dx,
+            dy,
             c: o.length_squared() - 1.0,
+            o_dx: o.dot(dx),
+            o_dy: o.dot(dy),
             normal_map: l.transpose(),
         };
         let finite = s.o.is_finite() && s.d0.is_finite() && s.dx.is_finite() && s.dy.is_finite();
@@ -152,8 +158,8 @@ impl RaySetup {
         let b = self.o.dot(d);
         let disc = b * b - a * self.c;
         // ∂disc/∂x = 2 b (o·dx) − 2 c (d·dx), likewise for y.
-        let gx = 2.0 * (b * self.o.dot(self.dx) - self.c * d.dot(self.dx));
-        let gy = 2.0 * (b * self.o.dot(self.dy) - self.c * d.dot(self.dy));
+        let gx = 2.0 * (b * self.o_dx - self.c * d.dot(self.dx));
+        let gy = 2.0 * (b * self.o_dy - self.c * d.dot(self.dy));
         let grad = (gx * gx + gy * gy).sqrt();
         let coverage = if disc >= 0.0 && !(grad > 0.0) {
             1.0
