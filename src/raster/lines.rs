@@ -71,8 +71,11 @@ pub const MAX_WIDTH_PX: f32 = 64.0;
 /// ignored.
 #[derive(Clone, Copy, Debug)]
 pub struct Polylines<'a> {
+    /// Vertices in world metres, line after line.
     pub points: &'a [Vec3],
+    /// Linear RGB per vertex (same indexing as `points`); values above 1 are allowed.
     pub colors: &'a [Vec3],
+    /// Vertices per line, `n` (every line has the same count); below 2 draws nothing.
     pub points_per_line: usize,
 }
 
