@@ -1,1 +1,27 @@
-//! (in progress)
+//! Rasterisation: 3D polylines with per-vertex colours and opaque ellipsoids into a linear-RGB
+//! framebuffer with depth. Knows nothing of hair.
+//!
+//! - [`camera`]: pinhole camera; pixel centres at +0.5, x right, y down, depth in metres along
+//!   the view direction.
+//! - [`framebuffer`]: linear-RGB colour + depth, conversion to 8-bit sRGB at the edge.
+//! - [`solid`]: opaque ellipsoids by per-pixel ray casting (exact screen box, anti-aliased
+//!   silhouette); draw these first, they fill the depth buffer.
+//! - [`lines`]: anti-aliased polylines, depth-tested against the opaque depth, composited back
+//!   to front per band of rows, in parallel and bit-identical for any thread count.
+//!
+//! A frame: [`Framebuffer::clear`], [`draw_ellipsoid`] for each solid, then [`draw_polylines`]
+//! with a [`LineScratch`] kept across frames.
+
+// `!(a > b)` is used on purpose throughout: unlike `a <= b` it is also true for NaN, so one
+// test rejects both out-of-range and NaN values.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+pub mod camera;
+pub mod framebuffer;
+pub mod lines;
+pub mod solid;
+
+pub use camera::{Camera, DEFAULT_NEAR_M, View};
+pub use framebuffer::Framebuffer;
+pub use lines::{LineScratch, LineStyle, MAX_WIDTH_PX, Polylines, draw_polylines};
+pub use solid::draw_ellipsoid;

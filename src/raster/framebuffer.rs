@@ -1,0 +1,260 @@
+//! The render target: linear-RGB colour plus view depth per pixel.
+//!
+//! What: row-major `Vec<Vec3>` colour (top row first) and `Vec<f32>` depth in metres along the
+//! view direction (`+inf` = nothing opaque there yet). Only opaque solids (the head, body
+//! spheres) write depth; hair is blended into colour and tested against depth.
+//!
+//! How: [`Framebuffer::clear`] reuses the allocation between frames. The 8-bit conversions give
+//! exactly what [`crate::output::linear_to_srgb8`] gives (NaN to 0, clamped, so a stray NaN
+//! never reaches a PNG or a window as garbage), through a table built once from that function:
+//! [0, 1] is cut into 4096 equal buckets, and since the sRGB curve never climbs more than 0.81
+//! of an 8-bit level per bucket (its steepest slope is 12.92·255 per unit), each bucket holds
+//! at most one level change, stored as a threshold found by bisection on the f32 bit patterns.
+//! Rejected: calling `linear_to_srgb8` (one `powf` per channel) per pixel, 19 ms per
+//! 1280x720 frame in `benches/raster.rs`, as long as drawing the hair.
+//!
+//! Why `f32` linear colour: hair is many layers of low-coverage blends; doing them in 8-bit
+//! sRGB would band and darken. The conversion to sRGB happens once, at the edge. The drawing
+//! functions check that `color` and `depth` hold `width * height` entries (the fields are
+//! public) and draw nothing otherwise, rather than index out of bounds.
+
+use std::sync::OnceLock;
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use crate::output::linear_to_srgb8;
+
+/// Pixels per parallel task of the 8-bit conversions.
+const CONVERT_CHUNK: usize = 16 * 1024;
+
+/// Buckets of the linear -> sRGB8 table over [0, 1].
+const BUCKETS: usize = 4096;
+
+/// `linear_to_srgb8` in table form: in bucket `b` (`v·BUCKETS` truncated), the result is
+/// `base[b]`, plus one where `v ≥ threshold[b]`. Entry `BUCKETS` holds `v = 1` exactly.
+struct Srgb8Table {
+    base: [u8; BUCKETS + 1],
+    threshold: [f32; BUCKETS + 1],
+}
+
+impl Srgb8Table {
+    fn get() -> &'static Srgb8Table {
+        static TABLE: OnceLock<Box<Srgb8Table>> = OnceLock::new();
+        TABLE.get_or_init(|| {
+            let mut t = Box::new(Srgb8Table {
+                base: [0; BUCKETS + 1],
+                threshold: [f32::INFINITY; BUCKETS + 1],
+            });
+            for b in 0..=BUCKETS {
+                let lo = b as f32 / BUCKETS as f32;
+                let base = linear_to_srgb8(lo);
+                t.base[b] = base;
+                if b == BUCKETS {
+                    break;
+                }
+                // Largest f32 below the next bucket; positive floats order like their bits.
+                let last = f32::from_bits(((b + 1) as f32 / BUCKETS as f32).to_bits() - 1);
+                if linear_to_srgb8(last) > base {
+                    let (mut a, mut z) = (lo.to_bits(), last.to_bits());
+                    while z - a > 1 {
+                        let m = a + (z - a) / 2;
+                        if linear_to_srgb8(f32::from_bits(m)) > base {
+                            z = m;
+                        } else {
+                            a = m;
+                        }
+                    }
+                    t.threshold[b] = f32::from_bits(z);
+                }
+            }
+            t
+        })
+    }
+
+    /// Same value as `linear_to_srgb8(v)` for every `v` (tested).
+    #[inline]
+    fn srgb8(&self, v: f32) -> u8 {
+        // NaN fails `>=` and maps to 0, like `linear_to_srgb8`.
+        let v = if v >= 0.0 { v.min(1.0) } else { 0.0 };
+        // Exact: scaling by a power of two, truncation of a value in [0, BUCKETS].
+        let b = (v * BUCKETS as f32) as i32 as usize;
+        match (self.base.get(b), self.threshold.get(b)) {
+            (Some(&base), Some(&t)) => base + u8::from(v >= t),
+            _ => linear_to_srgb8(v),
+        }
+    }
+}
+
+/// A linear-RGB colour buffer with a depth buffer.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Framebuffer {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Linear RGB, row-major, top row first; `width * height` entries.
+    pub color: Vec<Vec3>,
+    /// Depth along the camera's view direction in metres; `+inf` where empty.
+    pub depth: Vec<f32>,
+}
+
+impl Framebuffer {
+    /// A `width` x `height` buffer filled with `background` and infinite depth.
+    pub fn new(width: u32, height: u32, background: Vec3) -> Framebuffer {
+        let n = width as usize * height as usize;
+        Framebuffer {
+            width,
+            height,
+            color: vec![background; n],
+            depth: vec![f32::INFINITY; n],
+        }
+    }
+
+    /// Number of pixels, `width * height`.
+    pub fn pixel_count(&self) -> usize {
+        self.width as usize * self.height as usize
+    }
+
+    /// True when both buffers hold exactly `width * height` entries (drawing requires it).
+    pub fn is_consistent(&self) -> bool {
+        let n = self.pixel_count();
+        self.color.len() == n && self.depth.len() == n
+    }
+
+    /// Refills with `background` and infinite depth, keeping (and if needed fixing the size
+    /// of) the allocations.
+    pub fn clear(&mut self, background: Vec3) {
+        let n = self.pixel_count();
+        self.color.clear();
+        self.color.resize(n, background);
+        self.depth.clear();
+        self.depth.resize(n, f32::INFINITY);
+    }
+
+    /// Colour at pixel `(x, y)`, if inside.
+    pub fn pixel(&self, x: u32, y: u32) -> Option<Vec3> {
+        if x >= self.width || y >= self.height {
+            return None;
+        }
+        self.color
+            .get(y as usize * self.width as usize + x as usize)
+            .copied()
+    }
+
+    /// 8-bit sRGB, 3 bytes per pixel, rows top to bottom (what `write_png_rgb8` takes).
+    pub fn to_srgb8(&self) -> Vec<u8> {
+        let mut out = Vec::new();
+        self.to_srgb8_into(&mut out);
+        out
+    }
+
+    /// As [`Framebuffer::to_srgb8`], into a reused buffer.
+    pub fn to_srgb8_into(&self, out: &mut Vec<u8>) {
+        let t = Srgb8Table::get();
+        out.clear();
+        out.resize(3 * self.color.len(), 0);
+        out.par_chunks_mut(3 * CONVERT_CHUNK)
+            .zip(self.color.par_chunks(CONVERT_CHUNK))
+            .for_each(|(out, color)| {
+                for (o, c) in out.chunks_exact_mut(3).zip(color) {
+                    o.copy_from_slice(&[t.srgb8(c.x), t.srgb8(c.y), t.srgb8(c.z)]);
+                }
+            });
+    }
+
+    /// `0x00RRGGBB` sRGB per pixel (the layout a minifb window takes), into a reused buffer.
+    pub fn to_argb_u32_into(&self, out: &mut Vec<u32>) {
+        let t = Srgb8Table::get();
+        out.clear();
+        out.resize(self.color.len(), 0);
+        out.par_chunks_mut(CONVERT_CHUNK)
+            .zip(self.color.par_chunks(CONVERT_CHUNK))
+            .for_each(|(out, color)| {
+                for (o, c) in out.iter_mut().zip(color) {
+                    let (r, g, b) = (t.srgb8(c.x), t.srgb8(c.y), t.srgb8(c.z));
+                    *o = (u32::from(r) << 16) | (u32::from(g) << 8) | u32::from(b);
+                }
+            });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn new_clear_and_convert() {
+        let mut fb = Framebuffer::new(3, 2, Vec3::new(1.0, 0.0, 0.5));
+        assert!(fb.is_consistent());
+        assert_eq!(fb.color.len(), 6);
+        assert!(fb.depth.iter().all(|d| *d == f32::INFINITY));
+        fb.color[4] = Vec3::new(f32::NAN, 2.0, -1.0);
+        fb.depth[4] = 1.0;
+        let rgb = fb.to_srgb8();
+        assert_eq!(&rgb[0..3], &[255, 0, 188]);
+        assert_eq!(&rgb[12..15], &[0, 255, 0]);
+        let mut argb = Vec::new();
+        fb.to_argb_u32_into(&mut argb);
+        assert_eq!(argb[0], 0x00FF_00BC);
+        assert_eq!(argb[4], 0x0000_FF00);
+        assert_eq!(fb.pixel(2, 0), Some(fb.color[2]));
+        assert_eq!(fb.pixel(3, 0), None);
+        let cap = fb.color.capacity();
+        fb.clear(Vec3::ZERO);
+        assert_eq!(fb.color.capacity(), cap);
+        assert!(fb.color.iter().all(|c| *c == Vec3::ZERO));
+        assert!(fb.depth.iter().all(|d| *d == f32::INFINITY));
+    }
+
+    /// The table reproduces `linear_to_srgb8` exactly: at every level change and one ulp
+    /// either side, at every bucket boundary, on 2M bit patterns spread over [0, 1], and on
+    /// out-of-range and non-finite values.
+    #[test]
+    fn srgb_table_matches_transfer_function() {
+        let t = Srgb8Table::get();
+        let check = |v: f32| assert_eq!(t.srgb8(v), linear_to_srgb8(v), "v = {v:e}");
+        let mut changes = 0;
+        for b in 0..=BUCKETS {
+            let lo = b as f32 / BUCKETS as f32;
+            check(lo);
+            check(f32::from_bits(lo.to_bits().saturating_sub(1)));
+            let th = t.threshold[b];
+            if th.is_finite() {
+                changes += 1;
+                check(th);
+                check(f32::from_bits(th.to_bits() - 1));
+                check(f32::from_bits(th.to_bits() + 1));
+            }
+        }
+        // Every level 1..=255 starts somewhere, each in its own bucket.
+        assert_eq!(changes, 255);
+        let one = 1.0_f32.to_bits();
+        for i in 0..2_000_000_u32 {
+            check(f32::from_bits(
+                (u64::from(i) * u64::from(one) / 2_000_000) as u32,
+            ));
+        }
+        for v in [
+            -0.0,
+            -1e-30,
+            -5.0,
+            1.0,
+            1.000_001,
+            7.0,
+            f32::NAN,
+            -f32::NAN,
+            f32::INFINITY,
+        ] {
+            check(v);
+        }
+        check(f32::NEG_INFINITY);
+    }
+
+    #[test]
+    fn empty_buffers() {
+        let fb = Framebuffer::new(0, 5, Vec3::ONE);
+        assert!(fb.to_srgb8().is_empty());
+        assert!(fb.is_consistent());
+    }
+}
