@@ -116,61 +116,48 @@ impl<'a> CollisionScene<'a> {
         }
     }
 
-    /// Pushes `p` (world) out of every collider inflated by the margin. `away` is a unit
-    /// direction used when `p` sits exactly at a collider's centre. Returns (new point, moved).
-    #[inline]
-    fn push_out(&self, p: Vec3A, away: Vec3A) -> (Vec3A, bool) {
-        let mut p = p;
-        let mut moved = false;
-        // Head ellipsoid, in the head frame.
-        let q = self.world_to_head.transform_point3a(p);
-        let qr = q / self.radii_out;
-        let s = qr.length();
-        if s < 1.0 {
-            let mut q2 = if s > 1e-6 {
-                // ∇s = (q / R²) / s; Newton step along n = ∇s/|∇s| by (1 − s)/|∇s|.
-                let grad = qr / self.radii_out / s;
-                let g = grad.length();
-                q + grad / g * ((1.0 - s) / g)
-            } else {
-                self.world_to_head.transform_vector3a(away) * self.radii_out
-            };
-            let s2 = (q2 / self.radii_out).length();
-            if s2 < 1.0 && s2 > 1e-6 {
-                q2 /= s2;
-            }
-            p = self.head_to_world.transform_point3a(q2);
-            moved = true;
-        }
-        for sp in self.spheres {
-            let r = sp.radius_m;
-            if !(r > 0.0 && r.is_finite()) {
-                continue;
-            }
-            let c = Vec3A::from(sp.center);
-            let d = p - c;
-            let ro = r + COLLISION_MARGIN_M;
-            if d.length_squared() < ro * ro {
-                p = c + d.normalize_or(away) * ro;
-                moved = true;
-            }
-        }
-        (p, moved)
-    }
-
-    /// Moves `p`, which is at exactly `link_m` from `prev`, out of the colliders and back onto
-    /// the sphere of radius `link_m` around `prev` (see the module doc for the order).
-    /// `fallback_dir` (unit) replaces a degenerate link direction.
+    /// Moves `p`, which is at exactly `link_m` from `prev` (outside every collider), out of the
+    /// colliders inflated by the margin while keeping it at `link_m` from `prev` (see the module
+    /// doc). `fallback_dir` (unit) replaces degenerate directions.
     #[inline]
     pub(crate) fn resolve(&self, prev: Vec3A, p: Vec3A, link_m: f32, fallback_dir: Vec3A) -> Vec3A {
         let mut p = p;
+        let prev_s = self.world_to_head.transform_point3a(prev) / self.radii_out;
         for _ in 0..COLLISION_ROUNDS {
-            let away = (p - prev).normalize_or(fallback_dir);
-            let (pushed, moved) = self.push_out(p, away);
+            let mut moved = false;
+            // Head ellipsoid, in scaled head coordinates where it is the unit sphere.
+            let qs = self.world_to_head.transform_point3a(p) / self.radii_out;
+            if qs.length_squared() < 1.0 {
+                let fallback_s =
+                    self.world_to_head.transform_vector3a(fallback_dir) / self.radii_out;
+                let link_s = (qs - prev_s).length();
+                let out_s = circle_exit(prev_s, qs, link_s, Vec3A::ZERO, 1.0, fallback_s)
+                    .unwrap_or_else(|| qs.normalize_or(fallback_s.normalize_or(Vec3A::Y)));
+                let out = self.head_to_world.transform_point3a(out_s * self.radii_out);
+                p = prev + (out - prev).normalize_or(fallback_dir) * link_m;
+                moved = true;
+            }
+            for sp in self.spheres {
+                let r = sp.radius_m;
+                if !(r > 0.0 && r.is_finite()) {
+                    continue;
+                }
+                let c = Vec3A::from(sp.center);
+                let ro = r + COLLISION_MARGIN_M;
+                if (p - c).length_squared() < ro * ro {
+                    let out =
+                        circle_exit(prev, p, link_m, c, ro, fallback_dir).unwrap_or_else(|| {
+                            // The predecessor is inside too (it can only be a kinematic root
+                            // particle): push radially and accept what the length allows.
+                            c + (p - c).normalize_or(fallback_dir) * ro
+                        });
+                    p = prev + (out - prev).normalize_or(fallback_dir) * link_m;
+                    moved = true;
+                }
+            }
             if !moved {
                 break;
             }
-            p = prev + (pushed - prev).normalize_or(fallback_dir) * link_m;
         }
         p
     }
@@ -189,6 +176,41 @@ impl<'a> CollisionScene<'a> {
         }
         depth.max(0.0)
     }
+}
+
+/// The point nearest `p` among those at distance `link` from `prev` and not inside the sphere
+/// (`c`, `r`), for `prev` outside that sphere. Those points form a spherical cap of the link
+/// sphere, bounded by the circle where the two spheres meet: with `D = |c − prev|` and axis
+/// `a = (c − prev)/D`, the circle's centre is `prev + h a` with `h = (D² + L² − r²) / (2D)`
+/// and its radius `ρ = √(L² − h²)`. A point of the link sphere beyond the cap (inside the
+/// collider) is nearest to the circle point of the same azimuth about `a`. `None` when `prev`
+/// is inside the sphere or the link cannot reach it.
+#[inline]
+fn circle_exit(
+    prev: Vec3A,
+    p: Vec3A,
+    link: f32,
+    c: Vec3A,
+    r: f32,
+    fallback: Vec3A,
+) -> Option<Vec3A> {
+    let to_c = c - prev;
+    let d = to_c.length();
+    if !(d >= r && d > 0.0) {
+        return None;
+    }
+    let a = to_c / d;
+    let h = (d * d + link * link - r * r) / (2.0 * d);
+    if !(h <= link) {
+        return None;
+    }
+    let rho = (link * link - h * h).max(0.0).sqrt();
+    let rel = p - prev;
+    let u = (rel - a * rel.dot(a))
+        .try_normalize()
+        .or_else(|| (fallback - a * fallback.dot(a)).try_normalize())
+        .unwrap_or_else(|| a.any_orthonormal_vector());
+    Some(prev + a * h + u * rho)
 }
 
 #[cfg(test)]
@@ -232,18 +254,23 @@ mod tests {
     }
 
     #[test]
-    fn point_at_a_centre_is_pushed_out_along_the_fallback() {
+    fn candidates_at_a_centre_resolve_to_finite_outside_points() {
         let c = scene_colliders();
         let scene = CollisionScene::new(&c);
+        // A predecessor on the sphere's surface and a candidate at the sphere's centre (the link
+        // as long as the radius): the answer is at link length, outside, and finite.
         let centre = Vec3A::from(c.spheres[0].center);
-        let (p, moved) = scene.push_out(centre, Vec3A::NEG_Y);
-        assert!(moved);
+        let prev = centre + Vec3A::new(0.0, 0.0, -(0.12 + COLLISION_MARGIN_M));
+        let link = 0.12 + COLLISION_MARGIN_M;
+        let p = scene.resolve(prev, centre, link, Vec3A::Z);
         assert!(p.is_finite());
-        assert!((p - centre).length() > 0.12);
+        assert!(((p - prev).length() / link - 1.0).abs() < 1e-5);
+        assert!(scene.penetration_m(p) < 1e-5);
         let head_centre = Vec3A::from(c.head.translation);
-        let (p, moved) = scene.push_out(head_centre, Vec3A::Y);
-        assert!(moved && p.is_finite());
-        assert_eq!(scene.penetration_m(p), 0.0);
+        let outside = head_centre + Vec3A::new(0.0, 0.2, 0.0);
+        let p = scene.resolve(outside, head_centre, 0.2, Vec3A::NEG_Y);
+        assert!(p.is_finite());
+        assert!(((p - outside).length() / 0.2 - 1.0).abs() < 1e-5);
     }
 
     #[test]
