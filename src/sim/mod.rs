@@ -50,6 +50,11 @@ pub struct SimParams {
     pub density_threshold: f32,
     /// Repulsion strength in m/s² per unit of excess volume fraction (default 20).
     pub repulsion_m_s2: f32,
+    /// Damping ratio ζ of the bending spring, >= 0 (default 1, critical): each link's angular
+    /// velocity relative to its parent link is damped at the rate 2ζω, with ω = √k / step the
+    /// bending spring's angular frequency (see `step.rs`). Without it the one-sided bending pull
+    /// makes a chain of lightly damped oscillators that amplify motion toward the tip.
+    pub bending_damping_ratio: f32,
     /// Follow-the-leader velocity correction factor s_damp of Müller et al. 2012 Eq. 9, in
     /// [0, 1] (0: plain FTL, overdamped look; 1: undamped; default 0.9).
     pub ftl_correction: f32,
@@ -67,6 +72,7 @@ impl Default for SimParams {
             bending_stiffness: 0.3,
             density_threshold: 0.25,
             repulsion_m_s2: 20.0,
+            bending_damping_ratio: 1.0,
             ftl_correction: 0.9,
             max_catch_up_s: 0.25,
         }
@@ -96,6 +102,14 @@ impl SimParams {
             return Err(format!(
                 "bending_stiffness must be in [0, 1] (got {})",
                 self.bending_stiffness
+            ));
+        }
+        if !(self.bending_damping_ratio.is_finite()
+            && (0.0..=10.0).contains(&self.bending_damping_ratio))
+        {
+            return Err(format!(
+                "bending_damping_ratio must be in [0, 10] (got {})",
+                self.bending_damping_ratio
             ));
         }
         if !(self.ftl_correction.is_finite() && (0.0..=1.0).contains(&self.ftl_correction)) {
@@ -130,6 +144,12 @@ impl SimParams {
             bending_stiffness: pick(self.bending_stiffness, d.bending_stiffness, 0.0, 1.0),
             density_threshold: pick(self.density_threshold, d.density_threshold, 0.0, f32::MAX),
             repulsion_m_s2: pick(self.repulsion_m_s2, d.repulsion_m_s2, 0.0, f32::MAX),
+            bending_damping_ratio: pick(
+                self.bending_damping_ratio,
+                d.bending_damping_ratio,
+                0.0,
+                10.0,
+            ),
             ftl_correction: pick(self.ftl_correction, d.ftl_correction, 0.0, 1.0),
             max_catch_up_s: pick(self.max_catch_up_s, d.max_catch_up_s, 1e-3, 10.0),
         }

@@ -123,6 +123,7 @@ struct Consts {
     gravity: Vec3A,
     damping_factor: f32,
     bend_k: f32,
+    bend_damp: f32,
     ftl_correction: f32,
     density_threshold: f32,
     repulsion_m_s2: f32,
@@ -165,12 +166,14 @@ impl Simulator {
             .map(|l| if l.is_finite() && *l > 0.0 { *l } else { 1e-3 })
             .collect();
         let dt = params.step_s;
+        let bend_k = 1.0 - (1.0 - params.bending_stiffness).powf(dt / BENDING_REFERENCE_STEP_S);
         let consts = Consts {
             dt,
             inv_dt: 1.0 / dt,
             gravity: Vec3A::new(0.0, -params.gravity_m_s2, 0.0),
             damping_factor: (-params.damping_per_s * dt).exp(),
-            bend_k: 1.0 - (1.0 - params.bending_stiffness).powf(dt / BENDING_REFERENCE_STEP_S),
+            bend_k,
+            bend_damp: 1.0 - (-2.0 * params.bending_damping_ratio * bend_k.sqrt()).exp(),
             ftl_correction: params.ftl_correction,
             density_threshold: params.density_threshold,
             repulsion_m_s2: params.repulsion_m_s2,
@@ -305,6 +308,42 @@ impl Simulator {
     }
 }
 
+/// Damps each link's angular velocity relative to its parent link's by the factor `kappa` per
+/// step, keeping the radial (along-link) relative velocity: with `rᵢ = pᵢ − pᵢ₋₁` and
+/// `wᵢ = vᵢ − vᵢ₋₁`, the link's angular velocity is `Ωᵢ = rᵢ × wᵢ / |rᵢ|²`; it becomes
+/// `Ωᵢ − kappa (Ωᵢ − Ωᵢ₋₁)` and the velocity is rebuilt as
+/// `vᵢ = v'ᵢ₋₁ + (wᵢ·r̂ᵢ) r̂ᵢ + Ω'ᵢ × rᵢ` from the already damped parent, so a strand swinging or
+/// turning rigidly is untouched (all Ωᵢ equal) and only bending motion loses energy.
+fn damp_bending(pos: &[Vec3], vel: &mut [Vec3], kappa: f32) {
+    let r0 = Vec3A::from(pos[1]) - Vec3A::from(pos[0]);
+    let l0 = r0.length_squared();
+    let mut omega_parent = if l0 > 0.0 {
+        r0.cross(Vec3A::from(vel[1]) - Vec3A::from(vel[0])) / l0
+    } else {
+        Vec3A::ZERO
+    };
+    let mut v_parent_new = Vec3A::from(vel[1]);
+    let mut v_parent_old = v_parent_new;
+    for i in 2..pos.len() {
+        let r = Vec3A::from(pos[i]) - Vec3A::from(pos[i - 1]);
+        let l2 = r.length_squared();
+        let v = Vec3A::from(vel[i]);
+        let w = v - v_parent_old;
+        v_parent_old = v;
+        if !(l2 > 0.0) {
+            v_parent_new = v;
+            continue;
+        }
+        let radial = r * (w.dot(r) / l2);
+        let omega = r.cross(w) / l2;
+        let omega_new = omega - (omega - omega_parent) * kappa;
+        let v_new = v_parent_new + radial + omega_new.cross(r);
+        vel[i] = Vec3::from(v_new);
+        v_parent_new = v_new;
+        omega_parent = omega_new;
+    }
+}
+
 /// Moves the whole state rigidly from its head pose to `new_head` (used when a time gap is
 /// skipped): positions, previous positions and velocities.
 fn carry_rigidly(state: &mut SimState, new_head: Affine3A) {
@@ -395,6 +434,10 @@ fn step_guide<D: DensityField>(
             v -= corr[i + 1] * (c.ftl_correction * c.inv_dt);
         }
         vel[i] = Vec3::from(v);
+    }
+    // 5. Bending damping, root to tip.
+    if c.bend_damp > 0.0 && ppg >= 3 {
+        damp_bending(pos, vel, c.bend_damp);
     }
     // NaN guard: a guide that went non-finite restarts from its rest shape, at rest.
     if !pos.iter().chain(vel.iter()).all(|p| p.is_finite()) {
