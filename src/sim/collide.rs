@@ -120,8 +120,17 @@ impl<'a> CollisionScene<'a> {
     /// colliders inflated by the margin while keeping it at `link_m` from `prev` (see the module
     /// doc). `fallback_dir` (unit) replaces degenerate directions.
     #[inline]
-    pub(crate) fn resolve(&self, prev: Vec3A, p: Vec3A, link_m: f32, fallback_dir: Vec3A) -> Vec3A {
+    /// Also returns whether any collider was touched (when not, `p` is outside every inflated
+    /// collider, hence outside the true ones, and its penetration is 0).
+    pub(crate) fn resolve(
+        &self,
+        prev: Vec3A,
+        p: Vec3A,
+        link_m: f32,
+        fallback_dir: Vec3A,
+    ) -> (Vec3A, bool) {
         let mut p = p;
+        let mut touched = false;
         let prev_s = self.world_to_head.transform_point3a(prev) / self.radii_out;
         for _ in 0..COLLISION_ROUNDS {
             let mut moved = false;
@@ -158,23 +167,29 @@ impl<'a> CollisionScene<'a> {
             if !moved {
                 break;
             }
+            touched = true;
         }
-        p
+        (p, touched)
     }
 
     /// Penetration depth in metres of `p` into the true (not inflated) colliders: conservative
     /// for the ellipsoid (see [`Colliders::penetration_m`]), exact for spheres; 0 outside.
     #[inline]
     pub(crate) fn penetration_m(&self, p: Vec3A) -> f32 {
-        let q = self.world_to_head.transform_point3a(p);
-        let s = (q / self.radii).length();
-        let mut depth = (1.0 - s) * self.radius_max;
+        let s2 = (self.world_to_head.transform_point3a(p) / self.radii).length_squared();
+        let mut depth = if s2 < 1.0 {
+            (1.0 - s2.sqrt()) * self.radius_max
+        } else {
+            0.0
+        };
         for sp in self.spheres {
-            if sp.radius_m > 0.0 && sp.radius_m.is_finite() {
-                depth = depth.max(sp.radius_m - (p - Vec3A::from(sp.center)).length());
+            let r = sp.radius_m;
+            let d2 = (p - Vec3A::from(sp.center)).length_squared();
+            if r > 0.0 && r.is_finite() && d2 < r * r {
+                depth = depth.max(r - d2.sqrt());
             }
         }
-        depth.max(0.0)
+        depth
     }
 }
 
@@ -246,7 +261,8 @@ mod tests {
             let link = 0.02;
             let inward = Vec3A::from(c.head.transform_vector3(-dir));
             let cand = prev + inward * link;
-            let p = scene.resolve(prev, cand, link, inward);
+            let (p, touched) = scene.resolve(prev, cand, link, inward);
+            assert!(touched);
             assert!(((p - prev).length() / link - 1.0).abs() < 1e-5);
             let pen = scene.penetration_m(p);
             assert!(pen < 1e-4, "penetration {pen} m at k={k}");
@@ -262,13 +278,13 @@ mod tests {
         let centre = Vec3A::from(c.spheres[0].center);
         let prev = centre + Vec3A::new(0.0, 0.0, -(0.12 + COLLISION_MARGIN_M));
         let link = 0.12 + COLLISION_MARGIN_M;
-        let p = scene.resolve(prev, centre, link, Vec3A::Z);
+        let (p, _) = scene.resolve(prev, centre, link, Vec3A::Z);
         assert!(p.is_finite());
         assert!(((p - prev).length() / link - 1.0).abs() < 1e-5);
         assert!(scene.penetration_m(p) < 1e-5);
         let head_centre = Vec3A::from(c.head.translation);
         let outside = head_centre + Vec3A::new(0.0, 0.2, 0.0);
-        let p = scene.resolve(outside, head_centre, 0.2, Vec3A::NEG_Y);
+        let (p, _) = scene.resolve(outside, head_centre, 0.2, Vec3A::NEG_Y);
         assert!(p.is_finite());
         assert!(((p - outside).length() / 0.2 - 1.0).abs() < 1e-5);
     }

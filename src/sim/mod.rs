@@ -73,7 +73,7 @@ impl Default for SimParams {
             density_threshold: 0.25,
             repulsion_m_s2: 20.0,
             bending_damping_ratio: 1.0,
-            ftl_correction: 0.9,
+            ftl_correction: 0.5,
             max_catch_up_s: 0.25,
         }
     }

@@ -57,7 +57,7 @@ impl SimState {
                         .transform_vector3a(Vec3A::from(rest[i] - rest[i - 1]))
                         .normalize_or(head.transform_vector3a(Vec3A::from(guides.root_normal[g])));
                     let dir = (p - prev).normalize_or(fallback);
-                    p = scene.resolve(prev, prev + dir * link, link, fallback);
+                    p = scene.resolve(prev, prev + dir * link, link, fallback).0;
                 }
                 positions.push(Vec3::from(p));
                 prev = p;

@@ -308,6 +308,23 @@ impl Simulator {
     }
 }
 
+/// The minimal rotation taking unit `a` to unit `b`: the quaternion (a × b, 1 + a·b),
+/// normalised, which is (sin(θ/2) axis, cos(θ/2)) by the half-angle identities. Near
+/// `b = −a` (1 + a·b → 0, no unique axis) it turns by π about any axis perpendicular to `a`.
+/// Cheaper than `Quat::from_rotation_arc` (one square root, no branches in the common case),
+/// which took 18% of a step in the profile.
+#[inline]
+fn rotation_arc(a: Vec3A, b: Vec3A) -> Quat {
+    let w = 1.0 + a.dot(b);
+    if w > 1e-6 {
+        let axis = a.cross(b);
+        Quat::from_xyzw(axis.x, axis.y, axis.z, w).normalize()
+    } else {
+        let axis = a.any_orthonormal_vector();
+        Quat::from_xyzw(axis.x, axis.y, axis.z, 0.0)
+    }
+}
+
 /// Damps each link's angular velocity relative to its parent link's by the factor `kappa` per
 /// step, keeping the radial (along-link) relative velocity: with `rᵢ = pᵢ − pᵢ₋₁` and
 /// `wᵢ = vᵢ − vᵢ₋₁`, the link's angular velocity is `Ωᵢ = rᵢ × wᵢ / |rᵢ|²`; it becomes
@@ -418,12 +435,14 @@ fn step_guide<D: DensityField>(
         let dir = (p - p_prev).normalize_or(target_dir);
         let p_ftl = p_prev + dir * link;
         corr[i] = p_ftl - p;
-        let p_final = frame.scene.resolve(p_prev, p_ftl, link, target_dir);
-        stats.max_penetration_m = stats
-            .max_penetration_m
-            .max(frame.scene.penetration_m(p_final));
+        let (p_final, touched) = frame.scene.resolve(p_prev, p_ftl, link, target_dir);
+        if touched {
+            stats.max_penetration_m = stats
+                .max_penetration_m
+                .max(frame.scene.penetration_m(p_final));
+        }
         let actual_dir = (p_final - p_prev).normalize_or(target_dir);
-        q = (Quat::from_rotation_arc(target_dir.into(), actual_dir.into()) * q).normalize();
+        q = (rotation_arc(target_dir, actual_dir) * q).normalize();
         pos[i] = Vec3::from(p_final);
         p_prev = p_final;
     }
