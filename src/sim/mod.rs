@@ -55,8 +55,9 @@ pub struct SimParams {
     /// bending spring's angular frequency (see `step.rs`). Without it the one-sided bending pull
     /// makes a chain of lightly damped oscillators that amplify motion toward the tip.
     pub bending_damping_ratio: f32,
-    /// Follow-the-leader velocity correction factor s_damp of Müller et al. 2012 Eq. 9, in
-    /// [0, 1] (0: plain FTL, overdamped look; 1: undamped; default 0.9).
+    /// Follow-the-leader velocity correction factor (the s_damping of Müller, Kim & Chentanez
+    /// 2012's dynamic FTL), in [0, 1] (0: plain FTL; 1: full reaction on the parent; default
+    /// 0.5, see `step.rs` for the measured trade-off).
     pub ftl_correction: f32,
     /// Largest gap of simulated time one `advance` call catches up, seconds in (0, 10]
     /// (default 0.25): beyond it the hair is carried rigidly with the head.
