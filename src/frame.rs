@@ -19,9 +19,13 @@ use crate::hairstyle::{GuideSet, Hairstyle, StrandLayout, generate};
 use crate::interp::{StrandGeometry, interpolate};
 use crate::map::{CountModel, LightMap, MapGeometry, MapStats};
 use crate::motion::{Motion, Pose};
-use crate::raster::{Camera, Framebuffer, LineScratch, LineStyle, Polylines, draw_ellipsoid, draw_polylines};
+use crate::raster::{
+    Camera, Framebuffer, LineScratch, LineStyle, Polylines, draw_ellipsoid, draw_polylines,
+};
 use crate::shade::{Lighting, shade_skin, shade_vertices};
-use crate::sim::{Colliders, DensityField, NoDensity, SimState, Simulator, SphereCollider, StepStats};
+use crate::sim::{
+    Colliders, DensityField, NoDensity, SimState, Simulator, SphereCollider, StepStats,
+};
 use glam::{Affine3A, Vec3};
 use std::time::Instant;
 
@@ -37,10 +41,24 @@ pub struct StageTimings {
 }
 
 impl StageTimings {
-    pub const NAMES: [&'static str; 6] = ["animation", "simulation", "interpolation", "map", "shading", "raster"];
+    pub const NAMES: [&'static str; 6] = [
+        "animation",
+        "simulation",
+        "interpolation",
+        "map",
+        "shading",
+        "raster",
+    ];
 
     pub fn as_array(&self) -> [f64; 6] {
-        [self.animation_s, self.simulation_s, self.interpolation_s, self.map_s, self.shading_s, self.raster_s]
+        [
+            self.animation_s,
+            self.simulation_s,
+            self.interpolation_s,
+            self.map_s,
+            self.shading_s,
+            self.raster_s,
+        ]
     }
     pub fn total_s(&self) -> f64 {
         self.as_array().iter().sum()
@@ -99,7 +117,10 @@ impl Default for EngineConfig {
             self_collision: true,
             simulate: true,
             settle_s: 2.0,
-            line: LineStyle { width_px: 1.0, opacity: 0.85 },
+            line: LineStyle {
+                width_px: 1.0,
+                opacity: 0.85,
+            },
             background: Vec3::new(0.012, 0.014, 0.018),
         }
     }
@@ -126,6 +147,10 @@ pub struct Engine {
     pub strands: StrandGeometry,
     colors: Vec<Vec3>,
     camera: Camera,
+    /// Camera target relative to the head centre (world), fixed at start.
+    camera_offset: Vec3,
+    /// Camera eye relative to the target.
+    camera_eye_offset: Vec3,
     fb: Framebuffer,
     scratch: LineScratch,
     /// Timings of the last frame.
@@ -145,7 +170,10 @@ impl Engine {
         let sim = Simulator::new(&style.dynamics, &guides, radii);
         let state = SimState::at_rest(&guides, &colliders, -config.settle_s);
         let geom = match config.map_res {
-            Some(n) => MapGeometry::with_resolution(MapGeometry::span_m(style.max_length_m(), style.head_size_m()), n),
+            Some(n) => MapGeometry::with_resolution(
+                MapGeometry::span_m(style.max_length_m(), style.head_size_m()),
+                n,
+            ),
             None => MapGeometry::for_scene(
                 style.max_length_m(),
                 style.head_size_m(),
@@ -170,6 +198,8 @@ impl Engine {
             strands: StrandGeometry::default(),
             colors: Vec::new(),
             camera,
+            camera_offset: Vec3::ZERO,
+            camera_eye_offset: Vec3::Z,
             fb,
             scratch: LineScratch::default(),
             timings: StageTimings::default(),
@@ -177,8 +207,8 @@ impl Engine {
             config,
         };
         // Settle with the head held at the first pose (the simulation starts at −settle_s).
-        engine.advance(0.0);
-        engine.camera = engine.frame_camera();
+        engine.run_up_to(0.0);
+        engine.frame_camera();
         engine
     }
 
@@ -202,6 +232,20 @@ impl Engine {
     pub fn pose(&self) -> &Pose {
         &self.pose
     }
+    /// Vertex colours of the last render (linear RGB), indexed like `strands.positions`.
+    pub fn colors(&self) -> &[Vec3] {
+        &self.colors
+    }
+
+    /// Simulates from the current time up to `t_s` in slices of 0.2 s (the simulation caps its
+    /// catch-up per call), so that a first frame late in the clip has the hair's history.
+    pub fn run_up_to(&mut self, t_s: f64) {
+        let mut t = self.state.time_s;
+        while t < t_s {
+            t = (t + 0.2).min(t_s);
+            self.advance(t);
+        }
+    }
 
     /// Animation, simulation and interpolation up to time `t_s` (seconds of the motion).
     pub fn advance(&mut self, t_s: f64) {
@@ -218,9 +262,11 @@ impl Engine {
                 write_colliders(&scratch_pose, radii, c);
             };
             self.step_stats = if self.config.self_collision && self.map_valid {
-                self.sim.advance(&mut self.state, t_s, colliders_at, &self.map)
+                self.sim
+                    .advance(&mut self.state, t_s, colliders_at, &self.map)
             } else {
-                self.sim.advance(&mut self.state, t_s, colliders_at, &NoDensity)
+                self.sim
+                    .advance(&mut self.state, t_s, colliders_at, &NoDensity)
             };
         } else {
             let head = self.pose.head;
@@ -230,7 +276,13 @@ impl Engine {
             self.state.time_s = t_s;
         }
         let t2 = Instant::now();
-        interpolate(&self.guides, &self.layout, &self.style.curl, &self.state.positions, &mut self.strands);
+        interpolate(
+            &self.guides,
+            &self.layout,
+            &self.style.curl,
+            &self.state.positions,
+            &mut self.strands,
+        );
         let t3 = Instant::now();
         self.timings.animation_s = (t1 - t0).as_secs_f64();
         self.timings.simulation_s = (t2 - t1).as_secs_f64();
@@ -239,6 +291,7 @@ impl Engine {
 
     /// Map, shading and raster of the current hair; returns the image.
     pub fn render(&mut self) -> &Framebuffer {
+        self.follow_head();
         let t0 = Instant::now();
         self.build_map();
         let t1 = Instant::now();
@@ -256,17 +309,31 @@ impl Engine {
         self.fb.clear(self.config.background);
         let (map, lighting) = (&self.map, &self.config.lighting);
         let head = self.pose.head * Affine3A::from_scale(Vec3::from(self.style.head.radii_m));
-        draw_ellipsoid(&mut self.fb, &self.camera, head, |p, n| shade_skin(map, lighting, SKIN, p, n));
+        draw_ellipsoid(&mut self.fb, &self.camera, head, |p, n| {
+            shade_skin(map, lighting, SKIN, p, n)
+        });
         for s in &self.pose.spheres {
-            let m = Affine3A::from_scale_rotation_translation(Vec3::splat(s.radius_m), glam::Quat::IDENTITY, s.center);
-            draw_ellipsoid(&mut self.fb, &self.camera, m, |p, n| shade_skin(map, lighting, CLOTH, p, n));
+            let m = Affine3A::from_scale_rotation_translation(
+                Vec3::splat(s.radius_m),
+                glam::Quat::IDENTITY,
+                s.center,
+            );
+            draw_ellipsoid(&mut self.fb, &self.camera, m, |p, n| {
+                shade_skin(map, lighting, CLOTH, p, n)
+            });
         }
         let lines = Polylines {
             points: &self.strands.positions,
             colors: &self.colors,
             points_per_line: self.strands.points_per_strand,
         };
-        draw_polylines(&mut self.fb, &self.camera, &lines, &self.config.line, &mut self.scratch);
+        draw_polylines(
+            &mut self.fb,
+            &self.camera,
+            &lines,
+            &self.config.line,
+            &mut self.scratch,
+        );
         let t3 = Instant::now();
         self.timings.map_s = (t1 - t0).as_secs_f64();
         self.timings.shading_s = (t2 - t1).as_secs_f64();
@@ -293,27 +360,59 @@ impl Engine {
         self.map_valid = true;
     }
 
-    /// A fixed camera that frames the settled hair and the head's travel over the clip, from
-    /// three-quarters front of the first pose.
-    fn frame_camera(&self) -> Camera {
-        let pts = &self.strands.positions;
-        let (lo, hi) = pts.iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), p| {
-            if p.is_finite() { (lo.min(*p), hi.max(*p)) } else { (lo, hi) }
-        });
-        let head0 = self.pose.head.translation.into();
-        let (lo, hi) = if lo.x <= hi.x { (lo, hi) } else { (head0, head0) };
+    /// Frames the settled hair from three-quarters front of the first pose. The camera then
+    /// follows the head's translation (not its rotation), so the head stays in frame through
+    /// the dance while its turns and the hair's swing stay visible.
+    fn frame_camera(&mut self) {
+        let (lo, hi) = self.strands.positions.iter().fold(
+            (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
+            |(lo, hi), p| {
+                if p.is_finite() {
+                    (lo.min(*p), hi.max(*p))
+                } else {
+                    (lo, hi)
+                }
+            },
+        );
+        let head0: Vec3 = self.pose.head.translation.into();
+        let (lo, hi) = if lo.x <= hi.x {
+            (lo.min(head0), hi.max(head0))
+        } else {
+            (head0, head0)
+        };
         let centre = 0.5 * (lo + hi);
-        let mut radius = 0.5 * (hi - lo).length();
-        // Travel of the head over the clip (60 samples).
-        let d = self.motion.duration_s().max(1e-3);
-        let mut travel = 0.0f32;
-        for i in 0..60 {
-            let p = self.motion.sample(d * i as f32 / 60.0).head.translation;
-            travel = travel.max((Vec3::from(p) - head0).length());
-        }
-        radius = radius * 1.05 + travel;
-        let view = self.pose.head.transform_vector3(Vec3::new(0.55, 0.12, 1.0)).normalize_or(Vec3::Z);
-        Camera::framing(centre, radius.max(0.05), view, 30f32.to_radians(), self.config.width, self.config.height)
+        // Half the largest extent (a tall, thin head of hair fills the frame's height), plus room
+        // for the hair to swing by about a tenth of its length.
+        let radius = 0.55 * (hi - lo).max_element() + 0.1 * self.style.max_length_m();
+        let view = self
+            .pose
+            .head
+            .transform_vector3(Vec3::new(0.55, 0.12, 1.0))
+            .normalize_or(Vec3::Z);
+        let cam = Camera::framing(
+            centre,
+            radius.max(0.05),
+            view,
+            30f32.to_radians(),
+            self.config.width,
+            self.config.height,
+        );
+        self.camera_offset = centre - head0;
+        self.camera_eye_offset = cam.eye() - centre;
+        self.camera = cam;
+    }
+
+    /// Moves the camera with the head's translation.
+    fn follow_head(&mut self) {
+        let target = Vec3::from(self.pose.head.translation) + self.camera_offset;
+        self.camera = Camera::look_at(
+            target + self.camera_eye_offset,
+            target,
+            Vec3::Y,
+            30f32.to_radians(),
+            self.config.width,
+            self.config.height,
+        );
     }
 }
 
@@ -325,11 +424,22 @@ fn scalp_area_m2(style: &Hairstyle) -> f32 {
 }
 
 fn placeholder_camera(config: &EngineConfig) -> Camera {
-    Camera::framing(Vec3::ZERO, 0.5, Vec3::Z, 30f32.to_radians(), config.width, config.height)
+    Camera::framing(
+        Vec3::ZERO,
+        0.5,
+        Vec3::Z,
+        30f32.to_radians(),
+        config.width,
+        config.height,
+    )
 }
 
 fn colliders_of(pose: &Pose, radii: Vec3) -> Colliders {
-    let mut c = Colliders { head: pose.head, head_radii_m: radii, spheres: Vec::new() };
+    let mut c = Colliders {
+        head: pose.head,
+        head_radii_m: radii,
+        spheres: Vec::new(),
+    };
     write_colliders(pose, radii, &mut c);
     c
 }
@@ -338,7 +448,11 @@ fn write_colliders(pose: &Pose, radii: Vec3, c: &mut Colliders) {
     c.head = pose.head;
     c.head_radii_m = radii;
     c.spheres.clear();
-    c.spheres.extend(pose.spheres.iter().map(|s| SphereCollider { center: s.center, radius_m: s.radius_m }));
+    c.spheres
+        .extend(pose.spheres.iter().map(|s| SphereCollider {
+            center: s.center,
+            radius_m: s.radius_m,
+        }));
 }
 
 /// The map answers the simulation's density queries (Bertails §4.1).

@@ -23,9 +23,9 @@
 //! - A directional light travels along `L`; the map's X axis is `L`.
 //! - Colours are linear RGB until the PNG encoder converts to 8-bit sRGB.
 
-// pub mod app; (enabled at integration)
+pub mod app;
 pub mod fiber;
-// pub mod frame; (enabled at integration)
+pub mod frame;
 pub mod hairstyle;
 pub mod interp;
 pub mod map;

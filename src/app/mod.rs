@@ -16,7 +16,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Parser, Debug)]
-#[command(name = "wisp", version, about = "Animate and render human hair on the CPU")]
+#[command(
+    name = "wisp",
+    version,
+    about = "Animate and render human hair on the CPU"
+)]
 pub struct Cli {
     /// Worker threads for the parallel stages (default: all cores). Output does not depend on it.
     #[arg(long, global = true, value_parser = clap::value_parser!(u32).range(1..=1024))]
@@ -113,10 +117,13 @@ impl SceneArgs {
         } else {
             let opts = MotionOptions {
                 clip: self.clip.clone(),
-                head_joint: self.head_joint.as_deref().map(|s| match s.parse::<usize>() {
-                    Ok(i) => JointRef::Index(i),
-                    Err(_) => JointRef::Name(s.to_string()),
-                }),
+                head_joint: self
+                    .head_joint
+                    .as_deref()
+                    .map(|s| match s.parse::<usize>() {
+                        Ok(i) => JointRef::Index(i),
+                        Err(_) => JointRef::Name(s.to_string()),
+                    }),
                 speed: self.speed,
                 ..MotionOptions::default()
             };
@@ -132,7 +139,12 @@ impl SceneArgs {
                 }
             }
         };
-        let mut config = EngineConfig { width: self.width, height: self.height, map_res: self.map_res, ..Default::default() };
+        let mut config = EngineConfig {
+            width: self.width,
+            height: self.height,
+            map_res: self.map_res,
+            ..Default::default()
+        };
         if let Some(l) = self.light_dir {
             config.lighting.light_dir = l;
         }
@@ -187,10 +199,16 @@ pub struct AppError {
 
 impl AppError {
     pub fn input(error: impl Into<anyhow::Error>) -> Self {
-        Self { code: 2, error: error.into() }
+        Self {
+            code: 2,
+            error: error.into(),
+        }
     }
     pub fn other(error: impl Into<anyhow::Error>) -> Self {
-        Self { code: 1, error: error.into() }
+        Self {
+            code: 1,
+            error: error.into(),
+        }
     }
 }
 
@@ -205,7 +223,10 @@ pub fn main() -> ExitCode {
         }
     };
     if let Some(n) = cli.threads {
-        if let Err(e) = rayon::ThreadPoolBuilder::new().num_threads(n as usize).build_global() {
+        if let Err(e) = rayon::ThreadPoolBuilder::new()
+            .num_threads(n as usize)
+            .build_global()
+        {
             eprintln!("wisp: error: cannot start {n} threads: {e}");
             return ExitCode::from(1);
         }

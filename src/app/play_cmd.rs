@@ -66,7 +66,8 @@ pub fn run(args: PlayArgs) -> Result<(), AppError> {
         for (key, angle) in [(Key::Left, 0.05f32), (Key::Right, -0.05)] {
             if window.is_key_down(key) {
                 let l = engine.config.lighting.light_dir;
-                engine.config.lighting.light_dir = (Quat::from_axis_angle(Vec3::Y, angle) * l).normalize();
+                engine.config.lighting.light_dir =
+                    (Quat::from_axis_angle(Vec3::Y, angle) * l).normalize();
             }
         }
         if window.is_key_pressed(Key::R, KeyRepeat::No) {
@@ -87,7 +88,11 @@ pub fn run(args: PlayArgs) -> Result<(), AppError> {
                 "wisp - {:.1} fps - {:?}{} - sim {:.1} ms, map {:.1}, shade {:.1}, raster {:.1}{}",
                 fps,
                 engine.config.lighting.mode,
-                if engine.config.self_collision { "" } else { ", no self-collision" },
+                if engine.config.self_collision {
+                    ""
+                } else {
+                    ", no self-collision"
+                },
                 m.simulation_s,
                 m.map_s,
                 m.shading_s,

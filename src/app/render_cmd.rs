@@ -48,6 +48,7 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
     let name = style.name.clone();
     let started = std::time::Instant::now();
     let mut engine = Engine::new(style, motion, config);
+    engine.run_up_to(args.start_s as f64);
     let setup_s = started.elapsed().as_secs_f64();
     if !args.quiet {
         let g = engine.map_geometry();
@@ -89,7 +90,15 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
         let mut rgb = spare.recv().unwrap_or_default();
         fb.to_srgb8_into(&mut rgb);
         total.add(&engine.timings);
-        if to_writer.send(Job { index: i, rgb, width, height }).is_err() {
+        if to_writer
+            .send(Job {
+                index: i,
+                rgb,
+                width,
+                height,
+            })
+            .is_err()
+        {
             failed = Some(i);
             break;
         }
@@ -98,14 +107,22 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
         }
     }
     drop(to_writer);
-    let written = writer.join().map_err(|_| AppError::other(anyhow::anyhow!("the PNG writer thread panicked")))?;
+    let written = writer
+        .join()
+        .map_err(|_| AppError::other(anyhow::anyhow!("the PNG writer thread panicked")))?;
     written.map_err(AppError::other)?;
     if let Some(i) = failed {
-        return Err(AppError::other(anyhow::anyhow!("frame {i}: the PNG writer stopped")));
+        return Err(AppError::other(anyhow::anyhow!(
+            "frame {i}: the PNG writer stopped"
+        )));
     }
     if !args.quiet {
         print_timings(&total, args.frames, started.elapsed().as_secs_f64());
-        eprintln!("wisp: wrote {} frames to {}", args.frames, args.out.display());
+        eprintln!(
+            "wisp: wrote {} frames to {}",
+            args.frames,
+            args.out.display()
+        );
     }
     Ok(())
 }

@@ -165,7 +165,7 @@ fn push_guide(
     radii: Vec3,
     root: Vec3,
     normal: Vec3,
-    side: Vec3,
+    side_dir: Vec3,
     l: f32,
     layer: f32,
     wave_phase: f32,
@@ -173,8 +173,6 @@ fn push_guide(
 ) {
     let links = style.guides.links as usize;
     let inflated = radii + Vec3::splat(layer);
-    // Combing: hair rooted toward the face is brushed back and to the side.
-    let comb = Vec3::new(normal.x * 0.6, 0.0, -normal.z.max(0.0) * 1.2 - 0.15);
     let mut p = root;
     let mut dir = normal;
     out.push(p);
@@ -182,17 +180,25 @@ fn push_guide(
     let mut prev_wave = 0.0;
     for i in 1..=links {
         let s = i as f32 * l; // arc length at the new particle
-        // The first link leaves along the normal; later ones turn toward gravity.
-        let t = (s / 0.06).min(1.0);
-        let want = (normal * (1.0 - t) + (Vec3::NEG_Y + comb * (1.0 - 0.5 * t)) * t).normalize();
-        dir = (dir + want).normalize();
+        // Combing: while a strand is over the front half of the head it is brushed back (−Z)
+        // and a little outward; behind the head only gravity remains. The push out of the
+        // head below turns this into hair lying along the scalp, over the crown.
+        let front = ((p.z / radii.z + 0.25) / 0.75).clamp(0.0, 1.0);
+        let side = (p.x / radii.x).clamp(-1.0, 1.0);
+        let comb = Vec3::new(0.8 * side, 0.0, -2.5) * front;
+        let hang = (Vec3::NEG_Y + comb).normalize();
+        // The first link leaves along the scalp normal; the next ones turn to the comb over
+        // the first 4 cm.
+        let t = (s / 0.04).min(1.0);
+        let want = (normal * (1.0 - t) + hang * t).normalize_or(hang);
+        dir = if i == 1 { normal } else { (dir + 2.0 * want).normalize_or(want) };
         let mut next = p + dir * l;
         if amp > 0.0 {
             let ramp = (s / 0.05).min(1.0);
             let wave = amp
                 * ramp
                 * (std::f32::consts::TAU * s / style.guides.wave_period_m + wave_phase).sin();
-            next += side * (wave - prev_wave);
+            next += side_dir * (wave - prev_wave);
             prev_wave = wave;
         }
         // Push out of the head, then restore the link length (keeps links rigid in the rest
