@@ -32,8 +32,10 @@ pub struct Cli {
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Render the dance (default: the embedded dance and the `smooth` hairstyle) to PNG frames.
+    #[command(allow_negative_numbers = true)]
     Render(render_cmd::RenderArgs),
     /// Play the dance live in a window (needs a display; see `render` otherwise).
+    #[command(allow_negative_numbers = true)]
     Play(play_cmd::PlayArgs),
     /// Inspect the fibre scattering model: evaluate, tabulate, plot.
     Fiber(fiber_cmd::FiberArgs),

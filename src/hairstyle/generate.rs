@@ -191,7 +191,11 @@ fn push_guide(
         // the first 4 cm.
         let t = (s / 0.04).min(1.0);
         let want = (normal * (1.0 - t) + hang * t).normalize_or(hang);
-        dir = if i == 1 { normal } else { (dir + 2.0 * want).normalize_or(want) };
+        dir = if i == 1 {
+            normal
+        } else {
+            (dir + 2.0 * want).normalize_or(want)
+        };
         let mut next = p + dir * l;
         if amp > 0.0 {
             let ramp = (s / 0.05).min(1.0);

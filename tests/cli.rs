@@ -1,0 +1,149 @@
+//! The `wisp` binary as a user meets it: exit codes and messages for bad input, and a small
+//! export whose frames are complete PNGs, byte-identical for 1 and 2 threads.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn wisp(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_wisp"))
+        .args(args)
+        .output()
+        .expect("run wisp")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn tmp(name: &str) -> std::path::PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+#[test]
+fn bad_flags_exit_2_with_a_message_naming_the_flag() {
+    for (args, needle) in [
+        (vec!["render", "--light-dir", "1,2"], "--light-dir"),
+        (vec!["render", "--light-dir", "0,0,0"], "must not be zero"),
+        (vec!["render", "--light-dir", "1,nan,0"], "finite"),
+        (vec!["render", "--width", "0"], "--width"),
+        (vec!["render", "--frames", "-3"], "--frames"),
+        (vec!["render", "--fps", "0"], "--fps"),
+        (vec!["render", "--map-res", "100000"], "--map-res"),
+        (vec!["render", "--shading", "phong"], "--shading"),
+        (vec!["render", "--speed", "inf"], "--speed"),
+        (vec!["render", "--no-such-flag"], "--no-such-flag"),
+        (vec!["render", "--clip", "Walk"], "--animation"),
+    ] {
+        let o = wisp(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(
+            stderr(&o).contains(needle),
+            "{args:?}: message does not mention {needle}: {}",
+            stderr(&o)
+        );
+        assert!(!stderr(&o).contains("panicked"), "{args:?} panicked");
+    }
+}
+
+#[test]
+fn bad_files_exit_2_naming_the_file() {
+    let dir = tmp("cli-bad-files");
+    let bad_json = dir.join("bad.json");
+    std::fs::write(&bad_json, "{ \"name\": 3 }").unwrap();
+    let not_gltf = dir.join("dance.glb");
+    std::fs::write(&not_gltf, b"certainly not a glTF file").unwrap();
+    let out = dir.join("out");
+    let out = out.to_str().unwrap();
+    for (args, needle) in [
+        (
+            vec!["render", "--hairstyle", "/no/such/hair.json", "--out", out],
+            "/no/such/hair.json",
+        ),
+        (
+            vec![
+                "render",
+                "--hairstyle",
+                bad_json.to_str().unwrap(),
+                "--out",
+                out,
+            ],
+            "bad.json",
+        ),
+        (
+            vec!["render", "--animation", "/no/such/dance.glb", "--out", out],
+            "/no/such/dance.glb",
+        ),
+        (
+            vec![
+                "render",
+                "--animation",
+                not_gltf.to_str().unwrap(),
+                "--out",
+                out,
+            ],
+            "dance.glb",
+        ),
+    ] {
+        let o = wisp(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(needle), "{args:?}: {}", stderr(&o));
+        assert!(!stderr(&o).contains("panicked"));
+    }
+    // No frames were written for failed runs.
+    assert!(!Path::new(out).join("frame_00000.png").exists());
+}
+
+#[test]
+fn export_writes_complete_frames_identical_for_one_and_two_threads() {
+    let a = tmp("cli-export-1");
+    let b = tmp("cli-export-2");
+    let common = [
+        "render",
+        "--frames",
+        "2",
+        "--width",
+        "96",
+        "--height",
+        "96",
+        "--start-s",
+        "4.0",
+        "--quiet",
+    ];
+    for (threads, dir) in [("1", &a), ("2", &b)] {
+        let mut args = vec!["--threads", threads];
+        args.extend(common);
+        args.extend(["--out", dir.to_str().unwrap()]);
+        let o = wisp(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    for i in 0..2 {
+        let name = format!("frame_{i:05}.png");
+        let fa = std::fs::read(a.join(&name)).unwrap();
+        let fb = std::fs::read(b.join(&name)).unwrap();
+        assert_eq!(&fa[1..4], b"PNG");
+        assert!(fa == fb, "{name} differs between 1 and 2 threads");
+    }
+    // Only complete frames: no temporary files left behind.
+    let leftovers: Vec<_> = std::fs::read_dir(&a)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty());
+}
+
+#[test]
+fn play_without_a_display_fails_cleanly() {
+    let o = Command::new(env!("CARGO_BIN_EXE_wisp"))
+        .args(["play", "--frames", "1"])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("wisp render"), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("panicked"));
+}
