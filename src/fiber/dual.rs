@@ -1,0 +1,645 @@
+//! Dual-scattering fibre quantities (Zinke et al. 2008 §3 and Table 1), tabulated over the
+//! light's inclination θ ∈ [−π/2, π/2] (radians; the tables are not even in θ because the
+//! cuticle tilt α shifts the lobes), plus N^G(θd, φ) (Eq. 25).
+//!
+//! How: every azimuthal integral of N_p is done in h (Eq. 8's bookkeeping: ∫ N_p w(φ) dφ =
+//! ∫ A(p, h) w(φ(p, h)) dh / 2), which needs no root solving and has a smooth integrand; only
+//! the TRT glints are integrated in φ. Then one longitudinal quadrature over θo per table entry.
+//! Building every table for the default fibre takes tens of milliseconds (see `benches/fiber.rs`).
+//!
+//! Readings chosen (each pinned by a test in `tests/fiber_tables.rs` or below):
+//! - **Eq. 6/12, which hemisphere.** The incident azimuth is averaged over the half circle
+//!   facing the light and the outgoing one is split into the world-fixed front (away from the
+//!   light) and back halves, as the double integral prints; for a relative azimuth φ the
+//!   weights are w_f(φ) = |φ|/π and w_b = 1 − |φ|/π. The alternative (split by relative azimuth,
+//!   w_f = [|φ| > π/2]) ignores the (1/π)∫dφ average of the printed formula.
+//! - **Trap 4, Eq. 6's cosine.** Eq. 6 prints cos θd of the *incident* direction. We weight by
+//!   cos θ of the *outgoing* direction instead: ā_f(θi) = (1/π)∫∫ f_s cos θo dωo (dωo = cos θo
+//!   dθo dφo), the fraction of the power the fibre intercepts that leaves through the front half,
+//!   so ā_f + ā_b is the fibre's hemispherical albedo (checked against a brute-force quadrature
+//!   of S in tests/fiber_energy.rs). Why: ā_f is used as a per-crossing transmittance, and the
+//!   map already weights grazing crossings by their projected width. The two readings agree
+//!   for narrow lobes (θo ≈ −θi) but not at grazing incidence: the incident reading carries
+//!   cos θi cos θo / cos²θd = 1 − sin²θh/cos²θd, which goes to 0 across the lobe as |θi| → 90°,
+//!   so a grazing crossing would become opaque (σa = 0, θ = 80°: ā_f = 0.33 against 0.57;
+//!   pinned by `trap4_outgoing_cosine` in tests/fiber_tables.rs).
+//! - **Trap 1** is resolved in `marschner::longitudinal_m` (unit area in θo).
+//! - **Trap 2.** Every Gaussian is in radians; shifts/variances are in x = θi + θo. Eq. 17's
+//!   fit adds a number (ā_b) to an angle (ā_b³(2β̄_f + 3β̄_b)), so its value depends on the unit;
+//!   we evaluate the series printed above Eqs. 16–17 instead (closed form by counting: the triple
+//!   sum has n(n+1)/2 terms with i − j − 1 + k = n), which is unit-consistent.
+//! - **Trap 3.** Deriving that series to second order in ā_b gives
+//!   Δ̄_b ≈ ᾱ_b(1 **+** 2ā_b²/(1 − ā_f²)²) + ᾱ_f(2(1 − ā_f²)² + 4ā_f²ā_b²)/(1 − ā_f²)³: the printed
+//!   minus sign is wrong (its ᾱ_f coefficient is right). We use the exact closed form.
+//! - **Trap 6.** 1 − ā_f² divides A_b, Δ_b and σ_b; ā_f is clamped to [`A_F_MAX`] before them.
+//! - **Trap 5, Eq. 25** is read as the convolution N^G(θ, φ) = ∫ s̃_f(φ') N(θ, φ − φ') dφ' over
+//!   φ' ∈ [−π/2, π/2] with s̃_f = 1/π, not the φ-independent integral it prints.
+//! - Lobe shifts/variances of the front and back halves: ᾱ = Σ_p w_p 2α_p, β̄² = Σ_p w_p
+//!   ((2β_p)² + (2α_p)²) − ᾱ² (moment matching the mixture), w_p the lobe's share of ā.
+//! - Tables ignore eccentricity (circular fibre of index η), as Zinke §4.2 does for N^G.
+
+use super::marschner::{Azimuth, gaussian, inv_cos2_theta_d, longitudinal_m, wrap_pi};
+use super::params::{Lobe, LobeConstants};
+use super::tables::{Table1, Table2, TableResolution};
+use glam::Vec3;
+use rayon::prelude::*;
+use std::f64::consts::{FRAC_PI_2, PI};
+
+/// Upper clamp of ā_f before 1 − ā_f² divides anything (trap 6). With it, 1/(1 − ā_f²)³ ≤
+/// 1.3·10⁵; physical fibres stay well below it (ā_f ≤ 0.8 at σa = 0, see tests).
+pub const A_F_MAX: f64 = 0.99;
+
+/// Samples of γi in the h-space quadratures (midpoint rule).
+const N_H: usize = 1024;
+
+/// Histogram bins over the circle for N^G (Eq. 25).
+const N_G_BINS: usize = 2048;
+
+/// Which cosine weights Eq. 6 (trap 4); the tables use `Outgoing`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CosineReading {
+    /// cos θ of the incident direction, as printed.
+    Incident,
+    /// cos θ of the outgoing direction (hemispherical albedo reading; the tables' reading).
+    Outgoing,
+}
+
+/// Forward weight of a relative azimuth φ: share of incident azimuths in the light-facing half
+/// circle whose outgoing azimuth lands in the front half (|φ|/π).
+pub fn w_forward(phi: f64) -> f64 {
+    wrap_pi(phi).abs() / PI
+}
+
+/// Backward weight, 1 − |φ|/π.
+pub fn w_backward(phi: f64) -> f64 {
+    1.0 - w_forward(phi)
+}
+
+/// Error function (Abramowitz & Stegun 7.1.26, |error| ≤ 1.5·10⁻⁷).
+pub fn erf(x: f64) -> f64 {
+    let s = x.signum();
+    let x = x.abs();
+    let t = 1.0 / (1.0 + 0.327_591_1 * x);
+    let y = 1.0
+        - (((((1.061_405_429 * t - 1.453_152_027) * t) + 1.421_413_741) * t - 0.284_496_736) * t
+            + 0.254_829_592)
+            * t
+            * (-x * x).exp();
+    s * y
+}
+
+fn normal_cdf(x: f64, std: f64) -> f64 {
+    0.5 * (1.0 + erf(x / (std * std::f64::consts::SQRT_2)))
+}
+
+/// One lobe at one θd, sampled in h (midpoint rule in γi, h = sin γi): exit azimuths φ(p, h)
+/// and weights A(p, h) · notch(φ) · dh/2, plus the TRT glints (amplitude, φc, w_c). Every
+/// azimuthal integral of N_p is a sum over these samples (Eq. 8 bookkeeping).
+pub struct LobeSamples {
+    phi: Vec<f64>,
+    weight: Vec<[f64; 3]>,
+    glint: Option<([f64; 3], f64, f64)>,
+}
+
+impl LobeSamples {
+    /// Samples for the circular fibre (index η) at sin θd, with `n_h` samples of γi.
+    pub fn new(c: &LobeConstants, lobe: Lobe, sin_theta_d: f64, n_h: usize) -> Self {
+        let az = Azimuth::new(c.eta, sin_theta_d, c.sigma_a);
+        let p = lobe.p();
+        let caustic = (lobe == Lobe::TRT).then(|| az.caustic(c));
+        let dg = PI / n_h as f64;
+        let mut phi = Vec::with_capacity(n_h);
+        let mut weight = Vec::with_capacity(n_h);
+        for k in 0..n_h {
+            let g = -FRAC_PI_2 + (k as f64 + 0.5) * dg;
+            let ph = wrap_pi(az.phi(p, g));
+            let mut wt = g.cos() * dg * 0.5;
+            if let Some(ca) = &caustic {
+                wt *= Azimuth::notch(ca, c.w_c, ph);
+            }
+            phi.push(ph);
+            weight.push(az.attenuation(p, g).map(|a| a * wt));
+        }
+        let glint = caustic.map(|ca| {
+            let a = az.attenuation(2, ca.gamma_c);
+            let k = ca.t * c.k_g * ca.delta_h;
+            (a.map(|x| x * k), ca.phi_c, c.w_c)
+        });
+        Self { phi, weight, glint }
+    }
+
+    /// ∫ N_p(φ) w(φ) dφ over the circle, RGB (glints by midpoint quadrature in φ at w_c/8).
+    pub fn integral(&self, w: impl Fn(f64) -> f64) -> [f64; 3] {
+        let mut acc = [0.0; 3];
+        for (ph, wt) in self.phi.iter().zip(&self.weight) {
+            let f = w(*ph);
+            for ch in 0..3 {
+                acc[ch] += wt[ch] * f;
+            }
+        }
+        if let Some((amp, phi_c, w_c)) = self.glint {
+            let n = ((16.0 * PI / w_c).ceil() as usize).max(256);
+            let d = 2.0 * PI / n as f64;
+            let mut sum = 0.0;
+            for k in 0..n {
+                let ph = -PI + (k as f64 + 0.5) * d;
+                sum += (gaussian(ph - phi_c, w_c) + gaussian(ph + phi_c, w_c)) * w(ph) * d;
+            }
+            for ch in 0..3 {
+                acc[ch] += amp[ch] * sum;
+            }
+        }
+        acc
+    }
+
+    /// N^G_p(φ) = (1/π) ∫_{φ−π/2}^{φ+π/2} N_p(ψ) dψ (Eq. 25 read as a convolution, trap 5),
+    /// for φ at the `n_phi` grid points over [0, π]. The sampled (notched) part is deposited into
+    /// a `bins`-bin histogram over the circle (linear split between the two nearest bins) and
+    /// integrated through its cumulative sum; the glints use the Gaussian's closed-form CDF.
+    pub fn n_g(&self, n_phi: usize, bins: usize) -> Vec<[f64; 3]> {
+        let dw = 2.0 * PI / bins as f64;
+        let mut hist = vec![[0.0f64; 3]; bins];
+        for (ph, wt) in self.phi.iter().zip(&self.weight) {
+            let u = (ph + PI) / dw - 0.5;
+            let i0 = u.floor();
+            let frac = u - i0;
+            let i0 = (i0 as i64).rem_euclid(bins as i64) as usize;
+            let i1 = (i0 + 1) % bins;
+            for ch in 0..3 {
+                hist[i0][ch] += wt[ch] * (1.0 - frac);
+                hist[i1][ch] += wt[ch] * frac;
+            }
+        }
+        let mut cum = vec![[0.0f64; 3]; bins + 1];
+        for j in 0..bins {
+            for ch in 0..3 {
+                cum[j + 1][ch] = cum[j][ch] + hist[j][ch];
+            }
+        }
+        let total = cum[bins];
+        // Cumulative mass from −π to x (any real x, wrapping); bin j spans [−π + j dw, +dw).
+        let cum_at = |x: f64| -> [f64; 3] {
+            let wraps = ((x + PI) / (2.0 * PI)).floor();
+            let xr = x - 2.0 * PI * wraps;
+            let f = ((xr + PI) / dw).clamp(0.0, bins as f64);
+            let j = (f as usize).min(bins - 1);
+            let t = f - j as f64;
+            [0, 1, 2].map(|ch| wraps * total[ch] + cum[j][ch] * (1.0 - t) + cum[j + 1][ch] * t)
+        };
+        (0..n_phi)
+            .map(|k| {
+                let phi = PI * k as f64 / (n_phi - 1) as f64;
+                let (lo, hi) = (phi - FRAC_PI_2, phi + FRAC_PI_2);
+                let (c_hi, c_lo) = (cum_at(hi), cum_at(lo));
+                let mut out = [0, 1, 2].map(|ch| (c_hi[ch] - c_lo[ch]) / PI);
+                if let Some((amp, phi_c, w_c)) = self.glint {
+                    let mut mass = 0.0;
+                    for mu in [phi_c, -phi_c] {
+                        for k in [-1.0, 0.0, 1.0] {
+                            let s = 2.0 * PI * k;
+                            mass += normal_cdf(hi - mu + s, w_c) - normal_cdf(lo - mu + s, w_c);
+                        }
+                    }
+                    for ch in 0..3 {
+                        out[ch] += amp[ch] * mass / PI;
+                    }
+                }
+                out
+            })
+            .collect()
+    }
+}
+
+/// ∫ N_p(θd, φ) w(φ) dφ over the circle for the circular fibre, RGB, computed in h (Eq. 8
+/// bookkeeping) plus, for TRT, the glints integrated in φ.
+pub fn lobe_integral(
+    c: &LobeConstants,
+    lobe: Lobe,
+    sin_theta_d: f64,
+    w: impl Fn(f64) -> f64,
+) -> [f64; 3] {
+    LobeSamples::new(c, lobe, sin_theta_d, N_H).integral(w)
+}
+
+/// Ā_b of Eqs. 11, 13, 14: ā_b ā_f²/(1 − ā_f²) + ā_b³ ā_f²/(1 − ā_f²)³, with ā_f ≤ [`A_F_MAX`].
+pub fn big_a_b(a_f: f64, a_b: f64) -> f64 {
+    let x = a_f.min(A_F_MAX).powi(2);
+    a_b * x / (1.0 - x) + a_b.powi(3) * x / (1.0 - x).powi(3)
+}
+
+/// Δ̄_b: exact closed form of the series above Eq. 16 (radians in x = θi + θo). With x = ā_f²,
+/// Σ_i x^i = x/(1−x), Σ i x^i = x/(1−x)², Σ n(n+1)/2 x^n = x/(1−x)³, Σ n²(n+1)/2 x^n =
+/// x(1+2x)/(1−x)⁴; the common factor ā_b x is cancelled so ā_f → 0 stays finite.
+pub fn delta_b(a_f: f64, a_b: f64, alpha_f: f64, alpha_b: f64) -> f64 {
+    let x = a_f.min(A_F_MAX).powi(2);
+    let q = 1.0 - x;
+    let ab2 = a_b * a_b;
+    let num = alpha_b / q
+        + 2.0 * alpha_f / (q * q)
+        + ab2 * (3.0 * alpha_b / q.powi(3) + 2.0 * alpha_f * (1.0 + 2.0 * x) / q.powi(4));
+    let den = 1.0 / q + ab2 / q.powi(3);
+    num / den
+}
+
+/// Eq. 16 as printed (with its minus sign), for the trap-3 test.
+pub fn delta_b_printed(a_f: f64, a_b: f64, alpha_f: f64, alpha_b: f64) -> f64 {
+    let x = a_f * a_f;
+    alpha_b * (1.0 - 2.0 * a_b * a_b / (1.0 - x).powi(2))
+        + alpha_f * (2.0 * (1.0 - x).powi(2) + 4.0 * x * a_b * a_b) / (1.0 - x).powi(3)
+}
+
+/// σ̄_b² from the series above Eq. 17 (σ̄_b is the weighted mean of the path standard
+/// deviations), summed until the remaining weight is below 10⁻¹² of the total. Radians².
+pub fn sigma_b2(a_f: f64, a_b: f64, beta_f2: f64, beta_b2: f64) -> f64 {
+    let x = a_f.min(A_F_MAX).powi(2);
+    let ab2 = a_b * a_b;
+    // Terms divided by ā_b x (weights x^{i−1}), as in `delta_b`.
+    let (mut num, mut den) = (0.0, 0.0);
+    let mut xi = 1.0; // x^{n−1}
+    for n in 1..=200_000u32 {
+        let nf = n as f64;
+        let w1 = xi;
+        let w3 = ab2 * nf * (nf + 1.0) * 0.5 * xi;
+        num += w1 * (2.0 * nf * beta_f2 + beta_b2).sqrt()
+            + w3 * (3.0 * beta_b2 + 2.0 * nf * beta_f2).sqrt();
+        den += w1 + w3;
+        xi *= x;
+        if (w1 + w3) < 1e-12 * den {
+            break;
+        }
+    }
+    let s = num / den;
+    s * s
+}
+
+/// Eq. 17 as printed (standard deviation), evaluated with angles in the caller's unit; for the
+/// trap-2 test only.
+pub fn sigma_b_printed(a_f: f64, a_b: f64, beta_f: f64, beta_b: f64) -> f64 {
+    (1.0 + 0.7 * a_f * a_f)
+        * (a_b * (2.0 * beta_f * beta_f + beta_b * beta_b).sqrt()
+            + a_b.powi(3) * (2.0 * beta_f * beta_f + 3.0 * beta_b * beta_b).sqrt())
+        / (a_b + a_b.powi(3) * (2.0 * beta_f + 3.0 * beta_b))
+}
+
+/// Per-lobe forward and backward shares at one light inclination, before combination.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct LobeShares {
+    /// ā_f contribution of each lobe [R, TT, TRT], RGB.
+    pub forward: [[f64; 3]; 3],
+    /// ā_b contribution of each lobe, RGB.
+    pub backward: [[f64; 3]; 3],
+}
+
+/// The azimuthal integrals of each lobe against w_f and w_b, tabulated over |θd|.
+struct SplitTable {
+    n: usize,
+    /// [θd index][lobe] -> (forward RGB, backward RGB)
+    values: Vec<[([f64; 3], [f64; 3]); 3]>,
+}
+
+impl SplitTable {
+    /// The split integrals and the N^G rows (φ over [0, π], `n_phi` samples) on the same
+    /// `n` samples of |θd|, from one set of h samples per (θd, lobe).
+    fn build_with_n_g(c: &LobeConstants, n: usize, n_phi: usize) -> (Self, [Table2; 3]) {
+        #[allow(clippy::type_complexity)]
+        let rows: Vec<([([f64; 3], [f64; 3]); 3], [Vec<[f64; 3]>; 3])> = (0..n)
+            .into_par_iter()
+            .map(|i| {
+                let td = FRAC_PI_2 * i as f64 / (n - 1) as f64;
+                let samples = Lobe::ALL.map(|lobe| LobeSamples::new(c, lobe, td.sin(), N_H));
+                let split = [0, 1, 2].map(|l| {
+                    (
+                        samples[l].integral(w_forward),
+                        samples[l].integral(w_backward),
+                    )
+                });
+                let n_g = [0, 1, 2].map(|l| samples[l].n_g(n_phi, N_G_BINS));
+                (split, n_g)
+            })
+            .collect();
+        let values = rows.iter().map(|r| r.0).collect();
+        let n_g = [0, 1, 2].map(|l| {
+            Table2::from_values(
+                n,
+                n_phi,
+                rows.iter()
+                    .flat_map(|r| r.1[l].iter().map(|v| Vec3::from(v.map(|x| x as f32))))
+                    .collect(),
+            )
+        });
+        (Self { n, values }, n_g)
+    }
+
+    fn lookup(&self, abs_theta_d: f64, lobe: usize) -> ([f64; 3], [f64; 3]) {
+        let f = (abs_theta_d / FRAC_PI_2 * (self.n - 1) as f64).clamp(0.0, (self.n - 1) as f64);
+        let i = (f as usize).min(self.n - 2);
+        let t = f - i as f64;
+        let (a, b) = (self.values[i][lobe], self.values[i + 1][lobe]);
+        let mix = |x: [f64; 3], y: [f64; 3]| [0, 1, 2].map(|k| x[k] * (1.0 - t) + y[k] * t);
+        (mix(a.0, b.0), mix(a.1, b.1))
+    }
+}
+
+/// Lobe shares at θi by one longitudinal quadrature over θo, with azimuthal integrals from
+/// `split` (or from `lobe_integral` directly when `split` is None: the reference).
+fn shares_at(
+    c: &LobeConstants,
+    theta_i: f64,
+    split: Option<&SplitTable>,
+    reading: CosineReading,
+) -> LobeShares {
+    let min_std = c.std_x(Lobe::TT);
+    let n_o = ((PI / (min_std / 4.0)).ceil() as usize).clamp(256, 8192);
+    let d_o = PI / n_o as f64;
+    let mut out = LobeShares::default();
+    for k in 0..n_o {
+        let theta_o = -FRAC_PI_2 + (k as f64 + 0.5) * d_o;
+        let theta_d = 0.5 * (theta_o - theta_i);
+        let cos_w = match reading {
+            CosineReading::Incident => theta_i.cos(),
+            CosineReading::Outgoing => theta_o.cos(),
+        };
+        let geom = cos_w * theta_o.cos() * inv_cos2_theta_d(theta_d) * d_o;
+        for lobe in Lobe::ALL {
+            let m = longitudinal_m(c, lobe, theta_i, theta_o);
+            if m * geom < 1e-300 {
+                continue;
+            }
+            let (f, b) = match split {
+                Some(s) => s.lookup(theta_d.abs(), lobe as usize),
+                None => (
+                    lobe_integral(c, lobe, theta_d.sin(), w_forward),
+                    lobe_integral(c, lobe, theta_d.sin(), w_backward),
+                ),
+            };
+            for ch in 0..3 {
+                out.forward[lobe as usize][ch] += m * geom * f[ch];
+                out.backward[lobe as usize][ch] += m * geom * b[ch];
+            }
+        }
+    }
+    out
+}
+
+/// Direct (untabulated) lobe shares at θi, for checking the tables: azimuthal integrals are
+/// recomputed at every θo node instead of interpolated. Slow (≈ 0.1 s).
+pub fn shares_direct(c: &LobeConstants, theta_i: f64, reading: CosineReading) -> LobeShares {
+    shares_at(c, theta_i, None, reading)
+}
+
+/// Every dual-scattering quantity at one light inclination, RGB (angles in radians of x =
+/// θi + θo, variances in rad²).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DualQuantities {
+    pub a_f: [f64; 3],
+    pub a_b: [f64; 3],
+    pub alpha_f: [f64; 3],
+    pub alpha_b: [f64; 3],
+    pub beta_f2: [f64; 3],
+    pub beta_b2: [f64; 3],
+    pub big_a_b: [f64; 3],
+    pub delta_b: [f64; 3],
+    pub sigma_b2: [f64; 3],
+}
+
+impl DualQuantities {
+    /// Combines lobe shares into the Zinke quantities (module doc for the readings).
+    pub fn from_shares(c: &LobeConstants, s: &LobeShares) -> Self {
+        let mut q = Self::default();
+        let moments = |shares: &[[f64; 3]; 3], ch: usize| {
+            let total: f64 = (0..3).map(|p| shares[p][ch]).sum();
+            if total <= 0.0 {
+                return (0.0, 0.0, 0.0);
+            }
+            let mean: f64 = Lobe::ALL
+                .iter()
+                .map(|&l| shares[l as usize][ch] * c.mean_x(l))
+                .sum::<f64>()
+                / total;
+            let second: f64 = Lobe::ALL
+                .iter()
+                .map(|&l| shares[l as usize][ch] * (c.std_x(l).powi(2) + c.mean_x(l).powi(2)))
+                .sum::<f64>()
+                / total;
+            (total, mean, (second - mean * mean).max(0.0))
+        };
+        for ch in 0..3 {
+            let (a_f, alpha_f, beta_f2) = moments(&s.forward, ch);
+            let (a_b, alpha_b, beta_b2) = moments(&s.backward, ch);
+            let a_f = a_f.min(A_F_MAX);
+            q.a_f[ch] = a_f;
+            q.a_b[ch] = a_b;
+            q.alpha_f[ch] = alpha_f;
+            q.alpha_b[ch] = alpha_b;
+            q.beta_f2[ch] = beta_f2;
+            q.beta_b2[ch] = beta_b2;
+            q.big_a_b[ch] = big_a_b(a_f, a_b);
+            q.delta_b[ch] = delta_b(a_f, a_b, alpha_f, alpha_b);
+            q.sigma_b2[ch] = sigma_b2(a_f, a_b, beta_f2, beta_b2);
+        }
+        q
+    }
+}
+
+/// All dual-scattering tables of one fibre.
+#[derive(Clone, Debug)]
+pub struct DualTables {
+    /// Grid of light inclinations θ (radians), uniform over [−π/2, π/2].
+    pub theta: Vec<f64>,
+    /// Quantities at each grid θ.
+    pub at: Vec<DualQuantities>,
+    /// Lobe shares at each grid θ.
+    pub shares: Vec<LobeShares>,
+    pub(crate) a_f: Table1,
+    pub(crate) beta_f2: Table1,
+    pub(crate) big_a_b: Table1,
+    pub(crate) delta_b: Table1,
+    pub(crate) sigma_b2: Table1,
+    /// N^G_p(θd, φ) (Eq. 25) per lobe [R, TT, TRT].
+    pub(crate) n_g: [Table2; 3],
+}
+
+impl DualTables {
+    pub fn build(c: &LobeConstants, res: &TableResolution) -> Self {
+        let (split, n_g) = SplitTable::build_with_n_g(c, res.n_theta_d, res.n_phi);
+        let n = res.n_theta.max(2);
+        let theta: Vec<f64> = (0..n)
+            .map(|i| -FRAC_PI_2 + PI * i as f64 / (n - 1) as f64)
+            .collect();
+        let shares: Vec<LobeShares> = theta
+            .par_iter()
+            .map(|&t| shares_at(c, t, Some(&split), CosineReading::Outgoing))
+            .collect();
+        let at: Vec<DualQuantities> = shares
+            .iter()
+            .map(|s| DualQuantities::from_shares(c, s))
+            .collect();
+        let lut = |f: &dyn Fn(&DualQuantities) -> [f64; 3]| {
+            Table1::new(
+                -FRAC_PI_2,
+                FRAC_PI_2,
+                at.iter()
+                    .map(|q| Vec3::from(f(q).map(|x| x as f32)))
+                    .collect(),
+            )
+        };
+        Self {
+            a_f: lut(&|q| q.a_f),
+            beta_f2: lut(&|q| q.beta_f2),
+            big_a_b: lut(&|q| q.big_a_b),
+            delta_b: lut(&|q| q.delta_b),
+            sigma_b2: lut(&|q| q.sigma_b2),
+            theta,
+            at,
+            shares,
+            n_g,
+        }
+    }
+
+    /// All quantities at light inclination θ (radians), linearly interpolated between grid
+    /// points (what the renderer's lookups return, in f64).
+    pub fn quantities_at(&self, theta: f64) -> DualQuantities {
+        let n = self.theta.len();
+        let f = ((theta + FRAC_PI_2) / PI * (n - 1) as f64).clamp(0.0, (n - 1) as f64);
+        let i = (f as usize).min(n - 2);
+        let t = f - i as f64;
+        let (a, b) = (&self.at[i], &self.at[i + 1]);
+        let mix = |x: [f64; 3], y: [f64; 3]| [0, 1, 2].map(|k| x[k] * (1.0 - t) + y[k] * t);
+        DualQuantities {
+            a_f: mix(a.a_f, b.a_f),
+            a_b: mix(a.a_b, b.a_b),
+            alpha_f: mix(a.alpha_f, b.alpha_f),
+            alpha_b: mix(a.alpha_b, b.alpha_b),
+            beta_f2: mix(a.beta_f2, b.beta_f2),
+            beta_b2: mix(a.beta_b2, b.beta_b2),
+            big_a_b: mix(a.big_a_b, b.big_a_b),
+            delta_b: mix(a.delta_b, b.delta_b),
+            sigma_b2: mix(a.sigma_b2, b.sigma_b2),
+        }
+    }
+
+    /// N^G_p(|θd|, |φ|) from the table, RGB, 1/rad.
+    #[inline]
+    pub fn n_g(&self, lobe: Lobe, abs_theta_d: f32, abs_phi: f32) -> Vec3 {
+        self.n_g[lobe as usize].lookup(abs_theta_d, abs_phi)
+    }
+
+    /// (Ā_b, Δ̄_b, σ̄_b²) at light inclination θ (radians), interpolated.
+    #[inline]
+    pub fn back_at(&self, theta: f32) -> (Vec3, Vec3, Vec3) {
+        (
+            self.big_a_b.lookup(theta),
+            self.delta_b.lookup(theta),
+            self.sigma_b2.lookup(theta),
+        )
+    }
+
+    /// (ā_f, β̄_f²) at light inclination θ (radians), interpolated.
+    #[inline]
+    pub fn forward_at(&self, theta: f32) -> (Vec3, Vec3) {
+        (self.a_f.lookup(theta), self.beta_f2.lookup(theta))
+    }
+}
+
+/// Direct N^G_p(θd, φ) by midpoint quadrature of the exact N_p over ψ ∈ [φ − π/2, φ + π/2]
+/// (reference for the tests), circular fibre.
+pub fn n_g_direct(c: &LobeConstants, lobe: Lobe, theta_d: f64, phi: f64, n: usize) -> [f64; 3] {
+    let az = Azimuth::new(c.eta, theta_d.sin(), c.sigma_a);
+    let d = PI / n as f64;
+    let mut acc = [0.0; 3];
+    for k in 0..n {
+        let psi = phi - FRAC_PI_2 + (k as f64 + 0.5) * d;
+        let v = match lobe {
+            Lobe::TRT => az.n_trt_smoothed(c, psi),
+            _ => az.n_raw(lobe.p(), psi),
+        };
+        for ch in 0..3 {
+            acc[ch] += v[ch] * d / PI;
+        }
+    }
+    acc
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Trap 3: the exact series agrees with Eq. 16 once its ᾱ_b sign is flipped to +, to
+    /// O(ā_b⁴); the printed sign is off by ≈ 4ᾱ_b ā_b²/(1 − ā_f²)².
+    #[test]
+    fn trap3_delta_b_sign() {
+        let (a_f, a_b, al_f, al_b) = (0.6, 0.05, -0.05, 0.2);
+        let exact = delta_b(a_f, a_b, al_f, al_b);
+        let printed = delta_b_printed(a_f, a_b, al_f, al_b);
+        let x: f64 = a_f * a_f;
+        let corrected = al_b * (1.0 + 2.0 * a_b * a_b / (1.0 - x).powi(2))
+            + al_f * (2.0 * (1.0 - x).powi(2) + 4.0 * x * a_b * a_b) / (1.0 - x).powi(3);
+        let gap = 4.0 * al_b * a_b * a_b / (1.0 - x).powi(2);
+        assert!(
+            (exact - corrected).abs() < 0.05 * gap,
+            "{exact} {corrected}"
+        );
+        assert!(
+            (exact - printed - gap).abs() < 0.05 * gap,
+            "{exact} {printed} {gap}"
+        );
+        // Brute-force check of the closed form against the literal triple sum.
+        let mut num = 0.0;
+        let mut den = 0.0;
+        for i in 1..200 {
+            let w = a_b * a_f.powi(2 * i);
+            num += w * (2.0 * i as f64 * al_f + al_b);
+            den += w;
+        }
+        for i in 1..60i32 {
+            for j in 0..i {
+                for k in (j + 1)..60 {
+                    let m = 2 * (i - j - 1 + k);
+                    let w = a_b.powi(3) * a_f.powi(m);
+                    num += w * (3.0 * al_b + m as f64 * al_f);
+                    den += w;
+                }
+            }
+        }
+        assert!((num / den - exact).abs() < 1e-9, "{} vs {exact}", num / den);
+        assert!((den - big_a_b(a_f, a_b)).abs() < 1e-9);
+    }
+
+    /// Trap 2: Eq. 17 as printed changes with the angle unit; the series scales like an angle.
+    #[test]
+    fn trap2_sigma_b_units() {
+        let (a_f, a_b) = (0.7, 0.3);
+        let (bf, bb) = (0.05f64, 0.2f64);
+        let deg = 180.0 / PI;
+        let printed_rad = sigma_b_printed(a_f, a_b, bf, bb);
+        let printed_deg = sigma_b_printed(a_f, a_b, bf * deg, bb * deg) / deg;
+        assert!((printed_rad - printed_deg).abs() > 0.1 * printed_rad);
+        let s_rad = sigma_b2(a_f, a_b, bf * bf, bb * bb).sqrt();
+        let s_deg = sigma_b2(a_f, a_b, (bf * deg).powi(2), (bb * deg).powi(2)).sqrt() / deg;
+        assert!((s_rad - s_deg).abs() < 1e-9 * s_rad);
+        // Analytic case: with β_f = 0 every path has σ = √(k) β_b for k = 1 or 3 backward
+        // events, so σ_b lies between β_b and √3 β_b.
+        let s = sigma_b2(a_f, a_b, 0.0, bb * bb).sqrt();
+        assert!(s > bb && s < 3f64.sqrt() * bb);
+    }
+
+    /// Trap 6: ā_f = 1 (or above) is clamped; everything stays finite and positive.
+    #[test]
+    fn trap6_a_f_guard() {
+        for a_f in [0.99, 0.999, 1.0, 1.5] {
+            let a = big_a_b(a_f, 0.1);
+            let d = delta_b(a_f, 0.1, 0.1, 0.1);
+            let s = sigma_b2(a_f, 0.1, 0.01, 0.01);
+            assert!(a.is_finite() && a > 0.0 && d.is_finite() && s.is_finite() && s > 0.0);
+            assert_eq!(a, big_a_b(A_F_MAX, 0.1));
+        }
+    }
+
+    #[test]
+    fn erf_reference_values() {
+        // erf(0.5) = 0.5204998778, erf(1) = 0.8427007929, erf(2) = 0.9953222650 (tables).
+        assert!((erf(0.5) - 0.520_499_877_8).abs() < 2e-7);
+        assert!((erf(1.0) - 0.842_700_792_9).abs() < 2e-7);
+        assert!((erf(-2.0) + 0.995_322_265_0).abs() < 2e-7);
+    }
+}

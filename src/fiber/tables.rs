@@ -1,0 +1,203 @@
+//! Tabulated azimuthal lobes N_p(θd, φ) (Zinke 2008 §4.2: "a precomputed table for the
+//! azimuthal part of single fibre scattering"), and the small lerp tables everything else uses.
+//!
+//! Why tables: an exact N_TT/N_TRT costs a safeguarded Newton solve per root (about 1 µs for
+//! the three lobes and three channels); a bilinear lookup costs tens of nanoseconds, and the
+//! shader runs 100K–200K times per frame. N depends on θd only through sin²θd and is even in φ
+//! (circular model at index η or η*), so the grid covers |θd| ∈ [0, π/2], |φ| ∈ [0, π]. The
+//! TRT table has a third axis, cos 2φh ∈ [−1, 1], because eccentricity enters through η*(φh)
+//! (Marschner 2003 §5.2.3), which is linear in cos 2φh; with eccentricity 1 that axis has one
+//! sample. Resolutions were chosen by measured error against the exact evaluation (see
+//! `tests/fiber_tables.rs` and [`TableResolution::DEFAULT`]).
+
+use super::marschner::{Azimuth, azimuth_for};
+use super::params::{Lobe, LobeConstants};
+use glam::Vec3;
+use rayon::prelude::*;
+use std::f64::consts::{FRAC_PI_2, PI};
+
+/// Grid sizes of the fibre's tables.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TableResolution {
+    /// Samples of |θd| over [0, π/2] in the N and N^G tables.
+    pub n_theta_d: usize,
+    /// Samples of |φ| over [0, π] in the N and N^G tables.
+    pub n_phi: usize,
+    /// Samples of cos 2φh over [−1, 1] in the TRT table (when eccentricity ≠ 1).
+    pub n_ecc: usize,
+    /// Samples of θ (light inclination) over [−π/2, π/2] in the dual-scattering tables.
+    pub n_theta: usize,
+}
+
+impl TableResolution {
+    /// Measured (tests/fiber_tables.rs, default fibre): see the module docs of `dual.rs` and the
+    /// closing note of issue #3 for the errors this gives.
+    pub const DEFAULT: Self = Self {
+        n_theta_d: 91,
+        n_phi: 181,
+        n_ecc: 5,
+        n_theta: 181,
+    };
+}
+
+/// A 1D table of RGB values on a uniform grid over [x0, x1], linearly interpolated and clamped.
+#[derive(Clone, Debug)]
+pub struct Table1 {
+    x0: f32,
+    scale: f32,
+    values: Vec<Vec3>,
+}
+
+impl Table1 {
+    pub fn new(x0: f64, x1: f64, values: Vec<Vec3>) -> Self {
+        let n = values.len();
+        assert!(n >= 2, "a table needs two samples");
+        Self {
+            x0: x0 as f32,
+            scale: ((n - 1) as f64 / (x1 - x0)) as f32,
+            values,
+        }
+    }
+
+    /// Linear interpolation at x (clamped to the range; NaN reads the first sample).
+    #[inline]
+    pub fn lookup(&self, x: f32) -> Vec3 {
+        let n = self.values.len();
+        let f = ((x - self.x0) * self.scale).clamp(0.0, (n - 1) as f32);
+        let f = if f.is_nan() { 0.0 } else { f };
+        let i = (f as usize).min(n - 2);
+        let t = f - i as f32;
+        self.values[i] * (1.0 - t) + self.values[i + 1] * t
+    }
+
+    pub fn values(&self) -> &[Vec3] {
+        &self.values
+    }
+}
+
+/// A 2D table of RGB values over |θd| ∈ [0, π/2] × |φ| ∈ [0, π], bilinear.
+#[derive(Clone, Debug)]
+pub struct Table2 {
+    n_t: usize,
+    n_p: usize,
+    values: Vec<Vec3>,
+}
+
+impl Table2 {
+    /// Fills the table with `f(θd, φ)` (radians), rows in parallel (each entry independent, so
+    /// the result does not depend on the thread count).
+    pub fn build(
+        n_t: usize,
+        n_p: usize,
+        f: impl Fn(f64) -> Box<dyn Fn(f64) -> Vec3> + Sync,
+    ) -> Self {
+        let rows: Vec<Vec<Vec3>> = (0..n_t)
+            .into_par_iter()
+            .map(|i| {
+                let theta_d = FRAC_PI_2 * i as f64 / (n_t - 1) as f64;
+                let row = f(theta_d);
+                (0..n_p)
+                    .map(|j| row(PI * j as f64 / (n_p - 1) as f64))
+                    .collect()
+            })
+            .collect();
+        Self {
+            n_t,
+            n_p,
+            values: rows.into_iter().flatten().collect(),
+        }
+    }
+
+    /// A table from row-major values (`n_t` rows of |θd|, `n_p` columns of |φ|).
+    pub fn from_values(n_t: usize, n_p: usize, values: Vec<Vec3>) -> Self {
+        assert!(n_t >= 2 && n_p >= 2 && values.len() == n_t * n_p);
+        Self { n_t, n_p, values }
+    }
+
+    /// Bilinear lookup at |θd| (radians, clamped to [0, π/2]) and |φ| (radians, clamped to
+    /// [0, π]).
+    #[inline]
+    pub fn lookup(&self, abs_theta_d: f32, abs_phi: f32) -> Vec3 {
+        let ft = (abs_theta_d * ((self.n_t - 1) as f32 / std::f32::consts::FRAC_PI_2))
+            .clamp(0.0, (self.n_t - 1) as f32);
+        let fp = (abs_phi * ((self.n_p - 1) as f32 / std::f32::consts::PI))
+            .clamp(0.0, (self.n_p - 1) as f32);
+        let ft = if ft.is_nan() { 0.0 } else { ft };
+        let fp = if fp.is_nan() { 0.0 } else { fp };
+        let i = (ft as usize).min(self.n_t - 2);
+        let j = (fp as usize).min(self.n_p - 2);
+        let (u, v) = (ft - i as f32, fp - j as f32);
+        let at = |a: usize, b: usize| self.values[a * self.n_p + b];
+        let top = at(i, j) * (1.0 - v) + at(i, j + 1) * v;
+        let bot = at(i + 1, j) * (1.0 - v) + at(i + 1, j + 1) * v;
+        top * (1.0 - u) + bot * u
+    }
+}
+
+/// The renderer's N_p tables.
+#[derive(Clone, Debug)]
+pub struct NTables {
+    r: Table2,
+    tt: Table2,
+    /// One TRT table per sample of cos 2φh over [−1, 1].
+    trt: Vec<Table2>,
+}
+
+impl NTables {
+    pub fn build(c: &LobeConstants, res: &TableResolution) -> Self {
+        let simple = |lobe: Lobe| {
+            Table2::build(res.n_theta_d, res.n_phi, move |theta_d| {
+                let az = azimuth_for(c, lobe, theta_d.sin(), 1.0);
+                Box::new(move |phi| Vec3::from(az.n_raw(lobe.p(), phi).map(|x| x as f32)))
+            })
+        };
+        let n_ecc = if c.eccentricity == 1.0 {
+            1
+        } else {
+            res.n_ecc.max(2)
+        };
+        let trt = (0..n_ecc)
+            .map(|k| {
+                let cos_2phi_h = if n_ecc == 1 {
+                    1.0
+                } else {
+                    -1.0 + 2.0 * k as f64 / (n_ecc - 1) as f64
+                };
+                Table2::build(res.n_theta_d, res.n_phi, move |theta_d| {
+                    let az: Azimuth = azimuth_for(c, Lobe::TRT, theta_d.sin(), cos_2phi_h);
+                    let caustic = az.caustic(c);
+                    let c = *c;
+                    Box::new(move |phi| {
+                        Vec3::from(az.n_trt_smoothed_with(&c, &caustic, phi).map(|x| x as f32))
+                    })
+                })
+            })
+            .collect();
+        Self {
+            r: simple(Lobe::R),
+            tt: simple(Lobe::TT),
+            trt,
+        }
+    }
+
+    /// N_p at |θd|, |φ| (radians) and cos 2φh, bilinear (trilinear for TRT). RGB, 1/rad.
+    #[inline]
+    pub fn lookup(&self, lobe: Lobe, abs_theta_d: f32, abs_phi: f32, cos_2phi_h: f32) -> Vec3 {
+        match lobe {
+            Lobe::R => self.r.lookup(abs_theta_d, abs_phi),
+            Lobe::TT => self.tt.lookup(abs_theta_d, abs_phi),
+            Lobe::TRT => {
+                let n = self.trt.len();
+                if n == 1 {
+                    return self.trt[0].lookup(abs_theta_d, abs_phi);
+                }
+                let f = ((cos_2phi_h + 1.0) * 0.5 * (n - 1) as f32).clamp(0.0, (n - 1) as f32);
+                let f = if f.is_nan() { 0.0 } else { f };
+                let k = (f as usize).min(n - 2);
+                let t = f - k as f32;
+                self.trt[k].lookup(abs_theta_d, abs_phi) * (1.0 - t)
+                    + self.trt[k + 1].lookup(abs_theta_d, abs_phi) * t
+            }
+        }
+    }
+}
