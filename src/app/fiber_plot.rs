@@ -162,6 +162,32 @@ pub fn plot(out: &Path, params: &FiberParams) -> Result<(), AppError> {
             nice_step(y_max)
         );
     }
+    // TRT raw (Eq. 8) against smoothed (§5.2.2) at θd = 0, channel mean.
+    {
+        let n = 1441;
+        let az = crate::fiber::marschner::azimuth_for(c, Lobe::TRT, 0.0, 0.0);
+        let mut raw = Vec::with_capacity(n);
+        let mut smooth = Vec::with_capacity(n);
+        for k in 0..n {
+            let phi_deg = -90.0 + 180.0 * k as f64 / (n - 1) as f64;
+            let r = az.n_raw(2, phi_deg.to_radians());
+            let s = az.n_trt_smoothed(c, phi_deg.to_radians());
+            raw.push((phi_deg, (r[0] + r[1] + r[2]) / 3.0));
+            smooth.push((phi_deg, (s[0] + s[1] + s[2]) / 3.0));
+        }
+        let y_max = smooth.iter().map(|p| p.1).fold(1e-6, f64::max) * 3.0;
+        let mut p = Plot::new(-90.0, 90.0, 0.0, y_max, 15.0, nice_step(y_max));
+        p.polyline(&raw, [150, 150, 150], false);
+        p.polyline(&smooth, LOBE_COLOURS[2], false);
+        p.save(&out.join("n_trt_raw_vs_smoothed.png"))?;
+        let _ = writeln!(
+            notes,
+            "n_trt_raw_vs_smoothed.png: N_TRT(phi) at theta_d = 0, mean of R,G,B. x: phi from -90 \
+             to 90 deg, grid every 15 deg. y: 0 to {y_max:.4} (raw caustic spikes clipped), grid \
+             every {:.4}. grey = raw Eq. 8 (infinite at the caustics), green = smoothed.",
+            nice_step(y_max)
+        );
+    }
     // ā_f and ā_b against θ, per channel; and ā_f of a lighter fibre (σa / 4).
     let lighter = Fiber::new(&FiberParams {
         sigma_a: params.sigma_a.map(|s| s / 4.0),

@@ -23,6 +23,8 @@
 //!   cos θi cos θo / cos²θd = 1 − sin²θh/cos²θd, which goes to 0 across the lobe as |θi| → 90°,
 //!   so a grazing crossing would become opaque (σa = 0, θ = 80°: ā_f = 0.33 against 0.57;
 //!   pinned by `trap4_outgoing_cosine` in tests/fiber_tables.rs).
+//! - **Energy clamp.** Where that albedo exceeds 1 (|θ| ≳ 80°, Marschner's 1/cos²θd at grazing
+//!   incidence), ā_f and ā_b are scaled down together so that ā_f + ā_b = 1.
 //! - **Trap 1** is resolved in `marschner::longitudinal_m` (unit area in θo).
 //! - **Trap 2.** Every Gaussian is in radians; shifts/variances are in x = θi + θo. Eq. 17's
 //!   fit adds a number (ā_b) to an angle (ā_b³(2β̄_f + 3β̄_b)), so its value depends on the unit;
@@ -426,6 +428,12 @@ impl DualQuantities {
         for ch in 0..3 {
             let (a_f, alpha_f, beta_f2) = moments(&s.forward, ch);
             let (a_b, alpha_b, beta_b2) = moments(&s.backward, ch);
+            // Energy clamp: near grazing incidence Marschner's S is not energy conserving
+            // (its 1/cos²θd), and the albedo ā_f + ā_b can exceed 1 (measured in
+            // tests/fiber_energy.rs); both are fractions of the intercepted power, so they are
+            // scaled down together to sum to 1 there.
+            let sum = a_f + a_b;
+            let (a_f, a_b) = if sum > 1.0 { (a_f / sum, a_b / sum) } else { (a_f, a_b) };
             let a_f = a_f.min(A_F_MAX);
             q.a_f[ch] = a_f;
             q.a_b[ch] = a_b;
