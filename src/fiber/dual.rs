@@ -23,8 +23,11 @@
 //!   cos θi cos θo / cos²θd = 1 − sin²θh/cos²θd, which goes to 0 across the lobe as |θi| → 90°,
 //!   so a grazing crossing would become opaque (σa = 0, θ = 80°: ā_f = 0.33 against 0.57;
 //!   pinned by `trap4_outgoing_cosine` in tests/fiber_tables.rs).
-//! - **Energy clamp.** Where that albedo exceeds 1 (|θ| ≳ 80°, Marschner's 1/cos²θd at grazing
-//!   incidence), ā_f and ā_b are scaled down together so that ā_f + ā_b = 1.
+//! - **White-furnace normalisation.** Marschner's S is not energy conserving: with σa = 0 its
+//!   albedo ρ_w(θ) reaches 1.02 at θ = 60° and 1.84 at θ = −90° (its 1/cos²θd with lobes cut at
+//!   θo = ±90°; tests/fiber_energy.rs). ā_f and ā_b are fractions of the intercepted power, so
+//!   both are divided by max(1, ρ_w(θ)), the same geometric factor for every absorption: this
+//!   keeps ā_f + ā_b ≤ 1 and keeps lighter fibres' ā_f larger (a per-fibre clamp to 1 would not).
 //! - **Trap 1** is resolved in `marschner::longitudinal_m` (unit area in θo).
 //! - **Trap 2.** Every Gaussian is in radians; shifts/variances are in x = θi + θo. Eq. 17's
 //!   fit adds a number (ā_b) to an angle (ā_b³(2β̄_f + 3β̄_b)), so its value depends on the unit;
@@ -292,6 +295,24 @@ pub struct LobeShares {
     pub backward: [[f64; 3]; 3],
 }
 
+impl LobeShares {
+    /// ā_f + ā_b of channel 0 (for σa = 0: the hemispherical albedo, all channels equal).
+    pub fn albedo(&self) -> f64 {
+        (0..3)
+            .map(|l| self.forward[l][0] + self.backward[l][0])
+            .sum()
+    }
+}
+
+/// σa = 0 albedo ρ_w(θ) of the fibre `c` (direct quadrature; the tables use the same integral).
+pub fn white_albedo(c: &LobeConstants, theta: f64) -> f64 {
+    let white = LobeConstants {
+        sigma_a: [0.0; 3],
+        ..*c
+    };
+    shares_direct(&white, theta, CosineReading::Outgoing).albedo()
+}
+
 /// The azimuthal integrals of each lobe against w_f and w_b, tabulated over |θd|.
 struct SplitTable {
     n: usize,
@@ -300,6 +321,21 @@ struct SplitTable {
 }
 
 impl SplitTable {
+    /// The split integrals alone.
+    fn build(c: &LobeConstants, n: usize) -> Self {
+        let values = (0..n)
+            .into_par_iter()
+            .map(|i| {
+                let td = FRAC_PI_2 * i as f64 / (n - 1) as f64;
+                Lobe::ALL.map(|lobe| {
+                    let s = LobeSamples::new(c, lobe, td.sin(), N_H);
+                    (s.integral(w_forward), s.integral(w_backward))
+                })
+            })
+            .collect();
+        Self { n, values }
+    }
+
     /// The split integrals and the N^G rows (φ over [0, π], `n_phi` samples) on the same
     /// `n` samples of |θd|, from one set of h samples per (θd, lobe).
     fn build_with_n_g(c: &LobeConstants, n: usize, n_phi: usize) -> (Self, [Table2; 3]) {
@@ -406,7 +442,8 @@ pub struct DualQuantities {
 
 impl DualQuantities {
     /// Combines lobe shares into the Zinke quantities (module doc for the readings).
-    pub fn from_shares(c: &LobeConstants, s: &LobeShares) -> Self {
+    /// `white_albedo` is ρ_w(θ), the σa = 0 albedo at the same θ ([`white_albedo`]).
+    pub fn from_shares(c: &LobeConstants, s: &LobeShares, white_albedo: f64) -> Self {
         let mut q = Self::default();
         let moments = |shares: &[[f64; 3]; 3], ch: usize| {
             let total: f64 = (0..3).map(|p| shares[p][ch]).sum();
@@ -428,12 +465,14 @@ impl DualQuantities {
         for ch in 0..3 {
             let (a_f, alpha_f, beta_f2) = moments(&s.forward, ch);
             let (a_b, alpha_b, beta_b2) = moments(&s.backward, ch);
-            // Energy clamp: near grazing incidence Marschner's S is not energy conserving
-            // (its 1/cos²θd), and the albedo ā_f + ā_b can exceed 1 (measured in
-            // tests/fiber_energy.rs); both are fractions of the intercepted power, so they are
-            // scaled down together to sum to 1 there.
+            // White-furnace normalisation (module doc), then a guard for rounding.
+            let (a_f, a_b) = (a_f / white_albedo.max(1.0), a_b / white_albedo.max(1.0));
             let sum = a_f + a_b;
-            let (a_f, a_b) = if sum > 1.0 { (a_f / sum, a_b / sum) } else { (a_f, a_b) };
+            let (a_f, a_b) = if sum > 1.0 {
+                (a_f / sum, a_b / sum)
+            } else {
+                (a_f, a_b)
+            };
             let a_f = a_f.min(A_F_MAX);
             q.a_f[ch] = a_f;
             q.a_b[ch] = a_b;
@@ -478,9 +517,18 @@ impl DualTables {
             .par_iter()
             .map(|&t| shares_at(c, t, Some(&split), CosineReading::Outgoing))
             .collect();
-        let at: Vec<DualQuantities> = shares
-            .iter()
-            .map(|s| DualQuantities::from_shares(c, s))
+        let white = LobeConstants {
+            sigma_a: [0.0; 3],
+            ..*c
+        };
+        let white_split = SplitTable::build(&white, res.n_theta_d);
+        let at: Vec<DualQuantities> = theta
+            .par_iter()
+            .zip(&shares)
+            .map(|(&t, s)| {
+                let w = shares_at(&white, t, Some(&white_split), CosineReading::Outgoing);
+                DualQuantities::from_shares(c, s, w.albedo())
+            })
             .collect();
         let lut = |f: &dyn Fn(&DualQuantities) -> [f64; 3]| {
             Table1::new(

@@ -129,7 +129,7 @@ impl Fiber {
     /// back-scattering. Used to see what dual scattering adds.
     pub(crate) fn shade_single(&self, a: &HairAngles, light: &LightAtPoint) -> Vec3 {
         let tf = finite_or_zero(light.tf).clamp(Vec3::ZERO, Vec3::ONE);
-        self.bcsdf(a) * a.theta_i.cos() * tf
+        self.bcsdf(a) * a.theta_i.cos().max(0.0) * tf
     }
 
     /// DualScattering mode: Zinke 2008 Figure 5 (module doc for the combination).
@@ -168,6 +168,6 @@ impl Fiber {
             let f_back_g = a_b * gauss3(Vec3::splat(x) - delta_b, sigma_b2 + sigma_f2) * back_scale;
             out += scattered * self.d_f * (f_s_g + PI * self.d_b * f_back_g);
         }
-        finite_or_zero(out * a.theta_i.cos())
+        finite_or_zero(out * a.theta_i.cos().max(0.0))
     }
 }
