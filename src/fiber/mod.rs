@@ -140,6 +140,11 @@ impl Fiber {
         &self.resolution
     }
 
+    /// The renderer's tabulated N_p at |θd|, |φ| (radians) and cos 2φh, RGB, 1/rad.
+    pub fn n_table(&self, lobe: Lobe, abs_theta_d: f32, abs_phi: f32, cos_2phi_h: f32) -> Vec3 {
+        self.n_tables.lookup(lobe, abs_theta_d, abs_phi, cos_2phi_h)
+    }
+
     /// The dual-scattering tables (grid values and per-lobe shares).
     pub fn dual_tables(&self) -> &DualTables {
         &self.dual
