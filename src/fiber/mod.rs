@@ -95,6 +95,9 @@ pub struct Fiber {
     /// Lobe means 2α_p and variances (2β_p)² in x = θi + θo (radians, rad²).
     pub(crate) mean_x: [f32; 3],
     pub(crate) var_x: [f32; 3],
+    /// 1/√(2π var_x) and −1/(2 var_x): the unbroadened lobes' Gaussian constants.
+    pub(crate) m_norm: [f32; 3],
+    pub(crate) m_exp: [f32; 3],
     pub(crate) d_f: f32,
     pub(crate) d_b: f32,
 }
@@ -117,6 +120,8 @@ impl Fiber {
             params: params.clone(),
             mean_x: lobe(&|l| consts.mean_x(l)),
             var_x: lobe(&|l| consts.std_x(l).powi(2)),
+            m_norm: lobe(&|l| 1.0 / (2.0 * std::f64::consts::PI * consts.std_x(l).powi(2)).sqrt()),
+            m_exp: lobe(&|l| -0.5 / consts.std_x(l).powi(2)),
             d_f: params.d_f,
             d_b: params.d_b,
             consts,

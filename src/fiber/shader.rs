@@ -39,11 +39,13 @@ impl HairAngles {
         0.5 * (self.theta_o - self.theta_i)
     }
 
-    /// Angles from world vectors; None for zero or non-finite input.
+    /// Angles from world vectors; None for zero or non-finite input. Uses one acos and two
+    /// asin (no atan2): the shader needs only |φ| and cos(φi + φo).
+    #[inline]
     pub fn from_vectors(u: Vec3, wi: Vec3, wo: Vec3) -> Option<Self> {
-        let u = u.try_normalize()?;
-        let wi = wi.try_normalize()?;
-        let wo = wo.try_normalize()?;
+        let u = unit(u)?;
+        let wi = unit(wi)?;
+        let wo = unit(wo)?;
         let sin_i = wi.dot(u).clamp(-1.0, 1.0);
         let sin_o = wo.dot(u).clamp(-1.0, 1.0);
         // Orthonormal basis around u (Duff et al. 2017, branchless).
@@ -52,32 +54,45 @@ impl HairAngles {
         let b = u.x * u.y * a;
         let v = Vec3::new(1.0 + sign * u.x * u.x * a, sign * b, -sign * u.x);
         let w = Vec3::new(b, sign + u.y * u.y * a, -u.y);
+        // Unit azimuth vectors (cos φ, sin φ) of the projections on the normal plane.
         let azimuth = |d: Vec3, s: f32| {
             let p = d - u * s;
-            if p.length_squared() > 1e-12 {
-                Some(p.dot(w).atan2(p.dot(v)))
-            } else {
-                None
-            }
+            let (x, y) = (p.dot(v), p.dot(w));
+            let l2 = x * x + y * y;
+            (l2 > 1e-12).then(|| {
+                let inv = 1.0 / l2.sqrt();
+                (x * inv, y * inv)
+            })
         };
-        let (phi_i, phi_o) = match (azimuth(wi, sin_i), azimuth(wo, sin_o)) {
+        let (ai, ao) = match (azimuth(wi, sin_i), azimuth(wo, sin_o)) {
             (Some(i), Some(o)) => (i, o),
             (Some(i), None) => (i, i),
             (None, Some(o)) => (o, o),
-            (None, None) => (0.0, 0.0),
+            (None, None) => ((1.0, 0.0), (1.0, 0.0)),
         };
-        let mut phi = phi_o - phi_i;
-        if phi > PI {
-            phi -= 2.0 * PI;
-        } else if phi < -PI {
-            phi += 2.0 * PI;
-        }
+        let cos_phi = (ai.0 * ao.0 + ai.1 * ao.1).clamp(-1.0, 1.0);
+        let sin_phi = ai.0 * ao.1 - ai.1 * ao.0;
+        let phi = cos_phi.acos().copysign(sin_phi);
         Some(Self {
             theta_i: sin_i.asin(),
             theta_o: sin_o.asin(),
             phi,
-            cos_2phi_h: (phi_i + phi_o).cos(),
+            cos_2phi_h: ai.0 * ao.0 - ai.1 * ao.1,
         })
+    }
+}
+
+/// `v` normalised, or None when it is zero, tiny or not finite. Unit input (the documented
+/// case) skips the square root.
+#[inline]
+fn unit(v: Vec3) -> Option<Vec3> {
+    let l2 = v.length_squared();
+    if (l2 - 1.0).abs() < 1e-6 {
+        Some(v)
+    } else if l2.is_finite() && l2 > 1e-30 {
+        Some(v / l2.sqrt())
+    } else {
+        None
     }
 }
 
@@ -113,7 +128,8 @@ impl Fiber {
         let (td, ph) = (theta_d.abs(), a.phi.abs());
         Lobe::ALL.map(|lobe| {
             let l = lobe as usize;
-            let m = gauss3(Vec3::splat(x - self.mean_x[l]), Vec3::splat(self.var_x[l])).x;
+            let dx = x - self.mean_x[l];
+            let m = (dx * dx * self.m_exp[l]).exp() * self.m_norm[l];
             self.n_tables.lookup(lobe, td, ph, a.cos_2phi_h) * (m * inv)
         })
     }
