@@ -5,7 +5,6 @@
 use super::AppError;
 use crate::fiber::marschner::n_lobe;
 use crate::fiber::{Fiber, FiberParams, Lobe};
-use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -205,9 +204,9 @@ pub fn plot(out: &Path, params: &FiberParams) -> Result<(), AppError> {
             .collect()
     };
     let mut p = Plot::new(-90.0, 90.0, 0.0, 1.0, 15.0, 0.1);
-    for ch in 0..3 {
-        p.polyline(&series(&fiber, 0, ch), CHANNEL_COLOURS[ch], false);
-        p.polyline(&series(&fiber, 1, ch), CHANNEL_COLOURS[ch], true);
+    for (ch, colour) in CHANNEL_COLOURS.iter().enumerate() {
+        p.polyline(&series(&fiber, 0, ch), *colour, false);
+        p.polyline(&series(&fiber, 1, ch), *colour, true);
     }
     p.save(&out.join("a_f_a_b.png"))?;
     let _ = writeln!(
@@ -216,9 +215,9 @@ pub fn plot(out: &Path, params: &FiberParams) -> Result<(), AppError> {
          1, grid every 0.1. solid = a_f, dashed = a_b; red/green/blue = channel."
     );
     let mut p = Plot::new(-90.0, 90.0, 0.0, 1.0, 15.0, 0.1);
-    for ch in 0..3 {
-        p.polyline(&series(&fiber, 0, ch), CHANNEL_COLOURS[ch], false);
-        p.polyline(&series(&lighter, 0, ch), CHANNEL_COLOURS[ch], true);
+    for (ch, colour) in CHANNEL_COLOURS.iter().enumerate() {
+        p.polyline(&series(&fiber, 0, ch), *colour, false);
+        p.polyline(&series(&lighter, 0, ch), *colour, true);
     }
     p.save(&out.join("a_f_lighter.png"))?;
     let _ = writeln!(
@@ -226,7 +225,6 @@ pub fn plot(out: &Path, params: &FiberParams) -> Result<(), AppError> {
         "a_f_lighter.png: a_f against theta (axes as a_f_a_b.png); solid = this fibre, dashed = \
          the same fibre with sigma_a / 4 (lighter hair); red/green/blue = channel."
     );
-    let _ = PI;
     std::fs::write(out.join("plots.txt"), notes)
         .map_err(|e| AppError::other(anyhow::anyhow!("{}: {e}", out.display())))?;
     Ok(())

@@ -16,12 +16,16 @@
 //! unit area in θo ("m_normalization": "theta_o", trap 1); σ̄_f², β̄_f² are variances of x.
 //!
 //! The ten traps of DESIGN.md and where each is resolved (doc comment + pinning test):
-//! 1. M normalisation: `marschner::longitudinal_m`. 2. Gaussians in radians, Eq. 17 units:
-//! `dual` (series, not the fit). 3. Eq. 16's sign: `dual::delta_b`. 4. Eq. 6's cosine: `dual`
-//! (outgoing). 5. Eq. 25 as a convolution: `dual::LobeSamples::n_g`. 6. 1 − ā_f² guard: `dual::A_F_MAX`.
-//! 7. Caustic ∞·0, merge, bracketing, reversed smoothstep: `marschner`. 8. No path gives 0:
-//! `marschner::Azimuth::roots`. 9. 1/cos²θd and θ = ±90°: `marschner::COS_THETA_D_MIN`,
-//! `shader::HairAngles`. 10. η'' is not an index: `fresnel`.
+//! 1. M normalisation (unit area in θo): `marschner::longitudinal_m`.
+//! 2. Gaussians in radians; Eq. 17's mixed units (series, not the fit): `dual`.
+//! 3. Eq. 16's sign (+, derived): `dual::delta_b`.
+//! 4. Eq. 6's cosine (outgoing, the energy fraction): `dual`.
+//! 5. Eq. 25 as a convolution over φ': `dual::LobeSamples::n_g`.
+//! 6. 1 − ā_f² guard: `dual::A_F_MAX`.
+//! 7. Caustic ∞·0, merge, bracketed roots, reversed smoothstep: `marschner`.
+//! 8. No path gives 0: `marschner::Azimuth::roots`.
+//! 9. 1/cos²θd and θ = ±90°: `marschner::COS_THETA_D_MIN`, `shader::HairAngles`.
+//! 10. η'' is not a refraction index: `fresnel`.
 
 pub mod dual;
 pub mod fresnel;
