@@ -400,6 +400,19 @@ mod tests {
         }
     }
 
+    /// Trap 9: 1/cos²θd is floored at cos θd = 0.01 (≤ 10⁴), reached only at the corner
+    /// θi = −θo = ±90°, where S stays finite; just inside the floor it is the true 1/cos²θd.
+    #[test]
+    fn grazing_floor() {
+        assert_eq!(inv_cos2_theta_d(PI / 2.0), 1e4);
+        assert_eq!(inv_cos2_theta_d(-PI / 2.0), 1e4);
+        let td = 89.0f64.to_radians();
+        assert!((inv_cos2_theta_d(td) - 1.0 / td.cos().powi(2)).abs() < 1e-9);
+        let c = consts();
+        let s = bcsdf_exact(&c, PI / 2.0, -PI / 2.0, 0.0, 1.0);
+        assert!(s.iter().flatten().all(|x| x.is_finite() && *x >= 0.0));
+    }
+
     #[test]
     fn smoothstep_is_reversed() {
         assert_eq!(smoothstep_paper(2.0, 2.3, 1.9), 1.0);

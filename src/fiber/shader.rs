@@ -16,6 +16,11 @@
 //!
 //! **Degenerate input.** Zero or non-finite vectors give 0. A direction along ±u has no azimuth
 //! (trap 9): it takes the other direction's azimuth (φ = 0), which is finite and deterministic.
+//!
+//! **Eccentricity frame.** η*(φh) needs the azimuth of the cross-section's axes, which strands do
+//! not carry (no twist). Azimuths are measured from the first vector of a branchless orthonormal
+//! basis built from u alone (Duff et al. 2017), so the ellipse orientation is a fixed,
+//! deterministic function of the tangent direction.
 
 use super::marschner::COS_THETA_D_MIN;
 use super::params::Lobe;
@@ -185,5 +190,39 @@ impl Fiber {
             out += scattered * self.d_f * (f_s_g + PI * self.d_b * f_back_g);
         }
         finite_or_zero(out * a.theta_i.cos().max(0.0))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Trap 9: a direction along ±u has no azimuth; it takes the other's (φ = 0), and the
+    /// angles are those of the limit along that azimuth.
+    #[test]
+    fn direction_along_tangent_has_phi_zero() {
+        let u = Vec3::Y;
+        let wo = Vec3::new(0.6, -0.8, 0.0);
+        let a = HairAngles::from_vectors(u, u, wo).expect("valid");
+        assert_eq!(a.phi, 0.0);
+        assert!((a.theta_i - std::f32::consts::FRAC_PI_2).abs() < 1e-6);
+        let b = HairAngles::from_vectors(u, -u, -u).expect("valid");
+        assert_eq!(b.phi, 0.0);
+        assert!(HairAngles::from_vectors(Vec3::ZERO, u, wo).is_none());
+        assert!(HairAngles::from_vectors(u, Vec3::splat(f32::NAN), wo).is_none());
+    }
+
+    /// The frame-free angles agree with the definitions: θ = asin(ω·u), φ = φo − φi.
+    #[test]
+    fn angles_match_definitions() {
+        let u = Vec3::Z;
+        let (ti, pi_, to, po) = (0.3f32, 0.4f32, -0.5f32, 2.9f32);
+        let d = |t: f32, p: f32| Vec3::new(t.cos() * p.cos(), t.cos() * p.sin(), t.sin());
+        let a = HairAngles::from_vectors(u, d(ti, pi_), d(to, po)).expect("valid");
+        assert!((a.theta_i - ti).abs() < 1e-5 && (a.theta_o - to).abs() < 1e-5);
+        assert!((a.phi - (po - pi_)).abs() < 1e-5, "{}", a.phi);
+        // cos 2φh = cos(φi + φo) up to the frame's azimuth origin ψ: cos(φi + φo − 2ψ); the
+        // frame built from u = +Z is the identity (ψ = 0).
+        assert!((a.cos_2phi_h - (pi_ + po).cos()).abs() < 1e-5, "{}", a.cos_2phi_h);
     }
 }
