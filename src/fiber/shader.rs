@@ -223,6 +223,10 @@ mod tests {
         assert!((a.phi - (po - pi_)).abs() < 1e-5, "{}", a.phi);
         // cos 2φh = cos(φi + φo) up to the frame's azimuth origin ψ: cos(φi + φo − 2ψ); the
         // frame built from u = +Z is the identity (ψ = 0).
-        assert!((a.cos_2phi_h - (pi_ + po).cos()).abs() < 1e-5, "{}", a.cos_2phi_h);
+        assert!(
+            (a.cos_2phi_h - (pi_ + po).cos()).abs() < 1e-5,
+            "{}",
+            a.cos_2phi_h
+        );
     }
 }
