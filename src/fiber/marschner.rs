@@ -444,6 +444,14 @@ mod tests {
         assert_eq!(az.roots(1, 2.0 * c - 0.01).1, 0);
         assert_eq!(az.n_raw(1, 0.0), [0.0; 3]);
         assert!(az.n_raw(1, 2.0 * c + 0.05)[0] > 0.0);
+        // Raw TRT reaches only |φ| ≤ |4c − π| = 19.3° at θd = 0 (Eq. 3 at h = ±1): beyond, no
+        // root and exactly 0; the smoothed lobe there is the glints alone.
+        let reach = (4.0 * c - PI).abs();
+        for phi in [reach + 1e-3, 0.5, 1.5, PI] {
+            assert_eq!(az.roots(2, phi).1, 0, "φ={phi}");
+            assert_eq!(az.n_raw(2, phi), [0.0; 3]);
+        }
+        assert!(az.n_raw(2, reach - 1e-3)[0] > 0.0);
     }
 
     /// Trap 7: just below the merge (η' = 1.999) TRT has three roots for small φ, found by
