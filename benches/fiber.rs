@@ -51,6 +51,24 @@ fn bench(c: &mut Criterion) {
             })
         });
     }
+    // Coherent input, as along a strand: the view sweeps slowly across 1024 vertices.
+    let sweep: Vec<(Vec3, Vec3)> = (0..1024)
+        .map(|k| {
+            let t = k as f32 / 1024.0;
+            let wi = Vec3::new(0.7, 0.3, 0.648).normalize();
+            let wo = Vec3::new((3.0 * t).cos(), 0.2 - 0.4 * t, (3.0 * t).sin()).normalize();
+            (wi, wo)
+        })
+        .collect();
+    c.bench_function("shade_dual_coherent_x1024", |b| {
+        b.iter(|| {
+            let mut acc = Vec3::ZERO;
+            for (wi, wo) in &sweep {
+                acc += fiber.shade(ShadingMode::DualScattering, u, *wi, *wo, black_box(&light));
+            }
+            acc
+        })
+    });
     c.bench_function("forward_scatter_x1024", |b| {
         b.iter(|| {
             let mut acc = Vec3::ZERO;

@@ -38,7 +38,10 @@
 //!   minus sign is wrong (its ᾱ_f coefficient is right). We use the exact closed form.
 //! - **Trap 6.** 1 − ā_f² divides A_b, Δ_b and σ_b; ā_f is clamped to [`A_F_MAX`] before them.
 //! - **Trap 5, Eq. 25** is read as the convolution N^G(θ, φ) = ∫ s̃_f(φ') N(θ, φ − φ') dφ' over
-//!   φ' ∈ [−π/2, π/2] with s̃_f = 1/π, not the φ-independent integral it prints.
+//!   φ' ∈ [−π/2, π/2] with s̃_f = 1/π: light arriving isotropically from the front half circle
+//!   around the light direction. The printed form (N(θ, φ') with no φ) would be a constant in φ,
+//!   making forward-scattered light look the same from every side; the convolution keeps TT's
+//!   preference for φ ≈ π (more than 5× its φ = 0 value, `trap5_n_g_is_a_convolution`).
 //! - Lobe shifts/variances of the front and back halves: ᾱ = Σ_p w_p 2α_p, β̄² = Σ_p w_p
 //!   ((2β_p)² + (2α_p)²) − ᾱ² (moment matching the mixture), w_p the lobe's share of ā.
 //! - Tables ignore eccentricity (circular fibre of index η), as Zinke §4.2 does for N^G.
@@ -51,7 +54,10 @@ use rayon::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Upper clamp of ā_f before 1 − ā_f² divides anything (trap 6). With it, 1/(1 − ā_f²)³ ≤
-/// 1.3·10⁵; physical fibres stay well below it (ā_f ≤ 0.8 at σa = 0, see tests).
+/// 1.3·10⁵; physical fibres stay well below it (ā_f ≤ 0.8 at σa = 0, see tests). Why: the
+/// factors amplify errors, d ln Ā_1 / d ln ā_f = 2/(1 − ā_f²), so a 1% error in ā_f = 0.9 is a
+/// 10% error in Ā_b, and ā_f ≥ 1 (a non-conserving BCSDF, or interpolation) would make Ā_b,
+/// Δ̄_b and σ̄_b infinite or negative. The alternative, no guard, fails `trap6_a_f_guard`.
 pub const A_F_MAX: f64 = 0.99;
 
 /// Samples of γi in the h-space quadratures (midpoint rule).

@@ -94,6 +94,8 @@ pub struct Fiber {
     consts: LobeConstants,
     resolution: TableResolution,
     pub(crate) n_tables: NTables,
+    /// [N_R, N_TT, N^G_R, N^G_TT, N^G_TRT] interleaved on one grid (the shader's lookups).
+    pub(crate) lobes: tables::Table2x<5>,
     pub(crate) dual: DualTables,
     kk: KajiyaKay,
     /// Lobe means 2α_p and variances (2β_p)² in x = θi + θo (radians, rad²).
@@ -119,6 +121,13 @@ impl Fiber {
         let n_tables = NTables::build(&consts, resolution);
         let dual = DualTables::build(&consts, resolution);
         let kk = KajiyaKay::new(&consts, &dual);
+        let lobes = tables::Table2x::zip([
+            &n_tables.r,
+            &n_tables.tt,
+            &dual.n_g[0],
+            &dual.n_g[1],
+            &dual.n_g[2],
+        ]);
         let lobe = |f: &dyn Fn(Lobe) -> f64| Lobe::ALL.map(|l| f(l) as f32);
         Self {
             params: params.clone(),
@@ -131,6 +140,7 @@ impl Fiber {
             consts,
             resolution: *resolution,
             n_tables,
+            lobes,
             dual,
             kk,
         }

@@ -128,15 +128,24 @@ impl Fiber {
     /// M_p(θi, θo) N_p(θd, φ) / cos²θd (Marschner 2003 Eq. 9, M normalised in θo).
     pub fn bcsdf_lobes(&self, a: &HairAngles) -> [Vec3; 3] {
         let theta_d = a.theta_d();
+        let [n_r, n_tt, ..] = self.lobes.lookup(theta_d.abs(), a.phi.abs());
+        self.bcsdf_with(a, n_r, n_tt)
+    }
+
+    /// [`Self::bcsdf_lobes`] with N_R and N_TT already looked up.
+    #[inline]
+    fn bcsdf_with(&self, a: &HairAngles, n_r: Vec3, n_tt: Vec3) -> [Vec3; 3] {
+        let theta_d = a.theta_d();
         let inv = inv_cos2(theta_d);
         let x = a.theta_i + a.theta_o;
-        let (td, ph) = (theta_d.abs(), a.phi.abs());
-        Lobe::ALL.map(|lobe| {
-            let l = lobe as usize;
+        let n_trt = self
+            .n_tables
+            .lookup(Lobe::TRT, theta_d.abs(), a.phi.abs(), a.cos_2phi_h);
+        let m = |l: usize| {
             let dx = x - self.mean_x[l];
-            let m = (dx * dx * self.m_exp[l]).exp() * self.m_norm[l];
-            self.n_tables.lookup(lobe, td, ph, a.cos_2phi_h) * (m * inv)
-        })
+            (dx * dx * self.m_exp[l]).exp() * self.m_norm[l] * inv
+        };
+        [n_r * m(0), n_tt * m(1), n_trt * m(2)]
     }
 
     /// Marschner S summed over lobes.
@@ -167,23 +176,23 @@ impl Fiber {
         let x = a.theta_i + a.theta_o;
         let (a_b, delta_b, sigma_b2) = self.dual.back_at(a.theta_i);
         let back_scale = 2.0 / PI * inv;
+        let [n_r, n_tt, ng_r, ng_tt, ng_trt] = self.lobes.lookup(theta_d.abs(), a.phi.abs());
         let mut out = Vec3::ZERO;
         if direct > 0.0 {
-            let f_s = self.bcsdf(a);
+            let [r, tt, trt] = self.bcsdf_with(a, n_r, n_tt);
+            let f_s = r + tt + trt;
             let f_back = a_b * gauss3(Vec3::splat(x) - delta_b, sigma_b2) * back_scale;
             out += direct * (f_s + self.d_b * f_back);
         }
         let scattered = (tf - Vec3::splat(direct)).max(Vec3::ZERO);
         if scattered.max_element() > 0.0 {
-            let (td, ph) = (theta_d.abs(), a.phi.abs());
             let mut f_s_g = Vec3::ZERO;
-            for lobe in Lobe::ALL {
-                let l = lobe as usize;
+            for (l, n_g) in [ng_r, ng_tt, ng_trt].into_iter().enumerate() {
                 let m = gauss3(
                     Vec3::splat(x - self.mean_x[l]),
                     Vec3::splat(self.var_x[l]) + sigma_f2,
                 );
-                f_s_g += m * self.dual.n_g(lobe, td, ph);
+                f_s_g += m * n_g;
             }
             f_s_g *= inv;
             let f_back_g = a_b * gauss3(Vec3::splat(x) - delta_b, sigma_b2 + sigma_f2) * back_scale;
