@@ -169,9 +169,10 @@ impl Fiber {
         &self.dual
     }
 
-    /// Per-crossing forward scattering for light whose direction makes `sin_theta` (= ω·u)
-    /// with the fibre tangent: a table lerp (no allocation). Out-of-range or NaN input is
-    /// clamped.
+    /// Per-crossing forward scattering for light whose direction makes `sin_theta` (= ωi·u)
+    /// with the fibre tangent: a table lerp (no allocation). ωi points toward the light, so for
+    /// light travelling along L, `sin_theta = −L·u` (the tables are not even in θ: the cuticle
+    /// tilt α makes root-ward and tip-ward light differ). Out-of-range or NaN input is clamped.
     #[inline]
     pub fn forward_scatter(&self, sin_theta: f32) -> ForwardScatter {
         let s = if sin_theta.is_nan() {
