@@ -369,3 +369,72 @@ fn direct_fraction_above_tf_is_clamped() {
         fiber.shade(ShadingMode::DualScattering, u, wi, wo, &l2)
     );
 }
+
+/// Figure 5's composition: with d_b = 0 and full direct light the dual shader is the single
+/// scattering shader; the scattered path is linear in T_f − directFraction.
+#[test]
+fn dual_composition_properties() {
+    let fiber = Fiber::new(&FiberParams {
+        d_b: 0.0,
+        ..Default::default()
+    });
+    let u = Vec3::new(0.1, 1.0, 0.2).normalize();
+    let pairs = [
+        (Vec3::new(0.8, 0.3, 0.0), Vec3::new(-0.7, -0.2, 0.3)),
+        (Vec3::new(0.0, -0.5, 0.9), Vec3::new(0.3, 0.6, -0.7)),
+        (Vec3::new(-0.4, 0.1, -0.9), Vec3::new(-0.5, -0.1, 0.8)),
+    ];
+    for (wi, wo) in pairs {
+        let (wi, wo) = (wi.normalize(), wo.normalize());
+        let d = fiber.shade(
+            ShadingMode::DualScattering,
+            u,
+            wi,
+            wo,
+            &LightAtPoint::UNSHADOWED,
+        );
+        let s = fiber.shade(
+            ShadingMode::SingleScattering,
+            u,
+            wi,
+            wo,
+            &LightAtPoint::UNSHADOWED,
+        );
+        assert!(
+            (d - s).abs().max_element() <= 1e-6 * s.max_element().max(1e-6),
+            "{d} vs {s}"
+        );
+        let scattered = |t: f32| {
+            let l = LightAtPoint {
+                direct_fraction: 0.0,
+                tf: Vec3::splat(t),
+                sigma_f2: Vec3::splat(0.03),
+            };
+            fiber.shade(ShadingMode::DualScattering, u, wi, wo, &l)
+        };
+        let (a, b) = (scattered(0.2), scattered(0.6));
+        assert!(
+            (b - 3.0 * a).abs().max_element() <= 1e-5 * b.max_element().max(1e-6),
+            "{a} {b}"
+        );
+        assert!(b.max_element() > 0.0);
+    }
+}
+
+/// Kajiya-Kay's diffuse colour comes from σa (TT + TRT energy at normal incidence): brown hair
+/// is red > green > blue, and lighter hair is brighter in every channel.
+#[test]
+fn kajiya_kay_colour_from_absorption() {
+    let u = Vec3::Y;
+    let wi = Vec3::new(1.0, 0.0, 0.0);
+    let wo = Vec3::new(0.0, 0.0, 1.0); // θi = θo = 0: the white specular peak adds equally
+    let brown = Fiber::new(&FiberParams::default());
+    let light = Fiber::new(&FiberParams {
+        sigma_a: [0.1, 0.2, 0.4],
+        ..Default::default()
+    });
+    let shade = |f: &Fiber| f.shade(ShadingMode::KajiyaKay, u, wi, wo, &LightAtPoint::UNSHADOWED);
+    let (b, l) = (shade(&brown), shade(&light));
+    assert!(b.x > b.y && b.y > b.z, "{b}");
+    assert!(l.cmpgt(b).all(), "{l} vs {b}");
+}
