@@ -10,7 +10,7 @@
 //! sample. Resolutions were chosen by measured error against the exact evaluation (see
 //! `tests/fiber_tables.rs` and [`TableResolution::DEFAULT`]).
 
-use super::marschner::{Azimuth, azimuth_for};
+use super::marschner::{Azimuth, COS_THETA_D_MIN, azimuth_for, eta_star};
 use super::params::{Lobe, LobeConstants};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -31,23 +31,25 @@ pub struct TableResolution {
 
 impl TableResolution {
     /// Chosen by measured error against direct evaluation (default fibre, tests/fiber_tables.rs;
-    /// max abs error over 3000 random points, N in 1/rad):
+    /// max abs error over 3000–6000 random points, N in 1/rad):
     ///
-    /// | θd × φ × ecc × θ    | N_R     | N_TT    | N_TRT   | ā_f     | ā_b     | Fiber::new |
-    /// |---------------------|---------|---------|---------|---------|---------|------------|
-    /// | 46 × 91 × 3 × 91    | 9.5e-4  | 2.2e-4  | 3.4e-3  | 7.8e-4  | 1.2e-3  | ≈ 25 ms    |
-    /// | 91 × 181 × 5 × 181  | 2.6e-4  | 6.6e-5  | 2.1e-3  | 1.9e-4  | 3.0e-4  | ≈ 60 ms    |
-    /// | **91 × 91 × 13 × 181** | 2.5e-4 | 1.1e-4 | 5.4e-4 | 1.9e-4 | 3.0e-4  | ≈ 40 ms    |
-    /// | 181 × 361 × 5 × 361 | 6.7e-5  | 1.8e-5  | 2.1e-3  | 5.2e-5  | 8.2e-5  | ≈ 250 ms   |
+    /// | θd × φ × ecc × θ       | N_R    | N_TT   | N_TRT  | ā_f    | ā_b    | Fiber::new |
+    /// |------------------------|--------|--------|--------|--------|--------|------------|
+    /// | 46 × 91 × 3 × 91       | 9.5e-4 | 2.2e-4 | —      | 7.8e-4 | 1.2e-3 | ≈ 25 ms    |
+    /// | 91 × 91 × 5 × 181      | 2.5e-4 | 1.1e-4 | 5.0e-4 | 1.9e-4 | 3.0e-4 | ≈ 35 ms    |
+    /// | **91 × 91 × 9 × 181**  | 2.5e-4 | 1.1e-4 | 2.8e-4 | 1.9e-4 | 3.0e-4 | ≈ 40 ms    |
+    /// | 91 × 91 × 13 × 181     | 2.5e-4 | 1.1e-4 | 2.1e-4 | 1.9e-4 | 3.0e-4 | ≈ 45 ms    |
+    /// | 181 × 361 × 5 × 361    | 6.7e-5 | 1.8e-5 | —      | 5.2e-5 | 8.2e-5 | ≈ 250 ms   |
     ///
-    /// (peaks: N_R 0.21, N_TT 0.21, N_TRT 0.0092 for brown hair). N_TRT's error is set by the
-    /// cos 2φh axis: η*(φh) moves the caustic merge (η' = 2) in θd, so the lobe changes fastest
-    /// there (worst point θd ≈ 60°, inside the merge fade); it falls quadratically with n_ecc
-    /// (5: 2.1e-3, 9: 1.2e-3, 13: 5.4e-4, 17: 2.5e-4), not with the θd or φ steps.
+    /// (peaks: N_R 0.21, N_TT 0.21, N_TRT 0.010 for brown hair; for σa = 0.1 and eccentricity
+    /// 0.85 the TRT peak is 0.105 and its error 2.1e-3 at n_ecc = 9.) The cos 2φh axis sets
+    /// N_TRT's error: η*(φh) moves the caustic merge (η' = 2) in θd, so layers are interpolated at
+    /// equal η' rather than equal θd (see `lookup`); interpolating at equal θd gave 2.1e-3
+    /// (n_ecc = 5) to 5.4e-4 (n_ecc = 13), worst inside the merge fade at θd ≈ 60°.
     pub const DEFAULT: Self = Self {
         n_theta_d: 91,
         n_phi: 91,
-        n_ecc: 13,
+        n_ecc: 9,
         n_theta: 181,
     };
 }
@@ -200,6 +202,10 @@ pub struct NTables {
     pub(crate) tt: Table2,
     /// One TRT table per sample of cos 2φh over [−1, 1].
     trt: Vec<Table2>,
+    /// η* of each TRT layer, and η*(cos 2φh) = mid + half · cos 2φh (Marschner 2003 §5.2.3).
+    trt_eta_star: Vec<f32>,
+    eta_star_mid: f32,
+    eta_star_half: f32,
 }
 
 impl NTables {
@@ -232,10 +238,27 @@ impl NTables {
                 })
             })
             .collect();
+        let trt_eta_star = (0..n_ecc)
+            .map(|k| {
+                let c2 = if n_ecc == 1 {
+                    1.0
+                } else {
+                    -1.0 + 2.0 * k as f64 / (n_ecc - 1) as f64
+                };
+                eta_star(c.eta, c.eccentricity, c2) as f32
+            })
+            .collect();
+        let (e1, e2) = (
+            eta_star(c.eta, c.eccentricity, 1.0),
+            eta_star(c.eta, c.eccentricity, -1.0),
+        );
         Self {
             r: simple(Lobe::R),
             tt: simple(Lobe::TT),
             trt,
+            trt_eta_star,
+            eta_star_mid: (0.5 * (e1 + e2)) as f32,
+            eta_star_half: (0.5 * (e1 - e2)) as f32,
         }
     }
 
@@ -250,12 +273,29 @@ impl NTables {
                 if n == 1 {
                     return self.trt[0].lookup(abs_theta_d, abs_phi);
                 }
-                let f = ((cos_2phi_h + 1.0) * 0.5 * (n - 1) as f32).clamp(0.0, (n - 1) as f32);
-                let f = if f.is_nan() { 0.0 } else { f };
+                let c2 = if cos_2phi_h.is_nan() {
+                    0.0
+                } else {
+                    cos_2phi_h.clamp(-1.0, 1.0)
+                };
+                let f = (c2 + 1.0) * 0.5 * (n - 1) as f32;
                 let k = (f as usize).min(n - 2);
                 let t = f - k as f32;
-                self.trt[k].lookup(abs_theta_d, abs_phi) * (1.0 - t)
-                    + self.trt[k + 1].lookup(abs_theta_d, abs_phi) * t
+                // Feature-aligned interpolation across layers: each layer is read where *its*
+                // η* reaches the actual η'(η*, θd), so the caustic merge (η' = 2) and its fade
+                // line up between layers (the caustic structure depends on η' alone).
+                let es = self.eta_star_mid + self.eta_star_half * c2;
+                let (sin_d, cos_d) = abs_theta_d.sin_cos();
+                let cos_d = cos_d.max(COS_THETA_D_MIN as f32);
+                let ep2 = (es * es - sin_d * sin_d) / (cos_d * cos_d);
+                let max_s2 = 1.0 - (COS_THETA_D_MIN * COS_THETA_D_MIN) as f32;
+                let at = |j: usize| {
+                    let e = self.trt_eta_star[j];
+                    let s2 = ((ep2 - e * e) / (ep2 - 1.0)).clamp(0.0, max_s2);
+                    let s2 = if s2.is_nan() { 0.0 } else { s2 };
+                    self.trt[j].lookup(s2.sqrt().asin(), abs_phi)
+                };
+                at(k) * (1.0 - t) + at(k + 1) * t
             }
         }
     }
