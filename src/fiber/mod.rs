@@ -8,7 +8,8 @@
 //!
 //! Layout: `params` (JSON parameters, per-lobe constants), `fresnel` (Bravais indices,
 //! generalised Fresnel), `marschner` (exact M, N, A, roots of Eq. 3, caustics), `tables`
-//! (tabulated N_p, lerp tables), `dual` (Zinke's ā_f, ā_b, Ā_b, Δ̄_b, σ̄_b², N^G), `shader`
+//! (tabulated N_p, lerp tables), `dual` (Zinke's ā_f, ā_b and their tables, N^G),
+//! `backscatter` (Ā_b, Δ̄_b, σ̄_b² from them), `shader`
 //! (Figure 5 and single scattering), `kajiya_kay`.
 //!
 //! Conventions: radians and SI inside; θ from the normal plane (sin θ = ω·u), ωi toward the
@@ -18,15 +19,16 @@
 //! The ten traps of DESIGN.md and where each is resolved (doc comment + pinning test):
 //! 1. M normalisation (unit area in θo): `marschner::longitudinal_m`.
 //! 2. Gaussians in radians; Eq. 17's mixed units (series, not the fit): `dual`.
-//! 3. Eq. 16's sign (+, derived): `dual::delta_b`.
+//! 3. Eq. 16's sign (+, derived): `backscatter::delta_b`.
 //! 4. Eq. 6's cosine (outgoing, the energy fraction): `dual`.
 //! 5. Eq. 25 as a convolution over φ': `dual::LobeSamples::n_g`.
-//! 6. 1 − ā_f² guard: `dual::A_F_MAX`.
+//! 6. 1 − ā_f² guard: `backscatter::A_F_MAX`.
 //! 7. Caustic ∞·0, merge, bracketed roots, reversed smoothstep: `marschner`.
 //! 8. No path gives 0: `marschner::Azimuth::roots`.
 //! 9. 1/cos²θd and θ = ±90°: `marschner::COS_THETA_D_MIN`, `shader::HairAngles`.
 //! 10. η'' is not a refraction index: `fresnel`.
 
+pub mod backscatter;
 pub mod dual;
 pub mod fresnel;
 pub mod kajiya_kay;
