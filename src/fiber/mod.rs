@@ -8,7 +8,8 @@
 //!
 //! Layout: `params` (JSON parameters, per-lobe constants), `fresnel` (Bravais indices,
 //! generalised Fresnel), `marschner` (exact M, N, A, roots of Eq. 3, caustics), `tables`
-//! (tabulated N_p, lerp tables), `dual` (Zinke's ā_f, ā_b and their tables, N^G),
+//! (tabulated N_p, lerp tables), `azimuthal` (integrals of N_p over φ in h-space, N^G),
+//! `dual` (Zinke's ā_f, ā_b and their tables),
 //! `backscatter` (Ā_b, Δ̄_b, σ̄_b² from them), `shader`
 //! (Figure 5 and single scattering), `kajiya_kay`.
 //!
@@ -21,13 +22,14 @@
 //! 2. Gaussians in radians; Eq. 17's mixed units (series, not the fit): `dual`.
 //! 3. Eq. 16's sign (+, derived): `backscatter::delta_b`.
 //! 4. Eq. 6's cosine (outgoing, the energy fraction): `dual`.
-//! 5. Eq. 25 as a convolution over φ': `dual::LobeSamples::n_g`.
+//! 5. Eq. 25 as a convolution over φ': `azimuthal::LobeSamples::n_g`.
 //! 6. 1 − ā_f² guard: `backscatter::A_F_MAX`.
 //! 7. Caustic ∞·0, merge, bracketed roots, reversed smoothstep: `marschner`.
 //! 8. No path gives 0: `marschner::Azimuth::roots`.
 //! 9. 1/cos²θd and θ = ±90°: `marschner::COS_THETA_D_MIN`, `shader::HairAngles`.
 //! 10. η'' is not a refraction index: `fresnel`.
 
+pub mod azimuthal;
 pub mod backscatter;
 pub mod dual;
 pub mod fresnel;
