@@ -7,7 +7,8 @@
 //! the TRT glints are integrated in φ. Then one longitudinal quadrature over θo per table entry.
 //! Building every table for the default fibre takes tens of milliseconds (see `benches/fiber.rs`).
 //!
-//! Readings chosen (each pinned by a test in `tests/fiber_tables.rs` or below):
+//! Readings chosen (each pinned by a test in `tests/fiber_tables.rs`, `backscatter.rs` or
+//! `tests/fiber_energy.rs`):
 //! - **Eq. 6/12, which hemisphere.** The incident azimuth is averaged over the half circle
 //!   facing the light and the outgoing one is split into the world-fixed front (away from the
 //!   light) and back halves, as the double integral prints; for a relative azimuth φ the
