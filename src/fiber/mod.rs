@@ -1,92 +1,52 @@
 //! Fibre scattering: Marschner 2003 BCSDF and Zinke 2008 dual-scattering quantities.
 //!
-//! CONTRACT (owned by the fibre work, issue #3): this module knows nothing of grids, strands
-//! or pixels. The rest of the engine uses only:
+//! This module knows nothing of grids, strands or pixels. The rest of the engine uses only:
 //! - [`FiberParams`] (serde, from hairstyle JSON; `validate`),
 //! - [`Fiber::new`] (precomputes everything, tables included),
 //! - [`Fiber::forward_scatter`] (per-crossing quantities for the map fill),
 //! - [`Fiber::shade`] with a [`ShadingMode`] and a [`LightAtPoint`] from the map.
 //!
-//! The bodies below are a temporary Kajiya-Kay stand-in so the pipeline can be built; the
-//! fibre work replaces them (keeping these signatures).
+//! Layout: `params` (JSON parameters, per-lobe constants), `fresnel` (Bravais indices,
+//! generalised Fresnel), `marschner` (exact M, N, A, roots of Eq. 3, caustics), `tables`
+//! (tabulated N_p, lerp tables), `azimuthal` (integrals of N_p over φ in h-space, N^G),
+//! `dual` (Zinke's ā_f, ā_b and their tables),
+//! `backscatter` (Ā_b, Δ̄_b, σ̄_b² from them), `shader`
+//! (Figure 5 and single scattering), `kajiya_kay`.
+//!
+//! Conventions: radians and SI inside; θ from the normal plane (sin θ = ω·u), ωi toward the
+//! light, ωo toward the camera. Longitudinal Gaussians live in x = θi + θo (= 2θh) and have
+//! unit area in θo ("m_normalization": "theta_o", trap 1); σ̄_f², β̄_f² are variances of x.
+//!
+//! The ten traps of DESIGN.md and where each is resolved (doc comment + pinning test):
+//! 1. M normalisation (unit area in θo): `marschner::longitudinal_m`.
+//! 2. Gaussians in radians; Eq. 17's mixed units (series, not the fit): `dual`.
+//! 3. Eq. 16's sign (+, derived): `backscatter::delta_b`.
+//! 4. Eq. 6's cosine (outgoing, the energy fraction): `dual`.
+//! 5. Eq. 25 as a convolution over φ': `azimuthal::LobeSamples::n_g`.
+//! 6. 1 − ā_f² guard: `backscatter::A_F_MAX`.
+//! 7. Caustic ∞·0, merge, bracketed roots, reversed smoothstep: `marschner`.
+//! 8. No path gives 0: `marschner::Azimuth::roots`.
+//! 9. 1/cos²θd and θ = ±90°: `marschner::COS_THETA_D_MIN`, `shader::HairAngles`.
+//! 10. η'' is not a refraction index: `fresnel`.
 
+pub mod azimuthal;
+pub mod backscatter;
+pub mod dual;
+pub mod fresnel;
+pub mod kajiya_kay;
+pub mod marschner;
+mod params;
+pub mod shader;
+pub mod tables;
+
+pub use params::{ECCENTRICITY_MIN, FiberParams, Lobe, LobeConstants};
+pub use shader::HairAngles;
+pub use tables::TableResolution;
+
+use dual::DualTables;
 use glam::Vec3;
-use serde::{Deserialize, Serialize};
-
-/// Fibre parameters as written in hairstyle JSON (`"fiber": {...}`); angles in degrees at this
-/// edge only. Defaults lie inside Marschner 2003 Table 1's ranges.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct FiberParams {
-    /// Fibre radius in metres (default 40e-6: an 80 µm fibre).
-    pub radius_m: f32,
-    /// Index of refraction of the cortex (default 1.55).
-    pub eta: f32,
-    /// Absorption coefficient per unit fibre radius, linear RGB (brown hair by default).
-    pub sigma_a: [f32; 3],
-    /// Longitudinal shift of the R lobe in degrees (Table 1: −10 to −5; default −7.5).
-    pub alpha_r_deg: f32,
-    /// Longitudinal width (standard deviation) of the R lobe in degrees (Table 1: 5 to 10).
-    pub beta_r_deg: f32,
-    /// Cross-section eccentricity a/b (Table 1: 0.85 to 1; default 0.9).
-    pub eccentricity: f32,
-    /// Glint scale factor k_G (Table 1: 0.5 to 5).
-    pub k_g: f32,
-    /// Azimuthal width of the caustic w_c in degrees (Table 1: 10 to 25).
-    pub w_c_deg: f32,
-    /// Fade range for the caustic merge Δη' (Table 1: 0.2 to 0.4).
-    pub delta_eta_prime: f32,
-    /// Caustic intensity limit Δh_M (Table 1: 0.5).
-    pub delta_h_m: f32,
-    /// Dual scattering forward density factor d_f (Zinke 2008 §4, default 0.7).
-    pub d_f: f32,
-    /// Dual scattering backward density factor d_b (Zinke 2008 §4, default 0.7).
-    pub d_b: f32,
-}
-
-impl Default for FiberParams {
-    fn default() -> Self {
-        Self {
-            radius_m: 40e-6,
-            eta: 1.55,
-            sigma_a: [0.432, 0.612, 0.98],
-            alpha_r_deg: -7.5,
-            beta_r_deg: 7.5,
-            eccentricity: 0.9,
-            k_g: 0.5,
-            w_c_deg: 15.0,
-            delta_eta_prime: 0.3,
-            delta_h_m: 0.5,
-            d_f: 0.7,
-            d_b: 0.7,
-        }
-    }
-}
-
-impl FiberParams {
-    /// Checks every field; the error names the field (relative to `fiber.`) and the rule.
-    pub fn validate(&self) -> Result<(), String> {
-        let finite_pos = |name: &str, v: f32| {
-            if v.is_finite() && v > 0.0 {
-                Ok(())
-            } else {
-                Err(format!("{name} must be finite and > 0 (got {v})"))
-            }
-        };
-        finite_pos("radius_m", self.radius_m)?;
-        if !(self.eta.is_finite() && self.eta > 1.0 && self.eta < 4.0) {
-            return Err(format!("eta must be in (1, 4) (got {})", self.eta));
-        }
-        for (c, v) in self.sigma_a.iter().enumerate() {
-            if !(v.is_finite() && *v >= 0.0 && *v <= 1.0e3) {
-                return Err(format!(
-                    "sigma_a[{c}] must be finite and in [0, 1000] (got {v})"
-                ));
-            }
-        }
-        Ok(())
-    }
-}
+use kajiya_kay::KajiyaKay;
+use tables::NTables;
 
 /// Which fibre shader to use (for comparison and benchmarks).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -105,9 +65,11 @@ pub enum ShadingMode {
 pub struct LightAtPoint {
     /// Fraction of rays reaching the point with no fibre crossing, in [0, 1].
     pub direct_fraction: f32,
-    /// Forward-scattering transmittance T_f (Zinke 2008 Eq. 19), RGB, in [0, 1].
+    /// Forward-scattering transmittance T_f (Zinke 2008 Eq. 5 averaged over rays), RGB, in
+    /// [0, 1]. Rays with no crossing count as 1, so T_f ≥ direct_fraction; the shader uses
+    /// max(T_f − direct_fraction, 0) as the forward-scattered share (see `shader`).
     pub tf: Vec3,
-    /// Accumulated forward-scattering variance σ̄f² in rad² (Zinke 2008 Eq. 20), RGB, >= 0.
+    /// Accumulated forward-scattering variance σ̄f² in rad² (Zinke 2008 Eq. 8), RGB, >= 0.
     pub sigma_f2: Vec3,
 }
 
@@ -133,17 +95,58 @@ pub struct ForwardScatter {
 #[derive(Clone, Debug)]
 pub struct Fiber {
     params: FiberParams,
-    base_color: Vec3,
+    consts: LobeConstants,
+    resolution: TableResolution,
+    pub(crate) n_tables: NTables,
+    /// [N_R, N_TT, N^G_R, N^G_TT, N^G_TRT] interleaved on one grid (the shader's lookups).
+    pub(crate) lobes: tables::Table2x<5>,
+    pub(crate) dual: DualTables,
+    kk: KajiyaKay,
+    /// Lobe means 2α_p and variances (2β_p)² in x = θi + θo (radians, rad²).
+    pub(crate) mean_x: [f32; 3],
+    pub(crate) var_x: [f32; 3],
+    /// 1/√(2π var_x) and −1/(2 var_x): the unbroadened lobes' Gaussian constants.
+    pub(crate) m_norm: [f32; 3],
+    pub(crate) m_exp: [f32; 3],
+    pub(crate) d_f: f32,
+    pub(crate) d_b: f32,
 }
 
 impl Fiber {
-    /// Precomputes the fibre's tables. `params` must have passed `validate`.
+    /// Precomputes the fibre's tables. `params` must have passed `validate` (out-of-range
+    /// values are not checked again here; they give finite but meaningless tables).
     pub fn new(params: &FiberParams) -> Self {
-        let s = Vec3::from(params.sigma_a);
-        let base_color = Vec3::new((-2.0 * s.x).exp(), (-2.0 * s.y).exp(), (-2.0 * s.z).exp());
+        Self::with_resolution(params, &TableResolution::DEFAULT)
+    }
+
+    /// [`Fiber::new`] with explicit table sizes (for measuring table error).
+    pub fn with_resolution(params: &FiberParams, resolution: &TableResolution) -> Self {
+        let consts = LobeConstants::from_params(params);
+        let n_tables = NTables::build(&consts, resolution);
+        let dual = DualTables::build(&consts, resolution);
+        let kk = KajiyaKay::new(&consts, &dual);
+        let lobes = tables::Table2x::zip([
+            &n_tables.r,
+            &n_tables.tt,
+            &dual.n_g[0],
+            &dual.n_g[1],
+            &dual.n_g[2],
+        ]);
+        let lobe = |f: &dyn Fn(Lobe) -> f64| Lobe::ALL.map(|l| f(l) as f32);
         Self {
             params: params.clone(),
-            base_color,
+            mean_x: lobe(&|l| consts.mean_x(l)),
+            var_x: lobe(&|l| consts.std_x(l).powi(2)),
+            m_norm: lobe(&|l| 1.0 / (2.0 * std::f64::consts::PI * consts.std_x(l).powi(2)).sqrt()),
+            m_exp: lobe(&|l| -0.5 / consts.std_x(l).powi(2)),
+            d_f: params.d_f,
+            d_b: params.d_b,
+            consts,
+            resolution: *resolution,
+            n_tables,
+            lobes,
+            dual,
+            kk,
         }
     }
 
@@ -151,17 +154,44 @@ impl Fiber {
         &self.params
     }
 
-    /// Per-crossing forward scattering for light whose direction makes `sin_theta` (= ω·u)
-    /// with the fibre tangent.
-    pub fn forward_scatter(&self, _sin_theta: f32) -> ForwardScatter {
-        ForwardScatter {
-            a_f: self.base_color * 0.8,
-            beta_f2: Vec3::splat(0.01),
-        }
+    /// Per-lobe constants in radians.
+    pub fn lobe_constants(&self) -> &LobeConstants {
+        &self.consts
+    }
+
+    pub fn resolution(&self) -> &TableResolution {
+        &self.resolution
+    }
+
+    /// The renderer's tabulated N_p at |θd|, |φ| (radians) and cos 2φh, RGB, 1/rad.
+    pub fn n_table(&self, lobe: Lobe, abs_theta_d: f32, abs_phi: f32, cos_2phi_h: f32) -> Vec3 {
+        self.n_tables.lookup(lobe, abs_theta_d, abs_phi, cos_2phi_h)
+    }
+
+    /// The dual-scattering tables (grid values and per-lobe shares).
+    pub fn dual_tables(&self) -> &DualTables {
+        &self.dual
+    }
+
+    /// Per-crossing forward scattering for light whose direction makes `sin_theta` (= ωi·u)
+    /// with the fibre tangent: a table lerp (no allocation). ωi points toward the light, so for
+    /// light travelling along L, `sin_theta = −L·u` (the tables are not even in θ: the cuticle
+    /// tilt α makes root-ward and tip-ward light differ). Out-of-range or NaN input is clamped.
+    #[inline]
+    pub fn forward_scatter(&self, sin_theta: f32) -> ForwardScatter {
+        let s = if sin_theta.is_nan() {
+            0.0
+        } else {
+            sin_theta.clamp(-1.0, 1.0)
+        };
+        let (a_f, beta_f2) = self.dual.forward_at(s.asin());
+        ForwardScatter { a_f, beta_f2 }
     }
 
     /// Outgoing radiance toward `wo` per unit irradiance arriving from `wi` (both unit, away
     /// from the fibre), for a fibre with unit tangent `u`, given what the map says of the light.
+    /// Always finite; zero for degenerate vectors.
+    #[inline]
     pub fn shade(
         &self,
         mode: ShadingMode,
@@ -170,14 +200,14 @@ impl Fiber {
         wo: Vec3,
         light: &LightAtPoint,
     ) -> Vec3 {
-        let _ = mode;
-        let sin_i = wi.dot(u).clamp(-1.0, 1.0);
-        let cos_i = (1.0 - sin_i * sin_i).max(0.0).sqrt();
-        let h = (wi + wo).normalize_or_zero();
-        let sin_h = h.dot(u).clamp(-1.0, 1.0);
-        let cos_h = (1.0 - sin_h * sin_h).max(0.0).sqrt();
-        let diffuse = self.base_color * cos_i * 0.6;
-        let spec = Vec3::splat(0.25 * cos_h.powi(40));
-        light.tf * (diffuse + spec)
+        let Some(a) = HairAngles::from_vectors(u, wi, wo) else {
+            return Vec3::ZERO;
+        };
+        let v = match mode {
+            ShadingMode::DualScattering => self.shade_dual(&a, light),
+            ShadingMode::SingleScattering => self.shade_single(&a, light),
+            ShadingMode::KajiyaKay => self.kk.shade(&a, light),
+        };
+        if v.is_finite() { v } else { Vec3::ZERO }
     }
 }

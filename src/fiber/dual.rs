@@ -1,0 +1,381 @@
+//! Dual-scattering fibre quantities (Zinke et al. 2008 §3 and Table 1), tabulated over the
+//! light's inclination θ ∈ [−π/2, π/2] (radians; the tables are not even in θ because the
+//! cuticle tilt α shifts the lobes), plus N^G(θd, φ) (Eq. 25).
+//!
+//! How: every azimuthal integral of N_p is done in h (Eq. 8's bookkeeping: ∫ N_p w(φ) dφ =
+//! ∫ A(p, h) w(φ(p, h)) dh / 2), which needs no root solving and has a smooth integrand; only
+//! the TRT glints are integrated in φ. Then one longitudinal quadrature over θo per table entry.
+//! Building every table for the default fibre takes tens of milliseconds (see `benches/fiber.rs`).
+//!
+//! Readings chosen (each pinned by a test in `tests/fiber_tables.rs`, `backscatter.rs` or
+//! `tests/fiber_energy.rs`):
+//! - **Eq. 6/12, which hemisphere.** The incident azimuth is averaged over the half circle
+//!   facing the light and the outgoing one is split into the world-fixed front (away from the
+//!   light) and back halves, as the double integral prints; for a relative azimuth φ the
+//!   weights are w_f(φ) = |φ|/π and w_b = 1 − |φ|/π. The alternative (split by relative azimuth,
+//!   w_f = [|φ| > π/2]) ignores the (1/π)∫dφ average of the printed formula.
+//! - **Trap 4, Eq. 6's cosine.** Eq. 6 prints cos θd of the *incident* direction. We weight by
+//!   cos θ of the *outgoing* direction instead: ā_f(θi) = (1/π)∫∫ f_s cos θo dωo (dωo = cos θo
+//!   dθo dφo), the fraction of the power the fibre intercepts that leaves through the front half,
+//!   so ā_f + ā_b is the fibre's hemispherical albedo (checked against a brute-force quadrature
+//!   of S in tests/fiber_energy.rs). Why: ā_f is used as a per-crossing transmittance, and the
+//!   map already weights grazing crossings by their projected width. The two readings agree
+//!   for narrow lobes (θo ≈ −θi) but not at grazing incidence: the incident reading carries
+//!   cos θi cos θo / cos²θd = 1 − sin²θh/cos²θd, which goes to 0 across the lobe as |θi| → 90°,
+//!   so a grazing crossing would become opaque (σa = 0, θ = 80°: ā_f = 0.33 against 0.57;
+//!   pinned by `trap4_outgoing_cosine` in tests/fiber_tables.rs).
+//! - **White-furnace normalisation.** Marschner's S is not energy conserving: with σa = 0 its
+//!   albedo ρ_w(θ) reaches 1.02 at θ = 60° and 1.84 at θ = −90° (its 1/cos²θd with lobes cut at
+//!   θo = ±90°; tests/fiber_energy.rs). ā_f and ā_b are fractions of the intercepted power, so
+//!   both are divided by max(1, ρ_w(θ)), the same geometric factor for every absorption: this
+//!   keeps ā_f + ā_b ≤ 1 and keeps lighter fibres' ā_f larger (a per-fibre clamp to 1 would not).
+//! - **Trap 1** is resolved in `marschner::longitudinal_m` (unit area in θo).
+//! - **Trap 2.** Every Gaussian is in radians; shifts/variances are in x = θi + θo. Eq. 17's
+//!   fit adds a number (ā_b) to an angle (ā_b³(2β̄_f + 3β̄_b)), so its value depends on the unit;
+//!   we evaluate the series printed above Eqs. 16–17 instead (closed form by counting: the triple
+//!   sum has n(n+1)/2 terms with i − j − 1 + k = n), which is unit-consistent.
+//! - **Trap 3.** Deriving that series to second order in ā_b gives
+//!   Δ̄_b ≈ ᾱ_b(1 **+** 2ā_b²/(1 − ā_f²)²) + ᾱ_f(2(1 − ā_f²)² + 4ā_f²ā_b²)/(1 − ā_f²)³: the printed
+//!   minus sign is wrong (its ᾱ_f coefficient is right). We use the exact closed form.
+//! - **Trap 6.** 1 − ā_f² divides A_b, Δ_b and σ_b; ā_f is clamped to [`A_F_MAX`] before them.
+//! - **Trap 5, Eq. 25** is read as the convolution N^G(θ, φ) = ∫ s̃_f(φ') N(θ, φ − φ') dφ' over
+//!   φ' ∈ [−π/2, π/2] with s̃_f = 1/π: light arriving isotropically from the front half circle
+//!   around the light direction. The printed form (N(θ, φ') with no φ) would be a constant in φ,
+//!   making forward-scattered light look the same from every side; the convolution keeps TT's
+//!   preference for φ ≈ π (more than 5× its φ = 0 value, `trap5_n_g_is_a_convolution`).
+//! - Lobe shifts/variances of the front and back halves: ᾱ = Σ_p w_p 2α_p, β̄² = Σ_p w_p
+//!   ((2β_p)² + (2α_p)²) − ᾱ² (moment matching the mixture), w_p the lobe's share of ā.
+//! - Tables ignore eccentricity (circular fibre of index η), as Zinke §4.2 does for N^G.
+
+pub use super::azimuthal::{LobeSamples, lobe_integral, n_g_direct, w_backward, w_forward};
+use super::azimuthal::{N_G_BINS, N_H};
+use super::marschner::{inv_cos2_theta_d, longitudinal_m};
+use super::params::{Lobe, LobeConstants};
+use super::tables::{Table1, Table2, TableResolution};
+
+pub use super::backscatter::{
+    A_F_MAX, big_a_b, delta_b, delta_b_printed, sigma_b_printed, sigma_b2,
+};
+use glam::Vec3;
+use rayon::prelude::*;
+use std::f64::consts::{FRAC_PI_2, PI};
+
+/// Which cosine weights Eq. 6 (trap 4); the tables use `Outgoing`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CosineReading {
+    /// cos θ of the incident direction, as printed.
+    Incident,
+    /// cos θ of the outgoing direction (hemispherical albedo reading; the tables' reading).
+    Outgoing,
+}
+
+/// Per-lobe forward and backward shares at one light inclination, before combination.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct LobeShares {
+    /// ā_f contribution of each lobe [R, TT, TRT], RGB.
+    pub forward: [[f64; 3]; 3],
+    /// ā_b contribution of each lobe, RGB.
+    pub backward: [[f64; 3]; 3],
+}
+
+impl LobeShares {
+    /// ā_f + ā_b of channel 0 (for σa = 0: the hemispherical albedo, all channels equal).
+    pub fn albedo(&self) -> f64 {
+        (0..3)
+            .map(|l| self.forward[l][0] + self.backward[l][0])
+            .sum()
+    }
+}
+
+/// σa = 0 albedo ρ_w(θ) of the fibre `c` (direct quadrature; the tables use the same integral).
+pub fn white_albedo(c: &LobeConstants, theta: f64) -> f64 {
+    let white = LobeConstants {
+        sigma_a: [0.0; 3],
+        ..*c
+    };
+    shares_direct(&white, theta, CosineReading::Outgoing).albedo()
+}
+
+/// The azimuthal integrals of each lobe against w_f and w_b, tabulated over |θd|.
+struct SplitTable {
+    n: usize,
+    /// [θd index][lobe] -> (forward RGB, backward RGB)
+    values: Vec<[([f64; 3], [f64; 3]); 3]>,
+}
+
+impl SplitTable {
+    /// The split integrals alone.
+    fn build(c: &LobeConstants, n: usize) -> Self {
+        let values = (0..n)
+            .into_par_iter()
+            .map(|i| {
+                let td = FRAC_PI_2 * i as f64 / (n - 1) as f64;
+                Lobe::ALL.map(|lobe| {
+                    let s = LobeSamples::new(c, lobe, td.sin(), N_H);
+                    (s.integral(w_forward), s.integral(w_backward))
+                })
+            })
+            .collect();
+        Self { n, values }
+    }
+
+    /// The split integrals and the N^G rows (φ over [0, π], `n_phi` samples) on the same
+    /// `n` samples of |θd|, from one set of h samples per (θd, lobe).
+    fn build_with_n_g(c: &LobeConstants, n: usize, n_phi: usize) -> (Self, [Table2; 3]) {
+        #[allow(clippy::type_complexity)]
+        let rows: Vec<([([f64; 3], [f64; 3]); 3], [Vec<[f64; 3]>; 3])> = (0..n)
+            .into_par_iter()
+            .map(|i| {
+                let td = FRAC_PI_2 * i as f64 / (n - 1) as f64;
+                let samples = Lobe::ALL.map(|lobe| LobeSamples::new(c, lobe, td.sin(), N_H));
+                let split = [0, 1, 2].map(|l| {
+                    (
+                        samples[l].integral(w_forward),
+                        samples[l].integral(w_backward),
+                    )
+                });
+                let n_g = [0, 1, 2].map(|l| samples[l].n_g(n_phi, N_G_BINS));
+                (split, n_g)
+            })
+            .collect();
+        let values = rows.iter().map(|r| r.0).collect();
+        let n_g = [0, 1, 2].map(|l| {
+            Table2::from_values(
+                n,
+                n_phi,
+                rows.iter()
+                    .flat_map(|r| r.1[l].iter().map(|v| Vec3::from(v.map(|x| x as f32))))
+                    .collect(),
+            )
+        });
+        (Self { n, values }, n_g)
+    }
+
+    fn lookup(&self, abs_theta_d: f64, lobe: usize) -> ([f64; 3], [f64; 3]) {
+        let f = (abs_theta_d / FRAC_PI_2 * (self.n - 1) as f64).clamp(0.0, (self.n - 1) as f64);
+        let i = (f as usize).min(self.n - 2);
+        let t = f - i as f64;
+        let (a, b) = (self.values[i][lobe], self.values[i + 1][lobe]);
+        let mix = |x: [f64; 3], y: [f64; 3]| [0, 1, 2].map(|k| x[k] * (1.0 - t) + y[k] * t);
+        (mix(a.0, b.0), mix(a.1, b.1))
+    }
+}
+
+/// Lobe shares at θi by one longitudinal quadrature over θo, with azimuthal integrals from
+/// `split` (or from `lobe_integral` directly when `split` is None: the reference).
+fn shares_at(
+    c: &LobeConstants,
+    theta_i: f64,
+    split: Option<&SplitTable>,
+    reading: CosineReading,
+) -> LobeShares {
+    let min_std = c.std_x(Lobe::TT);
+    let n_o = ((PI / (min_std / 4.0)).ceil() as usize).clamp(256, 8192);
+    let d_o = PI / n_o as f64;
+    let mut out = LobeShares::default();
+    for k in 0..n_o {
+        let theta_o = -FRAC_PI_2 + (k as f64 + 0.5) * d_o;
+        let theta_d = 0.5 * (theta_o - theta_i);
+        let cos_w = match reading {
+            CosineReading::Incident => theta_i.cos(),
+            CosineReading::Outgoing => theta_o.cos(),
+        };
+        let geom = cos_w * theta_o.cos() * inv_cos2_theta_d(theta_d) * d_o;
+        for lobe in Lobe::ALL {
+            let m = longitudinal_m(c, lobe, theta_i, theta_o);
+            if m * geom < 1e-300 {
+                continue;
+            }
+            let (f, b) = match split {
+                Some(s) => s.lookup(theta_d.abs(), lobe as usize),
+                None => (
+                    lobe_integral(c, lobe, theta_d.sin(), w_forward),
+                    lobe_integral(c, lobe, theta_d.sin(), w_backward),
+                ),
+            };
+            for ch in 0..3 {
+                out.forward[lobe as usize][ch] += m * geom * f[ch];
+                out.backward[lobe as usize][ch] += m * geom * b[ch];
+            }
+        }
+    }
+    out
+}
+
+/// Direct (untabulated) lobe shares at θi, for checking the tables: azimuthal integrals are
+/// recomputed at every θo node instead of interpolated. Slow (≈ 0.1 s).
+pub fn shares_direct(c: &LobeConstants, theta_i: f64, reading: CosineReading) -> LobeShares {
+    shares_at(c, theta_i, None, reading)
+}
+
+/// Every dual-scattering quantity at one light inclination, RGB (angles in radians of x =
+/// θi + θo, variances in rad²).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DualQuantities {
+    pub a_f: [f64; 3],
+    pub a_b: [f64; 3],
+    pub alpha_f: [f64; 3],
+    pub alpha_b: [f64; 3],
+    pub beta_f2: [f64; 3],
+    pub beta_b2: [f64; 3],
+    pub big_a_b: [f64; 3],
+    pub delta_b: [f64; 3],
+    pub sigma_b2: [f64; 3],
+}
+
+impl DualQuantities {
+    /// Combines lobe shares into the Zinke quantities (module doc for the readings).
+    /// `white_albedo` is ρ_w(θ), the σa = 0 albedo at the same θ ([`white_albedo`]).
+    pub fn from_shares(c: &LobeConstants, s: &LobeShares, white_albedo: f64) -> Self {
+        let mut q = Self::default();
+        let moments = |shares: &[[f64; 3]; 3], ch: usize| {
+            let total: f64 = (0..3).map(|p| shares[p][ch]).sum();
+            if total <= 0.0 {
+                return (0.0, 0.0, 0.0);
+            }
+            let mean: f64 = Lobe::ALL
+                .iter()
+                .map(|&l| shares[l as usize][ch] * c.mean_x(l))
+                .sum::<f64>()
+                / total;
+            let second: f64 = Lobe::ALL
+                .iter()
+                .map(|&l| shares[l as usize][ch] * (c.std_x(l).powi(2) + c.mean_x(l).powi(2)))
+                .sum::<f64>()
+                / total;
+            (total, mean, (second - mean * mean).max(0.0))
+        };
+        for ch in 0..3 {
+            let (a_f, alpha_f, beta_f2) = moments(&s.forward, ch);
+            let (a_b, alpha_b, beta_b2) = moments(&s.backward, ch);
+            // White-furnace normalisation (module doc), then a guard for rounding.
+            let (a_f, a_b) = (a_f / white_albedo.max(1.0), a_b / white_albedo.max(1.0));
+            let sum = a_f + a_b;
+            let (a_f, a_b) = if sum > 1.0 {
+                (a_f / sum, a_b / sum)
+            } else {
+                (a_f, a_b)
+            };
+            let a_f = a_f.min(A_F_MAX);
+            q.a_f[ch] = a_f;
+            q.a_b[ch] = a_b;
+            q.alpha_f[ch] = alpha_f;
+            q.alpha_b[ch] = alpha_b;
+            q.beta_f2[ch] = beta_f2;
+            q.beta_b2[ch] = beta_b2;
+            q.big_a_b[ch] = big_a_b(a_f, a_b);
+            q.delta_b[ch] = delta_b(a_f, a_b, alpha_f, alpha_b);
+            q.sigma_b2[ch] = sigma_b2(a_f, a_b, beta_f2, beta_b2);
+        }
+        q
+    }
+}
+
+/// All dual-scattering tables of one fibre.
+#[derive(Clone, Debug)]
+pub struct DualTables {
+    /// Grid of light inclinations θ (radians), uniform over [−π/2, π/2].
+    pub theta: Vec<f64>,
+    /// Quantities at each grid θ.
+    pub at: Vec<DualQuantities>,
+    /// Lobe shares at each grid θ.
+    pub shares: Vec<LobeShares>,
+    pub(crate) a_f: Table1,
+    pub(crate) beta_f2: Table1,
+    pub(crate) big_a_b: Table1,
+    pub(crate) delta_b: Table1,
+    pub(crate) sigma_b2: Table1,
+    /// N^G_p(θd, φ) (Eq. 25) per lobe [R, TT, TRT].
+    pub(crate) n_g: [Table2; 3],
+}
+
+impl DualTables {
+    pub fn build(c: &LobeConstants, res: &TableResolution) -> Self {
+        let (split, n_g) = SplitTable::build_with_n_g(c, res.n_theta_d, res.n_phi);
+        let n = res.n_theta.max(2);
+        let theta: Vec<f64> = (0..n)
+            .map(|i| -FRAC_PI_2 + PI * i as f64 / (n - 1) as f64)
+            .collect();
+        let shares: Vec<LobeShares> = theta
+            .par_iter()
+            .map(|&t| shares_at(c, t, Some(&split), CosineReading::Outgoing))
+            .collect();
+        let white = LobeConstants {
+            sigma_a: [0.0; 3],
+            ..*c
+        };
+        let white_split = SplitTable::build(&white, res.n_theta_d);
+        let at: Vec<DualQuantities> = theta
+            .par_iter()
+            .zip(&shares)
+            .map(|(&t, s)| {
+                let w = shares_at(&white, t, Some(&white_split), CosineReading::Outgoing);
+                DualQuantities::from_shares(c, s, w.albedo())
+            })
+            .collect();
+        let lut = |f: &dyn Fn(&DualQuantities) -> [f64; 3]| {
+            Table1::new(
+                -FRAC_PI_2,
+                FRAC_PI_2,
+                at.iter()
+                    .map(|q| Vec3::from(f(q).map(|x| x as f32)))
+                    .collect(),
+            )
+        };
+        Self {
+            a_f: lut(&|q| q.a_f),
+            beta_f2: lut(&|q| q.beta_f2),
+            big_a_b: lut(&|q| q.big_a_b),
+            delta_b: lut(&|q| q.delta_b),
+            sigma_b2: lut(&|q| q.sigma_b2),
+            theta,
+            at,
+            shares,
+            n_g,
+        }
+    }
+
+    /// All quantities at light inclination θ (radians), linearly interpolated between grid
+    /// points (what the renderer's lookups return, in f64).
+    pub fn quantities_at(&self, theta: f64) -> DualQuantities {
+        let n = self.theta.len();
+        let f = ((theta + FRAC_PI_2) / PI * (n - 1) as f64).clamp(0.0, (n - 1) as f64);
+        let i = (f as usize).min(n - 2);
+        let t = f - i as f64;
+        let (a, b) = (&self.at[i], &self.at[i + 1]);
+        let mix = |x: [f64; 3], y: [f64; 3]| [0, 1, 2].map(|k| x[k] * (1.0 - t) + y[k] * t);
+        DualQuantities {
+            a_f: mix(a.a_f, b.a_f),
+            a_b: mix(a.a_b, b.a_b),
+            alpha_f: mix(a.alpha_f, b.alpha_f),
+            alpha_b: mix(a.alpha_b, b.alpha_b),
+            beta_f2: mix(a.beta_f2, b.beta_f2),
+            beta_b2: mix(a.beta_b2, b.beta_b2),
+            big_a_b: mix(a.big_a_b, b.big_a_b),
+            delta_b: mix(a.delta_b, b.delta_b),
+            sigma_b2: mix(a.sigma_b2, b.sigma_b2),
+        }
+    }
+
+    /// N^G_p(|θd|, |φ|) from the table, RGB, 1/rad.
+    #[inline]
+    pub fn n_g(&self, lobe: Lobe, abs_theta_d: f32, abs_phi: f32) -> Vec3 {
+        self.n_g[lobe as usize].lookup(abs_theta_d, abs_phi)
+    }
+
+    /// (Ā_b, Δ̄_b, σ̄_b²) at light inclination θ (radians), interpolated.
+    #[inline]
+    pub fn back_at(&self, theta: f32) -> (Vec3, Vec3, Vec3) {
+        (
+            self.big_a_b.lookup(theta),
+            self.delta_b.lookup(theta),
+            self.sigma_b2.lookup(theta),
+        )
+    }
+
+    /// (ā_f, β̄_f²) at light inclination θ (radians), interpolated.
+    #[inline]
+    pub fn forward_at(&self, theta: f32) -> (Vec3, Vec3) {
+        (self.a_f.lookup(theta), self.beta_f2.lookup(theta))
+    }
+}

@@ -1,0 +1,257 @@
+//! Fibre parameters as written in hairstyle JSON, their validation, and the per-lobe constants
+//! derived from them (Marschner 2003 Table 1), converted to radians once.
+//!
+//! Degrees exist only in [`FiberParams`] (the JSON edge); [`LobeConstants`] holds radians.
+
+use serde::{Deserialize, Serialize};
+
+/// Fibre parameters as written in hairstyle JSON (`"fiber": {...}`); angles in degrees at this
+/// edge only. Defaults lie inside Marschner 2003 Table 1's ranges.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct FiberParams {
+    /// Fibre radius in metres (default 40e-6: an 80 µm fibre). Not used by the BCSDF (which is
+    /// per unit radius, Marschner 2003 footnote 2); the map uses it for crossing counts.
+    pub radius_m: f32,
+    /// Index of refraction of the cortex, in (1, 4) (default 1.55, Table 1).
+    pub eta: f32,
+    /// Absorption coefficient per unit fibre radius, linear RGB, each in [0, 1000] (default:
+    /// brown hair [0.545, 0.906, 1.78], pbrt-v4's eumelanin concentration 1.3).
+    pub sigma_a: [f32; 3],
+    /// Longitudinal shift of the R lobe in degrees, in [−20, 20] (Table 1: −10 to −5; default
+    /// −7.5). Negative shifts the R lobe toward the root.
+    pub alpha_r_deg: f32,
+    /// Longitudinal width (standard deviation in θh) of the R lobe in degrees, in [0.5, 45]
+    /// (Table 1: 5 to 10; default 7.5).
+    pub beta_r_deg: f32,
+    /// Cross-section eccentricity a/b, in [0.75, 1/0.75] (Table 1: 0.85 to 1; default 0.9).
+    /// Below 1/√2 Marschner's η* (§5.2.3) would fall below 1.
+    pub eccentricity: f32,
+    /// Glint scale factor k_G, in [0, 10] (Table 1: 0.5 to 5; default 0.5).
+    pub k_g: f32,
+    /// Azimuthal width (standard deviation) of the caustic w_c in degrees, in [1, 45]
+    /// (Table 1: 10 to 25; default 15).
+    pub w_c_deg: f32,
+    /// Range of η' over which the caustic fades after the merge, Δη', in [0.01, 1]
+    /// (Table 1: 0.2 to 0.4; default 0.3).
+    pub delta_eta_prime: f32,
+    /// Caustic intensity limit Δh_M, in [0, 2] (Table 1: 0.5; default 0.5).
+    pub delta_h_m: f32,
+    /// Dual scattering forward density factor d_f, in [0, 1] (Zinke 2008 §3.1.1, default 0.7).
+    pub d_f: f32,
+    /// Dual scattering backward density factor d_b, in [0, 1] (Zinke 2008 §3.2, default 0.7).
+    pub d_b: f32,
+}
+
+impl Default for FiberParams {
+    fn default() -> Self {
+        Self {
+            radius_m: 40e-6,
+            eta: 1.55,
+            sigma_a: [0.545, 0.906, 1.78],
+            alpha_r_deg: -7.5,
+            beta_r_deg: 7.5,
+            eccentricity: 0.9,
+            k_g: 0.5,
+            w_c_deg: 15.0,
+            delta_eta_prime: 0.3,
+            delta_h_m: 0.5,
+            d_f: 0.7,
+            d_b: 0.7,
+        }
+    }
+}
+
+/// Lowest accepted eccentricity; its inverse is the highest.
+pub const ECCENTRICITY_MIN: f32 = 0.75;
+
+impl FiberParams {
+    /// Checks every field; the error names the field (relative to `fiber.`) and the rule.
+    pub fn validate(&self) -> Result<(), String> {
+        let in_range = |name: &str, v: f32, lo: f32, hi: f32, open_lo: bool, open_hi: bool| {
+            let lo_ok = if open_lo { v > lo } else { v >= lo };
+            let hi_ok = if open_hi { v < hi } else { v <= hi };
+            if v.is_finite() && lo_ok && hi_ok {
+                Ok(())
+            } else {
+                let l = if open_lo { '(' } else { '[' };
+                let r = if open_hi { ')' } else { ']' };
+                Err(format!("{name} must be in {l}{lo}, {hi}{r} (got {v})"))
+            }
+        };
+        if !(self.radius_m.is_finite() && self.radius_m > 0.0) {
+            return Err(format!(
+                "radius_m must be finite and > 0 (got {})",
+                self.radius_m
+            ));
+        }
+        in_range("eta", self.eta, 1.0, 4.0, true, true)?;
+        for (c, v) in self.sigma_a.iter().enumerate() {
+            if !(v.is_finite() && *v >= 0.0 && *v <= 1.0e3) {
+                return Err(format!(
+                    "sigma_a[{c}] must be finite and in [0, 1000] (got {v})"
+                ));
+            }
+        }
+        in_range("alpha_r_deg", self.alpha_r_deg, -20.0, 20.0, false, false)?;
+        in_range("beta_r_deg", self.beta_r_deg, 0.5, 45.0, false, false)?;
+        in_range(
+            "eccentricity",
+            self.eccentricity,
+            ECCENTRICITY_MIN,
+            1.0 / ECCENTRICITY_MIN,
+            false,
+            false,
+        )?;
+        in_range("k_g", self.k_g, 0.0, 10.0, false, false)?;
+        in_range("w_c_deg", self.w_c_deg, 1.0, 45.0, false, false)?;
+        in_range(
+            "delta_eta_prime",
+            self.delta_eta_prime,
+            0.01,
+            1.0,
+            false,
+            false,
+        )?;
+        in_range("delta_h_m", self.delta_h_m, 0.0, 2.0, false, false)?;
+        in_range("d_f", self.d_f, 0.0, 1.0, false, false)?;
+        in_range("d_b", self.d_b, 0.0, 1.0, false, false)?;
+        Ok(())
+    }
+}
+
+/// The three scattering modes of Marschner 2003 (p = number of internal path segments).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Lobe {
+    /// Surface reflection, p = 0.
+    R = 0,
+    /// Transmission-transmission, p = 1.
+    TT = 1,
+    /// Transmission-reflection-transmission, p = 2.
+    TRT = 2,
+}
+
+impl Lobe {
+    pub const ALL: [Lobe; 3] = [Lobe::R, Lobe::TT, Lobe::TRT];
+    /// Number of internal path segments p.
+    pub fn p(self) -> u32 {
+        self as u32
+    }
+}
+
+/// Per-lobe longitudinal constants and the other parameters in radians (computed once).
+#[derive(Clone, Copy, Debug)]
+pub struct LobeConstants {
+    /// Lobe shifts α_p in radians (Table 1: α_TT = −α_R/2, α_TRT = −3α_R/2).
+    pub alpha: [f64; 3],
+    /// Lobe widths β_p (standard deviation in θh) in radians (β_TT = β_R/2, β_TRT = 2β_R).
+    pub beta: [f64; 3],
+    pub eta: f64,
+    pub sigma_a: [f64; 3],
+    pub eccentricity: f64,
+    pub k_g: f64,
+    /// w_c in radians.
+    pub w_c: f64,
+    pub delta_eta_prime: f64,
+    pub delta_h_m: f64,
+}
+
+impl LobeConstants {
+    pub fn from_params(p: &FiberParams) -> Self {
+        let a_r = (p.alpha_r_deg as f64).to_radians();
+        let b_r = (p.beta_r_deg as f64).to_radians();
+        Self {
+            alpha: [a_r, -a_r / 2.0, -3.0 * a_r / 2.0],
+            beta: [b_r, b_r / 2.0, 2.0 * b_r],
+            eta: p.eta as f64,
+            sigma_a: p.sigma_a.map(|s| s as f64),
+            eccentricity: p.eccentricity as f64,
+            k_g: p.k_g as f64,
+            w_c: (p.w_c_deg as f64).to_radians(),
+            delta_eta_prime: p.delta_eta_prime as f64,
+            delta_h_m: p.delta_h_m as f64,
+        }
+    }
+
+    /// Mean of lobe p's longitudinal Gaussian in the variable θi + θo (= 2θh), radians.
+    pub fn mean_x(&self, lobe: Lobe) -> f64 {
+        2.0 * self.alpha[lobe as usize]
+    }
+
+    /// Standard deviation of lobe p's longitudinal Gaussian in θi + θo (= 2θh), radians.
+    pub fn std_x(&self, lobe: Lobe) -> f64 {
+        2.0 * self.beta[lobe as usize]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_is_valid_and_inside_table_1() {
+        let p = FiberParams::default();
+        assert!(p.validate().is_ok());
+        assert!((-10.0..=-5.0).contains(&p.alpha_r_deg));
+        assert!((5.0..=10.0).contains(&p.beta_r_deg));
+        assert!((0.85..=1.0).contains(&p.eccentricity));
+        assert!((0.5..=5.0).contains(&p.k_g));
+        assert!((10.0..=25.0).contains(&p.w_c_deg));
+        assert!((0.2..=0.4).contains(&p.delta_eta_prime));
+    }
+
+    #[test]
+    fn validate_names_field_and_rule() {
+        let cases: Vec<(FiberParams, &str)> = vec![
+            (
+                FiberParams {
+                    eta: 0.5,
+                    ..Default::default()
+                },
+                "eta must be in (1, 4)",
+            ),
+            (
+                FiberParams {
+                    beta_r_deg: 0.0,
+                    ..Default::default()
+                },
+                "beta_r_deg must be in",
+            ),
+            (
+                FiberParams {
+                    eccentricity: 0.5,
+                    ..Default::default()
+                },
+                "eccentricity must be in",
+            ),
+            (
+                FiberParams {
+                    d_b: f32::NAN,
+                    ..Default::default()
+                },
+                "d_b must be in",
+            ),
+            (
+                FiberParams {
+                    sigma_a: [0.1, -1.0, 0.1],
+                    ..Default::default()
+                },
+                "sigma_a[1] must be",
+            ),
+        ];
+        for (p, prefix) in cases {
+            let e = p.validate().expect_err("must be rejected");
+            assert!(e.starts_with(prefix), "{e}");
+        }
+    }
+
+    #[test]
+    fn table_1_lobe_ratios() {
+        let c = LobeConstants::from_params(&FiberParams::default());
+        let a_r = (-7.5f64).to_radians();
+        assert!((c.alpha[1] - (-a_r / 2.0)).abs() < 1e-15);
+        assert!((c.alpha[2] - (-1.5 * a_r)).abs() < 1e-15);
+        assert!((c.beta[1] - c.beta[0] / 2.0).abs() < 1e-15);
+        assert!((c.beta[2] - 2.0 * c.beta[0]).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,241 @@
+//! The per-vertex shaders: hair-frame geometry from world vectors, the tabulated Marschner
+//! BCSDF, and Zinke et al. 2008 Figure 5 (dual scattering).
+//!
+//! Everything here is f32, allocation-free and branch-light: it runs 100K–200K times a frame.
+//!
+//! **How the map's statistics combine (Figure 5).** T_f is the map's average over light rays of
+//! ∏ ā_f over their crossings, where a ray with no crossing contributes 1 (Zinke Eq. 5, n = 0),
+//! so T_f ≥ directFraction and the forward-*scattered* share is T_f − directFraction. We use
+//! F = directFraction·(f_s + d_b f_back) + max(T_f − directFraction, 0)·d_f·(f_s^G + π d_b
+//! f_back^G), as Figure 5 prints. The alternative T_f·d_f·(…) counts unobstructed light twice: a
+//! fibre in full light would receive 1 + d_f = 1.7 times the direct light (pinned by
+//! `dual_unshadowed_is_direct_only` in tests/fiber_hard_cases.rs).
+//! f_back of the direct path uses σ̄_b² alone (direct light has no forward spread);
+//! f_back^G uses σ̄_b² + σ̄_f² (Eq. 24). f_back = 2 Ā_b g(θi + θo − Δ̄_b, σ̄_b²)/(π cos²θd) (Eqs. 10,
+//! 15 with s̃_b = 1/π in every azimuth, as Figure 5 evaluates it).
+//!
+//! **Degenerate input.** Zero or non-finite vectors give 0. A direction along ±u has no azimuth
+//! (trap 9): it takes the other direction's azimuth (φ = 0), which is finite and deterministic.
+//!
+//! **Eccentricity frame.** η*(φh) needs the azimuth of the cross-section's axes, which strands do
+//! not carry (no twist). Azimuths are measured from the first vector of a branchless orthonormal
+//! basis built from u alone (Duff et al. 2017), so the ellipse orientation is a fixed,
+//! deterministic function of the tangent direction.
+
+use super::marschner::COS_THETA_D_MIN;
+use super::params::Lobe;
+use super::{Fiber, LightAtPoint};
+use glam::Vec3;
+use std::f32::consts::PI;
+
+/// Hair-frame angles of one (u, ωi, ωo) triple (Marschner 2003 §2.2), radians.
+#[derive(Clone, Copy, Debug)]
+pub struct HairAngles {
+    pub theta_i: f32,
+    pub theta_o: f32,
+    /// Relative azimuth φ = φo − φi wrapped to [−π, π].
+    pub phi: f32,
+    /// cos 2φh = cos(φi + φo), with azimuths measured from a frame built from u alone.
+    pub cos_2phi_h: f32,
+}
+
+impl HairAngles {
+    pub fn theta_d(&self) -> f32 {
+        0.5 * (self.theta_o - self.theta_i)
+    }
+
+    /// Angles from world vectors; None for zero or non-finite input. Uses one acos and two
+    /// asin (no atan2): the shader needs only |φ| and cos(φi + φo).
+    #[inline]
+    pub fn from_vectors(u: Vec3, wi: Vec3, wo: Vec3) -> Option<Self> {
+        let u = unit(u)?;
+        let wi = unit(wi)?;
+        let wo = unit(wo)?;
+        let sin_i = wi.dot(u).clamp(-1.0, 1.0);
+        let sin_o = wo.dot(u).clamp(-1.0, 1.0);
+        // Orthonormal basis around u (Duff et al. 2017, branchless).
+        let sign = 1.0f32.copysign(u.z);
+        let a = -1.0 / (sign + u.z);
+        let b = u.x * u.y * a;
+        let v = Vec3::new(1.0 + sign * u.x * u.x * a, sign * b, -sign * u.x);
+        let w = Vec3::new(b, sign + u.y * u.y * a, -u.y);
+        // Unit azimuth vectors (cos φ, sin φ) of the projections on the normal plane.
+        let azimuth = |d: Vec3, s: f32| {
+            let p = d - u * s;
+            let (x, y) = (p.dot(v), p.dot(w));
+            let l2 = x * x + y * y;
+            (l2 > 1e-12).then(|| {
+                let inv = 1.0 / l2.sqrt();
+                (x * inv, y * inv)
+            })
+        };
+        let (ai, ao) = match (azimuth(wi, sin_i), azimuth(wo, sin_o)) {
+            (Some(i), Some(o)) => (i, o),
+            (Some(i), None) => (i, i),
+            (None, Some(o)) => (o, o),
+            (None, None) => ((1.0, 0.0), (1.0, 0.0)),
+        };
+        let cos_phi = (ai.0 * ao.0 + ai.1 * ao.1).clamp(-1.0, 1.0);
+        let sin_phi = ai.0 * ao.1 - ai.1 * ao.0;
+        let phi = cos_phi.acos().copysign(sin_phi);
+        Some(Self {
+            theta_i: sin_i.asin(),
+            theta_o: sin_o.asin(),
+            phi,
+            cos_2phi_h: ai.0 * ao.0 - ai.1 * ao.1,
+        })
+    }
+}
+
+/// `v` normalised, or None when it is zero, tiny or not finite. Unit input (the documented
+/// case) skips the square root.
+#[inline]
+fn unit(v: Vec3) -> Option<Vec3> {
+    let l2 = v.length_squared();
+    if (l2 - 1.0).abs() < 1e-6 {
+        Some(v)
+    } else if l2.is_finite() && l2 > 1e-30 {
+        Some(v / l2.sqrt())
+    } else {
+        None
+    }
+}
+
+/// Unit-area Gaussian with variance `var` (rad²) at x (radians), per channel.
+#[inline]
+fn gauss3(x: Vec3, var: Vec3) -> Vec3 {
+    let inv_two_pi_sqrt = 1.0 / (2.0 * PI).sqrt();
+    let f = |x: f32, v: f32| {
+        let v = v.max(1e-10);
+        (-0.5 * x * x / v).exp() * inv_two_pi_sqrt / v.sqrt()
+    };
+    Vec3::new(f(x.x, var.x), f(x.y, var.y), f(x.z, var.z))
+}
+
+#[inline]
+fn inv_cos2(theta_d: f32) -> f32 {
+    let c = theta_d.cos().max(COS_THETA_D_MIN as f32);
+    1.0 / (c * c)
+}
+
+#[inline]
+fn finite_or_zero(v: Vec3) -> Vec3 {
+    if v.is_finite() { v } else { Vec3::ZERO }
+}
+
+impl Fiber {
+    /// The tabulated Marschner BCSDF per lobe [R, TT, TRT] at hair-frame angles, RGB, 1/sr:
+    /// M_p(θi, θo) N_p(θd, φ) / cos²θd (Marschner 2003 Eq. 9, M normalised in θo).
+    pub fn bcsdf_lobes(&self, a: &HairAngles) -> [Vec3; 3] {
+        let theta_d = a.theta_d();
+        let [n_r, n_tt, ..] = self.lobes.lookup(theta_d.abs(), a.phi.abs());
+        self.bcsdf_with(a, n_r, n_tt)
+    }
+
+    /// [`Self::bcsdf_lobes`] with N_R and N_TT already looked up.
+    #[inline]
+    fn bcsdf_with(&self, a: &HairAngles, n_r: Vec3, n_tt: Vec3) -> [Vec3; 3] {
+        let theta_d = a.theta_d();
+        let inv = inv_cos2(theta_d);
+        let x = a.theta_i + a.theta_o;
+        let n_trt = self
+            .n_tables
+            .lookup(Lobe::TRT, theta_d.abs(), a.phi.abs(), a.cos_2phi_h);
+        let m = |l: usize| {
+            let dx = x - self.mean_x[l];
+            (dx * dx * self.m_exp[l]).exp() * self.m_norm[l] * inv
+        };
+        [n_r * m(0), n_tt * m(1), n_trt * m(2)]
+    }
+
+    /// Marschner S summed over lobes.
+    pub fn bcsdf(&self, a: &HairAngles) -> Vec3 {
+        let [r, tt, trt] = self.bcsdf_lobes(a);
+        r + tt + trt
+    }
+
+    /// SingleScattering mode: S cos θi · T_f. T_f (which counts unobstructed rays as 1) stands
+    /// for all light reaching the point, as if it still came from ωi: no spread, no local
+    /// back-scattering. Used to see what dual scattering adds.
+    pub(crate) fn shade_single(&self, a: &HairAngles, light: &LightAtPoint) -> Vec3 {
+        let tf = finite_or_zero(light.tf).clamp(Vec3::ZERO, Vec3::ONE);
+        self.bcsdf(a) * a.theta_i.cos().max(0.0) * tf
+    }
+
+    /// DualScattering mode: Zinke 2008 Figure 5 (module doc for the combination).
+    pub(crate) fn shade_dual(&self, a: &HairAngles, light: &LightAtPoint) -> Vec3 {
+        let direct = if light.direct_fraction.is_finite() {
+            light.direct_fraction.clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let tf = finite_or_zero(light.tf).clamp(Vec3::ZERO, Vec3::ONE);
+        let sigma_f2 = finite_or_zero(light.sigma_f2).max(Vec3::ZERO);
+        let theta_d = a.theta_d();
+        let inv = inv_cos2(theta_d);
+        let x = a.theta_i + a.theta_o;
+        let (a_b, delta_b, sigma_b2) = self.dual.back_at(a.theta_i);
+        let back_scale = 2.0 / PI * inv;
+        let [n_r, n_tt, ng_r, ng_tt, ng_trt] = self.lobes.lookup(theta_d.abs(), a.phi.abs());
+        let mut out = Vec3::ZERO;
+        if direct > 0.0 {
+            let [r, tt, trt] = self.bcsdf_with(a, n_r, n_tt);
+            let f_s = r + tt + trt;
+            let f_back = a_b * gauss3(Vec3::splat(x) - delta_b, sigma_b2) * back_scale;
+            out += direct * (f_s + self.d_b * f_back);
+        }
+        let scattered = (tf - Vec3::splat(direct)).max(Vec3::ZERO);
+        if scattered.max_element() > 0.0 {
+            let mut f_s_g = Vec3::ZERO;
+            for (l, n_g) in [ng_r, ng_tt, ng_trt].into_iter().enumerate() {
+                let m = gauss3(
+                    Vec3::splat(x - self.mean_x[l]),
+                    Vec3::splat(self.var_x[l]) + sigma_f2,
+                );
+                f_s_g += m * n_g;
+            }
+            f_s_g *= inv;
+            let f_back_g = a_b * gauss3(Vec3::splat(x) - delta_b, sigma_b2 + sigma_f2) * back_scale;
+            out += scattered * self.d_f * (f_s_g + PI * self.d_b * f_back_g);
+        }
+        finite_or_zero(out * a.theta_i.cos().max(0.0))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Trap 9: a direction along ±u has no azimuth; it takes the other's (φ = 0), and the
+    /// angles are those of the limit along that azimuth.
+    #[test]
+    fn direction_along_tangent_has_phi_zero() {
+        let u = Vec3::Y;
+        let wo = Vec3::new(0.6, -0.8, 0.0);
+        let a = HairAngles::from_vectors(u, u, wo).expect("valid");
+        assert_eq!(a.phi, 0.0);
+        assert!((a.theta_i - std::f32::consts::FRAC_PI_2).abs() < 1e-6);
+        let b = HairAngles::from_vectors(u, -u, -u).expect("valid");
+        assert_eq!(b.phi, 0.0);
+        assert!(HairAngles::from_vectors(Vec3::ZERO, u, wo).is_none());
+        assert!(HairAngles::from_vectors(u, Vec3::splat(f32::NAN), wo).is_none());
+    }
+
+    /// The frame-free angles agree with the definitions: θ = asin(ω·u), φ = φo − φi.
+    #[test]
+    fn angles_match_definitions() {
+        let u = Vec3::Z;
+        let (ti, pi_, to, po) = (0.3f32, 0.4f32, -0.5f32, 2.9f32);
+        let d = |t: f32, p: f32| Vec3::new(t.cos() * p.cos(), t.cos() * p.sin(), t.sin());
+        let a = HairAngles::from_vectors(u, d(ti, pi_), d(to, po)).expect("valid");
+        assert!((a.theta_i - ti).abs() < 1e-5 && (a.theta_o - to).abs() < 1e-5);
+        assert!((a.phi - (po - pi_)).abs() < 1e-5, "{}", a.phi);
+        // cos 2φh = cos(φi + φo) up to the frame's azimuth origin ψ: cos(φi + φo − 2ψ); the
+        // frame built from u = +Z is the identity (ψ = 0).
+        assert!(
+            (a.cos_2phi_h - (pi_ + po).cos()).abs() < 1e-5,
+            "{}",
+            a.cos_2phi_h
+        );
+    }
+}
