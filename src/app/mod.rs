@@ -2,6 +2,7 @@
 //!
 //! Exit codes: 0 success, 2 bad input (flags or files), 1 any other failure.
 
+pub mod bench_cmd;
 pub mod fiber_cmd;
 pub mod play_cmd;
 pub mod render_cmd;
@@ -37,6 +38,10 @@ pub enum Command {
     /// Play the dance live in a window (needs a display; see `render` otherwise).
     #[command(allow_negative_numbers = true)]
     Play(play_cmd::PlayArgs),
+    /// Benchmark: per-stage timings over thread counts, and speed against error over map
+    /// resolutions.
+    #[command(allow_negative_numbers = true)]
+    Bench(bench_cmd::BenchArgs),
     /// Inspect the fibre scattering model: evaluate, tabulate, plot.
     Fiber(fiber_cmd::FiberArgs),
 }
@@ -236,6 +241,7 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Command::Render(args) => render_cmd::run(args),
         Command::Play(args) => play_cmd::run(args),
+        Command::Bench(args) => bench_cmd::run(args),
         Command::Fiber(args) => fiber_cmd::run(args),
     };
     match result {

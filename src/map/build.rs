@@ -78,6 +78,9 @@ pub(super) struct Scratch {
     col_count: Vec<u32>,
 }
 
+/// Most pieces a sample is split into (a sample longer than 4 cells is split into 8).
+const MAX_PIECES: usize = 8;
+
 /// Coordinates beyond this many cells are treated as invalid (keeps `as i64` well defined).
 const MAX_CELL_COORD: f32 = 1.0e12;
 
@@ -102,18 +105,30 @@ impl LightMap {
         let fiber = input.fiber;
         let to_light = -frame.x;
 
-        // 1. Fill.
+        // 1. Fill. A sample stands for a piece of strand of length ℓ along its tangent; when ℓ
+        // exceeds half a cell, it is split into `pieces` equal parts spread along the tangent,
+        // so a strand fills every cell it passes through instead of a dotted line of them (at
+        // the default resolution samples are 11 mm apart and cells 7.4 mm).
+        let max_len = input.lengths_m[..count].iter().copied().filter(|l| l.is_finite()).fold(0.0f32, f32::max);
+        let pieces = ((max_len / (0.5 * ds)).ceil() as usize).clamp(1, MAX_PIECES);
         let entries = &mut self.scratch.entries;
-        entries.resize(count, Entry::default());
+        entries.resize(count * pieces, Entry::default());
         entries
             .par_iter_mut()
             .enumerate()
             .with_min_len(1024)
-            .for_each(|(s, e)| {
-                let p = input.positions[s];
+            .for_each(|(idx, e)| {
+                let (s, q) = (idx / pieces, idx % pieces);
                 let u = input.tangents[s];
-                let len = input.lengths_m[s];
-                let c = frame.to_map(p) * inv_ds;
+                let len_total = input.lengths_m[s];
+                let along = ((q as f32 + 0.5) / pieces as f32 - 0.5) * len_total;
+                let len = len_total / pieces as f32;
+                // The piece's offset, in cells, is rounded to 1/1024 of a cell (7 µm at the
+                // default size): then moving the hair by whole cells moves every piece by
+                // exactly whole cells too (adding numbers on that grid is exact in f32), which
+                // keeps the modulo map's translation invariance exact.
+                let offset = (frame.to_map(u) * (along * inv_ds) * 1024.0).round() / 1024.0;
+                let c = frame.to_map(input.positions[s]) * inv_ds + offset;
                 if !(c.abs().max_element() < MAX_CELL_COORD
                     && u.is_finite()
                     && len.is_finite()
@@ -139,7 +154,7 @@ impl LightMap {
                 e.cell = Cell {
                     slice: 0,
                     col: 0,
-                    seq: s as u32,
+                    seq: idx as u32,
                     direct: crossings,
                     tf: (loss * crossings).to_array(),
                     sigma2: (fs.beta_f2 * crossings).to_array(),
@@ -151,16 +166,18 @@ impl LightMap {
         // the reduction order does not matter).
         let valid = entries.iter().filter(|e| e.col != u32::MAX);
         let (mut lo, mut hi) = ([i64::MAX; 3], [i64::MIN; 3]);
-        let mut samples = 0usize;
+        let mut filled_entries = 0usize;
         for e in valid {
-            samples += 1;
+            filled_entries += 1;
             for (a, v) in [e.slice, e.j, e.k].into_iter().enumerate() {
                 lo[a] = lo[a].min(v);
                 hi[a] = hi[a].max(v);
             }
         }
-        self.first_slice = if samples > 0 { lo[0] } else { 0 };
-        let overflow = samples > 0 && (0..3).any(|a| hi[a] - lo[a] >= n);
+        self.first_slice = if filled_entries > 0 { lo[0] } else { 0 };
+        let overflow = filled_entries > 0 && (0..3).any(|a| hi[a] - lo[a] >= n);
+        // A non-finite sample invalidates all its pieces together.
+        let samples = filled_entries / pieces;
 
         // 2. Counting sort by column.
         let cols = (n * n) as usize;
@@ -177,7 +194,7 @@ impl LightMap {
             col_count[c] = self.col_start[c]; // becomes the write cursor
         }
         self.col_start[cols] = acc;
-        self.cells.resize(samples, Cell::default());
+        self.cells.resize(filled_entries, Cell::default());
         let first = self.first_slice;
         for e in entries.iter().filter(|e| e.col != u32::MAX) {
             let at = col_count[e.col as usize] as usize;

@@ -31,7 +31,7 @@ impl Default for Lighting {
     fn default() -> Self {
         Self {
             light_dir: Vec3::new(-0.75, -0.55, -0.35).normalize(),
-            irradiance: Vec3::splat(3.2),
+            irradiance: Vec3::splat(6.0),
             ambient: Vec3::new(0.035, 0.04, 0.05),
             mode: ShadingMode::DualScattering,
         }
