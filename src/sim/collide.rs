@@ -218,7 +218,7 @@ fn circle_exit(
     }
     let a = to_c / d;
     let h = (d * d + link * link - r * r) / (2.0 * d);
-    if !(h <= link) {
+    if h.is_nan() || h > link {
         return None;
     }
     let rho = (link * link - h * h).max(0.0).sqrt();
@@ -284,7 +284,7 @@ mod tests {
         assert!(p.is_finite());
         assert!(((p - prev).length() / link - 1.0).abs() < 1e-5);
         assert!(scene.penetration_m(p) < 1e-5);
-        let head_centre = Vec3A::from(c.head.translation);
+        let head_centre = c.head.translation;
         let outside = head_centre + Vec3A::new(0.0, 0.2, 0.0);
         let (p, _) = scene.resolve(outside, head_centre, 0.2, Vec3A::NEG_Y);
         assert!(p.is_finite());
@@ -297,7 +297,7 @@ mod tests {
         assert_eq!(c.penetration_m(Vec3::new(5.0, 5.0, 5.0)), 0.0);
         assert!(c.penetration_m(c.head.translation.into()) > 0.07);
         let scene = CollisionScene::new(&c);
-        let p = Vec3A::from(c.head.translation);
+        let p = c.head.translation;
         assert!((scene.penetration_m(p) - c.penetration_m(p.into())).abs() < 1e-6);
     }
 }

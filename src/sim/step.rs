@@ -14,22 +14,22 @@
 //!    evaluated at `x` (the field is the map of the previous frame). The decay factor is the
 //!    exact solution of `dv/dt = −c v` over the step, so damping does not depend on `dt`.
 //! 3. **Root-to-tip sweep** (Gauss–Seidel, each particle sees its predecessor's final position):
-//!    a. *Bending.* `Q` is a rotation carrying rest directions (head frame) to the current
-//!       frame of the previous link, parallel-transported down the strand: `Q₁ = R_head`, and
-//!       after link i is placed with direction `dᵢ`, `Qᵢ = arc(Qᵢ₋₁ rᵢ → dᵢ) · Qᵢ₋₁` (the
-//!       minimal rotation). The target of link i is `tᵢ = Qᵢ₋₁ rᵢ`: the rest bend between
-//!       links i−1 and i, including its plane, so waves and curls keep their shape and their
-//!       orientation about the strand. The particle is pulled toward it,
-//!       `p* ← p* + k (xᵢ₋₁ + L tᵢ − p*)`, with `k = 1 − (1 − bending_stiffness)^(dt / (1/240 s))`:
-//!       the stiffness is the fraction of the deviation removed per 1/240 s, the same at any
-//!       step (0: limp, 1: rigid rest shape).
-//!    b. *Follow the leader* (Müller, Kim & Chentanez 2012, "Fast Simulation of Inextensible
-//!       Hair and Fur", dynamic FTL; the paper is not in `shared/papers`, so no equation
-//!       numbers are cited): `pᵢ = pᵢ₋₁ + L · (p* − pᵢ₋₁)/|p* − pᵢ₋₁|`, so every link has
-//!       length L exactly (to rounding), with no iteration. The correction `dᵢ = pᵢ − p*` is
-//!       kept for step 4. A degenerate direction falls back to `tᵢ`.
-//!    c. *Collisions* (`collide.rs`): out of the head ellipsoid and the spheres, keeping the
-//!       particle on the sphere of radius L around `pᵢ₋₁`; the length projection is always last.
+//!    - a) *Bending.* `Q` is a rotation carrying rest directions (head frame) to the current
+//!      frame of the previous link, parallel-transported down the strand: `Q₁ = R_head`, and
+//!      after link i is placed with direction `dᵢ`, `Qᵢ = arc(Qᵢ₋₁ rᵢ → dᵢ) · Qᵢ₋₁` (the
+//!      minimal rotation). The target of link i is `tᵢ = Qᵢ₋₁ rᵢ`: the rest bend between
+//!      links i−1 and i, including its plane, so waves and curls keep their shape and their
+//!      orientation about the strand. The particle is pulled toward it,
+//!      `p* ← p* + k (pᵢ₋₁ + L tᵢ − p*)`, with `k = 1 − (1 − bending_stiffness)^(dt / (1/240 s))`:
+//!      the stiffness is the fraction of the deviation removed per 1/240 s, the same at any
+//!      step (0: limp, 1: rigid rest shape).
+//!    - b) *Follow the leader* (Müller, Kim & Chentanez 2012, "Fast Simulation of Inextensible
+//!      Hair and Fur", dynamic FTL; the paper is not in `shared/papers`, so no equation
+//!      numbers are cited): `pᵢ = pᵢ₋₁ + L · (p* − pᵢ₋₁)/|p* − pᵢ₋₁|`, so every link has
+//!      length L exactly (to rounding), with no iteration. The correction `dᵢ = pᵢ − p*` is
+//!      kept for step 4. A degenerate direction falls back to `tᵢ`.
+//!    - c) *Collisions* (`collide.rs`): out of the head ellipsoid and the spheres, keeping the
+//!      particle on the sphere of radius L around `pᵢ₋₁`; the length projection is always last.
 //! 4. **Velocities** (DFTL velocity update): `vᵢ = (pᵢ − xᵢ)/dt − s · dᵢ₊₁/dt` with
 //!    `s = ftl_correction` (default 0.5; `d` past the tip is 0). Plain FTL moves a particle
 //!    without moving its predecessor, as if each particle were infinitely heavier than the
@@ -364,7 +364,7 @@ fn damp_bending(pos: &[Vec3], vel: &mut [Vec3], kappa: f32) {
         let v = Vec3A::from(vel[i]);
         let w = v - v_parent_old;
         v_parent_old = v;
-        if !(l2 > 0.0) {
+        if l2.is_nan() || l2 <= 0.0 {
             v_parent_new = v;
             continue;
         }
@@ -486,4 +486,181 @@ fn step_guide<D: DensityField>(
         stats.max_penetration_m = 0.0;
     }
     stats
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::{COLLISION_MARGIN_M, NoDensity, SphereCollider};
+
+    #[test]
+    fn rotation_arc_maps_a_to_b_including_opposite_vectors() {
+        let pairs = [
+            (Vec3A::X, Vec3A::Y),
+            (Vec3A::new(0.6, 0.8, 0.0), Vec3A::new(0.0, 0.6, 0.8)),
+            (Vec3A::Z, Vec3A::Z),
+            (Vec3A::Y, Vec3A::NEG_Y),
+        ];
+        for (a, b) in pairs {
+            let q = rotation_arc(a, b);
+            assert!((q.length() - 1.0).abs() < 1e-6);
+            assert!((q * a - b).length() < 1e-5, "{a} -> {b}: got {}", q * a);
+        }
+    }
+
+    /// A three-link chain along +Y from the origin.
+    fn chain() -> Vec<Vec3> {
+        (0..4)
+            .map(|i| Vec3::new(0.0, i as f32 * 0.02, 0.0))
+            .collect()
+    }
+
+    #[test]
+    fn bending_damping_keeps_rigid_rotation_and_damps_relative_rotation() {
+        let pos = chain();
+        // Rigid rotation about Z at 3 rad/s through the origin: v = ω × p.
+        let omega = Vec3::new(0.0, 0.0, 3.0);
+        let mut vel: Vec<Vec3> = pos.iter().map(|p| omega.cross(*p)).collect();
+        let rigid = vel.clone();
+        damp_bending(&pos, &mut vel, 0.6);
+        for (v, r) in vel.iter().zip(&rigid) {
+            assert!((*v - *r).length() < 1e-6);
+        }
+        // Only the last link bends (its tip moves sideways relative to a still chain).
+        let mut vel = vec![Vec3::ZERO; 4];
+        vel[3] = Vec3::new(1.0, 0.0, 0.0);
+        damp_bending(&pos, &mut vel, 0.6);
+        assert!((vel[3].x - 0.4).abs() < 1e-6, "{}", vel[3]);
+        // Stretching velocity along the link is not bending and is kept.
+        let mut vel = vec![Vec3::ZERO; 4];
+        vel[3] = Vec3::new(0.0, 1.0, 0.0);
+        damp_bending(&pos, &mut vel, 0.6);
+        assert!((vel[3] - Vec3::Y).length() < 1e-6);
+    }
+
+    fn one_guide(rest: Vec<Vec3>, link: f32) -> GuideSet {
+        GuideSet {
+            points_per_guide: rest.len(),
+            rest,
+            link_length_m: vec![link],
+            root_normal: vec![Vec3::NEG_Y],
+        }
+    }
+
+    #[test]
+    fn a_straight_hanging_guide_stays_put_and_keeps_its_links() {
+        // Rooted on the underside of a small head, hanging straight down.
+        let radii = Vec3::splat(0.05);
+        let rest: Vec<Vec3> = (0..10)
+            .map(|i| Vec3::new(0.0, -0.05 - i as f32 * 0.02, 0.0))
+            .collect();
+        let guides = one_guide(rest, 0.02);
+        let colliders = Colliders::head_only(Affine3A::IDENTITY, radii);
+        let mut sim = Simulator::new(&SimParams::default(), &guides, radii);
+        let mut state = SimState::at_rest(&guides, &colliders, 0.0);
+        let start = state.positions.clone();
+        let stats = sim.advance(
+            &mut state,
+            2.0,
+            |_, c: &mut Colliders| *c = colliders.clone(),
+            &NoDensity,
+        );
+        assert_eq!(stats.steps, 60, "capped at max_catch_up_s = 0.25 s");
+        for (p, q) in state.positions.iter().zip(&start) {
+            assert!((*p - *q).length() < 1e-5, "moved from {q} to {p}");
+        }
+    }
+
+    #[test]
+    fn limp_guide_falls_and_swings_under_gravity_without_stretching() {
+        // A horizontal guide (rest shape sticking out sideways) with zero stiffness must fall.
+        let radii = Vec3::splat(0.05);
+        let rest: Vec<Vec3> = (0..10)
+            .map(|i| Vec3::new(0.05 + i as f32 * 0.02, 0.0, 0.0))
+            .collect();
+        let guides = GuideSet {
+            root_normal: vec![Vec3::X],
+            ..one_guide(rest, 0.02)
+        };
+        let params = SimParams {
+            bending_stiffness: 0.0,
+            ..SimParams::default()
+        };
+        let colliders = Colliders::head_only(Affine3A::IDENTITY, radii);
+        let mut sim = Simulator::new(&params, &guides, radii);
+        let mut state = SimState::at_rest(&guides, &colliders, 0.0);
+        let mut lowest_tip_m = 0.0f32;
+        for f in 1..=18 {
+            sim.advance(
+                &mut state,
+                f as f64 / 60.0,
+                |_, c: &mut Colliders| *c = colliders.clone(),
+                &NoDensity,
+            );
+            lowest_tip_m = lowest_tip_m.min(state.positions[9].y);
+            assert!(state.kinetic_energy() > 0.0);
+            for w in state.positions.windows(2) {
+                assert!(((w[1] - w[0]).length() / 0.02 - 1.0).abs() < 1e-5);
+            }
+            for p in &state.positions[2..] {
+                assert!(colliders.penetration_m(*p) < 1e-4, "{p}");
+            }
+        }
+        // The free part of the chain is 0.16 m long: swinging down, its tip passes well below
+        // the root's height (free fall alone would drop it 0.44 m in 0.3 s).
+        assert!(lowest_tip_m < -0.1, "tip did not fall: {lowest_tip_m}");
+    }
+
+    #[test]
+    fn at_rest_moves_hair_out_of_a_sphere_it_starts_in() {
+        let radii = Vec3::splat(0.05);
+        let rest: Vec<Vec3> = (0..10)
+            .map(|i| Vec3::new(0.0, -0.05 - i as f32 * 0.02, 0.0))
+            .collect();
+        let guides = one_guide(rest, 0.02);
+        let colliders = Colliders {
+            head: Affine3A::from_translation(Vec3::new(0.0, 1.6, 0.0)),
+            head_radii_m: radii,
+            spheres: vec![SphereCollider {
+                center: Vec3::new(0.01, 1.6 - 0.17, 0.0),
+                radius_m: 0.05,
+            }],
+        };
+        let state = SimState::at_rest(&guides, &colliders, 0.0);
+        for p in &state.positions[2..] {
+            assert!(
+                colliders.penetration_m(*p) < 0.1 * COLLISION_MARGIN_M,
+                "{p}"
+            );
+        }
+        for w in state.positions.windows(2) {
+            assert!(((w[1] - w[0]).length() / 0.02 - 1.0).abs() < 1e-5);
+        }
+        assert_eq!(state.kinetic_energy(), 0.0);
+        assert!(state.velocities().iter().all(|v| *v == Vec3::ZERO));
+    }
+
+    #[test]
+    fn inconsistent_guide_sets_and_states_do_nothing_instead_of_panicking() {
+        let radii = Vec3::splat(0.05);
+        let mut guides = one_guide(vec![Vec3::Y * 0.05, Vec3::Y * 0.07, Vec3::Y * 0.09], 0.02);
+        guides.link_length_m.push(0.02); // claims 2 guides, holds 1
+        let colliders = Colliders::head_only(Affine3A::IDENTITY, radii);
+        let mut sim = Simulator::new(&SimParams::default(), &guides, radii);
+        assert_eq!(sim.particle_count(), 3);
+        let mut state = SimState::at_rest(&guides, &colliders, 0.0);
+        assert_eq!(state.positions.len(), 3);
+        state.positions.push(Vec3::ZERO); // now mismatched
+        let stats = sim.advance(&mut state, 1.0, |_, _: &mut Colliders| {}, &NoDensity);
+        assert_eq!(stats.steps, 0);
+        let params = SimParams {
+            step_s: f32::NAN,
+            bending_stiffness: 7.0,
+            ..SimParams::default()
+        };
+        let sim = Simulator::new(&params, &guides, radii);
+        assert_eq!(sim.params().step_s, SimParams::default().step_s);
+        assert_eq!(sim.params().bending_stiffness, 1.0);
+        assert!(sim.params().validate().is_ok());
+    }
 }
