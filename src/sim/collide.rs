@@ -100,6 +100,8 @@ pub(crate) struct CollisionScene<'a> {
     radii: Vec3A,
     /// Inflated semi-axes (radii + margin), what particles are pushed to.
     radii_out: Vec3A,
+    /// 1 / radii_out (the common no-contact test multiplies instead of dividing).
+    inv_radii_out: Vec3A,
     /// Largest true semi-axis (for the conservative penetration estimate).
     radius_max: f32,
     spheres: &'a [SphereCollider],
@@ -113,6 +115,7 @@ impl<'a> CollisionScene<'a> {
             head_to_world: c.head,
             radii,
             radii_out: radii + Vec3A::splat(COLLISION_MARGIN_M),
+            inv_radii_out: (radii + Vec3A::splat(COLLISION_MARGIN_M)).recip(),
             radius_max: radii.max_element(),
             spheres: &c.spheres,
         }
@@ -133,12 +136,12 @@ impl<'a> CollisionScene<'a> {
     ) -> (Vec3A, bool) {
         let mut p = p;
         let mut touched = false;
-        let prev_s = self.world_to_head.transform_point3a(prev) / self.radii_out;
         for _ in 0..COLLISION_ROUNDS {
             let mut moved = false;
             // Head ellipsoid, in scaled head coordinates where it is the unit sphere.
-            let qs = self.world_to_head.transform_point3a(p) / self.radii_out;
+            let qs = self.world_to_head.transform_point3a(p) * self.inv_radii_out;
             if qs.length_squared() < 1.0 {
+                let prev_s = self.world_to_head.transform_point3a(prev) * self.inv_radii_out;
                 let fallback_s =
                     self.world_to_head.transform_vector3a(fallback_dir) / self.radii_out;
                 let link_s = (qs - prev_s).length();

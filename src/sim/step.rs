@@ -420,6 +420,7 @@ fn step_guide<D: DensityField>(
     let rest = &shape.rest[base..base + ppg];
     let rest_dir = &shape.rest_dir[base..base + ppg];
     let link = shape.link_m[g];
+    let inv_link = 1.0 / link;
     let mut stats = GuideStats::default();
     prev.copy_from_slice(pos);
 
@@ -446,7 +447,8 @@ fn step_guide<D: DensityField>(
     let mut q = frame.head_rot;
     let mut p_prev = Vec3A::from(pos[1.min(ppg - 1)]);
     for i in 2..ppg {
-        let target_dir = (q * rest_dir[i]).normalize_or(rest_dir[i]);
+        // Unit to rounding: q is a unit quaternion, rest_dir a unit vector.
+        let target_dir = q * rest_dir[i];
         let mut p = Vec3A::from(pos[i]);
         p += (p_prev + target_dir * link - p) * c.bend_k;
         let dir = (p - p_prev).normalize_or(target_dir);
@@ -458,8 +460,10 @@ fn step_guide<D: DensityField>(
                 .max_penetration_m
                 .max(frame.scene.penetration_m(p_final));
         }
-        let actual_dir = (p_final - p_prev).normalize_or(target_dir);
-        q = (rotation_arc(target_dir, actual_dir) * q).normalize();
+        // |p_final − p_prev| = L to rounding, so no square root is needed; q is rebuilt from
+        // the head rotation every step, so rounding drift cannot accumulate beyond one strand.
+        let actual_dir = (p_final - p_prev) * inv_link;
+        q = rotation_arc(target_dir, actual_dir) * q;
         pos[i] = Vec3::from(p_final);
         p_prev = p_final;
     }
