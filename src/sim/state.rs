@@ -17,7 +17,9 @@ use glam::{Affine3A, Vec3, Vec3A};
 pub struct SimState {
     /// World positions in metres, guide-major like `GuideSet::rest`.
     pub positions: Vec<Vec3>,
-    /// Simulated time of `positions` in seconds (a step instant: `origin + n · step_s`).
+    /// Simulated time of `positions` in seconds (a step instant: `origin + n · step_s`). An
+    /// output: the step clock behind it is private, so to restart at another time build a new
+    /// state with [`SimState::at_rest`] rather than writing this field.
     pub time_s: f64,
     /// Integrator velocities in m/s (after the follow-the-leader velocity correction).
     pub(crate) velocities: Vec<Vec3>,
@@ -48,7 +50,7 @@ impl SimState {
         let mut positions = Vec::with_capacity(n);
         for g in 0..count {
             let rest = guides.guide(g);
-            let link = guides.link_length_m[g];
+            let link = super::step::sanitized_link_m(guides.link_length_m[g]);
             let mut prev = Vec3A::ZERO;
             for (i, r) in rest.iter().enumerate() {
                 let mut p = head.transform_point3a(Vec3A::from(*r));

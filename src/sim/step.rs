@@ -120,6 +120,12 @@ pub(crate) fn usable_guides(guides: &GuideSet) -> usize {
         .min(guides.rest.len() / guides.points_per_guide)
 }
 
+/// A usable link length: non-finite or non-positive lengths (impossible from `generate`) become
+/// 1 mm rather than NaN positions.
+pub(crate) fn sanitized_link_m(l: f32) -> f32 {
+    if l.is_finite() && l > 0.0 { l } else { 1e-3 }
+}
+
 /// Constant per-particle data of the rest shape, head frame.
 struct Shape {
     points_per_guide: usize,
@@ -155,6 +161,8 @@ pub struct Simulator {
     correction: Vec<Vec3A>,
     /// Scratch written by the collider closure.
     colliders: Colliders,
+    /// Head semi-axes given to `new`, used when the closure leaves invalid ones.
+    head_radii_m: Vec3,
 }
 
 impl Simulator {
@@ -180,7 +188,7 @@ impl Simulator {
         }
         let link_m = guides.link_length_m[..count]
             .iter()
-            .map(|l| if l.is_finite() && *l > 0.0 { *l } else { 1e-3 })
+            .map(|l| sanitized_link_m(*l))
             .collect();
         let dt = params.step_s;
         let bend_k = 1.0 - (1.0 - params.bending_stiffness).powf(dt / BENDING_REFERENCE_STEP_S);
@@ -206,6 +214,7 @@ impl Simulator {
             },
             correction: vec![Vec3A::ZERO; n],
             colliders: Colliders::head_only(Affine3A::IDENTITY, head_radii_m),
+            head_radii_m,
         }
     }
 
@@ -233,8 +242,8 @@ impl Simulator {
     /// `params.max_catch_up_s` (a hiccup, a seek) is not simulated in full: the hair is carried
     /// rigidly with the head to `t_end_s − max_catch_up_s` and only the last
     /// `max_catch_up_s` is simulated, so one slow frame cannot make the next one slower.
-    /// A state from a different guide set, a non-finite `t_end_s` or one in the past does
-    /// nothing.
+    /// A state from a different guide set, an empty guide set, a non-finite `t_end_s` or one
+    /// in the past does nothing.
     pub fn advance<C, D>(
         &mut self,
         state: &mut SimState,
@@ -248,7 +257,8 @@ impl Simulator {
     {
         let mut stats = StepStats::default();
         let n = self.particle_count();
-        if !t_end_s.is_finite()
+        if n == 0
+            || !t_end_s.is_finite()
             || state.positions.len() != n
             || state.velocities.len() != n
             || state.prev_positions.len() != n
@@ -286,14 +296,16 @@ impl Simulator {
         stats
     }
 
-    /// Keeps the previous head transform if the closure produced a non-finite one.
+    /// Keeps the previous head transform if the closure produced a non-finite one, and the
+    /// head semi-axes given to `new` if it produced invalid ones (if those are invalid too,
+    /// the ellipsoid test simply finds nothing inside).
     fn sanitize_colliders(&mut self, previous_head: Affine3A) {
         if !self.colliders.head.is_finite() {
             self.colliders.head = previous_head;
         }
         let r = self.colliders.head_radii_m;
         if !(r.is_finite() && r.min_element() > 0.0) {
-            self.colliders.head_radii_m = Vec3::splat(1e-3);
+            self.colliders.head_radii_m = self.head_radii_m;
         }
     }
 
@@ -664,6 +676,18 @@ mod tests {
         };
         let sim = Simulator::new(&params, &guides, radii);
         assert_eq!(sim.params().step_s, SimParams::default().step_s);
+        // Degenerate guide sets: no particles, no panic.
+        for ppg in [0, 1] {
+            let empty = GuideSet {
+                points_per_guide: ppg,
+                ..guides.clone()
+            };
+            let mut sim = Simulator::new(&SimParams::default(), &empty, radii);
+            let mut state = SimState::at_rest(&empty, &colliders, 0.0);
+            assert!(state.positions.is_empty());
+            let stats = sim.advance(&mut state, 1.0, |_, _: &mut Colliders| {}, &NoDensity);
+            assert_eq!(stats.steps, 0);
+        }
         assert_eq!(sim.params().bending_stiffness, 1.0);
         assert!(sim.params().validate().is_ok());
     }
