@@ -40,11 +40,20 @@ impl SimState {
     /// time `t_s`. Particles the rest shape puts inside a body sphere (or the head) are moved
     /// out root to tip with the same projection the simulator uses, so the first step starts
     /// from a valid state instead of popping out of a collider at high speed. The first two
-    /// particles of each guide (the rigid root segment) are never moved.
+    /// particles of each guide (the rigid root segment) are never moved. A non-finite head
+    /// transform is replaced by the identity (and the spheres ignored).
     pub fn at_rest(guides: &GuideSet, colliders: &Colliders, t_s: f64) -> SimState {
         let ppg = guides.points_per_guide;
         let count = super::step::usable_guides(guides);
         let n = count * ppg;
+        // A non-finite head transform would make every position NaN: use the identity instead.
+        let fallback;
+        let colliders = if colliders.head.is_finite() {
+            colliders
+        } else {
+            fallback = Colliders::head_only(Affine3A::IDENTITY, colliders.head_radii_m);
+            &fallback
+        };
         let head = colliders.head;
         let scene = CollisionScene::new(colliders);
         let mut positions = Vec::with_capacity(n);

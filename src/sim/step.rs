@@ -676,6 +676,11 @@ mod tests {
         };
         let sim = Simulator::new(&params, &guides, radii);
         assert_eq!(sim.params().step_s, SimParams::default().step_s);
+        // A non-finite head at construction gives a finite state.
+        let mut nan_head = colliders.clone();
+        nan_head.head.translation.x = f32::NAN;
+        let state = SimState::at_rest(&guides, &nan_head, 0.0);
+        assert!(state.positions.iter().all(|p| p.is_finite()));
         // Degenerate guide sets: no particles, no panic.
         for ppg in [0, 1] {
             let empty = GuideSet {
