@@ -44,7 +44,8 @@ pub struct SimParams {
     pub gravity_m_s2: f32,
     /// Air damping rate in 1/s: velocity decays as exp(−rate·t) (default 1.5).
     pub damping_per_s: f32,
-    /// Bending stiffness toward the rest shape, in [0, 1] (0 limp, 1 rigid; default 0.3).
+    /// Bending stiffness toward the rest shape, in [0, 1] (0 limp, 1 rigid; default 0.3): the
+    /// fraction of a link's deviation from its rest bend removed per 1/240 s (`step.rs`).
     pub bending_stiffness: f32,
     /// Hair volume fraction above which a map cell repels hair (Bertails §4.1; default 0.25).
     pub density_threshold: f32,
