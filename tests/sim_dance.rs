@@ -89,13 +89,23 @@ fn stress_triple_speed_at_30_hz_output_stays_finite_and_rigid() {
         let motion = |t: f64, c: &mut Colliders| dance.colliders_at(t, c);
         let (guides, mut sim, mut state) = setup(&style, &dance.colliders(0.0));
         let mut worst_len = 0.0f32;
+        let mut worst_pen = 0.0f32;
+        let mut c = dance.colliders(0.0);
         run(&mut sim, &mut state, 300, 1.0 / 30.0, motion, |s, f| {
             assert!(all_finite(s), "{}: non-finite at frame {f}", style.name);
             assert!(s.kinetic_energy().is_finite());
             worst_len = worst_len.max(max_length_error(s, &guides));
+            dance.colliders_at(s.time_s, &mut c);
+            worst_pen = worst_pen.max(max_penetration_m(s, guides.points_per_guide, &c));
         });
         eprintln!(
-            "{}: 3x dance, 1/30 s frames, 10 s: worst relative length error {worst_len:.2e}",
+            "{}: 3x dance, 1/30 s frames, 10 s: worst relative length error {worst_len:.2e}, \
+             worst penetration at frame ends {worst_pen:.2e} m",
+            style.name
+        );
+        assert!(
+            worst_pen <= PENETRATION_TOLERANCE_M,
+            "{}: {worst_pen}",
             style.name
         );
         assert!(worst_len < LENGTH_TOLERANCE, "{}: {worst_len}", style.name);
