@@ -12,7 +12,8 @@
 //! at 60 Hz). Each step is position based: predict with forces, sweep root to tip placing each
 //! particle at exactly one link length from its predecessor (follow the leader), resolve
 //! collisions, then derive velocities with Müller's correction. See `step.rs` for the
-//! equations, `collide.rs` for collisions and their order, `density.rs` for §4.1.
+//! equations, `bend.rs` for the bending constants and damping, `collide.rs` for collisions and
+//! their order, `density.rs` for §4.1.
 //!
 //! Why: rigid links by construction (no iteration count to tune, lengths exact to rounding),
 //! unconditionally stable position projections, and guides independent within a step, so they
@@ -21,12 +22,14 @@
 //! `SimParams` is read from hairstyle JSON (`"dynamics": {...}`); missing fields take defaults.
 //! [`dance`] holds an analytic dance motion used by tests and benches.
 
+mod bend;
 pub mod collide;
 pub mod dance;
 pub mod density;
 pub mod state;
 pub mod step;
 
+pub use bend::BENDING_REFERENCE_STEP_S;
 pub use collide::{COLLISION_MARGIN_M, Colliders, SphereCollider};
 pub use density::{DensityField, NoDensity};
 pub use state::SimState;

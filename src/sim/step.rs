@@ -43,7 +43,7 @@
 //!    the compromise.
 //! 5. **Bending damping.** Each link's angular velocity relative to its parent link is damped by
 //!    the factor `κ = 1 − exp(−2 ζ √k)` per step (`ζ = bending_damping_ratio`, default 1), see
-//!    `damp_bending`. Why it is needed: the pull in 3a acts on the child only, so link i is
+//!    `bend.rs`. Why it is needed: the pull in 3a acts on the child only, so link i is
 //!    an oscillator of angular frequency ω = √k / dt (for small k, from the per-step map
 //!    e ← (1 − k)(e + v dt)) driven by link i−1, with no reaction back. Its gain from the parent's
 //!    motion at resonance is ω/c for a damping rate c; with only air damping (c = 1.5 /s,
@@ -64,15 +64,13 @@
 //! its sphere vector reuses its capacity).
 
 use super::SimParams;
+use super::bend;
 use super::collide::{Colliders, CollisionScene};
 use super::density::{DensityField, repulsion_m_s2};
 use super::state::SimState;
 use crate::hairstyle::GuideSet;
 use glam::{Affine3A, Quat, Vec3, Vec3A};
 use rayon::prelude::*;
-
-/// Reference step that `bending_stiffness` is defined at, seconds.
-pub const BENDING_REFERENCE_STEP_S: f32 = 1.0 / 240.0;
 
 /// What happened during one [`Simulator::advance`] call.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -191,14 +189,14 @@ impl Simulator {
             .map(|l| sanitized_link_m(*l))
             .collect();
         let dt = params.step_s;
-        let bend_k = 1.0 - (1.0 - params.bending_stiffness).powf(dt / BENDING_REFERENCE_STEP_S);
+        let bend_k = bend::pull_per_step(params.bending_stiffness, dt);
         let consts = Consts {
             dt,
             inv_dt: 1.0 / dt,
             gravity: Vec3A::new(0.0, -params.gravity_m_s2, 0.0),
             damping_factor: (-params.damping_per_s * dt).exp(),
             bend_k,
-            bend_damp: 1.0 - (-2.0 * params.bending_damping_ratio * bend_k.sqrt()).exp(),
+            bend_damp: bend::damping_per_step(params.bending_damping_ratio, bend_k),
             ftl_correction: params.ftl_correction,
             density_threshold: params.density_threshold,
             repulsion_m_s2: params.repulsion_m_s2,
@@ -337,59 +335,6 @@ impl Simulator {
     }
 }
 
-/// The minimal rotation taking unit `a` to unit `b`: the quaternion (a × b, 1 + a·b),
-/// normalised, which is (sin(θ/2) axis, cos(θ/2)) by the half-angle identities. Near
-/// `b = −a` (1 + a·b → 0, no unique axis) it turns by π about any axis perpendicular to `a`.
-/// Cheaper than `Quat::from_rotation_arc` (one square root, no branches in the common case),
-/// which took 18% of a step in the profile.
-#[inline]
-fn rotation_arc(a: Vec3A, b: Vec3A) -> Quat {
-    let w = 1.0 + a.dot(b);
-    if w > 1e-6 {
-        let axis = a.cross(b);
-        Quat::from_xyzw(axis.x, axis.y, axis.z, w).normalize()
-    } else {
-        let axis = a.any_orthonormal_vector();
-        Quat::from_xyzw(axis.x, axis.y, axis.z, 0.0)
-    }
-}
-
-/// Damps each link's angular velocity relative to its parent link's by the factor `kappa` per
-/// step, keeping the radial (along-link) relative velocity: with `rᵢ = pᵢ − pᵢ₋₁` and
-/// `wᵢ = vᵢ − vᵢ₋₁`, the link's angular velocity is `Ωᵢ = rᵢ × wᵢ / |rᵢ|²`; it becomes
-/// `Ωᵢ − kappa (Ωᵢ − Ωᵢ₋₁)` and the velocity is rebuilt as
-/// `vᵢ = v'ᵢ₋₁ + (wᵢ·r̂ᵢ) r̂ᵢ + Ω'ᵢ × rᵢ` from the already damped parent, so a strand swinging or
-/// turning rigidly is untouched (all Ωᵢ equal) and only bending motion loses energy.
-fn damp_bending(pos: &[Vec3], vel: &mut [Vec3], kappa: f32) {
-    let r0 = Vec3A::from(pos[1]) - Vec3A::from(pos[0]);
-    let l0 = r0.length_squared();
-    let mut omega_parent = if l0 > 0.0 {
-        r0.cross(Vec3A::from(vel[1]) - Vec3A::from(vel[0])) / l0
-    } else {
-        Vec3A::ZERO
-    };
-    let mut v_parent_new = Vec3A::from(vel[1]);
-    let mut v_parent_old = v_parent_new;
-    for i in 2..pos.len() {
-        let r = Vec3A::from(pos[i]) - Vec3A::from(pos[i - 1]);
-        let l2 = r.length_squared();
-        let v = Vec3A::from(vel[i]);
-        let w = v - v_parent_old;
-        v_parent_old = v;
-        if l2.is_nan() || l2 <= 0.0 {
-            v_parent_new = v;
-            continue;
-        }
-        let radial = r * (w.dot(r) / l2);
-        let omega = r.cross(w) / l2;
-        let omega_new = omega - (omega - omega_parent) * kappa;
-        let v_new = v_parent_new + radial + omega_new.cross(r);
-        vel[i] = Vec3::from(v_new);
-        v_parent_new = v_new;
-        omega_parent = omega_new;
-    }
-}
-
 /// Moves the whole state rigidly from its head pose to `new_head` (used when a time gap is
 /// skipped): positions, previous positions and velocities.
 fn carry_rigidly(state: &mut SimState, new_head: Affine3A) {
@@ -475,7 +420,7 @@ fn step_guide<D: DensityField>(
         // |p_final − p_prev| = L to rounding, so no square root is needed; q is rebuilt from
         // the head rotation every step, so rounding drift cannot accumulate beyond one strand.
         let actual_dir = (p_final - p_prev) * inv_link;
-        q = rotation_arc(target_dir, actual_dir) * q;
+        q = bend::rotation_arc(target_dir, actual_dir) * q;
         pos[i] = Vec3::from(p_final);
         p_prev = p_final;
     }
@@ -489,7 +434,7 @@ fn step_guide<D: DensityField>(
     }
     // 5. Bending damping, root to tip (after the velocities it damps).
     if c.bend_damp > 0.0 && ppg >= 3 {
-        damp_bending(pos, vel, c.bend_damp);
+        bend::damp_bending(pos, vel, c.bend_damp);
     }
     // NaN guard: a guide that went non-finite restarts from its rest shape, at rest.
     if !pos.iter().chain(vel.iter()).all(|p| p.is_finite()) {
@@ -508,51 +453,6 @@ fn step_guide<D: DensityField>(
 mod tests {
     use super::*;
     use crate::sim::{COLLISION_MARGIN_M, NoDensity, SphereCollider};
-
-    #[test]
-    fn rotation_arc_maps_a_to_b_including_opposite_vectors() {
-        let pairs = [
-            (Vec3A::X, Vec3A::Y),
-            (Vec3A::new(0.6, 0.8, 0.0), Vec3A::new(0.0, 0.6, 0.8)),
-            (Vec3A::Z, Vec3A::Z),
-            (Vec3A::Y, Vec3A::NEG_Y),
-        ];
-        for (a, b) in pairs {
-            let q = rotation_arc(a, b);
-            assert!((q.length() - 1.0).abs() < 1e-6);
-            assert!((q * a - b).length() < 1e-5, "{a} -> {b}: got {}", q * a);
-        }
-    }
-
-    /// A three-link chain along +Y from the origin.
-    fn chain() -> Vec<Vec3> {
-        (0..4)
-            .map(|i| Vec3::new(0.0, i as f32 * 0.02, 0.0))
-            .collect()
-    }
-
-    #[test]
-    fn bending_damping_keeps_rigid_rotation_and_damps_relative_rotation() {
-        let pos = chain();
-        // Rigid rotation about Z at 3 rad/s through the origin: v = ω × p.
-        let omega = Vec3::new(0.0, 0.0, 3.0);
-        let mut vel: Vec<Vec3> = pos.iter().map(|p| omega.cross(*p)).collect();
-        let rigid = vel.clone();
-        damp_bending(&pos, &mut vel, 0.6);
-        for (v, r) in vel.iter().zip(&rigid) {
-            assert!((*v - *r).length() < 1e-6);
-        }
-        // Only the last link bends (its tip moves sideways relative to a still chain).
-        let mut vel = vec![Vec3::ZERO; 4];
-        vel[3] = Vec3::new(1.0, 0.0, 0.0);
-        damp_bending(&pos, &mut vel, 0.6);
-        assert!((vel[3].x - 0.4).abs() < 1e-6, "{}", vel[3]);
-        // Stretching velocity along the link is not bending and is kept.
-        let mut vel = vec![Vec3::ZERO; 4];
-        vel[3] = Vec3::new(0.0, 1.0, 0.0);
-        damp_bending(&pos, &mut vel, 0.6);
-        assert!((vel[3] - Vec3::Y).length() < 1e-6);
-    }
 
     fn one_guide(rest: Vec<Vec3>, link: f32) -> GuideSet {
         GuideSet {
