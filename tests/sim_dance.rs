@@ -89,13 +89,23 @@ fn stress_triple_speed_at_30_hz_output_stays_finite_and_rigid() {
         let motion = |t: f64, c: &mut Colliders| dance.colliders_at(t, c);
         let (guides, mut sim, mut state) = setup(&style, &dance.colliders(0.0));
         let mut worst_len = 0.0f32;
+        let mut worst_pen = 0.0f32;
+        let mut c = dance.colliders(0.0);
         run(&mut sim, &mut state, 300, 1.0 / 30.0, motion, |s, f| {
             assert!(all_finite(s), "{}: non-finite at frame {f}", style.name);
             assert!(s.kinetic_energy().is_finite());
             worst_len = worst_len.max(max_length_error(s, &guides));
+            dance.colliders_at(s.time_s, &mut c);
+            worst_pen = worst_pen.max(max_penetration_m(s, guides.points_per_guide, &c));
         });
         eprintln!(
-            "{}: 3x dance, 1/30 s frames, 10 s: worst relative length error {worst_len:.2e}",
+            "{}: 3x dance, 1/30 s frames, 10 s: worst relative length error {worst_len:.2e}, \
+             worst penetration at frame ends {worst_pen:.2e} m",
+            style.name
+        );
+        assert!(
+            worst_pen <= PENETRATION_TOLERANCE_M,
+            "{}: {worst_pen}",
             style.name
         );
         assert!(worst_len < LENGTH_TOLERANCE, "{}: {worst_len}", style.name);
@@ -231,4 +241,54 @@ fn non_finite_colliders_and_times_do_not_poison_the_state() {
     let stats = sim.advance(&mut state, 0.1, bad, &NoDensity);
     assert_eq!(stats.steps, 0);
     assert!(same_bits(&before, &state.positions));
+}
+
+/// Angles (radians) between consecutive free links of every guide, guide-major.
+fn turning_angles(points: &[Vec3], ppg: usize) -> Vec<f32> {
+    let mut out = Vec::new();
+    for g in points.chunks(ppg) {
+        for i in 2..ppg {
+            let a = (g[i - 1] - g[i - 2]).normalize();
+            let b = (g[i] - g[i - 1]).normalize();
+            out.push(a.dot(b).clamp(-1.0, 1.0).acos());
+        }
+    }
+    out
+}
+
+#[test]
+fn curly_guides_keep_their_rest_bends_through_the_dance() {
+    let base = Hairstyle::default_curly();
+    let mut deviation = Vec::new();
+    let mut rest_mean = 0.0;
+    for stiffness in [base.dynamics.bending_stiffness, 0.0] {
+        let mut style = base.clone();
+        style.dynamics.bending_stiffness = stiffness;
+        let dance = AnalyticDance::new(Vec3::from(style.head.radii_m));
+        let motion = |t: f64, c: &mut Colliders| dance.colliders_at(t, c);
+        let (guides, mut sim, mut state) = setup(&style, &dance.colliders(0.0));
+        let ppg = guides.points_per_guide;
+        let rest = turning_angles(&guides.rest, ppg);
+        rest_mean = rest.iter().sum::<f32>() / rest.len() as f32;
+        // Mean |bend − rest bend| over all links, averaged over the frames of seconds 3 to 5.
+        let mut dev = 0.0f32;
+        run(&mut sim, &mut state, 150, 1.0 / 30.0, motion, |s, f| {
+            if f > 90 {
+                let now = turning_angles(&s.positions, ppg);
+                let d: f32 = now.iter().zip(&rest).map(|(a, b)| (a - b).abs()).sum();
+                dev += d / now.len() as f32 / 60.0;
+            }
+        });
+        deviation.push(dev);
+    }
+    eprintln!(
+        "curly: mean rest bend {rest_mean:.3} rad; mean bend change in the dance: stiffness {} -> \
+         {:.3} rad, limp -> {:.3} rad",
+        base.dynamics.bending_stiffness, deviation[0], deviation[1]
+    );
+    assert!(
+        deviation[0] < 0.1 * rest_mean,
+        "{deviation:?} vs {rest_mean}"
+    );
+    assert!(deviation[0] < 0.1 * deviation[1], "{deviation:?}");
 }

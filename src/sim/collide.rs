@@ -100,6 +100,8 @@ pub(crate) struct CollisionScene<'a> {
     radii: Vec3A,
     /// Inflated semi-axes (radii + margin), what particles are pushed to.
     radii_out: Vec3A,
+    /// 1 / radii_out (the common no-contact test multiplies instead of dividing).
+    inv_radii_out: Vec3A,
     /// Largest true semi-axis (for the conservative penetration estimate).
     radius_max: f32,
     spheres: &'a [SphereCollider],
@@ -113,6 +115,7 @@ impl<'a> CollisionScene<'a> {
             head_to_world: c.head,
             radii,
             radii_out: radii + Vec3A::splat(COLLISION_MARGIN_M),
+            inv_radii_out: (radii + Vec3A::splat(COLLISION_MARGIN_M)).recip(),
             radius_max: radii.max_element(),
             spheres: &c.spheres,
         }
@@ -133,12 +136,12 @@ impl<'a> CollisionScene<'a> {
     ) -> (Vec3A, bool) {
         let mut p = p;
         let mut touched = false;
-        let prev_s = self.world_to_head.transform_point3a(prev) / self.radii_out;
         for _ in 0..COLLISION_ROUNDS {
             let mut moved = false;
             // Head ellipsoid, in scaled head coordinates where it is the unit sphere.
-            let qs = self.world_to_head.transform_point3a(p) / self.radii_out;
+            let qs = self.world_to_head.transform_point3a(p) * self.inv_radii_out;
             if qs.length_squared() < 1.0 {
+                let prev_s = self.world_to_head.transform_point3a(prev) * self.inv_radii_out;
                 let fallback_s =
                     self.world_to_head.transform_vector3a(fallback_dir) / self.radii_out;
                 let link_s = (qs - prev_s).length();
@@ -218,7 +221,7 @@ fn circle_exit(
     }
     let a = to_c / d;
     let h = (d * d + link * link - r * r) / (2.0 * d);
-    if !(h <= link) {
+    if h.is_nan() || h > link {
         return None;
     }
     let rho = (link * link - h * h).max(0.0).sqrt();
@@ -284,7 +287,7 @@ mod tests {
         assert!(p.is_finite());
         assert!(((p - prev).length() / link - 1.0).abs() < 1e-5);
         assert!(scene.penetration_m(p) < 1e-5);
-        let head_centre = Vec3A::from(c.head.translation);
+        let head_centre = c.head.translation;
         let outside = head_centre + Vec3A::new(0.0, 0.2, 0.0);
         let (p, _) = scene.resolve(outside, head_centre, 0.2, Vec3A::NEG_Y);
         assert!(p.is_finite());
@@ -297,7 +300,7 @@ mod tests {
         assert_eq!(c.penetration_m(Vec3::new(5.0, 5.0, 5.0)), 0.0);
         assert!(c.penetration_m(c.head.translation.into()) > 0.07);
         let scene = CollisionScene::new(&c);
-        let p = Vec3A::from(c.head.translation);
+        let p = c.head.translation;
         assert!((scene.penetration_m(p) - c.penetration_m(p.into())).abs() < 1e-6);
     }
 }

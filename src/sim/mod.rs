@@ -12,7 +12,8 @@
 //! at 60 Hz). Each step is position based: predict with forces, sweep root to tip placing each
 //! particle at exactly one link length from its predecessor (follow the leader), resolve
 //! collisions, then derive velocities with Müller's correction. See `step.rs` for the
-//! equations, `collide.rs` for collisions and their order, `density.rs` for §4.1.
+//! equations, `bend.rs` for the bending constants and damping, `collide.rs` for collisions and
+//! their order, `density.rs` for §4.1.
 //!
 //! Why: rigid links by construction (no iteration count to tune, lengths exact to rounding),
 //! unconditionally stable position projections, and guides independent within a step, so they
@@ -21,12 +22,14 @@
 //! `SimParams` is read from hairstyle JSON (`"dynamics": {...}`); missing fields take defaults.
 //! [`dance`] holds an analytic dance motion used by tests and benches.
 
+mod bend;
 pub mod collide;
 pub mod dance;
 pub mod density;
 pub mod state;
 pub mod step;
 
+pub use bend::BENDING_REFERENCE_STEP_S;
 pub use collide::{COLLISION_MARGIN_M, Colliders, SphereCollider};
 pub use density::{DensityField, NoDensity};
 pub use state::SimState;
@@ -44,7 +47,8 @@ pub struct SimParams {
     pub gravity_m_s2: f32,
     /// Air damping rate in 1/s: velocity decays as exp(−rate·t) (default 1.5).
     pub damping_per_s: f32,
-    /// Bending stiffness toward the rest shape, in [0, 1] (0 limp, 1 rigid; default 0.3).
+    /// Bending stiffness toward the rest shape, in [0, 1] (0 limp, 1 rigid; default 0.3): the
+    /// fraction of a link's deviation from its rest bend removed per 1/240 s (`step.rs`).
     pub bending_stiffness: f32,
     /// Hair volume fraction above which a map cell repels hair (Bertails §4.1; default 0.25).
     pub density_threshold: f32,
@@ -153,6 +157,46 @@ impl SimParams {
             ),
             ftl_correction: pick(self.ftl_correction, d.ftl_correction, 0.0, 1.0),
             max_catch_up_s: pick(self.max_catch_up_s, d.max_catch_up_s, 1e-3, 10.0),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn new_fields_are_validated_and_default_when_absent() {
+        assert!(SimParams::default().validate().is_ok());
+        let p: SimParams = serde_json::from_str(r#"{ "damping_per_s": 2.0 }"#).expect("parses");
+        assert_eq!(p.ftl_correction, SimParams::default().ftl_correction);
+        assert_eq!(p.max_catch_up_s, 0.25);
+        for (bad, field) in [
+            (
+                SimParams {
+                    ftl_correction: 1.5,
+                    ..SimParams::default()
+                },
+                "ftl_correction",
+            ),
+            (
+                SimParams {
+                    max_catch_up_s: 0.0,
+                    ..SimParams::default()
+                },
+                "max_catch_up_s",
+            ),
+            (
+                SimParams {
+                    bending_damping_ratio: f32::NAN,
+                    ..SimParams::default()
+                },
+                "bending_damping_ratio",
+            ),
+        ] {
+            let err = bad.validate().expect_err("must be rejected");
+            assert!(err.starts_with(field), "{err}");
+            assert!(bad.sanitized().validate().is_ok());
         }
     }
 }

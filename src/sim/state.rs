@@ -17,7 +17,9 @@ use glam::{Affine3A, Vec3, Vec3A};
 pub struct SimState {
     /// World positions in metres, guide-major like `GuideSet::rest`.
     pub positions: Vec<Vec3>,
-    /// Simulated time of `positions` in seconds (a step instant: `origin + n · step_s`).
+    /// Simulated time of `positions` in seconds (a step instant: `origin + n · step_s`). An
+    /// output: the step clock behind it is private, so to restart at another time build a new
+    /// state with [`SimState::at_rest`] rather than writing this field.
     pub time_s: f64,
     /// Integrator velocities in m/s (after the follow-the-leader velocity correction).
     pub(crate) velocities: Vec<Vec3>,
@@ -38,17 +40,26 @@ impl SimState {
     /// time `t_s`. Particles the rest shape puts inside a body sphere (or the head) are moved
     /// out root to tip with the same projection the simulator uses, so the first step starts
     /// from a valid state instead of popping out of a collider at high speed. The first two
-    /// particles of each guide (the rigid root segment) are never moved.
+    /// particles of each guide (the rigid root segment) are never moved. A non-finite head
+    /// transform is replaced by the identity (and the spheres ignored).
     pub fn at_rest(guides: &GuideSet, colliders: &Colliders, t_s: f64) -> SimState {
         let ppg = guides.points_per_guide;
         let count = super::step::usable_guides(guides);
         let n = count * ppg;
+        // A non-finite head transform would make every position NaN: use the identity instead.
+        let fallback;
+        let colliders = if colliders.head.is_finite() {
+            colliders
+        } else {
+            fallback = Colliders::head_only(Affine3A::IDENTITY, colliders.head_radii_m);
+            &fallback
+        };
         let head = colliders.head;
         let scene = CollisionScene::new(colliders);
         let mut positions = Vec::with_capacity(n);
         for g in 0..count {
             let rest = guides.guide(g);
-            let link = guides.link_length_m[g];
+            let link = super::step::sanitized_link_m(guides.link_length_m[g]);
             let mut prev = Vec3A::ZERO;
             for (i, r) in rest.iter().enumerate() {
                 let mut p = head.transform_point3a(Vec3A::from(*r));

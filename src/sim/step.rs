@@ -14,22 +14,22 @@
 //!    evaluated at `x` (the field is the map of the previous frame). The decay factor is the
 //!    exact solution of `dv/dt = −c v` over the step, so damping does not depend on `dt`.
 //! 3. **Root-to-tip sweep** (Gauss–Seidel, each particle sees its predecessor's final position):
-//!    a. *Bending.* `Q` is a rotation carrying rest directions (head frame) to the current
-//!       frame of the previous link, parallel-transported down the strand: `Q₁ = R_head`, and
-//!       after link i is placed with direction `dᵢ`, `Qᵢ = arc(Qᵢ₋₁ rᵢ → dᵢ) · Qᵢ₋₁` (the
-//!       minimal rotation). The target of link i is `tᵢ = Qᵢ₋₁ rᵢ`: the rest bend between
-//!       links i−1 and i, including its plane, so waves and curls keep their shape and their
-//!       orientation about the strand. The particle is pulled toward it,
-//!       `p* ← p* + k (xᵢ₋₁ + L tᵢ − p*)`, with `k = 1 − (1 − bending_stiffness)^(dt / (1/240 s))`:
-//!       the stiffness is the fraction of the deviation removed per 1/240 s, the same at any
-//!       step (0: limp, 1: rigid rest shape).
-//!    b. *Follow the leader* (Müller, Kim & Chentanez 2012, "Fast Simulation of Inextensible
-//!       Hair and Fur", dynamic FTL; the paper is not in `shared/papers`, so no equation
-//!       numbers are cited): `pᵢ = pᵢ₋₁ + L · (p* − pᵢ₋₁)/|p* − pᵢ₋₁|`, so every link has
-//!       length L exactly (to rounding), with no iteration. The correction `dᵢ = pᵢ − p*` is
-//!       kept for step 4. A degenerate direction falls back to `tᵢ`.
-//!    c. *Collisions* (`collide.rs`): out of the head ellipsoid and the spheres, keeping the
-//!       particle on the sphere of radius L around `pᵢ₋₁`; the length projection is always last.
+//!    - a) *Bending.* `Q` is a rotation carrying rest directions (head frame) to the current
+//!      frame of the previous link, parallel-transported down the strand: `Q₁ = R_head`, and
+//!      after link i is placed with direction `dᵢ`, `Qᵢ = arc(Qᵢ₋₁ rᵢ → dᵢ) · Qᵢ₋₁` (the
+//!      minimal rotation). The target of link i is `tᵢ = Qᵢ₋₁ rᵢ`: the rest bend between
+//!      links i−1 and i, including its plane, so waves and curls keep their shape and their
+//!      orientation about the strand. The particle is pulled toward it,
+//!      `p* ← p* + k (pᵢ₋₁ + L tᵢ − p*)`, with `k = 1 − (1 − bending_stiffness)^(dt / (1/240 s))`:
+//!      the stiffness is the fraction of the deviation removed per 1/240 s, the same at any
+//!      step (0: limp, 1: rigid rest shape).
+//!    - b) *Follow the leader* (Müller, Kim & Chentanez 2012, "Fast Simulation of Inextensible
+//!      Hair and Fur", dynamic FTL; the paper is not in `shared/papers`, so no equation
+//!      numbers are cited): `pᵢ = pᵢ₋₁ + L · (p* − pᵢ₋₁)/|p* − pᵢ₋₁|`, so every link has
+//!      length L exactly (to rounding), with no iteration. The correction `dᵢ = pᵢ − p*` is
+//!      kept for step 4. A degenerate direction falls back to `tᵢ`.
+//!    - c) *Collisions* (`collide.rs`): out of the head ellipsoid and the spheres, keeping the
+//!      particle on the sphere of radius L around `pᵢ₋₁`; the length projection is always last.
 //! 4. **Velocities** (DFTL velocity update): `vᵢ = (pᵢ − xᵢ)/dt − s · dᵢ₊₁/dt` with
 //!    `s = ftl_correction` (default 0.5; `d` past the tip is 0). Plain FTL moves a particle
 //!    without moving its predecessor, as if each particle were infinitely heavier than the
@@ -43,7 +43,7 @@
 //!    the compromise.
 //! 5. **Bending damping.** Each link's angular velocity relative to its parent link is damped by
 //!    the factor `κ = 1 − exp(−2 ζ √k)` per step (`ζ = bending_damping_ratio`, default 1), see
-//!    `damp_bending`. Why it is needed: the pull in 3a acts on the child only, so link i is
+//!    `bend.rs`. Why it is needed: the pull in 3a acts on the child only, so link i is
 //!    an oscillator of angular frequency ω = √k / dt (for small k, from the per-step map
 //!    e ← (1 − k)(e + v dt)) driven by link i−1, with no reaction back. Its gain from the parent's
 //!    motion at resonance is ω/c for a damping rate c; with only air damping (c = 1.5 /s,
@@ -64,15 +64,13 @@
 //! its sphere vector reuses its capacity).
 
 use super::SimParams;
+use super::bend;
 use super::collide::{Colliders, CollisionScene};
 use super::density::{DensityField, repulsion_m_s2};
 use super::state::SimState;
 use crate::hairstyle::GuideSet;
 use glam::{Affine3A, Quat, Vec3, Vec3A};
 use rayon::prelude::*;
-
-/// Reference step that `bending_stiffness` is defined at, seconds.
-pub const BENDING_REFERENCE_STEP_S: f32 = 1.0 / 240.0;
 
 /// What happened during one [`Simulator::advance`] call.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -120,6 +118,12 @@ pub(crate) fn usable_guides(guides: &GuideSet) -> usize {
         .min(guides.rest.len() / guides.points_per_guide)
 }
 
+/// A usable link length: non-finite or non-positive lengths (impossible from `generate`) become
+/// 1 mm rather than NaN positions.
+pub(crate) fn sanitized_link_m(l: f32) -> f32 {
+    if l.is_finite() && l > 0.0 { l } else { 1e-3 }
+}
+
 /// Constant per-particle data of the rest shape, head frame.
 struct Shape {
     points_per_guide: usize,
@@ -155,6 +159,8 @@ pub struct Simulator {
     correction: Vec<Vec3A>,
     /// Scratch written by the collider closure.
     colliders: Colliders,
+    /// Head semi-axes given to `new`, used when the closure leaves invalid ones.
+    head_radii_m: Vec3,
 }
 
 impl Simulator {
@@ -180,17 +186,17 @@ impl Simulator {
         }
         let link_m = guides.link_length_m[..count]
             .iter()
-            .map(|l| if l.is_finite() && *l > 0.0 { *l } else { 1e-3 })
+            .map(|l| sanitized_link_m(*l))
             .collect();
         let dt = params.step_s;
-        let bend_k = 1.0 - (1.0 - params.bending_stiffness).powf(dt / BENDING_REFERENCE_STEP_S);
+        let bend_k = bend::pull_per_step(params.bending_stiffness, dt);
         let consts = Consts {
             dt,
             inv_dt: 1.0 / dt,
             gravity: Vec3A::new(0.0, -params.gravity_m_s2, 0.0),
             damping_factor: (-params.damping_per_s * dt).exp(),
             bend_k,
-            bend_damp: 1.0 - (-2.0 * params.bending_damping_ratio * bend_k.sqrt()).exp(),
+            bend_damp: bend::damping_per_step(params.bending_damping_ratio, bend_k),
             ftl_correction: params.ftl_correction,
             density_threshold: params.density_threshold,
             repulsion_m_s2: params.repulsion_m_s2,
@@ -206,6 +212,7 @@ impl Simulator {
             },
             correction: vec![Vec3A::ZERO; n],
             colliders: Colliders::head_only(Affine3A::IDENTITY, head_radii_m),
+            head_radii_m,
         }
     }
 
@@ -233,8 +240,8 @@ impl Simulator {
     /// `params.max_catch_up_s` (a hiccup, a seek) is not simulated in full: the hair is carried
     /// rigidly with the head to `t_end_s − max_catch_up_s` and only the last
     /// `max_catch_up_s` is simulated, so one slow frame cannot make the next one slower.
-    /// A state from a different guide set, a non-finite `t_end_s` or one in the past does
-    /// nothing.
+    /// A state from a different guide set, an empty guide set, a non-finite `t_end_s` or one
+    /// in the past does nothing.
     pub fn advance<C, D>(
         &mut self,
         state: &mut SimState,
@@ -248,7 +255,8 @@ impl Simulator {
     {
         let mut stats = StepStats::default();
         let n = self.particle_count();
-        if !t_end_s.is_finite()
+        if n == 0
+            || !t_end_s.is_finite()
             || state.positions.len() != n
             || state.velocities.len() != n
             || state.prev_positions.len() != n
@@ -286,14 +294,16 @@ impl Simulator {
         stats
     }
 
-    /// Keeps the previous head transform if the closure produced a non-finite one.
+    /// Keeps the previous head transform if the closure produced a non-finite one, and the
+    /// head semi-axes given to `new` if it produced invalid ones (if those are invalid too,
+    /// the ellipsoid test simply finds nothing inside).
     fn sanitize_colliders(&mut self, previous_head: Affine3A) {
         if !self.colliders.head.is_finite() {
             self.colliders.head = previous_head;
         }
         let r = self.colliders.head_radii_m;
         if !(r.is_finite() && r.min_element() > 0.0) {
-            self.colliders.head_radii_m = Vec3::splat(1e-3);
+            self.colliders.head_radii_m = self.head_radii_m;
         }
     }
 
@@ -322,59 +332,6 @@ impl Simulator {
                 step_guide(g, pos, prev, vel, corr, shape, &c, &frame, density)
             })
             .reduce(GuideStats::default, GuideStats::merge)
-    }
-}
-
-/// The minimal rotation taking unit `a` to unit `b`: the quaternion (a × b, 1 + a·b),
-/// normalised, which is (sin(θ/2) axis, cos(θ/2)) by the half-angle identities. Near
-/// `b = −a` (1 + a·b → 0, no unique axis) it turns by π about any axis perpendicular to `a`.
-/// Cheaper than `Quat::from_rotation_arc` (one square root, no branches in the common case),
-/// which took 18% of a step in the profile.
-#[inline]
-fn rotation_arc(a: Vec3A, b: Vec3A) -> Quat {
-    let w = 1.0 + a.dot(b);
-    if w > 1e-6 {
-        let axis = a.cross(b);
-        Quat::from_xyzw(axis.x, axis.y, axis.z, w).normalize()
-    } else {
-        let axis = a.any_orthonormal_vector();
-        Quat::from_xyzw(axis.x, axis.y, axis.z, 0.0)
-    }
-}
-
-/// Damps each link's angular velocity relative to its parent link's by the factor `kappa` per
-/// step, keeping the radial (along-link) relative velocity: with `rᵢ = pᵢ − pᵢ₋₁` and
-/// `wᵢ = vᵢ − vᵢ₋₁`, the link's angular velocity is `Ωᵢ = rᵢ × wᵢ / |rᵢ|²`; it becomes
-/// `Ωᵢ − kappa (Ωᵢ − Ωᵢ₋₁)` and the velocity is rebuilt as
-/// `vᵢ = v'ᵢ₋₁ + (wᵢ·r̂ᵢ) r̂ᵢ + Ω'ᵢ × rᵢ` from the already damped parent, so a strand swinging or
-/// turning rigidly is untouched (all Ωᵢ equal) and only bending motion loses energy.
-fn damp_bending(pos: &[Vec3], vel: &mut [Vec3], kappa: f32) {
-    let r0 = Vec3A::from(pos[1]) - Vec3A::from(pos[0]);
-    let l0 = r0.length_squared();
-    let mut omega_parent = if l0 > 0.0 {
-        r0.cross(Vec3A::from(vel[1]) - Vec3A::from(vel[0])) / l0
-    } else {
-        Vec3A::ZERO
-    };
-    let mut v_parent_new = Vec3A::from(vel[1]);
-    let mut v_parent_old = v_parent_new;
-    for i in 2..pos.len() {
-        let r = Vec3A::from(pos[i]) - Vec3A::from(pos[i - 1]);
-        let l2 = r.length_squared();
-        let v = Vec3A::from(vel[i]);
-        let w = v - v_parent_old;
-        v_parent_old = v;
-        if !(l2 > 0.0) {
-            v_parent_new = v;
-            continue;
-        }
-        let radial = r * (w.dot(r) / l2);
-        let omega = r.cross(w) / l2;
-        let omega_new = omega - (omega - omega_parent) * kappa;
-        let v_new = v_parent_new + radial + omega_new.cross(r);
-        vel[i] = Vec3::from(v_new);
-        v_parent_new = v_new;
-        omega_parent = omega_new;
     }
 }
 
@@ -420,6 +377,7 @@ fn step_guide<D: DensityField>(
     let rest = &shape.rest[base..base + ppg];
     let rest_dir = &shape.rest_dir[base..base + ppg];
     let link = shape.link_m[g];
+    let inv_link = 1.0 / link;
     let mut stats = GuideStats::default();
     prev.copy_from_slice(pos);
 
@@ -446,7 +404,8 @@ fn step_guide<D: DensityField>(
     let mut q = frame.head_rot;
     let mut p_prev = Vec3A::from(pos[1.min(ppg - 1)]);
     for i in 2..ppg {
-        let target_dir = (q * rest_dir[i]).normalize_or(rest_dir[i]);
+        // Unit to rounding: q is a unit quaternion, rest_dir a unit vector.
+        let target_dir = q * rest_dir[i];
         let mut p = Vec3A::from(pos[i]);
         p += (p_prev + target_dir * link - p) * c.bend_k;
         let dir = (p - p_prev).normalize_or(target_dir);
@@ -458,8 +417,10 @@ fn step_guide<D: DensityField>(
                 .max_penetration_m
                 .max(frame.scene.penetration_m(p_final));
         }
-        let actual_dir = (p_final - p_prev).normalize_or(target_dir);
-        q = (rotation_arc(target_dir, actual_dir) * q).normalize();
+        // |p_final − p_prev| = L to rounding, so no square root is needed; q is rebuilt from
+        // the head rotation every step, so rounding drift cannot accumulate beyond one strand.
+        let actual_dir = (p_final - p_prev) * inv_link;
+        q = bend::rotation_arc(target_dir, actual_dir) * q;
         pos[i] = Vec3::from(p_final);
         p_prev = p_final;
     }
@@ -473,7 +434,7 @@ fn step_guide<D: DensityField>(
     }
     // 5. Bending damping, root to tip (after the velocities it damps).
     if c.bend_damp > 0.0 && ppg >= 3 {
-        damp_bending(pos, vel, c.bend_damp);
+        bend::damp_bending(pos, vel, c.bend_damp);
     }
     // NaN guard: a guide that went non-finite restarts from its rest shape, at rest.
     if !pos.iter().chain(vel.iter()).all(|p| p.is_finite()) {
@@ -486,4 +447,202 @@ fn step_guide<D: DensityField>(
         stats.max_penetration_m = 0.0;
     }
     stats
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::{COLLISION_MARGIN_M, NoDensity, SphereCollider};
+
+    fn one_guide(rest: Vec<Vec3>, link: f32) -> GuideSet {
+        GuideSet {
+            points_per_guide: rest.len(),
+            rest,
+            link_length_m: vec![link],
+            root_normal: vec![Vec3::NEG_Y],
+        }
+    }
+
+    #[test]
+    fn a_straight_hanging_guide_stays_put_and_keeps_its_links() {
+        // Rooted on the underside of a small head, hanging straight down.
+        let radii = Vec3::splat(0.05);
+        let rest: Vec<Vec3> = (0..10)
+            .map(|i| Vec3::new(0.0, -0.05 - i as f32 * 0.02, 0.0))
+            .collect();
+        let guides = one_guide(rest, 0.02);
+        let colliders = Colliders::head_only(Affine3A::IDENTITY, radii);
+        let mut sim = Simulator::new(&SimParams::default(), &guides, radii);
+        let mut state = SimState::at_rest(&guides, &colliders, 0.0);
+        let start = state.positions.clone();
+        let stats = sim.advance(
+            &mut state,
+            2.0,
+            |_, c: &mut Colliders| *c = colliders.clone(),
+            &NoDensity,
+        );
+        assert_eq!(stats.steps, 60, "capped at max_catch_up_s = 0.25 s");
+        for (p, q) in state.positions.iter().zip(&start) {
+            assert!((*p - *q).length() < 1e-5, "moved from {q} to {p}");
+        }
+    }
+
+    #[test]
+    fn limp_guide_falls_and_swings_under_gravity_without_stretching() {
+        // A horizontal guide (rest shape sticking out sideways) with zero stiffness must fall.
+        let radii = Vec3::splat(0.05);
+        let rest: Vec<Vec3> = (0..10)
+            .map(|i| Vec3::new(0.05 + i as f32 * 0.02, 0.0, 0.0))
+            .collect();
+        let guides = GuideSet {
+            root_normal: vec![Vec3::X],
+            ..one_guide(rest, 0.02)
+        };
+        let params = SimParams {
+            bending_stiffness: 0.0,
+            ..SimParams::default()
+        };
+        let colliders = Colliders::head_only(Affine3A::IDENTITY, radii);
+        let mut sim = Simulator::new(&params, &guides, radii);
+        let mut state = SimState::at_rest(&guides, &colliders, 0.0);
+        let mut lowest_tip_m = 0.0f32;
+        for f in 1..=18 {
+            sim.advance(
+                &mut state,
+                f as f64 / 60.0,
+                |_, c: &mut Colliders| *c = colliders.clone(),
+                &NoDensity,
+            );
+            lowest_tip_m = lowest_tip_m.min(state.positions[9].y);
+            assert!(state.kinetic_energy() > 0.0);
+            for w in state.positions.windows(2) {
+                assert!(((w[1] - w[0]).length() / 0.02 - 1.0).abs() < 1e-5);
+            }
+            for p in &state.positions[2..] {
+                assert!(colliders.penetration_m(*p) < 1e-4, "{p}");
+            }
+        }
+        // The free part of the chain is 0.16 m long: swinging down, its tip passes well below
+        // the root's height (free fall alone would drop it 0.44 m in 0.3 s).
+        assert!(lowest_tip_m < -0.1, "tip did not fall: {lowest_tip_m}");
+    }
+
+    #[test]
+    fn a_fast_sphere_sweeping_through_hanging_hair_pushes_it_without_tunnelling() {
+        // A 45 mm sphere crosses a hanging guide sideways at 5 m/s (under the 10.8 m/s limit
+        // derived in collide.rs): every particle it meets is pushed ahead of it, none is
+        // left inside or passed through.
+        let radii = Vec3::splat(0.05);
+        let rest: Vec<Vec3> = (0..12)
+            .map(|i| Vec3::new(0.0, -0.05 - i as f32 * 0.02, 0.0))
+            .collect();
+        let guides = one_guide(rest, 0.02);
+        let speed_m_s = 5.0f32;
+        let sphere_at = move |t: f64| SphereCollider {
+            center: Vec3::new(-0.2 + speed_m_s * t as f32, -0.17, 0.0),
+            radius_m: 0.045,
+        };
+        let colliders_at = move |t: f64, c: &mut Colliders| {
+            c.head = Affine3A::IDENTITY;
+            c.head_radii_m = radii;
+            c.spheres.clear();
+            c.spheres.push(sphere_at(t));
+        };
+        let mut c0 = Colliders::head_only(Affine3A::IDENTITY, radii);
+        colliders_at(0.0, &mut c0);
+        let mut sim = Simulator::new(&SimParams::default(), &guides, radii);
+        let mut state = SimState::at_rest(&guides, &c0, 0.0);
+        let dt = f64::from(sim.params().step_s);
+        let mut c = c0.clone();
+        let mut furthest_push_m = 0.0f32;
+        for k in 1..=24 {
+            // 0.1 s: the sphere travels 0.5 m, from x = -0.2 to 0.3, through the guide.
+            let stats = sim.advance(&mut state, f64::from(k) * dt, colliders_at, &NoDensity);
+            assert!(
+                stats.max_penetration_m < 1e-4,
+                "{}",
+                stats.max_penetration_m
+            );
+            colliders_at(state.time_s, &mut c);
+            for p in &state.positions[2..] {
+                assert!(c.penetration_m(*p) < 1e-4, "step {k}: {p} inside");
+            }
+            for p in &state.positions[4..8] {
+                furthest_push_m = furthest_push_m.max(p.x);
+            }
+        }
+        // The particles at the sphere's height were carried along +x before the strand slid
+        // around the sphere (the stiff rest shape then straightens it again).
+        assert!(furthest_push_m > 0.03, "pushed only {furthest_push_m} m");
+    }
+
+    #[test]
+    fn at_rest_moves_hair_out_of_a_sphere_it_starts_in() {
+        let radii = Vec3::splat(0.05);
+        let rest: Vec<Vec3> = (0..10)
+            .map(|i| Vec3::new(0.0, -0.05 - i as f32 * 0.02, 0.0))
+            .collect();
+        let guides = one_guide(rest, 0.02);
+        let colliders = Colliders {
+            head: Affine3A::from_translation(Vec3::new(0.0, 1.6, 0.0)),
+            head_radii_m: radii,
+            spheres: vec![SphereCollider {
+                center: Vec3::new(0.01, 1.6 - 0.17, 0.0),
+                radius_m: 0.05,
+            }],
+        };
+        let state = SimState::at_rest(&guides, &colliders, 0.0);
+        for p in &state.positions[2..] {
+            assert!(
+                colliders.penetration_m(*p) < 0.1 * COLLISION_MARGIN_M,
+                "{p}"
+            );
+        }
+        for w in state.positions.windows(2) {
+            assert!(((w[1] - w[0]).length() / 0.02 - 1.0).abs() < 1e-5);
+        }
+        assert_eq!(state.kinetic_energy(), 0.0);
+        assert!(state.velocities().iter().all(|v| *v == Vec3::ZERO));
+    }
+
+    #[test]
+    fn inconsistent_guide_sets_and_states_do_nothing_instead_of_panicking() {
+        let radii = Vec3::splat(0.05);
+        let mut guides = one_guide(vec![Vec3::Y * 0.05, Vec3::Y * 0.07, Vec3::Y * 0.09], 0.02);
+        guides.link_length_m.push(0.02); // claims 2 guides, holds 1
+        let colliders = Colliders::head_only(Affine3A::IDENTITY, radii);
+        let mut sim = Simulator::new(&SimParams::default(), &guides, radii);
+        assert_eq!(sim.particle_count(), 3);
+        let mut state = SimState::at_rest(&guides, &colliders, 0.0);
+        assert_eq!(state.positions.len(), 3);
+        state.positions.push(Vec3::ZERO); // now mismatched
+        let stats = sim.advance(&mut state, 1.0, |_, _: &mut Colliders| {}, &NoDensity);
+        assert_eq!(stats.steps, 0);
+        let params = SimParams {
+            step_s: f32::NAN,
+            bending_stiffness: 7.0,
+            ..SimParams::default()
+        };
+        let sim = Simulator::new(&params, &guides, radii);
+        assert_eq!(sim.params().step_s, SimParams::default().step_s);
+        // A non-finite head at construction gives a finite state.
+        let mut nan_head = colliders.clone();
+        nan_head.head.translation.x = f32::NAN;
+        let state = SimState::at_rest(&guides, &nan_head, 0.0);
+        assert!(state.positions.iter().all(|p| p.is_finite()));
+        // Degenerate guide sets: no particles, no panic.
+        for ppg in [0, 1] {
+            let empty = GuideSet {
+                points_per_guide: ppg,
+                ..guides.clone()
+            };
+            let mut sim = Simulator::new(&SimParams::default(), &empty, radii);
+            let mut state = SimState::at_rest(&empty, &colliders, 0.0);
+            assert!(state.positions.is_empty());
+            let stats = sim.advance(&mut state, 1.0, |_, _: &mut Colliders| {}, &NoDensity);
+            assert_eq!(stats.steps, 0);
+        }
+        assert_eq!(sim.params().bending_stiffness, 1.0);
+        assert!(sim.params().validate().is_ok());
+    }
 }

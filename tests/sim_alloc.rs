@@ -1,0 +1,61 @@
+//! The simulator allocates nothing per step once constructed (issue #4 design rule): a counting
+//! global allocator watches `advance` after a warm-up call. This file holds a single test so
+//! that no other test allocates while the counter is armed.
+
+use glam::Vec3;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use wisp::hairstyle::{Hairstyle, generate};
+use wisp::sim::dance::AnalyticDance;
+use wisp::sim::{Colliders, NoDensity, SimState, Simulator};
+
+struct Counting;
+
+static ARMED: AtomicBool = AtomicBool::new(false);
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        if ARMED.load(Ordering::Relaxed) {
+            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        }
+        // SAFETY: forwarded unchanged to the system allocator.
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: `ptr` came from `System.alloc` with this layout.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[test]
+fn advance_does_not_allocate_after_warm_up() {
+    let style = Hairstyle::default_smooth();
+    let (guides, _) = generate(&style);
+    let dance = AnalyticDance::new(Vec3::from(style.head.radii_m));
+    let motion = |t: f64, c: &mut Colliders| dance.colliders_at(t, c);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .expect("thread pool");
+    let mut sim = Simulator::new(&style.dynamics, &guides, Vec3::from(style.head.radii_m));
+    let mut state = SimState::at_rest(&guides, &dance.colliders(0.0), 0.0);
+    pool.install(|| {
+        // Warm-up: the collider scratch grows its sphere vector once, rayon starts its workers.
+        sim.advance(&mut state, 0.1, motion, &NoDensity);
+        ARMED.store(true, Ordering::SeqCst);
+        let mut steps = 0;
+        for f in 4..=30 {
+            steps += sim
+                .advance(&mut state, f64::from(f) / 30.0, motion, &NoDensity)
+                .steps;
+        }
+        ARMED.store(false, Ordering::SeqCst);
+        assert!(steps > 200);
+    });
+    let n = ALLOCATIONS.load(Ordering::SeqCst);
+    assert_eq!(n, 0, "{n} allocations during 0.9 s of simulation");
+}
