@@ -169,7 +169,9 @@ pub const MAX_SEGMENTS: usize = u32::MAX as usize;
 /// Draws `lines` into `fb` (see the module doc for the scheme). Deterministic: the result is
 /// bit-identical for any rayon thread count. Never panics on any input; segments with
 /// non-finite points or colours, or entirely nearer than the near plane, draw nothing.
-/// At most [`MAX_SEGMENTS`] (2³² − 1) segments are drawn.
+/// At most [`MAX_SEGMENTS`] (2³² − 1) segments are drawn. The projection uses the
+/// framebuffer's size (the camera's `width`/`height` are overridden), so one camera can serve
+/// buffers of several sizes.
 pub fn draw_polylines(
     fb: &mut Framebuffer,
     cam: &Camera,
@@ -184,6 +186,7 @@ pub fn draw_polylines(
     if !(style.width_px > 0.0) || !(style.opacity > 0.0) {
         return;
     }
+    // Project with the framebuffer's size, whatever the camera says.
     let view = Camera {
         width: fb.width,
         height: fb.height,
