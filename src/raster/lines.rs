@@ -6,7 +6,7 @@
 //!
 //! How, in two parallel passes:
 //! 1. **Set-up and binning** (parallel over fixed chunks of `SETUP_CHUNK` segments): each
-//!    segment goes to view space, is clipped to the near plane *in view space* (before the
+//!    segment (`segment.rs`) goes to view space, is clipped to the near plane *in view space* (before the
 //!    perspective division, which would flip or blow up points behind the eye), projected,
 //!    then clipped in float to a guard rectangle a little larger than the image. Clipping in
 //!    float before any conversion to integers is what makes NaN, ±inf and 1e30-metre points
@@ -22,11 +22,13 @@
 //!    the segment's expanded rectangle. Bands are whole rows so each owns a disjoint `&mut`
 //!    slice of the framebuffer (no `unsafe`, no locks).
 //!
-//! Measured (100K segments of curly hair around a head at 1280x720, one core of this shared
-//! machine, `benches/raster.rs`): about 27 ms per frame, of which the depth sort is about
-//! 1.5 ms (drawing in input order: 25 ms). Rejected on the way: a serial binning pass with one
-//! shared segment array read in sorted order (36 ms); 8-row bands (+10% set-up and row work);
-//! `sort_unstable` for the keys (15% of all instructions, now about 3%).
+//! Measured (100K segments of curly hair around a head at 1280x720, `benches/raster.rs`, the
+//! 2 cores shared with other builds): about 27 ms per frame on one core (best of 30; criterion
+//! median 29 ms under load), of which the depth sort is about 1.5 ms (input order: 25 ms).
+//! Rejected on the way: the first version — a serial binning pass, one shared segment array
+//! read in sorted order, `sort_unstable`, libm `ceil`/`floor` and saturating `as usize` per
+//! row — at 36 ms; 8-row bands at +10%; `sort_unstable` alone was 15% of all instructions
+//! (callgrind), the radix sort about 3%.
 //!
 //! Coverage is a box filter in line-aligned coordinates: across the line, the overlap of the
 //! pixel's unit box with the line's width (`max(0, min(|d| + ½, w/2) − max(|d| − ½, −w/2))`,
@@ -55,8 +57,9 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::camera::{Camera, View};
+use super::camera::Camera;
 use super::framebuffer::Framebuffer;
+use super::segment::{Params, Seg, setup_segment};
 
 /// Image rows per band (the unit of parallel work and of binning).
 const BAND_ROWS: usize = 16;
@@ -151,48 +154,6 @@ impl LineScratch {
     }
 }
 
-/// A segment ready to rasterise, in pixel coordinates.
-#[derive(Clone, Copy, Debug)]
-struct Seg {
-    x0: f32,
-    y0: f32,
-    /// Unit direction on screen, `(1, 0)` for a zero-length segment.
-    ux: f32,
-    uy: f32,
-    len: f32,
-    /// `1 / len`, 0 for a zero-length segment.
-    inv_len: f32,
-    /// Row spans: the axis crosses row centre y at `x0 + (y − y0)·ux/uy`, the strip of
-    /// half-width `reach` is `reach/|uy|` wide either side; 0 and +inf when `uy` ≈ 0.
-    dxdy: f32,
-    half_span: f32,
-    /// `1/ux`, 0 when `ux` ≈ 0.
-    inv_ux: f32,
-    /// 1 / view depth at the two ends, 1/m.
-    iz0: f32,
-    iz1: f32,
-    c0: Vec3,
-    c1: Vec3,
-    /// Free end of a polyline (box-filtered end) at the start / end.
-    cap0: bool,
-    cap1: bool,
-    /// Covered rows, inclusive.
-    row_lo: u32,
-    row_hi: u32,
-}
-
-/// Per-frame constants of the set-up and raster passes.
-struct Params {
-    view: View,
-    /// Half line width, pixels.
-    half_w: f32,
-    /// Distance from the axis beyond which coverage is 0: `half_w + 0.5`.
-    reach: f32,
-    opacity: f32,
-    width: usize,
-    height: usize,
-}
-
 /// Sort key of a segment in a band: far to near, then input order. The high 32 bits are the
 /// bits of the mid-point 1/depth (positive floats order like their bits), the low 32 bits the
 /// segment's position in the band's list, which is in input order.
@@ -208,7 +169,9 @@ pub const MAX_SEGMENTS: usize = u32::MAX as usize;
 /// Draws `lines` into `fb` (see the module doc for the scheme). Deterministic: the result is
 /// bit-identical for any rayon thread count. Never panics on any input; segments with
 /// non-finite points or colours, or entirely nearer than the near plane, draw nothing.
-/// At most [`MAX_SEGMENTS`] (2³² − 1) segments are drawn.
+/// At most [`MAX_SEGMENTS`] (2³² − 1) segments are drawn. The projection uses the
+/// framebuffer's size (the camera's `width`/`height` are overridden), so one camera can serve
+/// buffers of several sizes.
 pub fn draw_polylines(
     fb: &mut Framebuffer,
     cam: &Camera,
@@ -223,6 +186,7 @@ pub fn draw_polylines(
     if !(style.width_px > 0.0) || !(style.opacity > 0.0) {
         return;
     }
+    // Project with the framebuffer's size, whatever the camera says.
     let view = Camera {
         width: fb.width,
         height: fb.height,
@@ -265,8 +229,16 @@ pub fn draw_polylines(
                 bin.clear();
             }
             let first = chunk * SETUP_CHUNK;
-            for k in first..(first + SETUP_CHUNK).min(seg_count) {
-                if let Some(seg) = setup_segment(&params, lines, k) {
+            // Segment k is segment i of line l; stepped, not divided, per segment.
+            let per_line = lines.points_per_line - 1; // ≥ 1 since seg_count > 0
+            let (mut line, mut i) = (first / per_line, first % per_line);
+            for _ in first..(first + SETUP_CHUNK).min(seg_count) {
+                let seg = setup_segment(&params, lines, line, i);
+                i += 1;
+                if i == per_line {
+                    (line, i) = (line + 1, 0);
+                }
+                if let Some(seg) = seg {
                     let (b0, b1) = (
                         seg.row_lo as usize / BAND_ROWS,
                         seg.row_hi as usize / BAND_ROWS,
@@ -348,144 +320,6 @@ struct Band<'a> {
     row0: usize,
     color: &'a mut [Vec3],
     depth: &'a [f32],
-}
-
-/// Clips and projects segment `k` of `lines`; `None` when nothing of it can be seen.
-fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<Seg> {
-    let n = lines.points_per_line;
-    let segs_per_line = n.checked_sub(1).filter(|&s| s > 0)?;
-    let (line, i) = (k / segs_per_line, k % segs_per_line);
-    let a = line * n + i;
-    let (w0, w1) = (*lines.points.get(a)?, *lines.points.get(a + 1)?);
-    let (mut c0, mut c1) = (*lines.colors.get(a)?, *lines.colors.get(a + 1)?);
-    if !(c0.is_finite() && c1.is_finite()) {
-        return None;
-    }
-    let view = &p.view;
-    let (mut v0, mut v1) = (view.to_view(w0), view.to_view(w1));
-    if !(v0.is_finite() && v1.is_finite()) {
-        return None;
-    }
-    let (mut cap0, mut cap1) = (i == 0, i + 1 == segs_per_line);
-
-    // Near plane, in view space: the perspective division is only meaningful for depth > 0.
-    let near = view.near_m;
-    if v0.z < near && v1.z < near {
-        return None;
-    }
-    if v0.z < near || v1.z < near {
-        let t = (near - v0.z) / (v1.z - v0.z);
-        let v = v0.lerp(v1, t);
-        let c = c0.lerp(c1, t);
-        let v = Vec3::new(v.x, v.y, near);
-        if v0.z < near {
-            (v0, c0, cap0) = (v, c, false);
-        } else {
-            (v1, c1, cap1) = (v, c, false);
-        }
-    }
-    let (mut x0, mut y0) = view.view_to_pixel(v0);
-    let (mut x1, mut y1) = view.view_to_pixel(v1);
-    let (mut iz0, mut iz1) = (1.0 / v0.z, 1.0 / v1.z);
-    let (dx, dy) = (x1 - x0, y1 - y0);
-    // A projection that overflows f32 (points ~1e30 m off axis) is dropped here.
-    if !(dx.is_finite() && dy.is_finite() && iz0.is_finite() && iz1.is_finite()) {
-        return None;
-    }
-
-    // Guard rectangle, in float, before anything becomes an integer (Liang-Barsky).
-    let g = p.reach + 2.0;
-    let (lo_x, hi_x) = (-g, p.width as f32 + g);
-    let (lo_y, hi_y) = (-g, p.height as f32 + g);
-    let inside = |x: f32, y: f32| x >= lo_x && x <= hi_x && y >= lo_y && y <= hi_y;
-    let (mut t0, mut t1) = (0.0_f32, 1.0_f32);
-    let clip_edges = if inside(x0, y0) && inside(x1, y1) {
-        [(0.0, 0.0); 4]
-    } else {
-        [
-            (-dx, x0 - lo_x),
-            (dx, hi_x - x0),
-            (-dy, y0 - lo_y),
-            (dy, hi_y - y0),
-        ]
-    };
-    for (q, r) in clip_edges {
-        if q == 0.0 {
-            if r < 0.0 {
-                return None;
-            }
-        } else {
-            let t = r / q;
-            if q < 0.0 {
-                t0 = t0.max(t);
-            } else {
-                t1 = t1.min(t);
-            }
-        }
-    }
-    if !(t0 <= t1) {
-        return None;
-    }
-    if t0 > 0.0 || t1 < 1.0 {
-        // Colour is perspective-correct at the clip points: c/z and 1/z are screen-linear.
-        let at = |t: f32| {
-            let iz = iz0 + (iz1 - iz0) * t;
-            let c = (c0 * iz0).lerp(c1 * iz1, t) / iz;
-            (x0 + dx * t, y0 + dy * t, iz, c)
-        };
-        let (ax, ay, aiz, ac) = at(t0);
-        let (bx, by, biz, bc) = at(t1);
-        cap0 &= t0 <= 0.0;
-        cap1 &= t1 >= 1.0;
-        (x0, y0, iz0, c0, x1, y1, iz1, c1) = (ax, ay, aiz, ac, bx, by, biz, bc);
-        if !(c0.is_finite() && c1.is_finite() && iz0 > 0.0 && iz1 > 0.0) {
-            return None;
-        }
-    }
-
-    let (dx, dy) = (x1 - x0, y1 - y0);
-    let len = (dx * dx + dy * dy).sqrt();
-    let (ux, uy, len, inv_len) = if len > 1e-6 {
-        (dx / len, dy / len, len, 1.0 / len)
-    } else {
-        (1.0, 0.0, 0.0, 0.0)
-    };
-    let r = p.reach;
-    let (dxdy, half_span) = if uy.abs() > 1e-6 {
-        (ux / uy, r / uy.abs())
-    } else {
-        (0.0, f32::INFINITY)
-    };
-    let inv_ux = if ux.abs() > 1e-6 { 1.0 / ux } else { 0.0 };
-
-    // Rows whose centre (j + 0.5) lies within `reach` of the segment's y extent.
-    let (ymin, ymax) = (y0.min(y1) - r, y0.max(y1) + r);
-    let (xmin, xmax) = (x0.min(x1) - r, x0.max(x1) + r);
-    let last_row = (p.height - 1) as f32;
-    let row_lo = (ymin - 0.5).ceil().max(0.0);
-    let row_hi = (ymax - 0.5).floor().min(last_row);
-    if !(row_lo <= row_hi) || xmax < 0.0 || xmin > p.width as f32 {
-        return None;
-    }
-    Some(Seg {
-        x0,
-        y0,
-        ux,
-        uy,
-        len,
-        inv_len,
-        dxdy,
-        half_span,
-        inv_ux,
-        iz0,
-        iz1,
-        c0,
-        c1,
-        cap0,
-        cap1,
-        row_lo: row_lo as u32,
-        row_hi: row_hi as u32,
-    })
 }
 
 /// `ceil(v)` for `0 ≤ v < 2³¹` as an index; avoids a libm call on baseline x86-64, and the

@@ -7,7 +7,9 @@
 //! - [`solid`]: opaque ellipsoids by per-pixel ray casting (exact screen box, anti-aliased
 //!   silhouette); draw these first, they fill the depth buffer.
 //! - [`lines`]: anti-aliased polylines, depth-tested against the opaque depth, composited back
-//!   to front per band of rows, in parallel and bit-identical for any thread count.
+//!   to front per band of rows, in parallel and bit-identical for any thread count;
+//!   `segment` clips and projects each segment (near plane in view space, then a screen guard
+//!   rectangle in float, before anything becomes an index).
 //!
 //! A frame: [`Framebuffer::clear`], [`draw_ellipsoid`] for each solid, then [`draw_polylines`]
 //! with a [`LineScratch`] kept across frames.
@@ -19,9 +21,10 @@
 pub mod camera;
 pub mod framebuffer;
 pub mod lines;
+mod segment;
 pub mod solid;
 
 pub use camera::{Camera, DEFAULT_NEAR_M, View};
 pub use framebuffer::Framebuffer;
-pub use lines::{LineScratch, LineStyle, MAX_WIDTH_PX, Polylines, draw_polylines};
+pub use lines::{LineScratch, LineStyle, MAX_SEGMENTS, MAX_WIDTH_PX, Polylines, draw_polylines};
 pub use solid::draw_ellipsoid;

@@ -40,7 +40,7 @@ const BOX_MARGIN_PX: f64 = 2.0;
 /// it is called once per covered pixel, from several threads. Colour and depth are written
 /// where the surface is nearer than the depth already stored; the silhouette is anti-aliased.
 /// A singular or non-finite transform, an eye inside the ellipsoid, an empty or inconsistent
-/// framebuffer draw nothing.
+/// framebuffer draw nothing. As for lines, the framebuffer's size overrides the camera's.
 pub fn draw_ellipsoid(
     fb: &mut Framebuffer,
     cam: &Camera,
