@@ -138,8 +138,11 @@ fn light_never_increases_along_the_light_in_any_column() {
             let y = lo.y + (hi.y - lo.y) * (a as f32 + 0.5) / 40.0;
             let z = lo.z + (hi.z - lo.z) * (b as f32 + 0.5) / 40.0;
             let mut prev = map.light_at(frame.to_world(Vec3::new(lo.x - geom.ds_m, y, z)));
-            // Tolerance 1e-5 (relative for σ², which reaches a few rad²): the 8-term blend of equal
-            // face values rounds by a few ulps.
+            // Tolerance 1e-5: the 8-term blend of equal face values rounds by a few ulps, and
+            // each point's lateral map coordinates go through world coordinates in f32, which
+            // moves the lateral filter weights by ~1e-5 cells between steps (seen as drops of σ²
+            // up to 4e-5 relative next to columns with much larger σ²); hence 1e-4 relative for
+            // σ². The exact, per-column statement is `map::tests::every_column_is_monotonic`.
             let steps = ((hi.x - lo.x) / geom.ds_m * 7.0) as usize + 14;
             for s in 0..steps {
                 let x = lo.x - geom.ds_m + s as f32 * geom.ds_m / 7.0;
@@ -154,7 +157,14 @@ fn light_never_increases_along_the_light_in_any_column() {
                     l.tf.cmple(prev.tf + Vec3::splat(1e-5)).all(),
                     "Tf grew at ray ({a},{b}) step {s}"
                 );
-                assert!(l.sigma_f2.cmpge(prev.sigma_f2 * (1.0 - 1e-5) - Vec3::splat(1e-6)).all(), "σ² fell at ray ({a},{b}) step {s}");
+                assert!(
+                    l.sigma_f2
+                        .cmpge(prev.sigma_f2 * (1.0 - 1e-4) - Vec3::splat(1e-6))
+                        .all(),
+                    "σ² fell at ray ({a},{b}) step {s}: {} after {}",
+                    l.sigma_f2,
+                    prev.sigma_f2
+                );
                 prev = l;
             }
             rays += 1;

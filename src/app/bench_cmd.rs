@@ -55,7 +55,9 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         "wisp bench: {} ({} strands, {} segments), {}x{} px, {} frames of \"{}\"",
         style.name,
         style.wisps.count as u64 * style.wisps.strands_per_wisp as u64,
-        style.wisps.count as u64 * style.wisps.strands_per_wisp as u64 * (style.strands.points as u64 - 1),
+        style.wisps.count as u64
+            * style.wisps.strands_per_wisp as u64
+            * (style.strands.points as u64 - 1),
         config.width,
         config.height,
         args.frames,
@@ -64,11 +66,17 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
 
     // 1. Scaling over threads.
     println!("\nper-stage median ms per frame:");
-    println!("threads  {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}  speed-up", "animation", "simulation", "interp", "map", "shading", "raster", "total");
+    println!(
+        "threads  {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}  speed-up",
+        "animation", "simulation", "interp", "map", "shading", "raster", "total"
+    );
     let mut base_total = None;
     let mut scaling = Vec::new();
     for &threads in &args.threads_list {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads as usize).build().map_err(AppError::other)?;
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads as usize)
+            .build()
+            .map_err(AppError::other)?;
         let per_frame: Vec<StageTimings> = pool.install(|| {
             let mut engine = Engine::new(style.clone(), motion.clone(), config.clone());
             (0..args.frames)
@@ -88,7 +96,14 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         let base = *base_total.get_or_insert(med[6]);
         println!(
             "{threads:>7}  {:>10.2} {:>10.2} {:>10.2} {:>10.2} {:>10.2} {:>10.2} {:>10.2}  {:.2}x",
-            med[0], med[1], med[2], med[3], med[4], med[5], med[6], base / med[6]
+            med[0],
+            med[1],
+            med[2],
+            med[3],
+            med[4],
+            med[5],
+            med[6],
+            base / med[6]
         );
         let mut row = serde_json::Map::new();
         row.insert("threads".into(), threads.into());
@@ -120,30 +135,60 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
             light_dir: config.lighting.light_dir,
             fiber: &engine.fiber,
         });
-        shade_vertices(&engine.fiber, &map, &config.lighting, eye, &engine.strands.positions, &engine.strands.tangents, colors);
+        shade_vertices(
+            &engine.fiber,
+            &map,
+            &config.lighting,
+            eye,
+            &engine.strands.positions,
+            &engine.strands.tangents,
+            colors,
+        );
         t0.elapsed().as_secs_f64() * 1e3
     };
     let lum = |c: &Vec3| c.dot(Vec3::new(0.2126, 0.7152, 0.0722)) as f64;
     let mut reference = Vec::new();
     shade_at(reference_res, &mut reference);
-    let ref_rms = (reference.iter().map(|c| lum(c).powi(2)).sum::<f64>() / reference.len().max(1) as f64).sqrt();
-    println!("\nspeed against error (map build + shading of {} vertices; reference: N = {reference_res}):", reference.len());
-    println!("{:>6} {:>9} {:>12} {:>14}", "N", "ds (mm)", "time (ms)", "rel. RMS error");
+    let ref_rms = (reference.iter().map(|c| lum(c).powi(2)).sum::<f64>()
+        / reference.len().max(1) as f64)
+        .sqrt();
+    println!(
+        "\nspeed against error (map build + shading of {} vertices; reference: N = {reference_res}):",
+        reference.len()
+    );
+    println!(
+        "{:>6} {:>9} {:>12} {:>14}",
+        "N", "ds (mm)", "time (ms)", "rel. RMS error"
+    );
     let mut rows = Vec::new();
     let mut colors = Vec::new();
     for &n in &args.map_res_list {
-        let mut times: Vec<f64> = (0..args.repeats).map(|_| shade_at(n, &mut colors)).collect();
+        let mut times: Vec<f64> = (0..args.repeats)
+            .map(|_| shade_at(n, &mut colors))
+            .collect();
         let ms = median(&mut times);
-        let err = (colors.iter().zip(&reference).map(|(a, b)| (lum(a) - lum(b)).powi(2)).sum::<f64>() / colors.len().max(1) as f64).sqrt() / ref_rms.max(1e-12);
-        println!("{n:>6} {:>9.2} {ms:>12.2} {err:>14.4}", span / n as f32 * 1e3);
+        let err = (colors
+            .iter()
+            .zip(&reference)
+            .map(|(a, b)| (lum(a) - lum(b)).powi(2))
+            .sum::<f64>()
+            / colors.len().max(1) as f64)
+            .sqrt()
+            / ref_rms.max(1e-12);
+        println!(
+            "{n:>6} {:>9.2} {ms:>12.2} {err:>14.4}",
+            span / n as f32 * 1e3
+        );
         rows.push(serde_json::json!({ "map_res": n, "ds_mm": span / n as f32 * 1e3, "ms": ms, "rel_rms_error": err }));
     }
     json.insert("speed_vs_error".into(), rows.into());
     json.insert("reference_map_res".into(), reference_res.into());
     json.insert("hairstyle".into(), style.name.clone().into());
     if let Some(path) = &args.json {
-        let text = serde_json::to_string_pretty(&serde_json::Value::Object(json)).map_err(AppError::other)?;
-        std::fs::write(path, text).map_err(|e| AppError::other(anyhow::anyhow!("{}: {e}", path.display())))?;
+        let text = serde_json::to_string_pretty(&serde_json::Value::Object(json))
+            .map_err(AppError::other)?;
+        std::fs::write(path, text)
+            .map_err(|e| AppError::other(anyhow::anyhow!("{}: {e}", path.display())))?;
     }
     Ok(())
 }

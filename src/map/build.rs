@@ -78,7 +78,7 @@ pub(super) struct Scratch {
     col_count: Vec<u32>,
 }
 
-/// Most pieces a sample is split into (a sample longer than 4 cells is split into 8).
+/// Most pieces a sample is split into (a sample longer than 8 cells still makes 8).
 const MAX_PIECES: usize = 8;
 
 /// Coordinates beyond this many cells are treated as invalid (keeps `as i64` well defined).
@@ -106,11 +106,15 @@ impl LightMap {
         let to_light = -frame.x;
 
         // 1. Fill. A sample stands for a piece of strand of length ℓ along its tangent; when ℓ
-        // exceeds half a cell, it is split into `pieces` equal parts spread along the tangent,
+        // exceeds a cell, it is split into `pieces` equal parts spread along the tangent,
         // so a strand fills every cell it passes through instead of a dotted line of them (at
         // the default resolution samples are 11 mm apart and cells 7.4 mm).
-        let max_len = input.lengths_m[..count].iter().copied().filter(|l| l.is_finite()).fold(0.0f32, f32::max);
-        let pieces = ((max_len / (0.5 * ds)).ceil() as usize).clamp(1, MAX_PIECES);
+        let max_len = input.lengths_m[..count]
+            .iter()
+            .copied()
+            .filter(|l| l.is_finite())
+            .fold(0.0f32, f32::max);
+        let pieces = ((max_len / ds).ceil() as usize).clamp(1, MAX_PIECES);
         let entries = &mut self.scratch.entries;
         entries.resize(count * pieces, Entry::default());
         entries

@@ -79,7 +79,11 @@ impl LightMap {
     pub fn light_at_smooth(&self, p: Vec3) -> LightAtPoint {
         let h = 0.5 * self.geom.ds_m;
         let (dy, dz) = (self.frame.y * h, self.frame.z * h);
-        let mut acc = LightAtPoint { direct_fraction: 0.0, tf: Vec3::ZERO, sigma_f2: Vec3::ZERO };
+        let mut acc = LightAtPoint {
+            direct_fraction: 0.0,
+            tf: Vec3::ZERO,
+            sigma_f2: Vec3::ZERO,
+        };
         for o in [dy + dz, dy - dz, -dy + dz, -dy - dz] {
             let l = self.light_at(p + o);
             acc.direct_fraction += 0.25 * l.direct_fraction;
