@@ -229,16 +229,8 @@ pub fn draw_polylines(
                 bin.clear();
             }
             let first = chunk * SETUP_CHUNK;
-            // Segment k is segment i of line l; stepped, not divided, per segment.
-            let per_line = lines.points_per_line - 1; // ≥ 1 since seg_count > 0
-            let (mut line, mut i) = (first / per_line, first % per_line);
-            for _ in first..(first + SETUP_CHUNK).min(seg_count) {
-                let seg = setup_segment(&params, lines, line, i);
-                i += 1;
-                if i == per_line {
-                    (line, i) = (line + 1, 0);
-                }
-                if let Some(seg) = seg {
+            for k in first..(first + SETUP_CHUNK).min(seg_count) {
+                if let Some(seg) = setup_segment(&params, lines, k) {
                     let (b0, b1) = (
                         seg.row_lo as usize / BAND_ROWS,
                         seg.row_hi as usize / BAND_ROWS,

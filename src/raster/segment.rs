@@ -60,13 +60,13 @@ pub(super) struct Params {
     pub(super) height: usize,
 }
 
-/// Clips and projects segment `i` of line `line` of `lines`; `None` when nothing of it can be
-/// seen (or the indices are out of range).
+/// Clips and projects segment `k` of `lines`; `None` when nothing of it can be seen.
 #[inline]
-pub(super) fn setup_segment(p: &Params, lines: &Polylines, line: usize, i: usize) -> Option<Seg> {
+pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<Seg> {
     let n = lines.points_per_line;
     let segs_per_line = n.checked_sub(1).filter(|&s| s > 0)?;
-    let a = line.checked_mul(n)?.checked_add(i)?;
+    let (line, i) = (k / segs_per_line, k % segs_per_line);
+    let a = line * n + i;
     let (w0, w1) = (*lines.points.get(a)?, *lines.points.get(a + 1)?);
     let (mut c0, mut c1) = (*lines.colors.get(a)?, *lines.colors.get(a + 1)?);
     if !(c0.is_finite() && c1.is_finite()) {
