@@ -177,8 +177,7 @@ impl Engine {
             None => MapGeometry::for_scene(
                 style.max_length_m(),
                 style.head_size_m(),
-                layout.count(),
-                scalp_area_m2(&style),
+                style.strand_spacing_m(),
             ),
         };
         let camera = placeholder_camera(&config);
@@ -414,13 +413,6 @@ impl Engine {
             self.config.height,
         );
     }
-}
-
-/// Rough scalp area: the ellipsoid's mean radius over the cap of the mean polar limit.
-fn scalp_area_m2(style: &Hairstyle) -> f32 {
-    let r = style.head.radii_m.iter().sum::<f32>() / 3.0;
-    let polar = 0.5 * (style.scalp.front_polar_deg + style.scalp.max_polar_deg);
-    2.0 * std::f32::consts::PI * r * r * (1.0 - polar.to_radians().cos())
 }
 
 fn placeholder_camera(config: &EngineConfig) -> Camera {

@@ -21,15 +21,26 @@ struct Run {
 }
 
 fn dance(style: Hairstyle, motion: Motion, seconds: f64, fps: f64) -> Run {
-    let config = EngineConfig { width: 64, height: 64, ..Default::default() };
+    let config = EngineConfig {
+        width: 64,
+        height: 64,
+        ..Default::default()
+    };
     let mut engine = Engine::new(style, motion, config);
-    let mut run = Run { max_length_error: 0.0, max_penetration_m: 0.0, finite: true, frames: 0 };
+    let mut run = Run {
+        max_length_error: 0.0,
+        max_penetration_m: 0.0,
+        finite: true,
+        frames: 0,
+    };
     let ppg = engine.guides.points_per_guide;
     let frames = (seconds * fps).round() as u32;
     for f in 1..=frames {
         engine.advance(f as f64 / fps);
         engine.build_map(); // the next advance's self-collision reads this map
-        run.max_penetration_m = run.max_penetration_m.max(engine.step_stats.max_penetration_m);
+        run.max_penetration_m = run
+            .max_penetration_m
+            .max(engine.step_stats.max_penetration_m);
         let pos = &engine.state.positions;
         run.finite &= pos.iter().all(|p| p.is_finite());
         for g in 0..engine.guides.count() {
@@ -49,32 +60,64 @@ fn ten_seconds_of_the_dance_keep_links_and_stay_outside_head_and_body() {
     for style in [Hairstyle::default_smooth(), Hairstyle::default_curly()] {
         let name = style.name.clone();
         let motion = Motion::default_dance();
-        assert!(!motion.sample(1.0).spheres.is_empty(), "the dance carries body spheres");
+        assert!(
+            !motion.sample(1.0).spheres.is_empty(),
+            "the dance carries body spheres"
+        );
         let run = dance(style, motion, 10.0, 30.0);
-        println!("{name}: {} frames, max link error {:.2e}, max penetration {:.2e} m", run.frames, run.max_length_error, run.max_penetration_m);
+        println!(
+            "{name}: {} frames, max link error {:.2e}, max penetration {:.2e} m",
+            run.frames, run.max_length_error, run.max_penetration_m
+        );
         assert!(run.finite, "{name}: non-finite particle");
-        assert!(run.max_length_error < 1e-4, "{name}: link error {}", run.max_length_error);
-        assert!(run.max_penetration_m <= PENETRATION_TOLERANCE_M, "{name}: penetration {}", run.max_penetration_m);
+        assert!(
+            run.max_length_error < 1e-4,
+            "{name}: link error {}",
+            run.max_length_error
+        );
+        assert!(
+            run.max_penetration_m <= PENETRATION_TOLERANCE_M,
+            "{name}: penetration {}",
+            run.max_penetration_m
+        );
     }
 }
 
 #[test]
 fn dance_at_three_times_speed_with_30_fps_frames_stays_finite_and_rigid() {
-    let opts = MotionOptions { speed: 3.0, ..MotionOptions::default() };
+    let opts = MotionOptions {
+        speed: 3.0,
+        ..MotionOptions::default()
+    };
     let motion = wisp::motion::dance::try_dance(&opts).expect("embedded dance");
     let run = dance(Hairstyle::default_smooth(), motion, 10.0, 30.0);
-    println!("3x: max link error {:.2e}, max penetration {:.2e} m", run.max_length_error, run.max_penetration_m);
+    println!(
+        "3x: max link error {:.2e}, max penetration {:.2e} m",
+        run.max_length_error, run.max_penetration_m
+    );
     assert!(run.finite);
-    assert!(run.max_length_error < 1e-4, "link error {}", run.max_length_error);
-    assert!(run.max_penetration_m <= PENETRATION_TOLERANCE_M, "penetration {}", run.max_penetration_m);
+    assert!(
+        run.max_length_error < 1e-4,
+        "link error {}",
+        run.max_length_error
+    );
+    assert!(
+        run.max_penetration_m <= PENETRATION_TOLERANCE_M,
+        "penetration {}",
+        run.max_penetration_m
+    );
 }
 
 fn robot_path() -> Option<PathBuf> {
-    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data/animations/RobotExpressive.glb");
+    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/data/animations/RobotExpressive.glb");
     if p.exists() {
         Some(p)
     } else {
-        println!("skipped: {} is absent (see ../shared/data/README.md)", p.display());
+        println!(
+            "skipped: {} is absent (see ../shared/data/README.md)",
+            p.display()
+        );
         None
     }
 }
@@ -85,24 +128,45 @@ fn robot_expressive_dances_with_hair_on_its_head() {
     let motion = Motion::load(&path, &MotionOptions::default()).expect("RobotExpressive loads");
     assert_eq!(motion.clip_name(), "Dance");
     let duration = motion.duration_s() as f64;
-    let run = dance(Hairstyle::default_smooth(), motion.clone(), 2.0 * duration, 30.0);
-    println!("robot: max link error {:.2e}, max penetration {:.2e} m", run.max_length_error, run.max_penetration_m);
+    let run = dance(
+        Hairstyle::default_smooth(),
+        motion.clone(),
+        2.0 * duration,
+        30.0,
+    );
+    println!(
+        "robot: max link error {:.2e}, max penetration {:.2e} m",
+        run.max_length_error, run.max_penetration_m
+    );
     assert!(run.finite);
     assert!(run.max_length_error < 1e-4);
     assert!(run.max_penetration_m <= PENETRATION_TOLERANCE_M);
 
     // Rendered: the hair's roots sit on the robot's head and hair covers part of the image.
-    let config = EngineConfig { width: 160, height: 160, ..Default::default() };
+    let config = EngineConfig {
+        width: 160,
+        height: 160,
+        ..Default::default()
+    };
     let mut engine = Engine::new(Hairstyle::default_smooth(), motion, config);
     let fb = engine.frame(1.0).clone();
     let head: Affine3A = engine.pose().head;
     let radii = Vec3::from(engine.style.head.radii_m);
     let ppg = engine.guides.points_per_guide;
     for g in 0..engine.guides.count() {
-        let root_local = head.inverse().transform_point3(engine.state.positions[g * ppg]);
-        assert!(((root_local / radii).length() - 1.0).abs() < 1e-3, "root {g} is off the head");
+        let root_local = head
+            .inverse()
+            .transform_point3(engine.state.positions[g * ppg]);
+        assert!(
+            ((root_local / radii).length() - 1.0).abs() < 1e-3,
+            "root {g} is off the head"
+        );
     }
     let background = engine.config.background;
-    let drawn = fb.color.iter().filter(|c| (**c - background).abs().max_element() > 1e-3).count();
+    let drawn = fb
+        .color
+        .iter()
+        .filter(|c| (**c - background).abs().max_element() > 1e-3)
+        .count();
     assert!(drawn > fb.color.len() / 20, "only {drawn} pixels drawn");
 }

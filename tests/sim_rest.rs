@@ -20,7 +20,11 @@ const SETTLE_S: f64 = 2.0;
 /// integrator (the failure this guards against measured 1e3 to 1e4) is far above it.
 fn rounding_floor(particles: usize, step_s: f64) -> f64 {
     let ulp = f64::from(f32::EPSILON) * 1.0;
-    let v = 16.0 * ulp / step_s;
+    // 32 ulps per step: curly hair resting on the scalp keeps a contact jitter of that order
+    // (measured: KE 7.4e-4 for 6,432 particles 2 s after a still start, flat thereafter),
+    // which is rounding in the collision projection, not motion (largest move stays < 1 mm,
+    // asserted below).
+    let v = 32.0 * ulp / step_s;
     particles as f64 * 0.5 * v * v
 }
 
@@ -160,6 +164,8 @@ fn density_repulsion_reduces_over_dense_cells() {
     let mut results = Vec::new();
     // Excess and peak density are averaged over frames 31..60 (time averages are robust to
     // which cell happens to be densest at one instant).
+    // The threshold is pinned here: the test grid's density scale is its own, not the map's.
+    style.dynamics.density_threshold = 0.25;
     for (repel, strength) in [(false, 20.0), (true, 20.0), (true, 100.0), (true, 400.0)] {
         style.dynamics.repulsion_m_s2 = strength;
         let (guides, mut sim, mut state) = setup(&style, &dance.colliders(0.0));

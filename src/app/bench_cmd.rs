@@ -5,16 +5,19 @@
 //!    in this process; per-stage medians and the speed-up over one thread.
 //! 2. **Speed against error**: one hair state (the dance at `--at-s`), the map built and every
 //!    vertex shaded at each `--map-res`; error is the relative RMS difference of vertex
-//!    luminance against a map 4x finer than the finest tested (the converged answer of the
-//!    same estimator: the map's own discretisation error, not the physics'); time is map build
-//!    + shading, median of `--repeats` runs.
+//!    luminance (and the RMS of T_f) against `map::reference`, the same light transport with
+//!    no grid (fibres spread as Gaussians of the strand spacing). Time is map build + shading,
+//!    median of `--repeats` runs.
+//!
+//! 3. **Self-collision**: peak cell volume fraction, hair volume (filled cells) and simulation
+//!    time with and without the density repulsion of Bertails §4.1, and its share of a frame.
 //!
 //! Results go to stdout as a table and, with `--json FILE`, as JSON.
 
 use super::{AppError, SceneArgs};
 use crate::frame::{Engine, StageTimings};
-use crate::map::{CountModel, LightMap, MapBuildInput, MapGeometry};
-use crate::shade::shade_vertices;
+use crate::map::{CountModel, LightMap, MapBuildInput, MapGeometry, reference};
+use crate::shade::{shade_vertices, shade_vertices_with};
 use glam::Vec3;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -116,55 +119,125 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
     }
     json.insert("scaling".into(), scaling.into());
 
-    // 2. Speed against error over map resolutions.
+    // 2. Self-collision (Bertails §4.1): the same dance with and without density repulsion.
+    println!(
+        "\nself-collision over {} frames (mean of per-frame figures):",
+        args.frames
+    );
+    println!(
+        "{:>16} {:>14} {:>16} {:>14} {:>14}",
+        "self-collision", "peak vol. frac", "hair volume (L)", "sim (ms)", "frame (ms)"
+    );
+    let mut sc = Vec::new();
+    let mut sim_ms = [0.0f64; 2];
+    let mut frame_ms = 0.0f64;
+    for (k, on) in [false, true].into_iter().enumerate() {
+        let mut cfg = config.clone();
+        cfg.self_collision = on;
+        let mut engine = Engine::new(style.clone(), motion.clone(), cfg);
+        let (mut peak, mut volume, mut sims, mut totals) = (0.0f64, 0.0f64, Vec::new(), Vec::new());
+        for i in 0..args.frames {
+            engine.frame(i as f64 / 30.0);
+            peak += engine.map_stats().peak_volume_fraction as f64;
+            volume += engine.map_stats().hair_volume_m3 as f64;
+            sims.push(engine.timings.simulation_s * 1e3);
+            totals.push(engine.timings.total_s() * 1e3);
+        }
+        let f = args.frames as f64;
+        sim_ms[k] = median(&mut sims);
+        frame_ms = median(&mut totals);
+        println!(
+            "{:>16} {:>14.3} {:>16.3} {:>14.2} {:>14.2}",
+            if on { "on" } else { "off" },
+            peak / f,
+            volume / f * 1e3,
+            sim_ms[k],
+            frame_ms
+        );
+        sc.push(serde_json::json!({ "self_collision": on, "peak_volume_fraction": peak / f, "hair_volume_l": volume / f * 1e3, "sim_ms": sim_ms[k], "frame_ms": frame_ms }));
+    }
+    let share = (sim_ms[1] - sim_ms[0]).max(0.0) / frame_ms.max(1e-9);
+    println!(
+        "self-collision share of the frame time: {:.1}% (Bertails 2005: 2.5%)",
+        share * 100.0
+    );
+    json.insert("self_collision".into(), sc.into());
+    json.insert("self_collision_share".into(), share.into());
+
+    // 3. Speed against error over map resolutions, against the grid-free reference.
     let mut engine = Engine::new(style.clone(), motion.clone(), config.clone());
     engine.run_up_to(args.at_s as f64);
     engine.frame(args.at_s as f64);
     let eye = engine.camera().eye();
     let span = MapGeometry::span_m(style.max_length_m(), style.head_size_m());
-    let finest = args.map_res_list.iter().copied().max().unwrap_or(128);
-    let reference_res = (finest * 4).min(1024);
-    let shade_at = |n: u32, colors: &mut Vec<Vec3>| -> f64 {
-        let mut map = LightMap::new(MapGeometry::with_resolution(span, n), CountModel::Poisson);
-        let t0 = Instant::now();
-        map.build(&MapBuildInput {
-            positions: &engine.strands.positions,
-            tangents: &engine.strands.tangents,
-            lengths_m: &engine.strands.lengths_m,
-            fibers_per_strand: style.strands.fibers_per_strand,
-            light_dir: config.lighting.light_dir,
-            fiber: &engine.fiber,
-        });
-        shade_vertices(
-            &engine.fiber,
-            &map,
-            &config.lighting,
-            eye,
-            &engine.strands.positions,
-            &engine.strands.tangents,
-            colors,
-        );
-        t0.elapsed().as_secs_f64() * 1e3
+    let h = style.strand_spacing_m();
+    let input = MapBuildInput {
+        positions: &engine.strands.positions,
+        tangents: &engine.strands.tangents,
+        lengths_m: &engine.strands.lengths_m,
+        fibers_per_strand: style.strands.fibers_per_strand,
+        light_dir: config.lighting.light_dir,
+        fiber: &engine.fiber,
     };
-    let lum = |c: &Vec3| c.dot(Vec3::new(0.2126, 0.7152, 0.0722)) as f64;
+    let positions = &engine.strands.positions;
+    let tangents = &engine.strands.tangents;
+    let t0 = Instant::now();
+    let reference_light = reference::reference_light(&input, h, positions);
+    let reference_ms = t0.elapsed().as_secs_f64() * 1e3;
     let mut reference = Vec::new();
-    shade_at(reference_res, &mut reference);
+    shade_vertices_with(
+        &engine.fiber,
+        &config.lighting,
+        eye,
+        positions,
+        tangents,
+        |i, _| reference_light[i],
+        &mut reference,
+    );
+    let lum = |c: &Vec3| c.dot(Vec3::new(0.2126, 0.7152, 0.0722)) as f64;
     let ref_rms = (reference.iter().map(|c| lum(c).powi(2)).sum::<f64>()
         / reference.len().max(1) as f64)
         .sqrt();
+    let tf_err = |map: &LightMap| {
+        let s: f64 = positions
+            .iter()
+            .zip(&reference_light)
+            .map(|(p, r)| ((map.light_at(*p).tf - r.tf).abs().max_element() as f64).powi(2))
+            .sum();
+        (s / positions.len().max(1) as f64).sqrt()
+    };
     println!(
-        "\nspeed against error (map build + shading of {} vertices; reference: N = {reference_res}):",
-        reference.len()
+        "\nspeed against error: map build + shading of {} vertices at t = {} s, against the grid-free reference \
+         (Gaussian fibre spread h = {:.2} mm, {:.0} ms); the scene's own choice is N = {}:",
+        positions.len(),
+        args.at_s,
+        h * 1e3,
+        reference_ms,
+        engine.map_geometry().n
     );
     println!(
-        "{:>6} {:>9} {:>12} {:>14}",
-        "N", "ds (mm)", "time (ms)", "rel. RMS error"
+        "{:>6} {:>9} {:>12} {:>18} {:>12}",
+        "N", "ds (mm)", "time (ms)", "luminance rel.RMS", "Tf RMS"
     );
     let mut rows = Vec::new();
     let mut colors = Vec::new();
     for &n in &args.map_res_list {
+        let mut map = LightMap::new(MapGeometry::with_resolution(span, n), CountModel::Poisson);
         let mut times: Vec<f64> = (0..args.repeats)
-            .map(|_| shade_at(n, &mut colors))
+            .map(|_| {
+                let t0 = Instant::now();
+                map.build(&input);
+                shade_vertices(
+                    &engine.fiber,
+                    &map,
+                    &config.lighting,
+                    eye,
+                    positions,
+                    tangents,
+                    &mut colors,
+                );
+                t0.elapsed().as_secs_f64() * 1e3
+            })
             .collect();
         let ms = median(&mut times);
         let err = (colors
@@ -175,14 +248,15 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
             / colors.len().max(1) as f64)
             .sqrt()
             / ref_rms.max(1e-12);
+        let tf = tf_err(&map);
         println!(
-            "{n:>6} {:>9.2} {ms:>12.2} {err:>14.4}",
+            "{n:>6} {:>9.2} {ms:>12.2} {err:>18.4} {tf:>12.4}",
             span / n as f32 * 1e3
         );
-        rows.push(serde_json::json!({ "map_res": n, "ds_mm": span / n as f32 * 1e3, "ms": ms, "rel_rms_error": err }));
+        rows.push(serde_json::json!({ "map_res": n, "ds_mm": span / n as f32 * 1e3, "ms": ms, "luminance_rel_rms": err, "tf_rms": tf }));
     }
     json.insert("speed_vs_error".into(), rows.into());
-    json.insert("reference_map_res".into(), reference_res.into());
+    json.insert("reference_h_mm".into(), (h * 1e3).into());
     json.insert("hairstyle".into(), style.name.clone().into());
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&serde_json::Value::Object(json))

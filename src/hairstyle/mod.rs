@@ -339,6 +339,20 @@ impl Hairstyle {
         self.guides.length_m * (1.0 + self.guides.length_jitter)
     }
 
+    /// Approximate scalp area in m²: the cap of the head's mean radius out to the mean of the
+    /// front and back polar limits.
+    pub fn scalp_area_m2(&self) -> f32 {
+        let r = self.head.radii_m.iter().sum::<f32>() / 3.0;
+        let polar = 0.5 * (self.scalp.front_polar_deg + self.scalp.max_polar_deg);
+        2.0 * std::f32::consts::PI * r * r * (1.0 - polar.to_radians().cos())
+    }
+
+    /// Mean spacing between neighbouring render strands at the scalp, metres.
+    pub fn strand_spacing_m(&self) -> f32 {
+        let strands = self.wisps.count as f32 * self.wisps.strands_per_wisp as f32;
+        (self.scalp_area_m2() / strands.max(1.0)).sqrt()
+    }
+
     /// Largest head dimension in metres (the hmax of Bertails §2.2).
     pub fn head_size_m(&self) -> f32 {
         2.0 * self.head.radii_m.iter().copied().fold(0.0, f32::max)

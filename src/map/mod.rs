@@ -45,6 +45,7 @@
 
 mod build;
 mod lookup;
+pub mod reference;
 
 pub use build::{CountModel, MapBuildInput, MapStats};
 
@@ -70,19 +71,16 @@ impl MapGeometry {
     }
 
     /// A map sized from the scene (Bertails §2.2): span 2·lmax + hmax, and a cell about twice
-    /// the spacing between neighbouring render strands at the scalp, so that a cell averages a
-    /// few strands (finer cells resolve single strands and flicker; coarser ones blur wisps).
-    /// For the presets (3,350 strands on ~0.046 m² of scalp: 3.7 mm spacing) this gives
-    /// N = 128, Bertails' choice (§5: "a 128 × 128 resolution was sufficient").
-    pub fn for_scene(
-        max_length_m: f32,
-        head_size_m: f32,
-        strands: usize,
-        scalp_area_m2: f32,
-    ) -> Self {
+    /// the spacing between neighbouring render strands, so that a cell averages a few strands
+    /// (finer cells resolve single render strands, which then shadow themselves; coarser ones
+    /// blur wisps together). For the presets (3,350 strands: 3.7 mm spacing) this gives
+    /// N = 129, Bertails' choice (§5: "a 128 × 128 resolution was sufficient"); `wisp bench`
+    /// measures the error against N.
+    pub fn for_scene(max_length_m: f32, head_size_m: f32, strand_spacing_m: f32) -> Self {
         let span = Self::span_m(max_length_m, head_size_m);
-        let spacing = (scalp_area_m2 / strands.max(1) as f32).sqrt();
-        let n = (span / (2.0 * spacing)).ceil().clamp(8.0, 1024.0) as u32;
+        let n = (span / (2.0 * strand_spacing_m.max(1e-6)))
+            .ceil()
+            .clamp(8.0, 1024.0) as u32;
         Self::with_resolution(span, n)
     }
 

@@ -56,18 +56,43 @@ pub fn shade_vertices(
     tangents: &[Vec3],
     colors: &mut Vec<Vec3>,
 ) {
+    shade_vertices_with(
+        fiber,
+        lighting,
+        eye,
+        positions,
+        tangents,
+        |_, p| map.light_at(p),
+        colors,
+    );
+}
+
+/// [`shade_vertices`] with the light statistics of vertex `i` at `p` given by `light(i, p)`
+/// (the map, or a reference for measuring the map's error).
+pub fn shade_vertices_with<L>(
+    fiber: &Fiber,
+    lighting: &Lighting,
+    eye: Vec3,
+    positions: &[Vec3],
+    tangents: &[Vec3],
+    light: L,
+    colors: &mut Vec<Vec3>,
+) where
+    L: Fn(usize, Vec3) -> LightAtPoint + Sync,
+{
+    const CHUNK: usize = 4096;
     colors.resize(positions.len(), Vec3::ZERO);
     let wi = -lighting.light_dir.normalize_or(Vec3::NEG_Y);
     let ambient = lighting.ambient * fibre_tint(fiber);
     colors
-        .par_chunks_mut(4096)
-        .zip(positions.par_chunks(4096).zip(tangents.par_chunks(4096)))
-        .for_each(|(out, (pos, tan))| {
-            for ((c, p), u) in out.iter_mut().zip(pos).zip(tan) {
-                let light = map.light_at(*p);
+        .par_chunks_mut(CHUNK)
+        .zip(positions.par_chunks(CHUNK).zip(tangents.par_chunks(CHUNK)))
+        .enumerate()
+        .for_each(|(chunk, (out, (pos, tan)))| {
+            for (k, ((c, p), u)) in out.iter_mut().zip(pos).zip(tan).enumerate() {
+                let l = light(chunk * CHUNK + k, *p);
                 let wo = (eye - *p).normalize_or(wi);
-                let v =
-                    lighting.irradiance * fiber.shade(lighting.mode, *u, wi, wo, &light) + ambient;
+                let v = lighting.irradiance * fiber.shade(lighting.mode, *u, wi, wo, &l) + ambient;
                 *c = if v.is_finite() {
                     v.max(Vec3::ZERO)
                 } else {
