@@ -58,17 +58,46 @@ pub struct MapStats {
     pub overflow: bool,
 }
 
-/// A sample before sorting.
+/// A sample piece before sorting.
 #[derive(Clone, Copy, Debug, Default)]
 struct Entry {
     /// Column index, or `u32::MAX` for a skipped (non-finite) sample.
     col: u32,
     /// Unwrapped slice ⌊x/ds⌋.
     slice: i64,
-    /// Unwrapped column coordinates, for the overflow check.
-    j: i64,
-    k: i64,
     cell: Cell,
+}
+
+/// Bounding box of filled cells in unwrapped cell indices (x, y, z).
+#[derive(Clone, Copy, Debug)]
+struct Extent {
+    lo: [i64; 3],
+    hi: [i64; 3],
+}
+
+impl Extent {
+    const EMPTY: Extent = Extent {
+        lo: [i64::MAX; 3],
+        hi: [i64::MIN; 3],
+    };
+
+    #[inline]
+    fn include(&mut self, c: [i64; 3]) {
+        for a in 0..3 {
+            self.lo[a] = self.lo[a].min(c[a]);
+            self.hi[a] = self.hi[a].max(c[a]);
+        }
+    }
+
+    fn union(a: Extent, b: Extent) -> Extent {
+        if b.lo[0] > b.hi[0] {
+            return a; // b is empty
+        }
+        let mut u = a;
+        u.include(b.lo);
+        u.include(b.hi);
+        u
+    }
 }
 
 /// Reusable buffers: after the first frame, a build allocates nothing.
@@ -117,33 +146,28 @@ impl LightMap {
         let pieces = ((max_len / ds).ceil() as usize).clamp(1, MAX_PIECES);
         let entries = &mut self.scratch.entries;
         entries.resize(count * pieces, Entry::default());
-        entries
-            .par_iter_mut()
+        // Per sample: the fibre's per-crossing statistics once, then its pieces. The extent of
+        // the filled cells (first slice, overflow check) comes from an exact min/max reduce,
+        // so the reduction order does not matter.
+        let extent = entries
+            .par_chunks_mut(pieces)
             .enumerate()
-            .with_min_len(1024)
-            .for_each(|(idx, e)| {
-                let (s, q) = (idx / pieces, idx % pieces);
+            .with_min_len(512)
+            .map(|(s, out)| {
                 let u = input.tangents[s];
                 let len_total = input.lengths_m[s];
-                let along = ((q as f32 + 0.5) / pieces as f32 - 0.5) * len_total;
-                let len = len_total / pieces as f32;
-                // The piece's offset, in cells, is rounded to 1/1024 of a cell (7 µm at the
-                // default size): then moving the hair by whole cells moves every piece by
-                // exactly whole cells too (adding numbers on that grid is exact in f32), which
-                // keeps the modulo map's translation invariance exact.
-                let offset = (frame.to_map(u) * (along * inv_ds) * 1024.0).round() / 1024.0;
-                let c = frame.to_map(input.positions[s]) * inv_ds + offset;
-                if !(c.abs().max_element() < MAX_CELL_COORD
+                let p0 = frame.to_map(input.positions[s]) * inv_ds;
+                if !(p0.abs().max_element() < MAX_CELL_COORD
                     && u.is_finite()
-                    && len.is_finite()
-                    && len >= 0.0)
+                    && len_total.is_finite()
+                    && len_total >= 0.0)
                 {
-                    e.col = u32::MAX;
-                    return;
+                    out.iter_mut().for_each(|e| e.col = u32::MAX);
+                    return Extent::EMPTY;
                 }
-                let (i, j, k) = (c.x.floor() as i64, c.y.floor() as i64, c.z.floor() as i64);
                 let cos_psi = u.dot(frame.x).clamp(-1.0, 1.0);
                 let sin_psi = (1.0 - cos_psi * cos_psi).max(0.0).sqrt();
+                let len = len_total / pieces as f32;
                 let crossings = crossing_scale * len * sin_psi;
                 let fs = fiber.forward_scatter(u.dot(to_light).clamp(-1.0, 1.0));
                 let a = fs.a_f.clamp(Vec3::ZERO, Vec3::ONE);
@@ -151,35 +175,40 @@ impl LightMap {
                     CountModel::Poisson => Vec3::ONE - a,
                     CountModel::MeanCount => -a.max(Vec3::splat(1e-30)).ln(),
                 };
-                e.col = (j.rem_euclid(n) * n + k.rem_euclid(n)) as u32;
-                e.slice = i;
-                e.j = j;
-                e.k = k;
-                e.cell = Cell {
+                let cell = Cell {
                     slice: 0,
                     col: 0,
-                    seq: idx as u32,
+                    seq: 0,
                     direct: crossings,
                     tf: (loss * crossings).to_array(),
                     sigma2: (fs.beta_f2 * crossings).to_array(),
                     volume_fraction: volume_scale * len,
                 };
-            });
-
-        // First slice in light order, and the extent for the overflow check (exact min/max, so
-        // the reduction order does not matter).
-        let valid = entries.iter().filter(|e| e.col != u32::MAX);
-        let (mut lo, mut hi) = ([i64::MAX; 3], [i64::MIN; 3]);
-        let mut filled_entries = 0usize;
-        for e in valid {
-            filled_entries += 1;
-            for (a, v) in [e.slice, e.j, e.k].into_iter().enumerate() {
-                lo[a] = lo[a].min(v);
-                hi[a] = hi[a].max(v);
-            }
-        }
-        self.first_slice = if filled_entries > 0 { lo[0] } else { 0 };
-        let overflow = filled_entries > 0 && (0..3).any(|a| hi[a] - lo[a] >= n);
+                let u_cells = frame.to_map(u) * inv_ds;
+                let mut ext = Extent::EMPTY;
+                for (q, e) in out.iter_mut().enumerate() {
+                    let along = ((q as f32 + 0.5) / pieces as f32 - 0.5) * len_total;
+                    // The piece's offset, in cells, is rounded to 1/1024 of a cell (7 µm at the
+                    // default size): then moving the hair by whole cells moves every piece by
+                    // exactly whole cells too (adding numbers on that grid is exact in f32),
+                    // which keeps the modulo map's translation invariance exact.
+                    let offset = (u_cells * along * 1024.0).round() / 1024.0;
+                    let c = (p0 + offset).floor();
+                    let (i, j, k) = (c.x as i64, c.y as i64, c.z as i64);
+                    ext.include([i, j, k]);
+                    e.col = (j.rem_euclid(n) * n + k.rem_euclid(n)) as u32;
+                    e.slice = i;
+                    e.cell = Cell {
+                        seq: (s * pieces + q) as u32,
+                        ..cell
+                    };
+                }
+                ext
+            })
+            .reduce(|| Extent::EMPTY, Extent::union);
+        let filled_entries = entries.len() - entries.iter().filter(|e| e.col == u32::MAX).count();
+        self.first_slice = if filled_entries > 0 { extent.lo[0] } else { 0 };
+        let overflow = filled_entries > 0 && (0..3).any(|a| extent.hi[a] - extent.lo[a] >= n);
         // A non-finite sample invalidates all its pieces together.
         let samples = filled_entries / pieces;
 
