@@ -229,14 +229,13 @@ pub fn main() -> ExitCode {
             return ExitCode::from(code);
         }
     };
-    if let Some(n) = cli.threads {
-        if let Err(e) = rayon::ThreadPoolBuilder::new()
+    if let Some(n) = cli.threads
+        && let Err(e) = rayon::ThreadPoolBuilder::new()
             .num_threads(n as usize)
             .build_global()
-        {
-            eprintln!("wisp: error: cannot start {n} threads: {e}");
-            return ExitCode::from(1);
-        }
+    {
+        eprintln!("wisp: error: cannot start {n} threads: {e}");
+        return ExitCode::from(1);
     }
     let result = match cli.command {
         Command::Render(args) => render_cmd::run(args),

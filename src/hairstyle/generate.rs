@@ -50,7 +50,11 @@ fn ellipsoid_point(r: Vec3, d: Vec3) -> (Vec3, Vec3) {
 fn push_outside(p: Vec3, r: Vec3) -> Vec3 {
     let q = p / r;
     let len = q.length();
-    if len >= 1.0 || len < 1e-9 { p } else { p / len }
+    if (1e-9..1.0).contains(&len) {
+        p / len
+    } else {
+        p
+    }
 }
 
 /// Polar angle limit (radians) of roots at azimuth `phi` (0 = face, +Z).

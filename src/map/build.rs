@@ -83,9 +83,9 @@ impl Extent {
 
     #[inline]
     fn include(&mut self, c: [i64; 3]) {
-        for a in 0..3 {
-            self.lo[a] = self.lo[a].min(c[a]);
-            self.hi[a] = self.hi[a].max(c[a]);
+        for ((lo, hi), v) in self.lo.iter_mut().zip(&mut self.hi).zip(c) {
+            *lo = (*lo).min(v);
+            *hi = (*hi).max(v);
         }
     }
 
@@ -221,10 +221,10 @@ impl LightMap {
             col_count[e.col as usize] += 1;
         }
         let mut acc = 0u32;
-        for c in 0..cols {
-            self.col_start[c] = acc;
-            acc += col_count[c];
-            col_count[c] = self.col_start[c]; // becomes the write cursor
+        for (start, count) in self.col_start.iter_mut().zip(col_count.iter_mut()) {
+            *start = acc;
+            acc += *count;
+            *count = *start; // becomes the write cursor
         }
         self.col_start[cols] = acc;
         self.cells.resize(filled_entries, Cell::default());

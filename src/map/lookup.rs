@@ -36,7 +36,7 @@ impl LightMap {
     /// column centres. Non-finite points and points before the hair read as unshadowed.
     pub fn light_at(&self, p: Vec3) -> LightAtPoint {
         let c = self.cell_coords(p);
-        if !(c.abs().max_element() < 1.0e12) {
+        if !c.is_finite() || c.abs().max_element() >= 1.0e12 {
             return LightAtPoint::UNSHADOWED;
         }
         let i = c.x.floor();
@@ -123,7 +123,7 @@ impl LightMap {
     /// or `None` when the cell is empty (Bertails §4.1 self-collision).
     pub fn cell_density(&self, p: Vec3) -> Option<(f32, Vec3)> {
         let c = self.cell_coords(p);
-        if !(c.abs().max_element() < 1.0e12) {
+        if !c.is_finite() || c.abs().max_element() >= 1.0e12 {
             return None;
         }
         let f = c.floor();

@@ -92,7 +92,7 @@ pub fn reference_light(input: &MapBuildInput, h_m: f32, points: &[Vec3]) -> Vec<
     let index = |yz: Vec2| -> Option<(u32, u32)> {
         let c = ((yz - lo) / bucket).floor();
         (c.x >= 0.0 && c.y >= 0.0 && (c.x as u32) < dims.x && (c.y as u32) < dims.y)
-            .then(|| (c.x as u32, c.y as u32))
+            .then_some((c.x as u32, c.y as u32))
     };
     let mut starts = vec![0u32; (dims.x * dims.y + 1) as usize];
     for s in &sources {
