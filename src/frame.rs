@@ -139,6 +139,8 @@ pub struct Engine {
     pub motion: Motion,
     pub config: EngineConfig,
     pose: Pose,
+    /// Scratch pose for the simulation's sub-step collider queries (reused, no allocation).
+    sim_pose: Pose,
     colliders: Colliders,
     sim: Simulator,
     pub state: SimState,
@@ -180,7 +182,7 @@ impl Engine {
                 style.strand_spacing_m(),
             ),
         };
-        let camera = placeholder_camera(&config);
+        let camera = initial_camera(&config);
         let fb = Framebuffer::new(config.width, config.height, config.background);
         let mut engine = Self {
             style,
@@ -188,6 +190,7 @@ impl Engine {
             guides,
             layout,
             motion,
+            sim_pose: pose.clone(),
             pose,
             colliders,
             sim,
@@ -255,10 +258,10 @@ impl Engine {
         let t1 = Instant::now();
         if self.config.simulate {
             let motion = &self.motion;
-            let mut scratch_pose = self.pose.clone();
+            let scratch_pose = &mut self.sim_pose;
             let colliders_at = |t: f64, c: &mut Colliders| {
-                motion.sample_into(t.max(0.0) as f32, &mut scratch_pose);
-                write_colliders(&scratch_pose, radii, c);
+                motion.sample_into(t.max(0.0) as f32, scratch_pose);
+                write_colliders(scratch_pose, radii, c);
             };
             self.step_stats = if self.config.self_collision && self.map_valid {
                 self.sim
@@ -415,7 +418,8 @@ impl Engine {
     }
 }
 
-fn placeholder_camera(config: &EngineConfig) -> Camera {
+/// The camera until `frame_camera` can frame the settled hair.
+fn initial_camera(config: &EngineConfig) -> Camera {
     Camera::framing(
         Vec3::ZERO,
         0.5,

@@ -15,9 +15,9 @@ use std::path::{Path, PathBuf};
 pub struct RenderArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Number of frames to render.
-    #[arg(long, default_value_t = 90, value_parser = clap::value_parser!(u32).range(1..=100_000))]
-    pub frames: u32,
+    /// Number of frames to render (default: one loop of the clip at --fps; 1 with --still).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub frames: Option<u32>,
     /// Output frame rate in frames per second (the simulation step is independent of it).
     #[arg(long, default_value_t = 30.0, value_parser = super::parse_positive_f32)]
     pub fps: f32,
@@ -47,7 +47,15 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
         .map_err(AppError::input)?;
     let name = style.name.clone();
     let started = std::time::Instant::now();
+    let still = args.scene.still;
     let mut engine = Engine::new(style, motion, config);
+    let frames = args.frames.unwrap_or_else(|| {
+        if still {
+            1
+        } else {
+            ((engine.motion.duration_s() * args.fps).round() as u32).clamp(1, 100_000)
+        }
+    });
     engine.run_up_to(args.start_s as f64);
     let setup_s = started.elapsed().as_secs_f64();
     if !args.quiet {
@@ -84,7 +92,7 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
     let mut total = StageTimings::default();
     let (width, height) = (engine.config.width, engine.config.height);
     let mut failed = None;
-    for i in 0..args.frames {
+    for i in 0..frames {
         let t = args.start_s as f64 + i as f64 / args.fps as f64;
         let fb = engine.frame(t);
         let mut rgb = spare.recv().unwrap_or_default();
@@ -103,7 +111,7 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
             break;
         }
         if !args.quiet && (i + 1) % 30 == 0 {
-            eprintln!("wisp: frame {}/{} (t = {:.2} s)", i + 1, args.frames, t);
+            eprintln!("wisp: frame {}/{} (t = {:.2} s)", i + 1, frames, t);
         }
     }
     drop(to_writer);
@@ -117,12 +125,8 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
         )));
     }
     if !args.quiet {
-        print_timings(&total, args.frames, started.elapsed().as_secs_f64());
-        eprintln!(
-            "wisp: wrote {} frames to {}",
-            args.frames,
-            args.out.display()
-        );
+        print_timings(&total, frames, started.elapsed().as_secs_f64());
+        eprintln!("wisp: wrote {} frames to {}", frames, args.out.display());
     }
     Ok(())
 }
