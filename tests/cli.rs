@@ -147,3 +147,37 @@ fn play_without_a_display_fails_cleanly() {
     assert!(stderr(&o).contains("wisp render"), "{}", stderr(&o));
     assert!(!stderr(&o).contains("panicked"));
 }
+
+#[test]
+fn bench_runs_and_writes_json() {
+    let dir = tmp("cli-bench");
+    let json = dir.join("bench.json");
+    let o = wisp(&[
+        "bench",
+        "--frames",
+        "2",
+        "--width",
+        "64",
+        "--height",
+        "64",
+        "--threads-list",
+        "1,2",
+        "--map-res-list",
+        "16,32",
+        "--repeats",
+        "1",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    assert_eq!(v["scaling"].as_array().unwrap().len(), 2);
+    let rows = v["speed_vs_error"].as_array().unwrap();
+    assert_eq!(rows.len(), 2);
+    for r in rows {
+        let e = r["luminance_rel_rms"].as_f64().unwrap();
+        assert!(e.is_finite() && e >= 0.0, "{r}");
+    }
+    let o = wisp(&["bench", "--threads-list", "0"]);
+    assert_eq!(o.status.code(), Some(2));
+}
