@@ -132,20 +132,26 @@ impl Table2 {
     /// [0, π]).
     #[inline]
     pub fn lookup(&self, abs_theta_d: f32, abs_phi: f32) -> Vec3 {
-        let ft = (abs_theta_d * ((self.n_t - 1) as f32 / std::f32::consts::FRAC_PI_2))
-            .clamp(0.0, (self.n_t - 1) as f32);
-        let fp = (abs_phi * ((self.n_p - 1) as f32 / std::f32::consts::PI))
-            .clamp(0.0, (self.n_p - 1) as f32);
-        let ft = if ft.is_nan() { 0.0 } else { ft };
-        let fp = if fp.is_nan() { 0.0 } else { fp };
-        let i = (ft as usize).min(self.n_t - 2);
-        let j = (fp as usize).min(self.n_p - 2);
-        let (u, v) = (ft - i as f32, fp - j as f32);
+        let (i, j, u, v) = grid_cell(self.n_t, self.n_p, abs_theta_d, abs_phi);
         let at = |a: usize, b: usize| self.values[a * self.n_p + b];
         let top = at(i, j) * (1.0 - v) + at(i, j + 1) * v;
         let bot = at(i + 1, j) * (1.0 - v) + at(i + 1, j + 1) * v;
         top * (1.0 - u) + bot * u
     }
+}
+
+/// The cell (i, j) and the fractions (u, v) inside it of (|θd|, |φ|) on an `n_t` × `n_p` grid
+/// spanning [0, π/2] × [0, π]; clamped to the grid, NaN reads the first row/column.
+#[inline]
+fn grid_cell(n_t: usize, n_p: usize, abs_theta_d: f32, abs_phi: f32) -> (usize, usize, f32, f32) {
+    let ft = (abs_theta_d * ((n_t - 1) as f32 / std::f32::consts::FRAC_PI_2))
+        .clamp(0.0, (n_t - 1) as f32);
+    let fp = (abs_phi * ((n_p - 1) as f32 / std::f32::consts::PI)).clamp(0.0, (n_p - 1) as f32);
+    let ft = if ft.is_nan() { 0.0 } else { ft };
+    let fp = if fp.is_nan() { 0.0 } else { fp };
+    let i = (ft as usize).min(n_t - 2);
+    let j = (fp as usize).min(n_p - 2);
+    (i, j, ft - i as f32, fp - j as f32)
 }
 
 /// Several tables on one (|θd|, |φ|) grid, interleaved per cell so that one bilinear lookup
@@ -173,15 +179,7 @@ impl<const K: usize> Table2x<K> {
     /// Bilinear lookup of all K values (clamped; NaN reads the first row/column).
     #[inline]
     pub fn lookup(&self, abs_theta_d: f32, abs_phi: f32) -> [Vec3; K] {
-        let ft = (abs_theta_d * ((self.n_t - 1) as f32 / std::f32::consts::FRAC_PI_2))
-            .clamp(0.0, (self.n_t - 1) as f32);
-        let fp = (abs_phi * ((self.n_p - 1) as f32 / std::f32::consts::PI))
-            .clamp(0.0, (self.n_p - 1) as f32);
-        let ft = if ft.is_nan() { 0.0 } else { ft };
-        let fp = if fp.is_nan() { 0.0 } else { fp };
-        let i = (ft as usize).min(self.n_t - 2);
-        let j = (fp as usize).min(self.n_p - 2);
-        let (u, v) = (ft - i as f32, fp - j as f32);
+        let (i, j, u, v) = grid_cell(self.n_t, self.n_p, abs_theta_d, abs_phi);
         let w = [(1.0 - u) * (1.0 - v), (1.0 - u) * v, u * (1.0 - v), u * v];
         let cells = [
             &self.values[i * self.n_p + j],
