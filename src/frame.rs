@@ -141,7 +141,6 @@ pub struct Engine {
     pose: Pose,
     /// Scratch pose for the simulation's sub-step collider queries (reused, no allocation).
     sim_pose: Pose,
-    colliders: Colliders,
     sim: Simulator,
     pub state: SimState,
     map: LightMap,
@@ -168,9 +167,8 @@ impl Engine {
         let (guides, layout) = generate(&style);
         let radii = Vec3::from(style.head.radii_m);
         let pose = motion.sample(0.0);
-        let colliders = colliders_of(&pose, radii);
         let sim = Simulator::new(&style.dynamics, &guides, radii);
-        let state = SimState::at_rest(&guides, &colliders, -config.settle_s);
+        let state = SimState::at_rest(&guides, &colliders_of(&pose, radii), -config.settle_s);
         let geom = match config.map_res {
             Some(n) => MapGeometry::with_resolution(
                 MapGeometry::span_m(style.max_length_m(), style.head_size_m()),
@@ -192,7 +190,6 @@ impl Engine {
             motion,
             sim_pose: pose.clone(),
             pose,
-            colliders,
             sim,
             state,
             map: LightMap::new(geom, CountModel::Poisson),
@@ -254,7 +251,6 @@ impl Engine {
         let t0 = Instant::now();
         self.motion.sample_into(t_s as f32, &mut self.pose);
         let radii = Vec3::from(self.style.head.radii_m);
-        self.colliders = colliders_of(&self.pose, radii);
         let t1 = Instant::now();
         if self.config.simulate {
             let motion = &self.motion;
