@@ -3,8 +3,9 @@
 //! density-based self-collision from the map of the previous frame, interpolation, map), frame
 //! by frame at 30 fps; `tests/sim_*.rs` cover the same invariants on an analytic motion.
 
+mod common;
+
 use glam::{Affine3A, Vec3};
-use std::path::PathBuf;
 use wisp::frame::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::{Motion, MotionOptions};
@@ -108,23 +109,11 @@ fn dance_at_three_times_speed_with_30_fps_frames_stays_finite_and_rigid() {
     );
 }
 
-fn robot_path() -> Option<PathBuf> {
-    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/data/animations/RobotExpressive.glb");
-    if p.exists() {
-        Some(p)
-    } else {
-        println!(
-            "skipped: {} is absent (see ../shared/data/README.md)",
-            p.display()
-        );
-        None
-    }
-}
-
 #[test]
 fn robot_expressive_dances_with_hair_on_its_head() {
-    let Some(path) = robot_path() else { return };
+    let Some(path) = common::robot_expressive_glb() else {
+        return;
+    };
     let motion = Motion::load(&path, &MotionOptions::default()).expect("RobotExpressive loads");
     assert_eq!(motion.clip_name(), "Dance");
     let duration = motion.duration_s() as f64;

@@ -8,13 +8,15 @@
 //!
 //! Helpers are in `motion/fixture.rs`, loader-error tests in `motion/errors.rs`.
 
+mod common;
+
 #[path = "motion/errors.rs"]
 mod errors;
 #[path = "motion/fixture.rs"]
 mod fixture;
 
 use std::f32::consts::{FRAC_PI_2, PI};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use fixture::{Fx, angle_between, assert_rigid, fixed_fit, load, one_channel};
 use glam::{Affine3A, Quat, Vec3};
@@ -344,23 +346,11 @@ fn embedded_dance_loads_from_a_file_too() {
 
 // ---------------------------------------------------------------- RobotExpressive
 
-fn robot() -> Option<PathBuf> {
-    let p =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/animations/RobotExpressive.glb");
-    if p.exists() {
-        Some(p)
-    } else {
-        println!(
-            "skipped: {} is absent (see ../shared/data/README.md)",
-            p.display()
-        );
-        None
-    }
-}
-
 #[test]
 fn robot_expressive_dance() {
-    let Some(path) = robot() else { return };
+    let Some(path) = common::robot_expressive_glb() else {
+        return;
+    };
     let m = Motion::load(&path, &MotionOptions::default()).expect("RobotExpressive loads");
     assert_eq!(m.clip_name(), "Dance");
     // Node 12 is the "Head" joint; node 13, also named "Head", is the (non-joint) head mesh.
@@ -411,7 +401,9 @@ fn robot_expressive_dance() {
 
 #[test]
 fn robot_expressive_every_clip_loads() {
-    let Some(path) = robot() else { return };
+    let Some(path) = common::robot_expressive_glb() else {
+        return;
+    };
     for clip in [
         "Idle", "Walking", "Running", "Wave", "Jump", "Yes", "No", "Death",
     ] {
@@ -428,7 +420,9 @@ fn robot_expressive_every_clip_loads() {
 
 #[test]
 fn robot_expressive_truncated_is_an_error() {
-    let Some(path) = robot() else { return };
+    let Some(path) = common::robot_expressive_glb() else {
+        return;
+    };
     let bytes = std::fs::read(&path).expect("readable");
     for len in [
         0,

@@ -45,3 +45,19 @@ pub fn out_dir(name: &str) -> std::path::PathBuf {
     std::fs::create_dir_all(&d).expect("create test output dir");
     d
 }
+
+/// `../shared/data/animations/RobotExpressive.glb` (CC0), or `None` with a printed skip
+/// message when the shared data is not beside the checkout.
+pub fn robot_expressive_glb() -> Option<std::path::PathBuf> {
+    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/data/animations/RobotExpressive.glb");
+    if p.exists() {
+        Some(p)
+    } else {
+        println!(
+            "skipped: {} is absent (see ../shared/data/README.md)",
+            p.display()
+        );
+        None
+    }
+}
