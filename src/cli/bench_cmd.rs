@@ -15,12 +15,12 @@
 //! Results go to stdout as a table and, with `--json FILE`, as JSON.
 
 use super::{AppError, SceneArgs};
-use crate::frame::{Engine, StageTimings};
-use crate::map::{CountModel, LightMap, MapBuildInput, MapGeometry, reference};
-use crate::shade::{shade_vertices, shade_vertices_with};
 use glam::Vec3;
 use std::path::PathBuf;
 use std::time::Instant;
+use wisp::frame::{Engine, StageTimings};
+use wisp::map::{CountModel, LightMap, MapBuildInput, MapGeometry, reference};
+use wisp::shade::{shade_vertices, shade_vertices_with};
 
 #[derive(clap::Args, Debug)]
 pub struct BenchArgs {

@@ -3,10 +3,10 @@
 //! run writes `plots.txt` next to the PNGs saying what the axes, grid lines and colours are.
 
 use super::AppError;
-use crate::fiber::marschner::n_lobe;
-use crate::fiber::{Fiber, FiberParams, Lobe};
 use std::fmt::Write as _;
 use std::path::Path;
+use wisp::fiber::marschner::n_lobe;
+use wisp::fiber::{Fiber, FiberParams, Lobe};
 
 const W: usize = 720;
 const H: usize = 420;
@@ -96,7 +96,7 @@ impl Plot {
     }
 
     fn save(&self, path: &Path) -> Result<(), AppError> {
-        crate::output::write_png_rgb8(path, W as u32, H as u32, &self.rgb)
+        wisp::output::write_png_rgb8(path, W as u32, H as u32, &self.rgb)
             .map_err(|e| AppError::other(anyhow::anyhow!("{e}")))
     }
 }
@@ -164,7 +164,7 @@ pub fn plot(out: &Path, params: &FiberParams) -> Result<(), AppError> {
     // TRT raw (Eq. 8) against smoothed (§5.2.2) at θd = 0, channel mean.
     {
         let n = 1441;
-        let az = crate::fiber::marschner::azimuth_for(c, Lobe::TRT, 0.0, 0.0);
+        let az = wisp::fiber::marschner::azimuth_for(c, Lobe::TRT, 0.0, 0.0);
         let mut raw = Vec::with_capacity(n);
         let mut smooth = Vec::with_capacity(n);
         for k in 0..n {

@@ -7,11 +7,11 @@ use super::AppError;
 
 #[path = "fiber_plot.rs"]
 mod fiber_plot;
-use crate::fiber::{Fiber, FiberParams, HairAngles, Lobe};
-use crate::hairstyle::Hairstyle;
 use clap::{Args, Subcommand};
 use serde_json::{Value, json};
 use std::path::PathBuf;
+use wisp::fiber::{Fiber, FiberParams, HairAngles, Lobe};
+use wisp::hairstyle::Hairstyle;
 
 #[derive(Args, Debug)]
 pub struct FiberArgs {
@@ -178,7 +178,7 @@ fn eval(a: EvalArgs) -> Result<(), AppError> {
     let pi_ = check_angle("phi-i-deg", a.phi_i_deg, 1.0e6)?.to_radians();
     let po = check_angle("phi-o-deg", a.phi_o_deg, 1.0e6)?.to_radians();
     let fiber = Fiber::new(&params);
-    let phi = crate::fiber::marschner::wrap_pi((po - pi_) as f64) as f32;
+    let phi = wisp::fiber::marschner::wrap_pi((po - pi_) as f64) as f32;
     let angles = HairAngles {
         theta_i: ti,
         theta_o: to,
@@ -261,6 +261,6 @@ fn conventions() -> Value {
         "eq17": "series above Eq. 17 summed numerically (unit-consistent); the printed fit is not used because its denominator adds an angle to a number",
         "eq25": "convolution N^G(theta, phi) = (1/pi) int_{-pi/2}^{pi/2} N(theta, phi - phi') dphi'",
         "lobe_moments": "alpha = energy-weighted mean of 2 alpha_p; beta2 = moment-matched variance of the lobe mixture",
-        "a_f_max": crate::fiber::dual::A_F_MAX,
+        "a_f_max": wisp::fiber::dual::A_F_MAX,
     })
 }

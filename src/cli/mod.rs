@@ -7,14 +7,14 @@ pub mod fiber_cmd;
 pub mod play_cmd;
 pub mod render_cmd;
 
-use crate::fiber::ShadingMode;
-use crate::frame::EngineConfig;
-use crate::hairstyle::Hairstyle;
-use crate::motion::{JointRef, Motion, MotionOptions};
 use clap::{Parser, Subcommand, ValueEnum};
 use glam::Vec3;
 use std::path::PathBuf;
 use std::process::ExitCode;
+use wisp::fiber::ShadingMode;
+use wisp::frame::EngineConfig;
+use wisp::hairstyle::Hairstyle;
+use wisp::motion::{JointRef, Motion, MotionOptions};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -142,7 +142,7 @@ impl SceneArgs {
                             "--clip and --head-joint need --animation FILE (the embedded dance has one clip)"
                         )));
                     }
-                    crate::motion::dance::try_dance(&opts).map_err(AppError::other)?
+                    wisp::motion::dance::try_dance(&opts).map_err(AppError::other)?
                 }
             }
         };

@@ -6,13 +6,13 @@
 //! R restart, Esc or Q quit. The title bar shows the frame rate and per-stage times.
 
 use super::{AppError, SceneArgs};
-use crate::fiber::ShadingMode;
-use crate::frame::{Engine, StageTimings};
-use crate::output::write_png_rgb8;
 use glam::{Quat, Vec3};
 use minifb::{Key, KeyRepeat, Window, WindowOptions};
 use std::path::PathBuf;
 use std::time::Instant;
+use wisp::fiber::ShadingMode;
+use wisp::frame::{Engine, StageTimings};
+use wisp::output::write_png_rgb8;
 
 #[derive(clap::Args, Debug)]
 pub struct PlayArgs {

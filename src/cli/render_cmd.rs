@@ -6,10 +6,10 @@
 //! on a second channel, so the export allocates nothing per frame once running.
 
 use super::{AppError, SceneArgs};
-use crate::frame::{Engine, StageTimings};
-use crate::output::write_png_rgb8;
 use anyhow::Context;
 use std::path::{Path, PathBuf};
+use wisp::frame::{Engine, StageTimings};
+use wisp::output::write_png_rgb8;
 
 #[derive(clap::Args, Debug)]
 pub struct RenderArgs {
@@ -81,7 +81,7 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
         let _ = to_renderer.send(Vec::new());
     }
     let out_dir = args.out.clone();
-    let writer = std::thread::spawn(move || -> Result<(), crate::output::OutputError> {
+    let writer = std::thread::spawn(move || -> Result<(), wisp::output::OutputError> {
         for job in jobs {
             let path = frame_path(&out_dir, job.index);
             write_png_rgb8(&path, job.width, job.height, &job.rgb)?;
