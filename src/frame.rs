@@ -17,7 +17,7 @@
 use crate::fiber::Fiber;
 use crate::hairstyle::{GuideSet, Hairstyle, StrandLayout, generate};
 use crate::interp::{StrandGeometry, interpolate};
-use crate::map::{CountModel, LightMap, MapGeometry, MapStats};
+use crate::map::{CountModel, LightMap, MapGeometry, MapStats, Solid};
 use crate::motion::{Motion, Pose};
 use crate::raster::{
     Camera, Framebuffer, LineScratch, LineStyle, Polylines, draw_ellipsoid, draw_polylines,
@@ -154,6 +154,8 @@ pub struct Engine {
     camera_eye_offset: Vec3,
     fb: Framebuffer,
     scratch: LineScratch,
+    /// The head and body solids of the current pose (reused buffer).
+    solids: Vec<Solid>,
     /// Timings of the last frame.
     pub timings: StageTimings,
     /// Figures of the last simulation advance.
@@ -201,6 +203,7 @@ impl Engine {
             camera_eye_offset: Vec3::Z,
             fb,
             scratch: LineScratch::default(),
+            solids: Vec::new(),
             timings: StageTimings::default(),
             step_stats: StepStats::default(),
             config,
@@ -306,18 +309,11 @@ impl Engine {
         let t2 = Instant::now();
         self.fb.clear(self.config.background);
         let (map, lighting) = (&self.map, &self.config.lighting);
-        let head = self.pose.head * Affine3A::from_scale(Vec3::from(self.style.head.radii_m));
-        draw_ellipsoid(&mut self.fb, &self.camera, head, |p, n| {
-            shade_skin(map, lighting, SKIN, p, n)
-        });
-        for s in &self.pose.spheres {
-            let m = Affine3A::from_scale_rotation_translation(
-                Vec3::splat(s.radius_m),
-                glam::Quat::IDENTITY,
-                s.center,
-            );
-            draw_ellipsoid(&mut self.fb, &self.camera, m, |p, n| {
-                shade_skin(map, lighting, CLOTH, p, n)
+        // The head first (skin), then the body spheres (cloth): the solids of the map.
+        for (k, s) in self.solids.iter().enumerate() {
+            let albedo = if k == 0 { SKIN } else { CLOTH };
+            draw_ellipsoid(&mut self.fb, &self.camera, s.unit_sphere_to_world, |p, n| {
+                shade_skin(map, lighting, albedo, p, n)
             });
         }
         let lines = Polylines {
@@ -345,7 +341,8 @@ impl Engine {
         self.render()
     }
 
-    /// Rebuilds the light-oriented map from the current render strands.
+    /// Rebuilds the light-oriented map from the current render strands, with the head and
+    /// body solids as opaque occluders (they shadow the hair as the hair shadows them).
     pub fn build_map(&mut self) {
         self.map.build(&crate::map::MapBuildInput {
             positions: &self.strands.positions,
@@ -355,6 +352,9 @@ impl Engine {
             light_dir: self.config.lighting.light_dir,
             fiber: &self.fiber,
         });
+        self.solids.clear();
+        self.solids.extend(solids_of(&self.pose, Vec3::from(self.style.head.radii_m)));
+        self.map.set_occluders(&self.solids);
         self.map_valid = true;
     }
 
@@ -424,6 +424,20 @@ fn initial_camera(config: &EngineConfig) -> Camera {
         config.width,
         config.height,
     )
+}
+
+/// The opaque solids of a pose: the head ellipsoid first, then the body spheres.
+fn solids_of(pose: &Pose, head_radii_m: Vec3) -> impl Iterator<Item = Solid> + '_ {
+    let head = Solid {
+        unit_sphere_to_world: pose.head * Affine3A::from_scale(head_radii_m),
+    };
+    std::iter::once(head).chain(pose.spheres.iter().map(|s| Solid {
+        unit_sphere_to_world: Affine3A::from_scale_rotation_translation(
+            Vec3::splat(s.radius_m),
+            glam::Quat::IDENTITY,
+            s.center,
+        ),
+    }))
 }
 
 fn colliders_of(pose: &Pose, radii: Vec3) -> Colliders {

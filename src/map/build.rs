@@ -8,9 +8,9 @@
 //!    below always add in the same order whatever the thread count), merge samples of one cell,
 //!    and sweep from the first slice accumulating Eq. 3 in its dual-scattering form.
 
-use super::{Cell, LightFrame, LightMap};
+use super::{Cell, DEPTH_BINS, LightFrame, LightMap};
 use crate::fiber::Fiber;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
 /// How expected crossing counts become transmittance (see the module doc of `map`).
@@ -107,6 +107,9 @@ pub(super) struct Scratch {
     col_count: Vec<u32>,
 }
 
+/// Columns a piece is shared between (2 × 2, bilinear weights).
+const SPLAT: usize = 4;
+
 /// Most pieces a sample is split into (a sample longer than 8 cells still makes 8).
 const MAX_PIECES: usize = 8;
 
@@ -145,12 +148,13 @@ impl LightMap {
             .fold(0.0f32, f32::max);
         let pieces = ((max_len / ds).ceil() as usize).clamp(1, MAX_PIECES);
         let entries = &mut self.scratch.entries;
-        entries.resize(count * pieces, Entry::default());
+        let per_sample = pieces * SPLAT;
+        entries.resize(count * per_sample, Entry::default());
         // Per sample: the fibre's per-crossing statistics once, then its pieces. The extent of
         // the filled cells (first slice, overflow check) comes from an exact min/max reduce,
         // so the reduction order does not matter.
         let extent = entries
-            .par_chunks_mut(pieces)
+            .par_chunks_mut(per_sample)
             .enumerate()
             .with_min_len(512)
             .map(|(s, out)| {
@@ -176,32 +180,58 @@ impl LightMap {
                     CountModel::MeanCount => -a.max(Vec3::splat(1e-30)).ln(),
                 };
                 let cell = Cell {
-                    slice: 0,
-                    col: 0,
-                    seq: 0,
-                    direct: crossings,
-                    tf: (loss * crossings).to_array(),
+                    n_sum: crossings,
+                    loss: (loss * crossings).to_array(),
                     sigma2: (fs.beta_f2 * crossings).to_array(),
                     volume_fraction: volume_scale * len,
+                    ..Cell::default()
                 };
                 let u_cells = frame.to_map(u) * inv_ds;
+                // Half the depth a piece spans along the light, in cells.
+                let half_depth = 0.5 * (u_cells.x * len).abs();
                 let mut ext = Extent::EMPTY;
-                for (q, e) in out.iter_mut().enumerate() {
+                for (q, quad) in out.chunks_exact_mut(SPLAT).enumerate() {
                     let along = ((q as f32 + 0.5) / pieces as f32 - 0.5) * len_total;
                     // The piece's offset, in cells, is rounded to 1/1024 of a cell (7 µm at the
                     // default size): then moving the hair by whole cells moves every piece by
                     // exactly whole cells too (adding numbers on that grid is exact in f32),
                     // which keeps the modulo map's translation invariance exact.
                     let offset = (u_cells * along * 1024.0).round() / 1024.0;
-                    let c = (p0 + offset).floor();
-                    let (i, j, k) = (c.x as i64, c.y as i64, c.z as i64);
-                    ext.include([i, j, k]);
-                    e.col = (j.rem_euclid(n) * n + k.rem_euclid(n)) as u32;
-                    e.slice = i;
-                    e.cell = Cell {
-                        seq: (s * pieces + q) as u32,
-                        ..cell
-                    };
+                    let at = p0 + offset;
+                    let c = at.floor();
+                    let i = c.x as i64;
+                    // The piece's depth range inside its slice (the part of it beyond the
+                    // slice's faces is counted at the face: pieces are at most a cell long).
+                    let lambda = at.x - c.x;
+                    let q16 = |v: f32| (v.clamp(0.0, 1.0) * 65535.0).round() as u16;
+                    let depth = [q16(lambda - half_depth), q16(lambda + half_depth)];
+                    // Across the light, the piece is shared by the four nearest columns with
+                    // bilinear (tent) weights about their centres, so a strand moving across
+                    // a column boundary changes the light smoothly (a box fill shows the cell
+                    // grid as blotches on hair lying side by side).
+                    let lat = Vec2::new(at.y, at.z) - Vec2::splat(0.5);
+                    let l0 = lat.floor();
+                    let w = lat - l0;
+                    let (j0, k0) = (l0.x as i64, l0.y as i64);
+                    ext.include([i, j0, k0]);
+                    ext.include([i, j0 + 1, k0 + 1]);
+                    for (t, e) in quad.iter_mut().enumerate() {
+                        let (dj, dk) = ((t >> 1) as i64, (t & 1) as i64);
+                        let wt = if dj == 0 { 1.0 - w.x } else { w.x }
+                            * if dk == 0 { 1.0 - w.y } else { w.y };
+                        let (j, k) = (j0 + dj, k0 + dk);
+                        e.col = (j.rem_euclid(n) * n + k.rem_euclid(n)) as u32;
+                        e.slice = i;
+                        e.cell = Cell {
+                            seq: ((s * pieces + q) * SPLAT + t) as u32,
+                            depth,
+                            n_sum: cell.n_sum * wt,
+                            loss: (Vec3::from(cell.loss) * wt).to_array(),
+                            sigma2: (Vec3::from(cell.sigma2) * wt).to_array(),
+                            volume_fraction: cell.volume_fraction * wt,
+                            ..cell
+                        };
+                    }
                 }
                 ext
             })
@@ -210,7 +240,7 @@ impl LightMap {
         self.first_slice = if filled_entries > 0 { extent.lo[0] } else { 0 };
         let overflow = filled_entries > 0 && (0..3).any(|a| extent.hi[a] - extent.lo[a] >= n);
         // A non-finite sample invalidates all its pieces together.
-        let samples = filled_entries / pieces;
+        let samples = filled_entries / per_sample;
 
         // 2. Counting sort by column.
         let cols = (n * n) as usize;
@@ -294,38 +324,85 @@ impl LightMap {
 /// Merges the cells of one column (sorted by slice) and sweeps them from the light (Bertails
 /// Eq. 3 with the dual-scattering quantities). Returns the number of distinct cells.
 fn sweep_column(col: &mut [Cell]) -> usize {
-    // Merge runs of equal slice into the front of the slice.
+    // Merge runs of equal slice into the front of the slice, accumulating where along the
+    // light each run's crossings lie (a histogram over DEPTH_BINS sub-slices).
     let mut w = 0usize;
+    let mut hist = [0.0f32; DEPTH_BINS];
     for r in 0..col.len() {
-        if r > 0 && col[r].slice == col[w - 1].slice {
-            let c = col[r];
+        let c = col[r];
+        if r > 0 && c.slice == col[w - 1].slice {
             let m = &mut col[w - 1];
-            m.direct += c.direct;
+            m.n_sum += c.n_sum;
             m.volume_fraction += c.volume_fraction;
             for ch in 0..3 {
-                m.tf[ch] += c.tf[ch];
+                m.loss[ch] += c.loss[ch];
                 m.sigma2[ch] += c.sigma2[ch];
             }
         } else {
-            col[w] = col[r];
+            if w > 0 {
+                col[w - 1].depth_cdf = depth_cdf(&hist);
+            }
+            hist = [0.0; DEPTH_BINS];
+            col[w] = c;
             w += 1;
         }
+        spread_depth(&mut hist, c.depth, c.n_sum);
+    }
+    if w > 0 {
+        col[w - 1].depth_cdf = depth_cdf(&hist);
     }
     for c in &mut col[w..] {
         c.slice = u32::MAX;
     }
-    // Sweep: running sums of crossings, losses and variance; each cell then holds what leaves
-    // its far face.
+    // Sweep: running sums of crossings, losses and variance; each cell then holds what has
+    // been crossed up to its far face (the lookup takes exponentials).
     let (mut n_sum, mut loss, mut var) = (0.0f32, [0.0f32; 3], [0.0f32; 3]);
     for c in &mut col[..w] {
-        n_sum += c.direct;
-        c.direct = (-n_sum).exp();
+        n_sum += c.n_sum;
+        c.n_sum = n_sum;
         for ch in 0..3 {
-            loss[ch] += c.tf[ch];
+            loss[ch] += c.loss[ch];
             var[ch] += c.sigma2[ch];
-            c.tf[ch] = (-loss[ch]).exp();
+            c.loss[ch] = loss[ch];
             c.sigma2[ch] = var[ch];
         }
     }
     w
+}
+
+/// Adds `n` crossings spread evenly over the depth range `depth` (1/65535 of a cell) to the
+/// sub-slice histogram `hist`.
+#[inline]
+fn spread_depth(hist: &mut [f32; DEPTH_BINS], depth: [u16; 2], n: f32) {
+    let k = DEPTH_BINS as f32 / 65535.0;
+    let (lo, hi) = (depth[0] as f32 * k, depth[1] as f32 * k);
+    let width = hi - lo;
+    if width < 1e-6 {
+        hist[(lo as usize).min(DEPTH_BINS - 1)] += n;
+        return;
+    }
+    let (b0, b1) = ((lo as usize).min(DEPTH_BINS - 1), (hi as usize).min(DEPTH_BINS - 1));
+    for (b, h) in hist.iter_mut().enumerate().take(b1 + 1).skip(b0) {
+        let overlap = (hi.min(b as f32 + 1.0) - lo.max(b as f32)).max(0.0);
+        *h += n * overlap / width;
+    }
+}
+
+/// The cumulative shares of a sub-slice histogram at its inner boundaries, in 1/255. An empty
+/// histogram (a cell whose pieces carry no crossings, e.g. fibres along the light) reads as
+/// spread evenly.
+fn depth_cdf(hist: &[f32; DEPTH_BINS]) -> [u8; DEPTH_BINS - 1] {
+    let total: f32 = hist.iter().sum();
+    let mut out = [0u8; DEPTH_BINS - 1];
+    let mut acc = 0.0f32;
+    for (k, o) in out.iter_mut().enumerate() {
+        acc += hist[k];
+        let share = if total > 0.0 {
+            acc / total
+        } else {
+            (k + 1) as f32 / DEPTH_BINS as f32
+        };
+        *o = (share.clamp(0.0, 1.0) * 255.0).round() as u8;
+    }
+    out
 }

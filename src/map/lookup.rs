@@ -5,40 +5,46 @@ use super::{Cell, LightMap};
 use crate::fiber::LightAtPoint;
 use glam::Vec3;
 
-/// Light leaving a far face: (direct fraction, T_f, σ̄f²) as plain arrays for blending.
+/// What a ray has crossed up to some depth: expected crossings, losses Σ n(1 − ā_f) and
+/// variance Σ n β̄_f² (the sweep's running sums, before any exponential).
 #[derive(Clone, Copy)]
-struct Face {
-    direct: f32,
-    tf: Vec3,
-    sigma2: Vec3,
+struct Sums {
+    n: f32,
+    loss: Vec3,
+    var: Vec3,
 }
 
-const OPEN: Face = Face {
-    direct: 1.0,
-    tf: Vec3::ONE,
-    sigma2: Vec3::ZERO,
+const NOTHING: Sums = Sums {
+    n: 0.0,
+    loss: Vec3::ZERO,
+    var: Vec3::ZERO,
 };
 
-impl From<&Cell> for Face {
+impl From<&Cell> for Sums {
     #[inline]
     fn from(c: &Cell) -> Self {
-        Face {
-            direct: c.direct,
-            tf: Vec3::from(c.tf),
-            sigma2: Vec3::from(c.sigma2),
+        Sums {
+            n: c.n_sum,
+            loss: Vec3::from(c.loss),
+            var: Vec3::from(c.sigma2),
         }
     }
 }
 
 impl LightMap {
-    /// Light reaching world point `p`, filtered trilinearly: along X between the far faces of
-    /// cells i−1 and i (the light entering and leaving the point's cell), across X between
-    /// column centres. Non-finite points and points before the hair read as unshadowed.
+    /// Light reaching world point `p`. Along X, each column gives exactly what has been
+    /// crossed up to the point's depth: the sums entering the point's cell plus the share of
+    /// the cell's own crossings that lie in front of the point (`Cell::share_before`), turned
+    /// into direct fraction exp(−n) and T_f = exp(−loss) per column; across X, the four nearest
+    /// columns are blended bilinearly between their centres. Non-finite points and points
+    /// before the hair read as unshadowed.
     pub fn light_at(&self, p: Vec3) -> LightAtPoint {
-        let c = self.cell_coords(p);
+        let m = self.frame.to_map(p);
+        let c = m * self.inv_ds;
         if !c.is_finite() || c.abs().max_element() >= 1.0e12 {
             return LightAtPoint::UNSHADOWED;
         }
+        let visible = self.occluders.visibility(m);
         let i = c.x.floor();
         let lambda = c.x - i;
         let d = i as i64 - self.first_slice;
@@ -46,29 +52,23 @@ impl LightMap {
         let (j0, k0) = (yj.floor(), zk.floor());
         let (wy, wz) = (yj - j0, zk - k0);
         let (j0, k0) = (j0 as i64, k0 as i64);
-        let mut acc = Face {
-            direct: 0.0,
-            tf: Vec3::ZERO,
-            sigma2: Vec3::ZERO,
-        };
+        let (mut direct, mut tf, mut var) = (0.0f32, Vec3::ZERO, Vec3::ZERO);
         for (dj, wj) in [(0, 1.0 - wy), (1, wy)] {
             for (dk, wk) in [(0, 1.0 - wz), (1, wz)] {
                 let w = wj * wk;
                 if w == 0.0 {
                     continue;
                 }
-                let (before, after) = self.faces(self.column(j0 + dj, k0 + dk), d);
-                let wb = w * (1.0 - lambda);
-                let wa = w * lambda;
-                acc.direct += wb * before.direct + wa * after.direct;
-                acc.tf += wb * before.tf + wa * after.tf;
-                acc.sigma2 += wb * before.sigma2 + wa * after.sigma2;
+                let s = self.sums_at(self.column(j0 + dj, k0 + dk), d, lambda);
+                direct += w * (-s.n).exp();
+                tf += w * (-s.loss).exp();
+                var += w * s.var;
             }
         }
         LightAtPoint {
-            direct_fraction: acc.direct.clamp(0.0, 1.0),
-            tf: acc.tf.clamp(Vec3::ZERO, Vec3::ONE),
-            sigma_f2: acc.sigma2.max(Vec3::ZERO),
+            direct_fraction: (direct * visible).clamp(0.0, 1.0),
+            tf: (tf * visible).clamp(Vec3::ZERO, Vec3::ONE),
+            sigma_f2: var.max(Vec3::ZERO),
         }
     }
 
@@ -93,30 +93,35 @@ impl LightMap {
         acc
     }
 
-    /// The light entering (far face of slice d−1) and leaving (far face of slice d) the cell at
-    /// unwrapped distance `d` slices from the first slice, in column `col`.
+    /// What column `col` has crossed up to depth `lambda` (cell units) inside the cell at
+    /// unwrapped distance `d` slices from the first slice.
     #[inline]
-    fn faces(&self, col: usize, d: i64) -> (Face, Face) {
+    fn sums_at(&self, col: usize, d: i64, lambda: f32) -> Sums {
         if d < 0 {
-            return (OPEN, OPEN);
+            return NOTHING;
         }
         let rel = d.rem_euclid(self.geom.n as i64) as u32;
         let Some(k) = self.last_at_or_before(col, rel) else {
-            return (OPEN, OPEN);
+            return NOTHING;
         };
         let cell = &self.cells[k];
-        let leaving = Face::from(cell);
+        let leaving = Sums::from(cell);
         if cell.slice != rel {
-            return (leaving, leaving);
+            return leaving;
         }
         // The cell itself is filled: the light entering it left the previous filled cell of
         // the column (if any, and not across the wrap).
         let entering = if rel > 0 && k > self.col_start[col] as usize {
-            Face::from(&self.cells[k - 1])
+            Sums::from(&self.cells[k - 1])
         } else {
-            OPEN
+            NOTHING
         };
-        (entering, leaving)
+        let share = cell.share_before(lambda);
+        Sums {
+            n: entering.n + (leaving.n - entering.n) * share,
+            loss: entering.loss + (leaving.loss - entering.loss) * share,
+            var: entering.var + (leaving.var - entering.var) * share,
+        }
     }
 
     /// Hair volume fraction of the cell holding world point `p` and that cell's centre (world),
@@ -138,3 +143,4 @@ impl LightMap {
         Some((cell.volume_fraction, centre))
     }
 }
+

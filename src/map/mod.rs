@@ -45,9 +45,12 @@
 
 mod build;
 mod lookup;
+pub mod exact;
+mod occluders;
 pub mod reference;
 
 pub use build::{CountModel, MapBuildInput, MapStats};
+pub use occluders::{OccluderGrid, Solid};
 
 use glam::Vec3;
 
@@ -91,6 +94,9 @@ impl MapGeometry {
     }
 }
 
+/// Occluder texel size in cells.
+const OCCLUDER_TEXEL_CELLS: f32 = 0.25;
+
 /// Orthonormal light frame: `x` is the direction the light travels.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LightFrame {
@@ -121,7 +127,16 @@ impl LightFrame {
     }
 }
 
-/// One filled cell after the sweep: the light leaving its far face, and its hair content.
+/// Sub-slices along the light in which a cell records where its hair lies (see
+/// [`Cell::depth_cdf`]).
+pub(crate) const DEPTH_BINS: usize = 8;
+
+/// One filled cell after the sweep: the light leaving its far face, where its hair lies along
+/// the light, and its hair content.
+///
+/// The light is stored as the running sums of the sweep (expected crossings, losses, variance),
+/// not as their exponentials, so that a lookup can take any fraction of a cell's own
+/// crossings exactly (exp of an interpolated sum) before converting to transmittance.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Cell {
     /// Slice index relative to the first slice (0..N); `u32::MAX` marks a merged-away entry.
@@ -130,14 +145,44 @@ pub(crate) struct Cell {
     pub col: u32,
     /// Index of the (first) sample that made the cell: the tie-break of the sort.
     pub seq: u32,
-    /// Expected crossings inside this cell (before the sweep), then exp(−Σ n) (after).
-    pub direct: f32,
-    /// Σ n·(1 − ā_f) (or Σ n·(−ln ā_f)) inside the cell, then T_f leaving the cell, RGB.
-    pub tf: [f32; 3],
+    /// Expected crossings inside this cell (before the sweep), then Σ n up to the far face
+    /// (after): the direct fraction leaving the cell is exp(−n_sum).
+    pub n_sum: f32,
+    /// Σ n·(1 − ā_f) (or Σ n·(−ln ā_f)) inside the cell, then up to the far face, RGB: T_f
+    /// leaving the cell is exp(−loss).
+    pub loss: [f32; 3],
     /// Σ n·β̄_f² inside the cell, then σ̄f² leaving the cell (rad²), RGB.
     pub sigma2: [f32; 3],
     /// Hair volume fraction of the cell (fibre volume / cell volume).
     pub volume_fraction: f32,
+    /// Before merging (one sample piece): the depth range along the light that the piece
+    /// spans inside its cell, in 1/65535 of a cell from the light-side face.
+    pub depth: [u16; 2],
+    /// After merging: the share of the cell's crossings that lie before each inner sub-slice
+    /// boundary k/DEPTH_BINS (k = 1..DEPTH_BINS−1), in 1/255. Between boundaries the share
+    /// grows linearly. A point inside the cell receives the light entering it minus only the
+    /// crossings in front of it (a uniform spread through the cell would shadow the front-most
+    /// fibres with hair lying beside and behind them).
+    pub depth_cdf: [u8; DEPTH_BINS - 1],
+}
+
+impl Cell {
+    /// Share of the cell's crossings before depth `lambda` ∈ [0, 1] (cell units from the
+    /// light-side face): piecewise linear through the stored sub-slice boundaries.
+    #[inline]
+    pub fn share_before(&self, lambda: f32) -> f32 {
+        let t = (lambda * DEPTH_BINS as f32).clamp(0.0, DEPTH_BINS as f32);
+        let k = (t as usize).min(DEPTH_BINS - 1);
+        let at = |b: usize| -> f32 {
+            match b {
+                0 => 0.0,
+                DEPTH_BINS => 1.0,
+                _ => self.depth_cdf[b - 1] as f32 * (1.0 / 255.0),
+            }
+        };
+        let (a, b) = (at(k), at(k + 1));
+        a + (b - a) * (t - k as f32)
+    }
 }
 
 /// The map: geometry, light frame, and the filled cells of the last build.
@@ -161,6 +206,8 @@ pub struct LightMap {
     slots: Vec<u32>,
     scratch: build::Scratch,
     stats: MapStats,
+    /// Opaque solids (head, body) in the same light frame.
+    occluders: OccluderGrid,
 }
 
 impl LightMap {
@@ -179,6 +226,7 @@ impl LightMap {
             slots: Vec::new(),
             scratch: build::Scratch::default(),
             stats: MapStats::default(),
+            occluders: OccluderGrid::default(),
         }
     }
 
@@ -190,6 +238,20 @@ impl LightMap {
     }
     pub fn stats(&self) -> &MapStats {
         &self.stats
+    }
+
+    /// Places opaque solids (head, body) in the map's current light frame (call after
+    /// [`LightMap::build`], which sets the frame): they shadow whatever lies behind them along
+    /// the light, hair and skin alike. Texels are a quarter of a cell.
+    pub fn set_occluders(&mut self, solids: &[Solid]) {
+        let texel = OCCLUDER_TEXEL_CELLS * self.geom.ds_m;
+        self.occluders.build(&self.frame, texel, solids);
+    }
+
+    /// How far a point on an occluder's surface should be moved along its normal before a
+    /// lookup, so the solid does not shadow itself: one and a half occluder texels, metres.
+    pub fn surface_offset_m(&self) -> f32 {
+        1.5 * OCCLUDER_TEXEL_CELLS * self.geom.ds_m
     }
 
     /// Cell-space coordinates (unwrapped, in cells) of a world point.

@@ -102,8 +102,12 @@ pub fn shade_vertices_with<L>(
         });
 }
 
-/// Skin: Lambertian with albedo `albedo`, lit through the hair (the map's T_f at the skin
-/// point: hair casts its shadow on the head), plus ambient.
+/// Skin: Lambertian with albedo `albedo`, lit through the hair and past the other solids (the
+/// map's T_f at the skin point: hair casts its shadow on the head, the head on the body), plus
+/// ambient. The lookup point is moved off the surface along its normal by
+/// [`LightMap::surface_offset_m`] ("normal offset" shadow mapping), so that near the terminator,
+/// where the light grazes the surface, the solid does not shadow itself through the finite
+/// resolution of the occluder grid.
 #[inline]
 pub fn shade_skin(
     map: &LightMap,
@@ -115,7 +119,7 @@ pub fn shade_skin(
     let wi = -lighting.light_dir;
     let cos = normal.dot(wi).max(0.0);
     let light = if cos > 0.0 {
-        map.light_at(p)
+        map.light_at(p + normal * map.surface_offset_m())
     } else {
         LightAtPoint::UNSHADOWED
     };
