@@ -312,9 +312,12 @@ impl Engine {
         // The head first (skin), then the body spheres (cloth): the solids of the map.
         for (k, s) in self.solids.iter().enumerate() {
             let albedo = if k == 0 { SKIN } else { CLOTH };
-            draw_ellipsoid(&mut self.fb, &self.camera, s.unit_sphere_to_world, |p, n| {
-                shade_skin(map, lighting, albedo, p, n)
-            });
+            draw_ellipsoid(
+                &mut self.fb,
+                &self.camera,
+                s.unit_sphere_to_world,
+                |p, n| shade_skin(map, lighting, albedo, p, n),
+            );
         }
         let lines = Polylines {
             points: &self.strands.positions,
@@ -353,7 +356,8 @@ impl Engine {
             fiber: &self.fiber,
         });
         self.solids.clear();
-        self.solids.extend(solids_of(&self.pose, Vec3::from(self.style.head.radii_m)));
+        self.solids
+            .extend(solids_of(&self.pose, Vec3::from(self.style.head.radii_m)));
         self.map.set_occluders(&self.solids);
         self.map_valid = true;
     }

@@ -3,24 +3,21 @@
 //! 1. **Scaling**: the whole pipeline (animation, simulation, interpolation, map, shading,
 //!    raster) over `--frames` frames of the dance, once per thread count, in rayon pools built
 //!    in this process; per-stage medians and the speed-up over one thread.
-//! 2. **Speed against error**: one hair state (the dance at `--at-s`), the map built and every
-//!    vertex shaded at each `--map-res`; error is the relative RMS difference of vertex
-//!    luminance (and the RMS of T_f) against `map::reference`, the same light transport with
-//!    no grid (fibres spread as Gaussians of the strand spacing). Time is map build + shading,
-//!    median of `--repeats` runs.
+//! 2. **Speed against error**: one hair state (the dance at `--at-s`), the map built at each
+//!    `--map-res` and compared with the exact reference (`map::exact`: ray shooting through the
+//!    placed fibres) at 2,000 vertices: T_f error and bias, and the error of the shaded vertex
+//!    luminance; time is map build + a lookup at every vertex, median of `--repeats` runs
+//!    (`wisp accuracy` gives the same table with more control).
 //!
 //! 3. **Self-collision**: peak cell volume fraction, hair volume (filled cells) and simulation
 //!    time with and without the density repulsion of Bertails §4.1, and its share of a frame.
 //!
 //! Results go to stdout as a table and, with `--json FILE`, as JSON.
 
-use super::{AppError, SceneArgs};
-use glam::Vec3;
+use super::{AppError, SceneArgs, accuracy_cmd};
 use std::path::PathBuf;
-use std::time::Instant;
 use wisp::frame::{Engine, StageTimings};
-use wisp::map::{CountModel, LightMap, MapBuildInput, MapGeometry, reference};
-use wisp::shade::{shade_vertices, shade_vertices_with};
+use wisp::map::exact::Footprint;
 
 #[derive(clap::Args, Debug)]
 pub struct BenchArgs {
@@ -164,99 +161,41 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
     json.insert("self_collision".into(), sc.into());
     json.insert("self_collision_share".into(), share.into());
 
-    // 3. Speed against error over map resolutions, against the grid-free reference.
+    // 3. Speed against error over map resolutions, against the exact reference.
     let mut engine = Engine::new(style.clone(), motion.clone(), config.clone());
     engine.run_up_to(args.at_s as f64);
     engine.frame(args.at_s as f64);
-    let eye = engine.camera().eye();
-    let span = MapGeometry::span_m(style.max_length_m(), style.head_size_m());
-    let h = style.strand_spacing_m();
-    let input = MapBuildInput {
-        positions: &engine.strands.positions,
-        tangents: &engine.strands.tangents,
-        lengths_m: &engine.strands.lengths_m,
-        fibers_per_strand: style.strands.fibers_per_strand,
-        light_dir: config.lighting.light_dir,
-        fiber: &engine.fiber,
-    };
-    let positions = &engine.strands.positions;
-    let tangents = &engine.strands.tangents;
-    let t0 = Instant::now();
-    let reference_light = reference::reference_light(&input, h, positions);
-    let reference_ms = t0.elapsed().as_secs_f64() * 1e3;
-    let mut reference = Vec::new();
-    shade_vertices_with(
-        &engine.fiber,
-        &config.lighting,
-        eye,
-        positions,
-        tangents,
-        |i, _| reference_light[i],
-        &mut reference,
-    );
-    let lum = |c: &Vec3| c.dot(Vec3::new(0.2126, 0.7152, 0.0722)) as f64;
-    let ref_rms = (reference.iter().map(|c| lum(c).powi(2)).sum::<f64>()
-        / reference.len().max(1) as f64)
-        .sqrt();
-    let tf_err = |map: &LightMap| {
-        let s: f64 = positions
-            .iter()
-            .zip(&reference_light)
-            .map(|(p, r)| ((map.light_at(*p).tf - r.tf).abs().max_element() as f64).powi(2))
-            .sum();
-        (s / positions.len().max(1) as f64).sqrt()
-    };
-    println!(
-        "\nspeed against error: map build + shading of {} vertices at t = {} s, against the grid-free reference \
-         (Gaussian fibre spread h = {:.2} mm, {:.0} ms); the scene's own choice is N = {}:",
-        positions.len(),
-        args.at_s,
-        h * 1e3,
-        reference_ms,
-        engine.map_geometry().n
-    );
-    println!(
-        "{:>6} {:>9} {:>12} {:>18} {:>12}",
-        "N", "ds (mm)", "time (ms)", "luminance rel.RMS", "Tf RMS"
-    );
-    let mut rows = Vec::new();
-    let mut colors = Vec::new();
-    for &n in &args.map_res_list {
-        let mut map = LightMap::new(MapGeometry::with_resolution(span, n), CountModel::Poisson);
-        let mut times: Vec<f64> = (0..args.repeats)
-            .map(|_| {
-                let t0 = Instant::now();
-                map.build(&input);
-                shade_vertices(
-                    &engine.fiber,
-                    &map,
-                    &config.lighting,
-                    eye,
-                    positions,
-                    tangents,
-                    &mut colors,
-                );
-                t0.elapsed().as_secs_f64() * 1e3
-            })
-            .collect();
-        let ms = median(&mut times);
-        let err = (colors
-            .iter()
-            .zip(&reference)
-            .map(|(a, b)| (lum(a) - lum(b)).powi(2))
-            .sum::<f64>()
-            / colors.len().max(1) as f64)
-            .sqrt()
-            / ref_rms.max(1e-12);
-        let tf = tf_err(&map);
-        println!(
-            "{n:>6} {:>9.2} {ms:>12.2} {err:>18.4} {tf:>12.4}",
-            span / n as f32 * 1e3
-        );
-        rows.push(serde_json::json!({ "map_res": n, "ds_mm": span / n as f32 * 1e3, "ms": ms, "luminance_rel_rms": err, "tf_rms": tf }));
+    let default_n = engine.map_geometry().n;
+    let mut ns = args.map_res_list.clone();
+    if !ns.contains(&default_n) {
+        ns.push(default_n);
     }
+    ns.sort_unstable();
+    let footprint = Footprint::Fibres { rays: 128 };
+    let (rows, reference_ms) = accuracy_cmd::measure(&engine, &ns, 2000, &footprint, args.repeats);
+    println!(
+        "\nspeed against error at t = {} s: map build + a lookup at all {} vertices, against the \
+         exact reference (ray shooting through the placed fibres, 2,000 vertices, 128 rays each, \
+         {:.0} ms; see ACCURACY.md); the scene's own choice is N = {default_n}:\n",
+        args.at_s,
+        engine.strands.positions.len(),
+        reference_ms,
+    );
+    print!("{}", accuracy_cmd::markdown(&rows, default_n));
+    let rows: Vec<serde_json::Value> = rows
+        .iter()
+        .map(|r| {
+            serde_json::json!({
+                "map_res": r.n, "ds_mm": r.ds_mm, "ms": r.ms,
+                "tf_mae": r.comparison.mae, "tf_overall_bias": r.comparison.overall_bias,
+                "tf_bias_by_true_bin": r.comparison.by_truth.iter().map(|b| b.bias).collect::<Vec<_>>(),
+                "tf_bias_by_map_bin": r.comparison.by_estimate.iter().map(|b| b.bias).collect::<Vec<_>>(),
+                "luminance_rel_rms": r.luminance_rel_rms, "luminance_ratio": r.luminance_ratio,
+            })
+        })
+        .collect();
     json.insert("speed_vs_error".into(), rows.into());
-    json.insert("reference_h_mm".into(), (h * 1e3).into());
+    json.insert("reference_ms".into(), reference_ms.into());
     json.insert("hairstyle".into(), style.name.clone().into());
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&serde_json::Value::Object(json))

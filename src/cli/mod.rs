@@ -2,6 +2,7 @@
 //!
 //! Exit codes: 0 success, 2 bad input (flags or files), 1 any other failure.
 
+pub mod accuracy_cmd;
 pub mod bench_cmd;
 pub mod fiber_cmd;
 pub mod play_cmd;
@@ -44,6 +45,10 @@ pub enum Command {
     Bench(bench_cmd::BenchArgs),
     /// Inspect the fibre scattering model: evaluate, tabulate, plot.
     Fiber(fiber_cmd::FiberArgs),
+    /// The light map against the exact reference (ray shooting through explicit fibres) over
+    /// map resolutions: the tables of ACCURACY.md.
+    #[command(allow_negative_numbers = true)]
+    Accuracy(accuracy_cmd::AccuracyArgs),
 }
 
 /// Fibre shader choice on the command line.
@@ -242,6 +247,7 @@ pub fn main() -> ExitCode {
         Command::Play(args) => play_cmd::run(args),
         Command::Bench(args) => bench_cmd::run(args),
         Command::Fiber(args) => fiber_cmd::run(args),
+        Command::Accuracy(args) => accuracy_cmd::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -381,7 +381,10 @@ fn spread_depth(hist: &mut [f32; DEPTH_BINS], depth: [u16; 2], n: f32) {
         hist[(lo as usize).min(DEPTH_BINS - 1)] += n;
         return;
     }
-    let (b0, b1) = ((lo as usize).min(DEPTH_BINS - 1), (hi as usize).min(DEPTH_BINS - 1));
+    let (b0, b1) = (
+        (lo as usize).min(DEPTH_BINS - 1),
+        (hi as usize).min(DEPTH_BINS - 1),
+    );
     for (b, h) in hist.iter_mut().enumerate().take(b1 + 1).skip(b0) {
         let overlap = (hi.min(b as f32 + 1.0) - lo.max(b as f32)).max(0.0);
         *h += n * overlap / width;

@@ -185,7 +185,8 @@ fn place_fibres(pts: &[Vec3], s: usize, input: &ExactInput, frame: &LightFrame) 
         }
     });
     // Normal frame per point, carried along the strand by projection.
-    let tangent = |k: usize| (pts[(k + 1).min(ppl - 1)] - pts[k.saturating_sub(1)]).normalize_or(Vec3::Y);
+    let tangent =
+        |k: usize| (pts[(k + 1).min(ppl - 1)] - pts[k.saturating_sub(1)]).normalize_or(Vec3::Y);
     let mut n1 = tangent(0).any_orthonormal_vector();
     let frames: Vec<(Vec3, Vec3)> = (0..ppl)
         .map(|k| {
@@ -217,7 +218,9 @@ impl<'a> ExactReference<'a> {
         let to_light = -frame.x;
         let fibre_points: Vec<Vec3> = (0..strands)
             .into_par_iter()
-            .flat_map_iter(|s| place_fibres(&input.positions[s * ppl..(s + 1) * ppl], s, input, &frame))
+            .flat_map_iter(|s| {
+                place_fibres(&input.positions[s * ppl..(s + 1) * ppl], s, input, &frame)
+            })
             .collect();
         let segments: Vec<Segment> = (0..strands * f_count)
             .into_par_iter()
@@ -413,10 +416,12 @@ impl<'a> ExactReference<'a> {
         // Candidate segments: those binned within the ball's lateral square (bins are at least
         // as wide as r, so a segment crossing the ball is in one of them), deduplicated by
         // keeping a segment only in the first bin of the square it was listed in.
-        let lo = ((Vec2::new(centre.y, centre.z) - Vec2::splat(radius) - self.origin) * self.inv_bin)
+        let lo = ((Vec2::new(centre.y, centre.z) - Vec2::splat(radius) - self.origin)
+            * self.inv_bin)
             .floor()
             .max(Vec2::ZERO);
-        let hi = ((Vec2::new(centre.y, centre.z) + Vec2::splat(radius) - self.origin) * self.inv_bin)
+        let hi = ((Vec2::new(centre.y, centre.z) + Vec2::splat(radius) - self.origin)
+            * self.inv_bin)
             .floor();
         if !(lo.is_finite() && hi.is_finite()) || hi.x < 0.0 || hi.y < 0.0 {
             return;
@@ -601,7 +606,10 @@ mod tests {
         for rho in [0.25f32, 0.5, 0.9] {
             let inside = (0..n).filter(|&i| vogel(i, n).length() < rho).count();
             let share = inside as f32 / n as f32;
-            assert!((share - rho * rho).abs() < 2.0 / n as f32 + 1e-3, "{rho}: {share}");
+            assert!(
+                (share - rho * rho).abs() < 2.0 / n as f32 + 1e-3,
+                "{rho}: {share}"
+            );
         }
     }
 }

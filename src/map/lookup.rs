@@ -143,4 +143,3 @@ impl LightMap {
         Some((cell.volume_fraction, centre))
     }
 }
-

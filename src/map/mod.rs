@@ -43,11 +43,11 @@
 //! A slab of hair perpendicular to L then reads exactly 1 in front of it and exactly the
 //! analytic attenuation behind it (`tests/map_slab.rs`).
 
+pub mod accuracy;
 mod build;
-mod lookup;
 pub mod exact;
+mod lookup;
 mod occluders;
-pub mod reference;
 
 pub use build::{CountModel, MapBuildInput, MapStats};
 pub use occluders::{OccluderGrid, Solid};

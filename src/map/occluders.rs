@@ -55,8 +55,9 @@ impl OccluderGrid {
         let solids: Vec<(Affine3A, Vec2, Vec2)> = solids
             .iter()
             .filter_map(|s| {
-                let world_to_light =
-                    Affine3A::from_mat3(glam::Mat3::from_cols(frame.x, frame.y, frame.z).transpose());
+                let world_to_light = Affine3A::from_mat3(
+                    glam::Mat3::from_cols(frame.x, frame.y, frame.z).transpose(),
+                );
                 let to_light = world_to_light * s.unit_sphere_to_world;
                 let m = glam::Mat3::from(to_light.matrix3);
                 let det = m.determinant();
@@ -128,7 +129,12 @@ impl OccluderGrid {
                 self.depth[i as usize * self.dims[1] + j as usize]
             }
         };
-        let d = [at(i0, j0), at(i0, j0 + 1), at(i0 + 1, j0), at(i0 + 1, j0 + 1)];
+        let d = [
+            at(i0, j0),
+            at(i0, j0 + 1),
+            at(i0 + 1, j0),
+            at(i0 + 1, j0 + 1),
+        ];
         let wts = [
             (1.0 - w.x) * (1.0 - w.y),
             (1.0 - w.x) * w.y,
@@ -194,7 +200,11 @@ mod tests {
         // Lit hemisphere: points on the surface facing the light.
         for a in [0.0f32, 0.5, 1.0, 1.3] {
             let p = Vec3::new(-a.cos(), a.sin(), 0.0) * 0.05;
-            assert!(vis(p) > 0.99, "lit surface at {a} rad self-shadows: {}", vis(p));
+            assert!(
+                vis(p) > 0.99,
+                "lit surface at {a} rad self-shadows: {}",
+                vis(p)
+            );
         }
     }
 
@@ -206,8 +216,16 @@ mod tests {
         let texel = 0.002;
         g.build(&frame, texel, &[sphere(Vec3::ZERO, 0.05)]);
         let vis = |y: f32| g.visibility(frame.to_map(Vec3::new(0.2, y, 0.0)));
-        assert!(vis(0.05 - 1.5 * texel) < 0.02, "{}", vis(0.05 - 1.5 * texel));
-        assert!(vis(0.05 + 1.5 * texel) > 0.98, "{}", vis(0.05 + 1.5 * texel));
+        assert!(
+            vis(0.05 - 1.5 * texel) < 0.02,
+            "{}",
+            vis(0.05 - 1.5 * texel)
+        );
+        assert!(
+            vis(0.05 + 1.5 * texel) > 0.98,
+            "{}",
+            vis(0.05 + 1.5 * texel)
+        );
         let mut last = 0.0;
         for k in 0..40 {
             let v = vis(0.05 - 2.0 * texel + k as f32 * 0.1 * texel);
