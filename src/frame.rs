@@ -180,6 +180,7 @@ impl Engine {
                 style.max_length_m(),
                 style.head_size_m(),
                 style.strand_spacing_m(),
+                style.strands.fibers_per_strand,
             ),
         };
         let camera = initial_camera(&config);

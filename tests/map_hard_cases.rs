@@ -56,7 +56,12 @@ fn two_hundred_million_fibres_in_one_cell_give_black_not_nan() {
     let len = vec![0.005; n];
     let light = Vec3::new(0.0, -1.0, 0.1).normalize();
     let map = build(&fiber, &pos, &tan, &len, light, 1000.0);
-    assert_eq!(map.stats().filled_cells, 1);
+    // One position, shared by the four columns around it (the bilinear splat).
+    assert!(
+        (1..=4).contains(&map.stats().filled_cells),
+        "{}",
+        map.stats().filled_cells
+    );
     // Straight behind the cell's centre, where the lateral filter reads that column alone.
     let (_, centre) = map.cell_density(pos[0]).expect("the cell is filled");
     let behind = map.light_at(centre + light * 0.05);

@@ -1,6 +1,7 @@
 //! The cell convention and the filter agree (Bertails 2005 §3.2-3.3): a flat slab of hair
-//! perpendicular to the light reads exactly 1 in front of it and the analytic attenuation
-//! behind it; and the light never grows along the light direction.
+//! perpendicular to the light reads exactly 1 in front of it, the analytic attenuation at every
+//! face behind it and, inside a cell, the attenuation of the hair in front of the point only;
+//! and the light never grows along the light direction.
 
 mod common;
 use common::*;
@@ -97,10 +98,25 @@ fn slab_reads_one_in_front_and_the_analytic_attenuation_behind() {
             "x {x}"
         );
     }
-    // Between two faces the filter is linear in x (Bertails §3.3).
-    let (mid, a, b) = (at(12.25), at(12.0), at(13.0));
-    let lin = a.tf * 0.75 + b.tf * 0.25;
-    assert!((mid.tf - lin).abs().max_element() < 1e-5);
+    // Inside a cell, a point receives only the crossings in front of it: the slab's samples
+    // lie in two planes at 1/4 and 3/4 of each cell, so a point at 1/10 of cell 12 has crossed
+    // two cells, at 1/2 two and a half, at 9/10 three (a filter linear through the cell, as
+    // Bertails §3.3, would give 2.1, 2.5 and 2.9). The cell stores its shares in 1/255.
+    for (x, cells) in [(12.1, 2.0), (12.5, 2.5), (12.9, 3.0)] {
+        let l = at(x);
+        let (d, tf, _) = expect(cells);
+        let tol = n_cell / 255.0; // one quantisation step of a cell's crossings
+        assert!(
+            (l.direct_fraction / d).ln().abs() < tol,
+            "x {x}: direct {} vs {d}",
+            l.direct_fraction
+        );
+        assert!(
+            ((l.tf / tf).abs().max_element().ln()).abs() < tol,
+            "x {x}: Tf {} vs {tf}",
+            l.tf
+        );
+    }
     // The slab is thick enough to matter.
     assert!(
         expect(4.0).0 < 0.5,

@@ -8,14 +8,9 @@
 //! vertex of the hair (the map's whole per-frame cost), median of `--repeats` runs.
 
 use super::{AppError, SceneArgs};
-use glam::Vec3;
-use std::time::Instant;
+use wisp::accuracy::{markdown, measure_map, single_fibre_variant};
 use wisp::frame::Engine;
-use wisp::hairstyle::Hairstyle;
-use wisp::map::accuracy::{BIN_EDGES, Comparison, sample_vertices};
-use wisp::map::exact::{ExactInput, ExactReference, Footprint};
-use wisp::map::{CountModel, LightMap, MapBuildInput, MapGeometry};
-use wisp::shade::shade_vertices_with;
+use wisp::map::exact::Footprint;
 
 #[derive(clap::Args, Debug)]
 pub struct AccuracyArgs {
@@ -48,19 +43,6 @@ pub struct AccuracyArgs {
     pub repeats: u32,
 }
 
-/// One row of the table.
-#[derive(Clone, Debug)]
-pub struct Row {
-    pub n: u32,
-    pub ds_mm: f32,
-    pub ms: f64,
-    pub comparison: Comparison,
-    /// Relative RMS of the shaded vertex luminance against shading with the reference light.
-    pub luminance_rel_rms: f64,
-    /// Mean shaded luminance, map ÷ reference.
-    pub luminance_ratio: f64,
-}
-
 /// Parses `--footprint`.
 fn parse_footprint(s: &str, rays: u32) -> Result<Footprint, AppError> {
     let mm = |v: &str| -> Result<f32, AppError> {
@@ -88,180 +70,6 @@ fn parse_footprint(s: &str, rays: u32) -> Result<Footprint, AppError> {
     }
 }
 
-/// The exact-geometry variant of a hairstyle: K render strands of one fibre for every render
-/// strand of F fibres.
-pub fn single_fibre_variant(style: &Hairstyle, k: u32) -> Hairstyle {
-    let mut s = style.clone();
-    s.wisps.strands_per_wisp = s.wisps.strands_per_wisp.saturating_mul(k);
-    s.strands.fibers_per_strand = 1.0;
-    s.name = format!("{} (x{k} strands, 1 fibre each)", style.name);
-    s
-}
-
-/// Measures the map against the exact reference for an engine's current hair state, at the
-/// resolutions `ns`; prints nothing.
-pub fn measure(
-    engine: &Engine,
-    ns: &[u32],
-    vertices: usize,
-    footprint: &Footprint,
-    repeats: u32,
-) -> (Vec<Row>, f64) {
-    let style = &engine.style;
-    let strands = &engine.strands;
-    let light_dir = engine.config.lighting.light_dir;
-    let t0 = Instant::now();
-    let reference = ExactReference::build(
-        &ExactInput {
-            positions: &strands.positions,
-            points_per_strand: strands.points_per_strand,
-            fibers_per_strand: style.strands.fibers_per_strand.round().max(1.0) as u32,
-            bundle_radius_m: 0.5 * style.strand_spacing_m(),
-            light_dir,
-            fiber: &engine.fiber,
-        },
-        0.5 * style.strand_spacing_m(),
-    );
-    let verts = sample_vertices(strands.positions.len(), vertices);
-    let truth = reference.light_at_vertices(&verts, footprint);
-    let reference_ms = t0.elapsed().as_secs_f64() * 1e3;
-    let pos: Vec<Vec3> = verts.iter().map(|&v| strands.positions[v]).collect();
-    let tan: Vec<Vec3> = verts.iter().map(|&v| strands.tangents[v]).collect();
-    let eye = engine.camera().eye();
-    let lighting = &engine.config.lighting;
-    let lum = |c: &Vec3| c.dot(Vec3::new(0.2126, 0.7152, 0.0722)) as f64;
-    let mut ref_colors = Vec::new();
-    shade_vertices_with(
-        &engine.fiber,
-        lighting,
-        eye,
-        &pos,
-        &tan,
-        |i, _| truth[i],
-        &mut ref_colors,
-    );
-    let ref_mean = ref_colors.iter().map(lum).sum::<f64>() / ref_colors.len().max(1) as f64;
-    let ref_rms = (ref_colors.iter().map(|c| lum(c).powi(2)).sum::<f64>()
-        / ref_colors.len().max(1) as f64)
-        .sqrt();
-    let span = MapGeometry::span_m(style.max_length_m(), style.head_size_m());
-    let input = MapBuildInput {
-        positions: &strands.positions,
-        tangents: &strands.tangents,
-        lengths_m: &strands.lengths_m,
-        fibers_per_strand: style.strands.fibers_per_strand,
-        light_dir,
-        fiber: &engine.fiber,
-    };
-    let mut rows = Vec::new();
-    for &n in ns {
-        let mut map = LightMap::new(MapGeometry::with_resolution(span, n), CountModel::Poisson);
-        let mut times: Vec<f64> = (0..repeats.max(1))
-            .map(|_| {
-                let t0 = Instant::now();
-                map.build(&input);
-                let mut sink = 0.0f32;
-                for p in &strands.positions {
-                    sink += map.light_at(*p).direct_fraction;
-                }
-                std::hint::black_box(sink);
-                t0.elapsed().as_secs_f64() * 1e3
-            })
-            .collect();
-        times.sort_by(f64::total_cmp);
-        let estimate: Vec<_> = pos.iter().map(|p| map.light_at(*p)).collect();
-        let mut colors = Vec::new();
-        shade_vertices_with(
-            &engine.fiber,
-            lighting,
-            eye,
-            &pos,
-            &tan,
-            |i, _| estimate[i],
-            &mut colors,
-        );
-        let rms = (colors
-            .iter()
-            .zip(&ref_colors)
-            .map(|(a, b)| (lum(a) - lum(b)).powi(2))
-            .sum::<f64>()
-            / colors.len().max(1) as f64)
-            .sqrt()
-            / ref_rms.max(1e-12);
-        let mean = colors.iter().map(lum).sum::<f64>() / colors.len().max(1) as f64;
-        rows.push(Row {
-            n,
-            ds_mm: span / n as f32 * 1e3,
-            ms: times[times.len() / 2],
-            comparison: Comparison::new(&truth, &estimate),
-            luminance_rel_rms: rms,
-            luminance_ratio: mean / ref_mean.max(1e-12),
-        });
-    }
-    (rows, reference_ms)
-}
-
-/// The rows as Markdown tables (error binned by truth, and calibration binned by the estimate).
-pub fn markdown(rows: &[Row], default_n: u32) -> String {
-    let bins: Vec<String> = (0..4)
-        .map(|b| format!("{:.1}–{:.1}", BIN_EDGES[b], BIN_EDGES[b + 1]))
-        .collect();
-    let mut s = String::new();
-    s += &format!(
-        "| N | cell (mm) | map ms | T_f MAE | overall bias | bias, true T_f {} | lum. rel. RMS | lum. map ÷ ref |\n",
-        bins.join(" / ")
-    );
-    s += "|---|---|---|---|---|---|---|---|\n";
-    for r in rows {
-        let c = &r.comparison;
-        let bias: Vec<String> = c
-            .by_truth
-            .iter()
-            .map(|b| {
-                if b.count == 0 {
-                    "—".into()
-                } else {
-                    format!("{:+.3} ({})", b.bias, b.count)
-                }
-            })
-            .collect();
-        let mark = if r.n == default_n {
-            " **(default)**"
-        } else {
-            ""
-        };
-        s += &format!(
-            "| {}{mark} | {:.2} | {:.1} | {:.4} | {:+.4} | {} | {:.3} | {:.3} |\n",
-            r.n,
-            r.ds_mm,
-            r.ms,
-            c.mae,
-            c.overall_bias,
-            bias.join(" / "),
-            r.luminance_rel_rms,
-            r.luminance_ratio
-        );
-    }
-    s += "\nCalibration (bias binned by the map's own T_f):\n\n";
-    s += &format!("| N | bias, map T_f {} |\n|---|---|\n", bins.join(" / "));
-    for r in rows {
-        let bias: Vec<String> = r
-            .comparison
-            .by_estimate
-            .iter()
-            .map(|b| {
-                if b.count == 0 {
-                    "—".into()
-                } else {
-                    format!("{:+.3} ({})", b.bias, b.count)
-                }
-            })
-            .collect();
-        s += &format!("| {} | {} |\n", r.n, bias.join(" / "));
-    }
-    s
-}
-
 pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
     let (mut style, motion, config) = args.scene.resolve()?;
     if let Some(k) = args.single_fibre_strands {
@@ -277,7 +85,7 @@ pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
         ns.push(default_n);
     }
     ns.sort_unstable();
-    let (rows, reference_ms) = measure(
+    let (rows, reference_ms) = measure_map(
         &engine,
         &ns,
         args.vertices as usize,

@@ -14,7 +14,7 @@
 //!
 //! Results go to stdout as a table and, with `--json FILE`, as JSON.
 
-use super::{AppError, SceneArgs, accuracy_cmd};
+use super::{AppError, SceneArgs};
 use std::path::PathBuf;
 use wisp::frame::{Engine, StageTimings};
 use wisp::map::exact::Footprint;
@@ -172,7 +172,8 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
     }
     ns.sort_unstable();
     let footprint = Footprint::Fibres { rays: 128 };
-    let (rows, reference_ms) = accuracy_cmd::measure(&engine, &ns, 2000, &footprint, args.repeats);
+    let (rows, reference_ms) =
+        wisp::accuracy::measure_map(&engine, &ns, 2000, &footprint, args.repeats);
     println!(
         "\nspeed against error at t = {} s: map build + a lookup at all {} vertices, against the \
          exact reference (ray shooting through the placed fibres, 2,000 vertices, 128 rays each, \
@@ -181,7 +182,7 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         engine.strands.positions.len(),
         reference_ms,
     );
-    print!("{}", accuracy_cmd::markdown(&rows, default_n));
+    print!("{}", wisp::accuracy::markdown(&rows, default_n));
     let rows: Vec<serde_json::Value> = rows
         .iter()
         .map(|r| {

@@ -167,7 +167,7 @@ impl LightMap {
                     && len_total >= 0.0)
                 {
                     out.iter_mut().for_each(|e| e.col = u32::MAX);
-                    return Extent::EMPTY;
+                    return (Extent::EMPTY, 1usize);
                 }
                 let cos_psi = u.dot(frame.x).clamp(-1.0, 1.0);
                 let sin_psi = (1.0 - cos_psi * cos_psi).max(0.0).sqrt();
@@ -220,7 +220,12 @@ impl LightMap {
                         let wt = if dj == 0 { 1.0 - w.x } else { w.x }
                             * if dk == 0 { 1.0 - w.y } else { w.y };
                         let (j, k) = (j0 + dj, k0 + dk);
-                        e.col = (j.rem_euclid(n) * n + k.rem_euclid(n)) as u32;
+                        // A share of exactly 0 (a piece on a column centre line) makes no cell.
+                        e.col = if wt > 0.0 {
+                            (j.rem_euclid(n) * n + k.rem_euclid(n)) as u32
+                        } else {
+                            u32::MAX
+                        };
                         e.slice = i;
                         e.cell = Cell {
                             seq: ((s * pieces + q) * SPLAT + t) as u32,
@@ -233,14 +238,17 @@ impl LightMap {
                         };
                     }
                 }
-                ext
+                (ext, 0usize)
             })
-            .reduce(|| Extent::EMPTY, Extent::union);
+            .reduce(
+                || (Extent::EMPTY, 0),
+                |a, b| (Extent::union(a.0, b.0), a.1 + b.1),
+            );
+        let (extent, skipped) = extent;
         let filled_entries = entries.len() - entries.iter().filter(|e| e.col == u32::MAX).count();
         self.first_slice = if filled_entries > 0 { extent.lo[0] } else { 0 };
         let overflow = filled_entries > 0 && (0..3).any(|a| extent.hi[a] - extent.lo[a] >= n);
-        // A non-finite sample invalidates all its pieces together.
-        let samples = filled_entries / per_sample;
+        let samples = count - skipped;
 
         // 2. Counting sort by column.
         let cols = (n * n) as usize;

@@ -94,17 +94,30 @@ impl MapGeometry {
         }
     }
 
-    /// A map sized from the scene (Bertails §2.2): span 2·lmax + hmax, and a cell about twice
-    /// the spacing between neighbouring render strands, so that a cell averages a few strands
-    /// (finer cells resolve single render strands, which then shadow themselves; coarser ones
-    /// blur wisps together). For the presets (3,350 strands: 3.7 mm spacing) this gives
-    /// N = 129, Bertails' choice (§5: "a 128 × 128 resolution was sufficient"); `wisp bench`
-    /// measures the error against N.
-    pub fn for_scene(max_length_m: f32, head_size_m: f32, strand_spacing_m: f32) -> Self {
+    /// A map sized from the scene (Bertails §2.2): span 2·lmax + hmax, and a cell of
+    /// 1.5 × the spacing between render strands at the scalp, widened by √(30/F) when each
+    /// render strand holds fewer than F = 30 fibres. Chosen from the measurements of
+    /// ACCURACY.md against the exact reference:
+    /// - the error falls as cells shrink towards the strand spacing (smooth, 30 fibres per strand:
+    ///   T_f MAE 0.020 at 2 spacings, 0.016 at 1.5, 0.014 at 1), and the cost grows with the
+    ///   filled cells; 1.5 spacings (N = 172 for the presets) meets MAE ≤ 0.02 with margin;
+    /// - with one fibre per render strand, a cell a few strands wide no longer averages enough
+    ///   fibres, and finer cells stop paying: against the hair within 3.7 mm, smooth with 12
+    ///   one-fibre strands per preset strand has MAE 0.031 at 8.8 mm cells, 0.026 at 7.4,
+    ///   0.025 at 5, 0.026 at 3.7 and 0.030 at 2.1 mm (where 2 strand spacings put it), while
+    ///   its calibration turns bright below 5 mm. The cell therefore spans as many fibres as a
+    ///   preset's (about 68 across a cell at the scalp), not as many render strands: 87,500
+    ///   one-fibre strands get N ≈ 160, not 657.
+    pub fn for_scene(
+        max_length_m: f32,
+        head_size_m: f32,
+        strand_spacing_m: f32,
+        fibers_per_strand: f32,
+    ) -> Self {
         let span = Self::span_m(max_length_m, head_size_m);
-        let n = (span / (2.0 * strand_spacing_m.max(1e-6)))
-            .ceil()
-            .clamp(8.0, 1024.0) as u32;
+        let widen = (30.0 / fibers_per_strand.max(1e-3)).sqrt().max(1.0);
+        let cell = 1.5 * strand_spacing_m.max(1e-6) * widen;
+        let n = (span / cell).ceil().clamp(8.0, 1024.0) as u32;
         Self::with_resolution(span, n)
     }
 

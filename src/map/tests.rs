@@ -157,3 +157,64 @@ fn every_column_is_monotonic_exactly() {
         "only {checked} cell pairs: the scene is too sparse to prove much"
     );
 }
+
+#[test]
+fn a_point_inside_a_cell_receives_only_the_crossings_in_front_of_it() {
+    // Two samples in one cell of 10 mm along the light (+X): one near the light-side face, one
+    // near the far face. A point between them is shadowed by the first only; a point behind
+    // both by both; a point before both by none. A uniform spread through the cell would give
+    // the middle point half of both instead.
+    let ds = 0.01;
+    let pts = [
+        Vec3::new(0.002, 0.005, 0.005),
+        Vec3::new(0.008, 0.005, 0.005),
+    ];
+    let map = build(&pts, 0.01, 16, ds);
+    let one = map.light_at(Vec3::new(0.0095, 0.005, 0.005)); // behind both (same cell)
+    let mid = map.light_at(Vec3::new(0.005, 0.005, 0.005));
+    let front = map.light_at(Vec3::new(0.0005, 0.005, 0.005));
+    // Expected crossings per sample: F·ℓ·2r·sinψ/ds² with F = 10, ℓ = 1 cm, ψ = 90°.
+    let r = FiberParams::default().radius_m;
+    let n = 10.0 * 0.01 * 2.0 * r / (ds * ds);
+    let exp = |k: f32| (-k * n).exp();
+    assert!((front.direct_fraction - 1.0).abs() < 1e-6, "{front:?}");
+    // Sub-slices are 1.25 mm: the samples lie in sub-slices 1 and 6, the points in 0, 4 and 7,
+    // so each point is exactly before or past each sample (up to the shares' 1/255 steps:
+    // 0.5 is stored as 128/255, 0.4% of the cell's 2n crossings).
+    assert!(
+        (mid.direct_fraction - exp(1.0)).abs() < 1e-3,
+        "{} vs {}",
+        mid.direct_fraction,
+        exp(1.0)
+    );
+    assert!(
+        (one.direct_fraction - exp(2.0)).abs() < 1e-4,
+        "{} vs {}",
+        one.direct_fraction,
+        exp(2.0)
+    );
+}
+
+#[test]
+fn occluders_shadow_what_lies_behind_them() {
+    use crate::map::Solid;
+    // An empty map (no hair) with a sphere of radius 2 cm at the origin; light along +X.
+    let mut map = build(&[Vec3::new(0.3, 0.3, 0.3)], 0.01, 64, 0.01);
+    map.set_occluders(&[Solid {
+        unit_sphere_to_world: glam::Affine3A::from_scale(Vec3::splat(0.02)),
+    }]);
+    assert!(map.light_at(Vec3::new(0.05, 0.0, 0.0)).direct_fraction < 1e-6);
+    assert_eq!(map.light_at(Vec3::new(0.05, 0.0, 0.0)).tf, Vec3::ZERO);
+    assert_eq!(
+        map.light_at(Vec3::new(-0.05, 0.0, 0.0)),
+        LightAtPoint::UNSHADOWED
+    );
+    assert_eq!(
+        map.light_at(Vec3::new(0.05, 0.03, 0.0)),
+        LightAtPoint::UNSHADOWED
+    );
+    // The lit surface itself, moved off by the surface offset as skin shading does, is lit.
+    let n = Vec3::new(-1.0, 0.3, 0.0).normalize();
+    let p = n * 0.02 + n * map.surface_offset_m();
+    assert!(map.light_at(p).direct_fraction > 0.999);
+}
