@@ -72,27 +72,6 @@ impl LightMap {
         }
     }
 
-    /// A smoother read for surfaces (skin, body): the mean of four lookups half a cell apart
-    /// across the light, i.e. a 2-cell tent filter instead of the 1-cell one. Hair shadows on a
-    /// smooth surface are seen over many pixels, where the 1-cell bilinear filter shows the
-    /// grid as stair-steps along the shadow's edge; hair vertices keep the sharper filter.
-    pub fn light_at_smooth(&self, p: Vec3) -> LightAtPoint {
-        let h = 0.5 * self.geom.ds_m;
-        let (dy, dz) = (self.frame.y * h, self.frame.z * h);
-        let mut acc = LightAtPoint {
-            direct_fraction: 0.0,
-            tf: Vec3::ZERO,
-            sigma_f2: Vec3::ZERO,
-        };
-        for o in [dy + dz, dy - dz, -dy + dz, -dy - dz] {
-            let l = self.light_at(p + o);
-            acc.direct_fraction += 0.25 * l.direct_fraction;
-            acc.tf += 0.25 * l.tf;
-            acc.sigma_f2 += 0.25 * l.sigma_f2;
-        }
-        acc
-    }
-
     /// What column `col` has crossed up to depth `lambda` (cell units) inside the cell at
     /// unwrapped distance `d` slices from the first slice.
     #[inline]
