@@ -25,6 +25,7 @@
 //! - Colours are linear RGB until the PNG encoder converts to 8-bit sRGB.
 
 pub mod fiber;
+pub mod export;
 pub mod frame;
 pub mod hairstyle;
 pub mod interp;

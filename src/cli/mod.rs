@@ -3,9 +3,11 @@
 //! Exit codes: 0 success, 2 bad input (flags or files), 1 any other failure.
 
 pub mod bench_cmd;
+pub mod export_cmd;
 pub mod fiber_cmd;
 pub mod play_cmd;
 pub mod render_cmd;
+pub mod view_args;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use glam::Vec3;
@@ -44,6 +46,10 @@ pub enum Command {
     Bench(bench_cmd::BenchArgs),
     /// Inspect the fibre scattering model: evaluate, tabulate, plot.
     Fiber(fiber_cmd::FiberArgs),
+    /// Write one frame as a reference scene for a path tracer (hair.hair, scene.json) with
+    /// wisp's own linear EXR of it (see tools/reference/).
+    #[command(allow_negative_numbers = true)]
+    Export(export_cmd::ExportArgs),
 }
 
 /// Fibre shader choice on the command line.
@@ -109,6 +115,8 @@ pub struct SceneArgs {
     /// Turn off density-based self-collision.
     #[arg(long)]
     pub no_self_collision: bool,
+    #[command(flatten)]
+    pub view: view_args::ViewArgs,
 }
 
 impl SceneArgs {
@@ -158,6 +166,7 @@ impl SceneArgs {
         config.lighting.mode = self.shading.into();
         config.self_collision = !self.no_self_collision;
         config.simulate = !self.no_sim;
+        self.view.apply(&mut config)?;
         Ok((style, motion, config))
     }
 }
@@ -242,6 +251,7 @@ pub fn main() -> ExitCode {
         Command::Play(args) => play_cmd::run(args),
         Command::Bench(args) => bench_cmd::run(args),
         Command::Fiber(args) => fiber_cmd::run(args),
+        Command::Export(args) => export_cmd::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,114 @@
+#!/usr/bin/env python3
+"""wisp's image against a path-traced one (not run by CI).
+
+    compare.py WISP_EXR MITSUBA_EXR [--passes NPY] [--png OUT.png] [--label TEXT] [--json OUT]
+
+Over the pixels fully covered in both images (alpha >= --coverage in each, default 0.99, so
+both hold radiance of hair alone), reports per channel the ratio of mean linear radiance
+wisp / path traced, its standard error (from the path tracer's independent passes, --passes;
+wisp is deterministic), the ratio of the 10th-percentile luminance (the darkest hair), and
+the pixel count. Prints one Markdown table row, optionally writes the figures as JSON and a
+side-by-side PNG: wisp | path traced (same exposure, sRGB) | log2(wisp / path traced) per
+pixel (blue: wisp darker, red: wisp brighter, white: equal, +-2 stops full scale; grey
+outside the compared pixels).
+"""
+
+import argparse
+import json
+import sys
+
+import numpy as np
+
+LUMA = np.array([0.2126, 0.7152, 0.0722])
+
+
+def load_rgba(mi, path):
+    a = np.array(mi.Bitmap(path), dtype=np.float64)
+    if a.ndim != 3 or a.shape[2] != 4:
+        raise SystemExit(f"compare.py: {path}: expected an RGBA image, got shape {a.shape}")
+    return a
+
+
+def compare(wisp, ref, passes=None, coverage=0.99):
+    if wisp.shape != ref.shape:
+        raise SystemExit(f"compare.py: image sizes differ: {wisp.shape} vs {ref.shape}")
+    mask = (wisp[..., 3] >= coverage) & (ref[..., 3] >= coverage)
+    n = int(mask.sum())
+    out = {"pixels": n, "coverage_threshold": coverage}
+    if n == 0:
+        return out, mask
+    w = wisp[..., :3][mask].mean(axis=0)
+    r = ref[..., :3][mask].mean(axis=0)
+    ratio = w / r
+    out.update(wisp_mean=w.tolist(), ref_mean=r.tolist(), ratio=ratio.tolist())
+    if passes is not None and len(passes) >= 2:
+        per_pass = np.array([p[..., :3][mask].mean(axis=0) for p in passes])
+        se_ref = per_pass.std(axis=0, ddof=1) / np.sqrt(len(passes))
+        out["ref_se"] = se_ref.tolist()
+        out["ratio_se"] = (ratio * se_ref / r).tolist()
+    lw = wisp[..., :3][mask] @ LUMA
+    lr = ref[..., :3][mask] @ LUMA
+    p10w, p10r = np.percentile(lw, 10), np.percentile(lr, 10)
+    out.update(p10_wisp=float(p10w), p10_ref=float(p10r), p10_ratio=float(p10w / p10r))
+    return out, mask
+
+
+def markdown_row(label, fig):
+    if "ratio" not in fig:
+        return f"| {label} | no pixel covered in both | | | 0 |"
+    ratio = " / ".join(f"{v:.2f}" for v in fig["ratio"])
+    se = " / ".join(f"{v:.3f}" for v in fig.get("ratio_se", [float("nan")] * 3))
+    return f"| {label} | {ratio} | {se} | {fig['p10_ratio']:.2f} | {fig['pixels']} |"
+
+
+def side_by_side(mi, wisp, ref, mask, path):
+    lum = ref[..., :3] @ LUMA
+    covered = lum[ref[..., 3] > 0.5]
+    scale = 1.0 / max(np.percentile(covered, 99), 1e-6) if covered.size else 1.0
+    panels = [np.clip(wisp[..., :3] * scale, 0, 1), np.clip(ref[..., :3] * scale, 0, 1)]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        lr = np.log2((wisp[..., :3] @ LUMA) / (ref[..., :3] @ LUMA))
+    t = np.clip(np.nan_to_num(lr, nan=0.0) / 2.0, -1, 1)
+    heat = np.ones(wisp.shape[:2] + (3,))
+    heat[..., 0] = np.where(t < 0, 1 + t, 1)  # blue when wisp is darker
+    heat[..., 1] = 1 - np.abs(t)
+    heat[..., 2] = np.where(t > 0, 1 - t, 1)  # red when wisp is brighter
+    heat[~mask] = 0.25
+    # The heat map is already display-referred: undo the sRGB encoding applied below.
+    panels.append(np.where(heat <= 0.04045, heat / 12.92, ((heat + 0.055) / 1.055) ** 2.4))
+    gap = np.ones((wisp.shape[0], 4, 3))
+    img = np.concatenate([panels[0], gap, panels[1], gap, panels[2]], axis=1).astype(np.float32)
+    bmp = mi.Bitmap(img, mi.Bitmap.PixelFormat.RGB)
+    bmp.convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.UInt8, srgb_gamma=True).write(path)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("wisp_exr")
+    ap.add_argument("ref_exr")
+    ap.add_argument("--passes", help="the path tracer's passes (.npy [P, H, W, 4]) for errors")
+    ap.add_argument("--coverage", type=float, default=0.99)
+    ap.add_argument("--png", help="side-by-side image to write")
+    ap.add_argument("--label", default="")
+    ap.add_argument("--json", help="write the figures here")
+    args = ap.parse_args()
+
+    import mitsuba as mi
+
+    mi.set_variant("scalar_rgb")
+    wisp = load_rgba(mi, args.wisp_exr)
+    ref = load_rgba(mi, args.ref_exr)
+    passes = np.load(args.passes).astype(np.float64) if args.passes else None
+    fig, mask = compare(wisp, ref, passes, args.coverage)
+    fig["label"] = args.label
+    if not np.isfinite(wisp).all():
+        print("compare.py: warning: wisp's image has non-finite values", file=sys.stderr)
+    if args.json:
+        json.dump(fig, open(args.json, "w"), indent=1)
+    if args.png:
+        side_by_side(mi, wisp, ref, mask, args.png)
+    print(markdown_row(args.label, fig))
+
+
+if __name__ == "__main__":
+    main()
