@@ -4,7 +4,8 @@
     compare.py WISP_EXR MITSUBA_EXR [--passes NPY] [--png OUT.png] [--label TEXT] [--json OUT]
 
 Over the pixels fully covered in both images (alpha >= --coverage in each, default 0.99, so
-both hold radiance of hair alone), reports per channel the ratio of mean linear radiance
+both hold radiance of hair alone; with fewer than 500 such pixels, as for isolated fibres,
+over the whole image: the ratio of the light each sends to the camera), reports per channel the ratio of mean linear radiance
 wisp / path traced, its standard error (from the path tracer's independent passes, --passes;
 wisp is deterministic), the ratio of the 10th-percentile luminance (the darkest hair), and
 the pixel count. Prints one Markdown table row, optionally writes the figures as JSON and a
@@ -29,12 +30,21 @@ def load_rgba(mi, path):
     return a
 
 
-def compare(wisp, ref, passes=None, coverage=0.99):
+def compare(wisp, ref, passes=None, coverage=0.99, region="auto", min_pixels=500):
+    """Figures over the compared region: "covered" (alpha >= coverage in both), "all" (every
+    pixel: the ratio of the images' summed premultiplied RGB, i.e. of the light each renderer
+    sends to the camera; what sparse hair such as isolated fibres needs, where no pixel is
+    fully covered), or "auto" (covered if it has at least min_pixels pixels, else all)."""
     if wisp.shape != ref.shape:
         raise SystemExit(f"compare.py: image sizes differ: {wisp.shape} vs {ref.shape}")
     mask = (wisp[..., 3] >= coverage) & (ref[..., 3] >= coverage)
+    if region == "all" or (region == "auto" and mask.sum() < min_pixels):
+        region = "all"
+        mask = np.ones(wisp.shape[:2], bool)
+    else:
+        region = "covered"
     n = int(mask.sum())
-    out = {"pixels": n, "coverage_threshold": coverage}
+    out = {"pixels": n, "coverage_threshold": coverage, "region": region}
     if n == 0:
         return out, mask
     w = wisp[..., :3][mask].mean(axis=0)
@@ -46,10 +56,12 @@ def compare(wisp, ref, passes=None, coverage=0.99):
         se_ref = per_pass.std(axis=0, ddof=1) / np.sqrt(len(passes))
         out["ref_se"] = se_ref.tolist()
         out["ratio_se"] = (ratio * se_ref / r).tolist()
-    lw = wisp[..., :3][mask] @ LUMA
-    lr = ref[..., :3][mask] @ LUMA
-    p10w, p10r = np.percentile(lw, 10), np.percentile(lr, 10)
-    out.update(p10_wisp=float(p10w), p10_ref=float(p10r), p10_ratio=float(p10w / p10r))
+    out["coverage_ratio"] = float(wisp[..., 3].sum() / max(ref[..., 3].sum(), 1e-12))
+    if region == "covered":
+        lw = wisp[..., :3][mask] @ LUMA
+        lr = ref[..., :3][mask] @ LUMA
+        p10w, p10r = np.percentile(lw, 10), np.percentile(lr, 10)
+        out.update(p10_wisp=float(p10w), p10_ref=float(p10r), p10_ratio=float(p10w / p10r))
     return out, mask
 
 
@@ -58,12 +70,13 @@ def markdown_row(label, fig):
         return f"| {label} | no pixel covered in both | | | 0 |"
     ratio = " / ".join(f"{v:.2f}" for v in fig["ratio"])
     se = " / ".join(f"{v:.3f}" for v in fig.get("ratio_se", [float("nan")] * 3))
-    return f"| {label} | {ratio} | {se} | {fig['p10_ratio']:.2f} | {fig['pixels']} |"
+    p10 = f"{fig['p10_ratio']:.2f}" if "p10_ratio" in fig else "-"
+    return f"| {label} | {ratio} | {se} | {p10} | {fig['pixels']} {fig['region']} |"
 
 
 def side_by_side(mi, wisp, ref, mask, path):
     lum = ref[..., :3] @ LUMA
-    covered = lum[ref[..., 3] > 0.5]
+    covered = lum[ref[..., 3] > 0]
     scale = 1.0 / max(np.percentile(covered, 99), 1e-6) if covered.size else 1.0
     panels = [np.clip(wisp[..., :3] * scale, 0, 1), np.clip(ref[..., :3] * scale, 0, 1)]
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -73,7 +86,7 @@ def side_by_side(mi, wisp, ref, mask, path):
     heat[..., 0] = np.where(t < 0, 1 + t, 1)  # blue when wisp is darker
     heat[..., 1] = 1 - np.abs(t)
     heat[..., 2] = np.where(t > 0, 1 - t, 1)  # red when wisp is brighter
-    heat[~mask] = 0.25
+    heat[~mask | ((wisp[..., 3] <= 0) & (ref[..., 3] <= 0))] = 0.25
     # The heat map is already display-referred: undo the sRGB encoding applied below.
     panels.append(np.where(heat <= 0.04045, heat / 12.92, ((heat + 0.055) / 1.055) ** 2.4))
     gap = np.ones((wisp.shape[0], 4, 3))
@@ -88,6 +101,8 @@ def main():
     ap.add_argument("ref_exr")
     ap.add_argument("--passes", help="the path tracer's passes (.npy [P, H, W, 4]) for errors")
     ap.add_argument("--coverage", type=float, default=0.99)
+    ap.add_argument("--region", choices=["auto", "covered", "all"], default="auto",
+                    help="compared pixels (see compare()); auto falls back to all below 500 covered pixels")
     ap.add_argument("--png", help="side-by-side image to write")
     ap.add_argument("--label", default="")
     ap.add_argument("--json", help="write the figures here")
@@ -99,7 +114,7 @@ def main():
     wisp = load_rgba(mi, args.wisp_exr)
     ref = load_rgba(mi, args.ref_exr)
     passes = np.load(args.passes).astype(np.float64) if args.passes else None
-    fig, mask = compare(wisp, ref, passes, args.coverage)
+    fig, mask = compare(wisp, ref, passes, args.coverage, args.region)
     fig["label"] = args.label
     if not np.isfinite(wisp).all():
         print("compare.py: warning: wisp's image has non-finite values", file=sys.stderr)
