@@ -24,8 +24,8 @@
 //! - A directional light travels along `L`; the map's X axis is `L`.
 //! - Colours are linear RGB until the PNG encoder converts to 8-bit sRGB.
 
-pub mod fiber;
 pub mod export;
+pub mod fiber;
 pub mod frame;
 pub mod hairstyle;
 pub mod interp;

@@ -79,3 +79,96 @@ fn pre_issue_14_configuration_renders_byte_identical_png() {
         );
     }
 }
+
+/// A fixed camera placed exactly where the head-following one is renders the same bytes: the
+/// two camera setups share one projection.
+#[test]
+fn fixed_camera_at_the_framing_renders_the_same_frame() {
+    let mut follow = engine(small());
+    let a = follow.frame(0.0).clone();
+    let cam = *follow.camera();
+    let spec = CameraSpec::new(cam.eye, cam.target, cam.up, cam.fov_y_rad).unwrap();
+    let mut config = small();
+    config.camera = CameraSetup::Fixed(spec);
+    let mut fixed = engine(config);
+    let b = fixed.frame(0.0).clone();
+    assert_eq!(*fixed.camera(), cam);
+    assert!(a.color == b.color && a.coverage == b.coverage);
+}
+
+/// Hair alone over black with no ambient: every pixel nothing covers is exactly black, the
+/// colour is premultiplied (no pixel brighter than its coverage allows for the brightest
+/// vertex), coverage is in [0, 1], and the head's place is no longer opaque: some pixels inside
+/// the head's silhouette are covered less than fully (hair behind the head shows).
+#[test]
+fn no_solids_over_black_gives_premultiplied_hair_only() {
+    let mut config = small();
+    config.draw_solids = false;
+    config.background = Vec3::ZERO;
+    config.lighting.ambient = Vec3::ZERO;
+    let mut e = engine(config);
+    let fb = e.frame(0.0).clone();
+    let brightest = e
+        .colors()
+        .iter()
+        .fold(0.0f32, |m, c| m.max(c.max_element()));
+    assert!(brightest > 0.0);
+    for (c, a) in fb.color.iter().zip(&fb.coverage) {
+        assert!((0.0..=1.0).contains(a));
+        if *a == 0.0 {
+            assert_eq!(*c, Vec3::ZERO);
+        }
+        assert!(
+            c.max_element() <= brightest * a + 1e-5,
+            "{c} at coverage {a}"
+        );
+    }
+    let mut with_head = engine(small());
+    let head = with_head.frame(0.0).clone();
+    let centre = e.camera().project(Vec3::ZERO).unwrap();
+    let i = centre.y as usize * 160 + centre.x as usize;
+    assert_eq!(head.coverage[i], 1.0, "the head covers its centre");
+    assert!(
+        fb.coverage[i] < 1.0,
+        "without the head its centre is not opaque"
+    );
+}
+
+/// The light's irradiance scales the hair linearly (ambient 0): the shader's output is
+/// irradiance × f, so twice the irradiance gives twice every vertex colour.
+#[test]
+fn irradiance_and_ambient_are_settable() {
+    let mut config = small();
+    config.lighting.ambient = Vec3::ZERO;
+    config.lighting.irradiance = Vec3::ONE;
+    let mut one = engine(config.clone());
+    one.frame(0.0);
+    config.lighting.irradiance = Vec3::splat(2.0);
+    let mut two = engine(config.clone());
+    two.frame(0.0);
+    for (a, b) in one.colors().iter().zip(two.colors()) {
+        assert!((*b - 2.0 * *a).abs().max_element() <= 1e-6 * b.max_element().max(1e-3));
+    }
+    config.lighting.irradiance = Vec3::ZERO;
+    let mut dark = engine(config);
+    dark.frame(0.0);
+    assert!(dark.colors().iter().all(|c| *c == Vec3::ZERO));
+}
+
+/// The default (physical coverage) frame and its coverage channel are byte-identical for 1
+/// and 2 threads.
+#[test]
+fn coverage_and_colour_identical_for_one_and_two_threads() {
+    let render = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut e = engine(small());
+            e.frame(0.0).clone()
+        })
+    };
+    let (a, b) = (render(1), render(2));
+    assert!(a.color == b.color && a.coverage == b.coverage);
+}

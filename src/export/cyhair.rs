@@ -151,7 +151,8 @@ pub fn read_hair(path: &Path) -> Result<CyHair, CyHairError> {
             "not a cyHair file (no 128-byte header starting with \"HAIR\")".into(),
         ));
     }
-    let u32_at = |o: usize| u32::from_le_bytes([bytes[o], bytes[o + 1], bytes[o + 2], bytes[o + 3]]);
+    let u32_at =
+        |o: usize| u32::from_le_bytes([bytes[o], bytes[o + 1], bytes[o + 2], bytes[o + 3]]);
     let f32_at = |o: usize| f32::from_bits(u32_at(o));
     let (hair_count, point_count, arrays, d_segments) =
         (u32_at(4), u32_at(8), u32_at(12), u32_at(16));
@@ -219,7 +220,10 @@ pub fn read_hair(path: &Path) -> Result<CyHair, CyHairError> {
         vec![d_thickness; pts]
     };
     let info_bytes = &bytes[40..HEADER_BYTES];
-    let end = info_bytes.iter().position(|b| *b == 0).unwrap_or(INFO_BYTES);
+    let end = info_bytes
+        .iter()
+        .position(|b| *b == 0)
+        .unwrap_or(INFO_BYTES);
     Ok(CyHair {
         segments,
         points,

@@ -114,7 +114,10 @@ impl ReferenceScene {
         let cam = engine.camera();
         let spec = CameraSpec::from_camera(cam)
             .ok_or_else(|| format!("the engine's camera is degenerate: {cam:?}"))?;
-        let fiber = serde_json::to_value(&engine.style.fiber).map_err(|e| e.to_string())?;
+        // Through text, so that f32 fields read back as written (0.7, not 0.699999988).
+        let fiber = serde_json::to_string(&engine.style.fiber)
+            .and_then(|t| serde_json::from_str::<serde_json::Value>(&t))
+            .map_err(|e| e.to_string())?;
         let l = &engine.config.lighting;
         let fb = engine.framebuffer();
         Ok(ReferenceScene {
@@ -161,16 +164,20 @@ pub fn write_reference_scene(
     time_s: f64,
 ) -> Result<ReferenceScene, ExportError> {
     let scene_path = dir.join(SCENE_FILE);
-    let scene = ReferenceScene::of_engine(engine, time_s).map_err(|message| ExportError::Scene {
-        path: scene_path.clone(),
-        message,
-    })?;
+    let scene =
+        ReferenceScene::of_engine(engine, time_s).map_err(|message| ExportError::Scene {
+            path: scene_path.clone(),
+            message,
+        })?;
     cyhair::write_hair(
         &dir.join(HAIR_FILE),
         &engine.strands.positions,
         engine.strands.points_per_strand,
         2.0 * engine.style.fiber.radius_m,
-        &format!("{}: {}, metres, root first", scene.generator, scene.hairstyle),
+        &format!(
+            "{}: {}, metres, root first",
+            scene.generator, scene.hairstyle
+        ),
     )?;
     let fb = engine.framebuffer();
     write_exr_rgba_f32(

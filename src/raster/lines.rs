@@ -459,7 +459,9 @@ fn draw_band(p: &Params, segs: &[Seg], keys: &[u64], band: Band) {
                 }
                 let c = s.c0 + (s.c1 - s.c0) * t;
                 *dst += (c - *dst) * alpha;
-                *cov += (1.0 - *cov) * alpha;
+                // The box overlap can exceed 1 by float rounding (a few 1e-7 for wide lines);
+                // coverage must stay in [0, 1].
+                *cov += (1.0 - *cov) * fmin(alpha, 1.0);
             }
         }
     }
