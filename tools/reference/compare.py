@@ -9,9 +9,10 @@ over the whole image: the ratio of the light each sends to the camera), reports 
 wisp / path traced, its standard error (from the path tracer's independent passes, --passes;
 wisp is deterministic), the ratio of the 10th-percentile luminance (the darkest hair), and
 the pixel count. Prints one Markdown table row, optionally writes the figures as JSON and a
-side-by-side PNG: wisp | path traced (same exposure, sRGB) | log2(wisp / path traced) per
-pixel (blue: wisp darker, red: wisp brighter, white: equal, +-2 stops full scale; grey
-outside the compared pixels).
+side-by-side PNG: wisp | path traced (same exposure, sRGB) | log2(wisp / path traced) of
+luminance summed over 8 x 8 blocks of compared pixels (blue: wisp darker, red: wisp
+brighter, white: equal, +-2 stops full scale; grey where fewer than a quarter of a block's
+pixels are compared).
 """
 
 import argparse
@@ -61,7 +62,9 @@ def compare(wisp, ref, passes=None, coverage=0.99, region="auto", min_pixels=500
         lw = wisp[..., :3][mask] @ LUMA
         lr = ref[..., :3][mask] @ LUMA
         p10w, p10r = np.percentile(lw, 10), np.percentile(lr, 10)
-        out.update(p10_wisp=float(p10w), p10_ref=float(p10r), p10_ratio=float(p10w / p10r))
+        # At hard-shadowed pixels the path tracer's p10 can be exactly 0: no ratio then.
+        out.update(p10_wisp=float(p10w), p10_ref=float(p10r),
+                   p10_ratio=float(p10w / p10r) if p10r > 0 else None)
     return out, mask
 
 
@@ -70,25 +73,42 @@ def markdown_row(label, fig):
         return f"| {label} | no pixel covered in both | | | 0 |"
     ratio = " / ".join(f"{v:.2f}" for v in fig["ratio"])
     se = " / ".join(f"{v:.3f}" for v in fig.get("ratio_se", [float("nan")] * 3))
-    p10 = f"{fig['p10_ratio']:.2f}" if "p10_ratio" in fig else "-"
+    p10 = "-" if "p10_wisp" not in fig else (
+        f"{fig['p10_ratio']:.2f}" if fig["p10_ratio"] is not None else "PT p10 = 0")
     return f"| {label} | {ratio} | {se} | {p10} | {fig['pixels']} {fig['region']} |"
 
 
-def side_by_side(mi, wisp, ref, mask, path):
+def block_sum(a, k):
+    """Sums over k x k blocks (the image cropped to whole blocks)."""
+    h, w = (a.shape[0] // k) * k, (a.shape[1] // k) * k
+    a = a[:h, :w]
+    return a.reshape(h // k, k, w // k, k, *a.shape[2:]).sum(axis=(1, 3))
+
+
+def side_by_side(mi, wisp, ref, mask, path, block=8):
     lum = ref[..., :3] @ LUMA
-    covered = lum[ref[..., 3] > 0]
-    scale = 1.0 / max(np.percentile(covered, 99), 1e-6) if covered.size else 1.0
+    sel = ref[..., 3] > 0.5
+    if sel.sum() < 500:
+        sel = ref[..., 3] > 0
+    # Exposure from the mean (robust to the path tracer's fireflies), the same for both.
+    scale = 0.25 / max(lum[sel].mean(), 1e-9) if sel.any() else 1.0
     panels = [np.clip(wisp[..., :3] * scale, 0, 1), np.clip(ref[..., :3] * scale, 0, 1)]
+    # Ratio of block sums over the compared pixels: per-pixel ratios are mostly the path
+    # tracer's noise; 8 x 8 blocks show where wisp is too dark or too bright.
+    m = mask[..., None].astype(float)
     with np.errstate(divide="ignore", invalid="ignore"):
-        lr = np.log2((wisp[..., :3] @ LUMA) / (ref[..., :3] @ LUMA))
-    t = np.clip(np.nan_to_num(lr, nan=0.0) / 2.0, -1, 1)
-    heat = np.ones(wisp.shape[:2] + (3,))
+        lr = np.log2(block_sum((wisp[..., :3] * m) @ LUMA, block) / block_sum((ref[..., :3] * m) @ LUMA, block))
+    t = np.clip(np.nan_to_num(lr, nan=0.0, posinf=1.0, neginf=-1.0) / 2.0, -1, 1)
+    heat = np.ones(t.shape + (3,))
     heat[..., 0] = np.where(t < 0, 1 + t, 1)  # blue when wisp is darker
     heat[..., 1] = 1 - np.abs(t)
     heat[..., 2] = np.where(t > 0, 1 - t, 1)  # red when wisp is brighter
-    heat[~mask | ((wisp[..., 3] <= 0) & (ref[..., 3] <= 0))] = 0.25
-    # The heat map is already display-referred: undo the sRGB encoding applied below.
-    panels.append(np.where(heat <= 0.04045, heat / 12.92, ((heat + 0.055) / 1.055) ** 2.4))
+    heat[block_sum(mask.astype(float), block) < 0.25 * block * block] = 0.25
+    heat = np.repeat(np.repeat(heat, block, 0), block, 1)
+    full = np.full(wisp.shape[:2] + (3,), 0.25)
+    full[: heat.shape[0], : heat.shape[1]] = heat
+    # The heat map is display-referred: undo the sRGB encoding applied below.
+    panels.append(np.where(full <= 0.04045, full / 12.92, ((full + 0.055) / 1.055) ** 2.4))
     gap = np.ones((wisp.shape[0], 4, 3))
     img = np.concatenate([panels[0], gap, panels[1], gap, panels[2]], axis=1).astype(np.float32)
     bmp = mi.Bitmap(img, mi.Bitmap.PixelFormat.RGB)

@@ -119,7 +119,8 @@ def write_table(out_dir):
         cells = [k[0], k[1], k[2]]
         for r in (d, s):
             if r and "ratio" in r:
-                p10 = f"{r['p10_ratio']:.2f}" if "p10_ratio" in r else "-"
+                p10 = "-" if "p10_wisp" not in r else (
+                    f"{r['p10_ratio']:.2f}" if r["p10_ratio"] not in (None, float("inf")) else "PT 0")
                 cells += [f3(r["ratio"]), se3(r.get("ratio_se", [np.nan] * 3)), p10]
             else:
                 cells += ["-", "-", "-"]
