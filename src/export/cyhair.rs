@@ -74,7 +74,7 @@ pub fn write_hair(
             "points per strand must be in [2, 65536] (got {points_per_strand})"
         )));
     }
-    if points.len() % points_per_strand != 0 || points.len() > MAX_POINTS as usize {
+    if !points.len().is_multiple_of(points_per_strand) || points.len() > MAX_POINTS as usize {
         return Err(invalid(format!(
             "{} points do not make whole strands of {points_per_strand} (or exceed {MAX_POINTS})",
             points.len()

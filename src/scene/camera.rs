@@ -11,6 +11,9 @@
 //! the world, given by eye, target, up and vertical field of view, exactly as a path tracer's
 //! `perspective` sensor with `fov_axis = "y"` takes it.
 
+// `!(a > b)` on purpose: unlike `a <= b` it is also true for NaN, so one test rejects both.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 use crate::raster::Camera;
 use glam::{Affine3A, Vec3};
 
