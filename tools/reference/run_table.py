@@ -108,7 +108,8 @@ def write_table(out_dir):
     lines.append(f"Image {info['size']}x{info['size']} px, Mitsuba {info['spp']} spp in "
                  f"{info['passes']} passes; ratios wisp / path traced of mean linear radiance "
                  f"(R / G / B) over pixels covered >= 0.99 in both (isolated fibres, which cover no pixel: summed over the whole image); +- one standard error of "
-                 f"the path tracer's mean; p10 = ratio of 10th-percentile luminance.\n")
+                 f"the path tracer's mean; p10 = ratio of 10th-percentile luminance per pixel (and over 4x4 "
+                 f"blocks; 'PT 0': the path tracer's per-pixel p10 is 0).\n")
     lines.append("| case | hair | light | dual / all orders | +- | p10 | single / single | +- | p10 | px | coverage wisp / PT | wisp ms (dual) | Mitsuba s (d64 / d2) |")
     lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     keys = sorted({k[:3] for k in by_key}, key=lambda k: (["dense", "isolated", "curly"].index(k[0]), k[1], LIGHTS.index(k[2])))
@@ -119,8 +120,10 @@ def write_table(out_dir):
         cells = [k[0], k[1], k[2]]
         for r in (d, s):
             if r and "ratio" in r:
+                b = r.get("p10_block4_ratio")
                 p10 = "-" if "p10_wisp" not in r else (
-                    f"{r['p10_ratio']:.2f}" if r["p10_ratio"] not in (None, float("inf")) else "PT 0")
+                    (f"{r['p10_ratio']:.2f}" if r["p10_ratio"] not in (None, float("inf")) else "PT 0")
+                    + (f" ({b:.2f})" if b is not None else ""))
                 cells += [f3(r["ratio"]), se3(r.get("ratio_se", [np.nan] * 3)), p10]
             else:
                 cells += ["-", "-", "-"]
