@@ -13,7 +13,8 @@ use std::hint::black_box;
 use criterion::{Criterion, criterion_group, criterion_main};
 use glam::{Affine3A, Vec3};
 use wisp::raster::{
-    Camera, Framebuffer, LineScratch, LineStyle, Polylines, draw_ellipsoid, draw_polylines,
+    Camera, Framebuffer, LineScratch, LineStyle, LineWidth, Polylines, draw_ellipsoid,
+    draw_polylines,
 };
 
 const W: u32 = 1280;
@@ -92,12 +93,13 @@ fn bench_raster(c: &mut Criterion) {
     let lines = Polylines {
         points: &pts,
         colors: &cols,
+        widths_m: &[],
         points_per_line: POINTS,
     };
     assert_eq!(lines.segment_count(), 100_000);
     let cam = camera();
     let style = LineStyle {
-        width_px: 1.0,
+        width: LineWidth::Pixels(1.0),
         opacity: 0.8,
     };
 

@@ -22,6 +22,7 @@ use crate::motion::{Motion, Pose};
 use crate::raster::{
     Camera, Framebuffer, LineScratch, LineStyle, Polylines, draw_ellipsoid, draw_polylines,
 };
+use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};
 use crate::shade::{Lighting, shade_skin, shade_vertices};
 use crate::sim::{
     Colliders, DensityField, NoDensity, SimState, Simulator, SphereCollider, StepStats,
@@ -101,11 +102,21 @@ pub struct EngineConfig {
     /// Seconds of simulated time with the head held at the first pose before frame 0, so the
     /// hair starts settled.
     pub settle_s: f64,
-    /// Hair line width in pixels and coverage multiplier.
+    /// How hair lines are drawn: by default each render strand's physical width (fibres per
+    /// strand × fibre diameter) projected per segment, at least
+    /// [`DEFAULT_MIN_LINE_WIDTH_PX`] wide with its opacity lowered to conserve coverage.
     pub line: LineStyle,
     /// Background colour (linear RGB).
     pub background: Vec3,
+    /// Where the camera is (default: framing the hair and following the head).
+    pub camera: CameraSetup,
+    /// Draw the head and the body spheres (default true); without them hair behind the head
+    /// shows, as in a scene of hair alone.
+    pub draw_solids: bool,
 }
+
+/// Narrowest drawn hair line in pixels; thinner strands are drawn this wide at lower opacity.
+pub const DEFAULT_MIN_LINE_WIDTH_PX: f32 = 1.0;
 
 impl Default for EngineConfig {
     fn default() -> Self {
@@ -117,11 +128,10 @@ impl Default for EngineConfig {
             self_collision: true,
             simulate: true,
             settle_s: 2.0,
-            line: LineStyle {
-                width_px: 1.0,
-                opacity: 0.85,
-            },
+            line: LineStyle::projected(DEFAULT_MIN_LINE_WIDTH_PX),
             background: Vec3::new(0.012, 0.014, 0.018),
+            camera: CameraSetup::HeadFollowing,
+            draw_solids: true,
         }
     }
 }
@@ -147,11 +157,11 @@ pub struct Engine {
     map_valid: bool,
     pub strands: StrandGeometry,
     colors: Vec<Vec3>,
+    /// Physical width of each render-strand point in metres (fibres per strand × diameter).
+    widths_m: Vec<f32>,
     camera: Camera,
-    /// Camera target relative to the head centre (world), fixed at start.
-    camera_offset: Vec3,
-    /// Camera eye relative to the target.
-    camera_eye_offset: Vec3,
+    /// The head-following framing, when the camera is not fixed.
+    follow: Option<HeadFollowing>,
     fb: Framebuffer,
     scratch: LineScratch,
     /// The head and body solids of the current pose (reused buffer).
@@ -183,7 +193,15 @@ impl Engine {
                 style.strands.fibers_per_strand,
             ),
         };
-        let camera = initial_camera(&config);
+        // Replaced once the settled hair is framed (`place_camera`), before any render.
+        let camera = Camera::look_at(
+            Vec3::Z,
+            Vec3::ZERO,
+            Vec3::Y,
+            HEAD_FOLLOWING_FOV_Y_RAD,
+            config.width,
+            config.height,
+        );
         let fb = Framebuffer::new(config.width, config.height, config.background);
         let mut engine = Self {
             style,
@@ -199,9 +217,9 @@ impl Engine {
             map_valid: false,
             strands: StrandGeometry::default(),
             colors: Vec::new(),
+            widths_m: Vec::new(),
             camera,
-            camera_offset: Vec3::ZERO,
-            camera_eye_offset: Vec3::Z,
+            follow: None,
             fb,
             scratch: LineScratch::default(),
             solids: Vec::new(),
@@ -211,7 +229,7 @@ impl Engine {
         };
         // Settle with the head held at the first pose (the simulation starts at −settle_s).
         engine.run_up_to(0.0);
-        engine.frame_camera();
+        engine.place_camera();
         engine
     }
 
@@ -238,6 +256,12 @@ impl Engine {
     /// Vertex colours of the last render (linear RGB), indexed like `strands.positions`.
     pub fn colors(&self) -> &[Vec3] {
         &self.colors
+    }
+    /// Physical width of each render-strand point in metres, indexed like
+    /// `strands.positions`: the width a render strand of F fibres of radius r covers at most,
+    /// F·2r (its fibres side by side). Filled by [`Engine::render`].
+    pub fn widths_m(&self) -> &[f32] {
+        &self.widths_m
     }
 
     /// Simulates from the current time up to `t_s` in slices of 0.2 s (the simulation caps its
@@ -309,20 +333,17 @@ impl Engine {
         );
         let t2 = Instant::now();
         self.fb.clear(self.config.background);
-        let (map, lighting) = (&self.map, &self.config.lighting);
-        // The head first (skin), then the body spheres (cloth): the solids of the map.
-        for (k, s) in self.solids.iter().enumerate() {
-            let albedo = if k == 0 { SKIN } else { CLOTH };
-            draw_ellipsoid(
-                &mut self.fb,
-                &self.camera,
-                s.unit_sphere_to_world,
-                |p, n| shade_skin(map, lighting, albedo, p, n),
-            );
+        if self.config.draw_solids {
+            self.draw_solids();
         }
+        let strand_width_m = self.style.strands.fibers_per_strand * 2.0 * self.style.fiber.radius_m;
+        self.widths_m.clear();
+        self.widths_m
+            .resize(self.strands.positions.len(), strand_width_m);
         let lines = Polylines {
             points: &self.strands.positions,
             colors: &self.colors,
+            widths_m: &self.widths_m,
             points_per_line: self.strands.points_per_strand,
         };
         draw_polylines(
@@ -339,6 +360,21 @@ impl Engine {
         &self.fb
     }
 
+    /// The head and the body spheres, opaque, lit through the hair's shadow.
+    fn draw_solids(&mut self) {
+        let (map, lighting) = (&self.map, &self.config.lighting);
+        // The head first (skin), then the body spheres (cloth): the solids of the map.
+        for (k, s) in self.solids.iter().enumerate() {
+            let albedo = if k == 0 { SKIN } else { CLOTH };
+            draw_ellipsoid(
+                &mut self.fb,
+                &self.camera,
+                s.unit_sphere_to_world,
+                |p, n| shade_skin(map, lighting, albedo, p, n),
+            );
+        }
+    }
+
     /// One whole frame at time `t_s`.
     pub fn frame(&mut self, t_s: f64) -> &Framebuffer {
         self.advance(t_s);
@@ -346,7 +382,8 @@ impl Engine {
     }
 
     /// Rebuilds the light-oriented map from the current render strands, with the head and
-    /// body solids as opaque occluders (they shadow the hair as the hair shadows them).
+    /// body solids as opaque occluders (they shadow the hair as the hair shadows them). With
+    /// `draw_solids` off there are no solids at all: no invisible head casts a shadow.
     pub fn build_map(&mut self) {
         self.map.build(&crate::map::MapBuildInput {
             positions: &self.strands.positions,
@@ -357,78 +394,47 @@ impl Engine {
             fiber: &self.fiber,
         });
         self.solids.clear();
-        self.solids
-            .extend(solids_of(&self.pose, Vec3::from(self.style.head.radii_m)));
+        if self.config.draw_solids {
+            self.solids
+                .extend(solids_of(&self.pose, Vec3::from(self.style.head.radii_m)));
+        }
         self.map.set_occluders(&self.solids);
         self.map_valid = true;
     }
 
-    /// Frames the settled hair from three-quarters front of the first pose. The camera then
-    /// follows the head's translation (not its rotation), so the head stays in frame through
-    /// the dance while its turns and the hair's swing stay visible.
-    fn frame_camera(&mut self) {
-        let (lo, hi) = self.strands.positions.iter().fold(
-            (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
-            |(lo, hi), p| {
-                if p.is_finite() {
-                    (lo.min(*p), hi.max(*p))
-                } else {
-                    (lo, hi)
-                }
-            },
-        );
-        let head0: Vec3 = self.pose.head.translation.into();
-        let (lo, hi) = if lo.x <= hi.x {
-            (lo.min(head0), hi.max(head0))
-        } else {
-            (head0, head0)
-        };
-        let centre = 0.5 * (lo + hi);
-        // Half the largest extent (a tall, thin head of hair fills the frame's height), plus room
-        // for the hair to swing by about a tenth of its length.
-        let radius = 0.55 * (hi - lo).max_element() + 0.1 * self.style.max_length_m();
-        let view = self
-            .pose
-            .head
-            .transform_vector3(Vec3::new(0.55, 0.12, 1.0))
-            .normalize_or(Vec3::Z);
-        let cam = Camera::framing(
-            centre,
-            radius.max(0.05),
-            view,
-            30f32.to_radians(),
-            self.config.width,
-            self.config.height,
-        );
-        self.camera_offset = centre - head0;
-        self.camera_eye_offset = cam.eye() - centre;
-        self.camera = cam;
+    /// Places the camera once the hair has settled: the fixed camera, or the head-following
+    /// framing of the settled hair (`scene::HeadFollowing`).
+    fn place_camera(&mut self) {
+        let (w, h) = (self.config.width, self.config.height);
+        match self.config.camera {
+            CameraSetup::Fixed(spec) => {
+                self.follow = None;
+                self.camera = spec.camera(w, h);
+            }
+            CameraSetup::HeadFollowing => {
+                let (rig, cam) = HeadFollowing::frame(
+                    &self.strands.positions,
+                    self.pose.head,
+                    self.style.max_length_m(),
+                    w,
+                    h,
+                );
+                self.follow = Some(rig);
+                self.camera = cam;
+            }
+        }
     }
 
-    /// Moves the camera with the head's translation.
+    /// Moves a head-following camera with the head's translation (a fixed one stays).
     fn follow_head(&mut self) {
-        let target = Vec3::from(self.pose.head.translation) + self.camera_offset;
-        self.camera = Camera::look_at(
-            target + self.camera_eye_offset,
-            target,
-            Vec3::Y,
-            30f32.to_radians(),
-            self.config.width,
-            self.config.height,
-        );
+        if let Some(rig) = &self.follow {
+            self.camera = rig.camera(
+                Vec3::from(self.pose.head.translation),
+                self.config.width,
+                self.config.height,
+            );
+        }
     }
-}
-
-/// The camera until `frame_camera` can frame the settled hair.
-fn initial_camera(config: &EngineConfig) -> Camera {
-    Camera::framing(
-        Vec3::ZERO,
-        0.5,
-        Vec3::Z,
-        30f32.to_radians(),
-        config.width,
-        config.height,
-    )
 }
 
 /// The opaque solids of a pose: the head ellipsoid first, then the body spheres.

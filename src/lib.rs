@@ -9,8 +9,9 @@
 //! interp   render strands from their wisp's 3 guides, Catmull-Rom smoothing, curls
 //! map      light-oriented, modulo-indexed grid: fill, column sweep -> Tf, σ̄f², direct fraction
 //! shade    per render-strand vertex: filtered map lookup -> fibre shader
-//! raster   camera, depth-tested anti-aliased lines, the head -> framebuffer
-//! output   PNG frames (temporary name + rename) from a writer thread, or a window
+//! raster   camera, depth-tested anti-aliased lines, the head -> framebuffer (+ coverage)
+//! scene    where the camera is: fixed, or following the head
+//! output   PNG frames or linear RGBA EXR (temporary name + rename), or a window
 //! ```
 //!
 //! ## Conventions (stated once)
@@ -24,6 +25,7 @@
 //! - Colours are linear RGB until the PNG encoder converts to 8-bit sRGB.
 
 pub mod accuracy;
+pub mod export;
 pub mod fiber;
 pub mod frame;
 pub mod hairstyle;
@@ -32,5 +34,6 @@ pub mod map;
 pub mod motion;
 pub mod output;
 pub mod raster;
+pub mod scene;
 pub mod shade;
 pub mod sim;

@@ -3,7 +3,8 @@
 
 use glam::{Affine3A, Vec3};
 use wisp::raster::{
-    Camera, Framebuffer, LineScratch, LineStyle, Polylines, draw_ellipsoid, draw_polylines,
+    Camera, Framebuffer, LineScratch, LineStyle, LineWidth, Polylines, draw_ellipsoid,
+    draw_polylines,
 };
 
 /// Camera at the origin looking down −Z, 90° vertical fov: focal length = height / 2, so a
@@ -37,6 +38,7 @@ fn draw(
     let lines = Polylines {
         points: pts,
         colors: cols,
+        widths_m: &[],
         points_per_line: n,
     };
     draw_polylines(fb, cam, &lines, &style, &mut LineScratch::default());
@@ -76,7 +78,7 @@ fn horizontal_line_coverage_is_length_times_width() {
             &cols,
             n,
             LineStyle {
-                width_px: width,
+                width: LineWidth::Pixels(width),
                 opacity: 1.0,
             },
         );
@@ -95,7 +97,7 @@ fn horizontal_line_coverage_is_length_times_width() {
             &cols,
             n,
             LineStyle {
-                width_px: width,
+                width: LineWidth::Pixels(width),
                 opacity: 0.25,
             },
         );
@@ -280,10 +282,11 @@ fn render_scene(threads: usize, w: u32, h: u32) -> Framebuffer {
         let lines = Polylines {
             points: &pts,
             colors: &cols,
+            widths_m: &[],
             points_per_line: 40,
         };
         let style = LineStyle {
-            width_px: 1.0,
+            width: LineWidth::Pixels(1.0),
             opacity: 0.8,
         };
         draw_polylines(&mut fb, &cam, &lines, &style, &mut LineScratch::default());
@@ -362,11 +365,12 @@ fn degenerate_input_never_panics_and_draws_nothing_wrong() {
                 let lines = Polylines {
                     points: &pts,
                     colors: &[Vec3::ONE; 3],
+                    widths_m: &[],
                     points_per_line: 3,
                 };
                 for width_px in [1.0, 0.0, -1.0, f32::NAN, 1e9, f32::INFINITY] {
                     let style = LineStyle {
-                        width_px,
+                        width: LineWidth::Pixels(width_px),
                         opacity: 1.0,
                     };
                     draw_polylines(&mut fb, &cam, &lines, &style, &mut scratch);
@@ -396,6 +400,7 @@ fn degenerate_input_never_panics_and_draws_nothing_wrong() {
             let lines = Polylines {
                 points: &pts,
                 colors: &cols[..ncol],
+                widths_m: &[],
                 points_per_line: n,
             };
             draw_polylines(&mut fb, &cam, &lines, &LineStyle::default(), &mut scratch);
@@ -406,6 +411,7 @@ fn degenerate_input_never_panics_and_draws_nothing_wrong() {
         let lines = Polylines {
             points: &pts[2..],
             colors: &cols[2..],
+            widths_m: &[],
             points_per_line: 2,
         };
         draw_polylines(
@@ -413,7 +419,7 @@ fn degenerate_input_never_panics_and_draws_nothing_wrong() {
             &cam,
             &lines,
             &LineStyle {
-                width_px: 1.0,
+                width: LineWidth::Pixels(1.0),
                 opacity,
             },
             &mut scratch,
@@ -428,6 +434,7 @@ fn degenerate_input_never_panics_and_draws_nothing_wrong() {
     let lines = Polylines {
         points: &pts[3..],
         colors: &cols[3..],
+        widths_m: &[],
         points_per_line: 2,
     };
     draw_polylines(&mut fb, &cam, &lines, &LineStyle::default(), &mut scratch);

@@ -4,9 +4,11 @@
 
 pub mod accuracy_cmd;
 pub mod bench_cmd;
+pub mod export_cmd;
 pub mod fiber_cmd;
 pub mod play_cmd;
 pub mod render_cmd;
+pub mod view_args;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use glam::Vec3;
@@ -49,6 +51,10 @@ pub enum Command {
     /// map resolutions: the tables of ACCURACY.md.
     #[command(allow_negative_numbers = true)]
     Accuracy(accuracy_cmd::AccuracyArgs),
+    /// Write one frame as a reference scene for a path tracer (hair.hair, scene.json) with
+    /// wisp's own linear EXR of it (see tools/reference/).
+    #[command(allow_negative_numbers = true)]
+    Export(export_cmd::ExportArgs),
 }
 
 /// Fibre shader choice on the command line.
@@ -114,6 +120,8 @@ pub struct SceneArgs {
     /// Turn off density-based self-collision.
     #[arg(long)]
     pub no_self_collision: bool,
+    #[command(flatten)]
+    pub view: view_args::ViewArgs,
 }
 
 impl SceneArgs {
@@ -163,6 +171,7 @@ impl SceneArgs {
         config.lighting.mode = self.shading.into();
         config.self_collision = !self.no_self_collision;
         config.simulate = !self.no_sim;
+        self.view.apply(&mut config)?;
         Ok((style, motion, config))
     }
 }
@@ -248,6 +257,7 @@ pub fn main() -> ExitCode {
         Command::Bench(args) => bench_cmd::run(args),
         Command::Fiber(args) => fiber_cmd::run(args),
         Command::Accuracy(args) => accuracy_cmd::run(args),
+        Command::Export(args) => export_cmd::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

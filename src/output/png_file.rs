@@ -22,6 +22,16 @@ pub enum OutputError {
         width: u32,
         height: u32,
     },
+    #[error(
+        "{path}: image has {rgb} colours and {alpha} coverage values, expected {width}x{height} of each"
+    )]
+    PixelCount {
+        path: PathBuf,
+        rgb: usize,
+        alpha: usize,
+        width: u32,
+        height: u32,
+    },
 }
 
 /// Writes an 8-bit RGB image (`rgb.len() == 3 * width * height`, rows top to bottom) to
@@ -37,15 +47,7 @@ pub fn write_png_rgb8(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Resul
             height,
         });
     }
-    let mut tmp_name = path.as_os_str().to_owned();
-    tmp_name.push(".tmp");
-    let tmp = PathBuf::from(tmp_name);
-    let io_err = |p: &Path| {
-        let p = p.to_path_buf();
-        move |source| OutputError::Io { path: p, source }
-    };
-    let result = (|| {
-        let file = File::create(&tmp).map_err(io_err(&tmp))?;
+    write_atomically(path, |file| {
         let mut w = BufWriter::new(file);
         {
             let mut enc = png::Encoder::new(&mut w, width, height);
@@ -60,10 +62,30 @@ pub fn write_png_rgb8(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Resul
             writer.write_image_data(rgb).map_err(enc_err)?;
             writer.finish().map_err(enc_err)?;
         }
-        let file = w.into_inner().map_err(|e| OutputError::Io {
-            path: tmp.clone(),
+        w.into_inner().map_err(|e| OutputError::Io {
+            path: path.into(),
             source: e.into_error(),
-        })?;
+        })
+    })
+}
+
+/// Writes a file through `<path>.tmp` in the same directory: `write` fills the temporary file
+/// and hands it back, which is then synced and renamed over `path` (atomic within a directory
+/// on POSIX). On any failure the temporary file is removed and `path` is left as it was.
+pub fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(File) -> Result<File, OutputError>,
+) -> Result<(), OutputError> {
+    let mut tmp_name = path.as_os_str().to_owned();
+    tmp_name.push(".tmp");
+    let tmp = PathBuf::from(tmp_name);
+    let io_err = |p: &Path| {
+        let p = p.to_path_buf();
+        move |source| OutputError::Io { path: p, source }
+    };
+    let result = (|| {
+        let file = File::create(&tmp).map_err(io_err(&tmp))?;
+        let file = write(file)?;
         file.sync_all().map_err(io_err(&tmp))?;
         std::fs::rename(&tmp, path).map_err(io_err(path))
     })();

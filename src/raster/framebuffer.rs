@@ -1,8 +1,12 @@
 //! The render target: linear-RGB colour plus view depth per pixel.
 //!
-//! What: row-major `Vec<Vec3>` colour (top row first) and `Vec<f32>` depth in metres along the
-//! view direction (`+inf` = nothing opaque there yet). Only opaque solids (the head, body
-//! spheres) write depth; hair is blended into colour and tested against depth.
+//! What: row-major `Vec<Vec3>` colour (top row first), `Vec<f32>` depth in metres along the
+//! view direction (`+inf` = nothing opaque there yet) and `Vec<f32>` coverage (alpha). Only
+//! opaque solids (the head, body spheres) write depth; hair is blended into colour and tested
+//! against depth. Everything drawn composites its coverage α into the coverage channel with
+//! "over" (`a += (1 − a)·α`), the same operator as the colour, so after a frame
+//! `colour = premultiplied + (1 − coverage)·background` holds exactly: with a black
+//! background the colour is premultiplied by the coverage (what an RGBA EXR stores).
 //!
 //! How: [`Framebuffer::clear`] reuses the allocation between frames. The 8-bit conversions give
 //! exactly what [`crate::output::linear_to_srgb8`] gives (NaN to 0, clamped, so a stray NaN
@@ -86,7 +90,7 @@ impl Srgb8Table {
     }
 }
 
-/// A linear-RGB colour buffer with a depth buffer.
+/// A linear-RGB colour buffer with depth and coverage buffers.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Framebuffer {
     /// Width in pixels.
@@ -97,6 +101,9 @@ pub struct Framebuffer {
     pub color: Vec<Vec3>,
     /// Depth along the camera's view direction in metres; `+inf` where empty.
     pub depth: Vec<f32>,
+    /// Coverage (alpha) in [0, 1]: the fraction of the pixel covered by what was drawn,
+    /// composited with "over" (`1 − Π(1 − αᵢ)`); 0 where nothing was drawn.
+    pub coverage: Vec<f32>,
 }
 
 impl Framebuffer {
@@ -108,6 +115,7 @@ impl Framebuffer {
             height,
             color: vec![background; n],
             depth: vec![f32::INFINITY; n],
+            coverage: vec![0.0; n],
         }
     }
 
@@ -116,20 +124,22 @@ impl Framebuffer {
         self.width as usize * self.height as usize
     }
 
-    /// True when both buffers hold exactly `width * height` entries (drawing requires it).
+    /// True when all three buffers hold exactly `width * height` entries (drawing requires it).
     pub fn is_consistent(&self) -> bool {
         let n = self.pixel_count();
-        self.color.len() == n && self.depth.len() == n
+        self.color.len() == n && self.depth.len() == n && self.coverage.len() == n
     }
 
-    /// Refills with `background` and infinite depth, keeping (and if needed fixing the size
-    /// of) the allocations.
+    /// Refills with `background`, infinite depth and zero coverage, keeping (and if needed
+    /// fixing the size of) the allocations.
     pub fn clear(&mut self, background: Vec3) {
         let n = self.pixel_count();
         self.color.clear();
         self.color.resize(n, background);
         self.depth.clear();
         self.depth.resize(n, f32::INFINITY);
+        self.coverage.clear();
+        self.coverage.resize(n, 0.0);
     }
 
     /// Colour at pixel `(x, y)`, if inside.
@@ -189,6 +199,8 @@ mod tests {
         assert!(fb.is_consistent());
         assert_eq!(fb.color.len(), 6);
         assert!(fb.depth.iter().all(|d| *d == f32::INFINITY));
+        assert!(fb.coverage.iter().all(|a| *a == 0.0));
+        fb.coverage[1] = 0.5;
         fb.color[4] = Vec3::new(f32::NAN, 2.0, -1.0);
         fb.depth[4] = 1.0;
         let rgb = fb.to_srgb8();
@@ -205,6 +217,9 @@ mod tests {
         assert_eq!(fb.color.capacity(), cap);
         assert!(fb.color.iter().all(|c| *c == Vec3::ZERO));
         assert!(fb.depth.iter().all(|d| *d == f32::INFINITY));
+        assert!(fb.coverage.iter().all(|a| *a == 0.0));
+        fb.coverage.pop();
+        assert!(!fb.is_consistent());
     }
 
     /// The table reproduces `linear_to_srgb8` exactly: at every level change and one ulp

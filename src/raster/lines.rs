@@ -1,8 +1,15 @@
 //! Anti-aliased, depth-tested, depth-sorted polylines (hair) into a [`Framebuffer`].
 //!
 //! What: [`draw_polylines`] draws every segment of equally long polylines with per-vertex
-//! colours, a width in pixels and an opacity, hidden where the opaque depth buffer (the head)
-//! is nearer, and composited back to front over whatever is already in the colour buffer.
+//! colours, a width (fixed in pixels, or a physical per-vertex width projected at its depth,
+//! see [`LineWidth`]) and an opacity, hidden where the opaque depth buffer (the head) is
+//! nearer, and composited back to front over whatever is already in the colour buffer; the
+//! coverage channel composites the same α with "over".
+//!
+//! Physical width: a line whose projected width is under the minimum is drawn at the minimum
+//! width with its opacity lowered in proportion, which conserves its summed coverage
+//! (length × projected width) while keeping sub-pixel lines free of aliasing; dense thin lines
+//! then accumulate toward full coverage as `1 − Π(1 − αᵢ)` (`tests/raster_coverage.rs`).
 //!
 //! How, in two parallel passes:
 //! 1. **Set-up and binning** (parallel over fixed chunks of `SETUP_CHUNK` segments): each
@@ -78,6 +85,10 @@ pub struct Polylines<'a> {
     pub points: &'a [Vec3],
     /// Linear RGB per vertex (same indexing as `points`); values above 1 are allowed.
     pub colors: &'a [Vec3],
+    /// Physical width per vertex in world metres (same indexing as `points`), read only by
+    /// [`LineWidth::Projected`]; may be empty otherwise. A segment whose end has no width
+    /// there draws nothing.
+    pub widths_m: &'a [f32],
     /// Vertices per line, `n` (every line has the same count); below 2 draws nothing.
     pub points_per_line: usize,
 }
@@ -97,21 +108,55 @@ impl Polylines<'_> {
     }
 }
 
+/// How wide lines are drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LineWidth {
+    /// Every line this many pixels wide on screen, whatever its depth; at most
+    /// [`MAX_WIDTH_PX`]; ≤ 0 or NaN draws nothing. [`Polylines::widths_m`] is not read.
+    Pixels(f32),
+    /// Physical width: each point's [`Polylines::widths_m`] (world metres) projected at its
+    /// depth, `w_px = width_m · focal_px / depth`, averaged over the segment's two ends. A
+    /// segment narrower than `min_px` is drawn `min_px` wide at opacity `w_px / min_px`, so
+    /// its coverage (summed α = length × w_px) is conserved while thin lines stay smooth; a
+    /// wider one is drawn `w_px` wide (at most [`MAX_WIDTH_PX`]) at full opacity. `min_px`
+    /// ≤ 0 or NaN draws nothing, and so does a point without a finite width > 0.
+    Projected {
+        /// Narrowest drawn width in pixels (1 px gives a tent footprint across the line).
+        min_px: f32,
+    },
+}
+
 /// How lines look.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LineStyle {
-    /// Line width in pixels, default 1; at most [`MAX_WIDTH_PX`]; ≤ 0 or NaN draws nothing.
-    pub width_px: f32,
+    /// Width model, default `Pixels(1.0)`.
+    pub width: LineWidth,
     /// Coverage multiplier in (0, 1], default 1; ≤ 0 or NaN draws nothing, > 1 acts as 1.
     pub opacity: f32,
 }
 
-impl Default for LineStyle {
-    fn default() -> Self {
+impl LineStyle {
+    /// Every line `width_px` wide at `opacity` (the engine's style before physical coverage
+    /// was 1 px at 0.85).
+    pub const fn pixels(width_px: f32, opacity: f32) -> LineStyle {
         LineStyle {
-            width_px: 1.0,
+            width: LineWidth::Pixels(width_px),
+            opacity,
+        }
+    }
+
+    /// Physical width from [`Polylines::widths_m`] with a minimum of `min_px` pixels.
+    pub const fn projected(min_px: f32) -> LineStyle {
+        LineStyle {
+            width: LineWidth::Projected { min_px },
             opacity: 1.0,
         }
+    }
+}
+
+impl Default for LineStyle {
+    fn default() -> Self {
+        LineStyle::pixels(1.0, 1.0)
     }
 }
 
@@ -183,7 +228,11 @@ pub fn draw_polylines(
     if width == 0 || height == 0 || !fb.is_consistent() {
         return;
     }
-    if !(style.width_px > 0.0) || !(style.opacity > 0.0) {
+    let width_ok = match style.width {
+        LineWidth::Pixels(w) => w > 0.0,
+        LineWidth::Projected { min_px } => min_px > 0.0,
+    };
+    if !width_ok || !(style.opacity > 0.0) {
         return;
     }
     // Project with the framebuffer's size, whatever the camera says.
@@ -196,11 +245,9 @@ pub fn draw_polylines(
     if !(view.focal_px > 0.0) || !view.focal_px.is_finite() || !view.eye.is_finite() {
         return;
     }
-    let half_w = 0.5 * style.width_px.min(MAX_WIDTH_PX);
     let params = Params {
         view,
-        half_w,
-        reach: half_w + 0.5,
+        width_model: style.width,
         opacity: style.opacity.min(1.0),
         width,
         height,
@@ -251,9 +298,10 @@ pub fn draw_polylines(
     fb.color
         .par_chunks_mut(width * BAND_ROWS)
         .zip(fb.depth.par_chunks(width * BAND_ROWS))
+        .zip(fb.coverage.par_chunks_mut(width * BAND_ROWS))
         .zip(scratch.bands[..band_count].par_iter_mut())
         .enumerate()
-        .for_each(|(b, ((color, depth), scratch))| {
+        .for_each(|(b, (((color, depth), coverage), scratch))| {
             let BandScratch { segs, keys, tmp } = scratch;
             segs.clear();
             for bins in chunks {
@@ -268,6 +316,7 @@ pub fn draw_polylines(
                 row0: b * BAND_ROWS,
                 color,
                 depth,
+                coverage,
             };
             draw_band(&params, segs, keys, band);
         });
@@ -312,6 +361,7 @@ struct Band<'a> {
     row0: usize,
     color: &'a mut [Vec3],
     depth: &'a [f32],
+    coverage: &'a mut [f32],
 }
 
 /// `ceil(v)` for `0 ≤ v < 2³¹` as an index; avoids a libm call on baseline x86-64, and the
@@ -341,12 +391,12 @@ fn draw_band(p: &Params, segs: &[Seg], keys: &[u64], band: Band) {
     let w = p.width;
     let rows = band.color.len() / w;
     let (row0, row_end) = (band.row0, band.row0 + rows);
-    let (hw, opacity) = (p.half_w, p.opacity);
     let last_col = (w - 1) as f32;
     for &key in keys {
         let Some(s) = segs.get((key & 0xFFFF_FFFF) as usize) else {
             continue;
         };
+        let (hw, opacity) = (s.half_w, s.opacity);
         // Along-axis extent in which a pixel centre can have coverage.
         let s_lo = if s.cap0 { -0.5 } else { 0.0 };
         let s_hi = s.len + if s.cap1 { 0.5 } else { 0.0 };
@@ -374,14 +424,15 @@ fn draw_band(p: &Params, segs: &[Seg], keys: &[u64], band: Band) {
             // `fa` ≥ 0 and `fb` ≤ last column < 2³¹ here (framebuffer sizes are u32 and fit).
             let (i0, i1) = (ceil_index(fa), fb as i32 as usize);
             let row = (j - row0) * w;
-            let (Some(color), Some(depth)) = (
+            let (Some(color), Some(depth), Some(coverage)) = (
                 band.color.get_mut(row + i0..=row + i1),
                 band.depth.get(row + i0..=row + i1),
+                band.coverage.get_mut(row + i0..=row + i1),
             ) else {
                 continue;
             };
             let mut rx = i0 as f32 + 0.5 - s.x0;
-            for (dst, &z) in color.iter_mut().zip(depth) {
+            for ((dst, &z), cov) in color.iter_mut().zip(depth).zip(coverage.iter_mut()) {
                 let d = (s.ux * ry - s.uy * rx).abs();
                 let along = s.ux * rx + s.uy * ry;
                 rx += 1.0;
@@ -408,6 +459,9 @@ fn draw_band(p: &Params, segs: &[Seg], keys: &[u64], band: Band) {
                 }
                 let c = s.c0 + (s.c1 - s.c0) * t;
                 *dst += (c - *dst) * alpha;
+                // The box overlap can exceed 1 by float rounding (a few 1e-7 for wide lines);
+                // coverage must stay in [0, 1].
+                *cov += (1.0 - *cov) * fmin(alpha, 1.0);
             }
         }
     }
@@ -459,6 +513,7 @@ mod tests {
         let lines = Polylines {
             points: &pts,
             colors: &cols,
+            widths_m: &[],
             points_per_line: 20,
         };
         let mut fb = Framebuffer::new(160, 120, Vec3::ZERO);

@@ -26,5 +26,7 @@ pub mod solid;
 
 pub use camera::{Camera, DEFAULT_NEAR_M, View};
 pub use framebuffer::Framebuffer;
-pub use lines::{LineScratch, LineStyle, MAX_SEGMENTS, MAX_WIDTH_PX, Polylines, draw_polylines};
+pub use lines::{
+    LineScratch, LineStyle, LineWidth, MAX_SEGMENTS, MAX_WIDTH_PX, Polylines, draw_polylines,
+};
 pub use solid::draw_ellipsoid;

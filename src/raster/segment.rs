@@ -16,7 +16,7 @@
 use glam::Vec3;
 
 use super::camera::View;
-use super::lines::Polylines;
+use super::lines::{LineWidth, MAX_WIDTH_PX, Polylines};
 
 /// A segment ready to rasterise, in pixel coordinates.
 #[derive(Clone, Copy, Debug)]
@@ -40,6 +40,9 @@ pub(super) struct Seg {
     pub(super) iz1: f32,
     pub(super) c0: Vec3,
     pub(super) c1: Vec3,
+    /// Half the drawn width in pixels, and the coverage multiplier (opacity).
+    pub(super) half_w: f32,
+    pub(super) opacity: f32,
     /// Free end of a polyline (box-filtered end) at the start / end.
     pub(super) cap0: bool,
     pub(super) cap1: bool,
@@ -51,10 +54,9 @@ pub(super) struct Seg {
 /// Per-frame constants of the set-up and raster passes.
 pub(super) struct Params {
     pub(super) view: View,
-    /// Half line width, pixels.
-    pub(super) half_w: f32,
-    /// Distance from the axis beyond which coverage is 0: `half_w + 0.5`.
-    pub(super) reach: f32,
+    /// How wide segments are drawn.
+    pub(super) width_model: LineWidth,
+    /// Coverage multiplier of the style, in (0, 1].
     pub(super) opacity: f32,
     pub(super) width: usize,
     pub(super) height: usize,
@@ -78,6 +80,11 @@ pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<S
         return None;
     }
     let (mut cap0, mut cap1) = (i == 0, i + 1 == segs_per_line);
+    // Physical widths (metres) at the two ends, when the width model reads them.
+    let (mut wm0, mut wm1) = match p.width_model {
+        LineWidth::Pixels(_) => (0.0, 0.0),
+        LineWidth::Projected { .. } => (*lines.widths_m.get(a)?, *lines.widths_m.get(a + 1)?),
+    };
 
     // Near plane, in view space: the perspective division is only meaningful for depth > 0.
     let near = view.near_m;
@@ -88,13 +95,16 @@ pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<S
         let t = (near - v0.z) / (v1.z - v0.z);
         let v = v0.lerp(v1, t);
         let c = c0.lerp(c1, t);
+        let wm = wm0 + (wm1 - wm0) * t;
         let v = Vec3::new(v.x, v.y, near);
         if v0.z < near {
-            (v0, c0, cap0) = (v, c, false);
+            (v0, c0, wm0, cap0) = (v, c, wm, false);
         } else {
-            (v1, c1, cap1) = (v, c, false);
+            (v1, c1, wm1, cap1) = (v, c, wm, false);
         }
     }
+    let (half_w, opacity) = drawn_width(p, wm0 / v0.z, wm1 / v1.z)?;
+    let reach = half_w + 0.5;
     let (mut x0, mut y0) = view.view_to_pixel(v0);
     let (mut x1, mut y1) = view.view_to_pixel(v1);
     let (mut iz0, mut iz1) = (1.0 / v0.z, 1.0 / v1.z);
@@ -105,7 +115,7 @@ pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<S
     }
 
     // Guard rectangle, in float, before anything becomes an integer (Liang-Barsky).
-    let g = p.reach + 2.0;
+    let g = reach + 2.0;
     let (lo_x, hi_x) = (-g, p.width as f32 + g);
     let (lo_y, hi_y) = (-g, p.height as f32 + g);
     let inside = |x: f32, y: f32| x >= lo_x && x <= hi_x && y >= lo_y && y <= hi_y;
@@ -161,7 +171,7 @@ pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<S
     } else {
         (1.0, 0.0, 0.0, 0.0)
     };
-    let r = p.reach;
+    let r = reach;
     let (dxdy, half_span) = if uy.abs() > 1e-6 {
         (ux / uy, r / uy.abs())
     } else {
@@ -192,9 +202,38 @@ pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<S
         iz1,
         c0,
         c1,
+        half_w,
+        opacity,
         cap0,
         cap1,
         row_lo: row_lo as u32,
         row_hi: row_hi as u32,
     })
+}
+
+/// Half the drawn width in pixels and the coverage multiplier of a segment whose ends have
+/// physical width over depth `w_over_z0`, `w_over_z1` (metres per metre; read only by
+/// [`LineWidth::Projected`]). `None` when the segment has no width to draw.
+///
+/// Projected width `w_px = f·(w0/z0 + w1/z1)/2` (f the focal length in pixels): the mean of
+/// the ends' projected widths, exact for the area of the screen trapezoid a segment of
+/// linearly varying projected width covers. Below `min_px`, the segment is drawn `min_px`
+/// wide with its opacity scaled by `w_px / min_px`, which conserves length × width × opacity.
+#[inline]
+fn drawn_width(p: &Params, w_over_z0: f32, w_over_z1: f32) -> Option<(f32, f32)> {
+    match p.width_model {
+        LineWidth::Pixels(w) => Some((0.5 * w.min(MAX_WIDTH_PX), p.opacity)),
+        LineWidth::Projected { min_px } => {
+            let w_px = p.view.focal_px * 0.5 * (w_over_z0 + w_over_z1);
+            // `!(a > 0)` also rejects NaN; +inf (a point at the eye) is capped below.
+            if !(w_px > 0.0) {
+                return None;
+            }
+            if w_px < min_px {
+                Some((0.5 * min_px.min(MAX_WIDTH_PX), p.opacity * (w_px / min_px)))
+            } else {
+                Some((0.5 * w_px.min(MAX_WIDTH_PX), p.opacity))
+            }
+        }
+    }
 }

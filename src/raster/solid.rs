@@ -11,7 +11,8 @@
 //! the pixel centre to the silhouette; coverage is `clamp(0.5 + distance, 0, 1)`, the exact
 //! box-filter coverage of a straight edge crossing the pixel along an axis. Pixels just outside
 //! shade the ray's closest point to the surface (`t = −b/a`). Depth is written only where the
-//! pixel centre is inside the silhouette; colour is blended by coverage.
+//! pixel centre is inside the silhouette; colour is blended by coverage, and the coverage
+//! channel composites it with "over".
 //!
 //! Only the ellipsoid's screen bounding box is visited. The box is exact: the silhouette is the
 //! conic whose dual is `C* = K (A Aᵀ − t tᵀ) Kᵀ` (A, t: the unit-sphere-to-view map, K: the
@@ -80,9 +81,10 @@ pub fn draw_ellipsoid(
     let rows = y0 * w..y1 * w;
     fb.color[rows.clone()]
         .par_chunks_mut(w)
-        .zip(fb.depth[rows].par_chunks_mut(w))
+        .zip(fb.depth[rows.clone()].par_chunks_mut(w))
+        .zip(fb.coverage[rows].par_chunks_mut(w))
         .enumerate()
-        .for_each(|(r, (color_row, depth_row))| {
+        .for_each(|(r, ((color_row, depth_row), coverage_row))| {
             let y = (y0 + r) as f32 + 0.5;
             for x in x0..x1 {
                 let xf = x as f32 + 0.5;
@@ -95,6 +97,8 @@ pub fn draw_ellipsoid(
                 let c = shade(hit.position, hit.normal);
                 let dst = &mut color_row[x];
                 *dst += (c - *dst) * hit.coverage;
+                let a = &mut coverage_row[x];
+                *a += (1.0 - *a) * hit.coverage;
                 if hit.centre_inside {
                     depth_row[x] = hit.t;
                 }

@@ -1,0 +1,98 @@
+//! Scene flags for comparisons with other renderers: a fixed camera, hair without the head and
+//! body, the light's irradiance, the ambient term and the narrowest hair line. Flattened into
+//! `SceneArgs`, so `render`, `play`, `bench` and `export` all take them. Degrees stop here.
+
+use super::{AppError, parse_finite_f32, parse_positive_f32};
+use glam::Vec3;
+use wisp::frame::EngineConfig;
+use wisp::raster::LineWidth;
+use wisp::scene::{CameraSetup, CameraSpec};
+
+#[derive(clap::Args, Debug, Clone)]
+pub struct ViewArgs {
+    /// Fixed camera eye X,Y,Z in world metres (needs --camera-target). Default: frame the hair
+    /// from three-quarters front and follow the head.
+    #[arg(long, value_parser = parse_point, allow_hyphen_values = true, requires = "camera_target")]
+    pub camera_eye: Option<Vec3>,
+    /// Fixed camera target X,Y,Z in world metres (needs --camera-eye).
+    #[arg(long, value_parser = parse_point, allow_hyphen_values = true, requires = "camera_eye")]
+    pub camera_target: Option<Vec3>,
+    /// Fixed camera up hint X,Y,Z (default 0,1,0; needs --camera-eye).
+    #[arg(long, value_parser = parse_point, allow_hyphen_values = true, requires = "camera_eye")]
+    pub camera_up: Option<Vec3>,
+    /// Vertical field of view of the fixed camera in degrees, in (0, 180) (default 30; needs
+    /// --camera-eye).
+    #[arg(long, value_parser = parse_positive_f32, requires = "camera_eye")]
+    pub fov_deg: Option<f32>,
+    /// Draw hair only: no head, no body spheres.
+    #[arg(long)]
+    pub no_solids: bool,
+    /// Irradiance of the light on a surface facing it: E or R,G,B, linear, >= 0 (default 6).
+    #[arg(long, value_parser = parse_rgb)]
+    pub irradiance: Option<Vec3>,
+    /// Ambient (sky) radiance: L or R,G,B, linear, >= 0 (default 0.035,0.04,0.05).
+    #[arg(long, value_parser = parse_rgb)]
+    pub ambient: Option<Vec3>,
+    /// Narrowest hair line in pixels (default 1); thinner strands are drawn this wide at an
+    /// opacity that conserves their coverage.
+    #[arg(long, value_parser = parse_positive_f32)]
+    pub min_line_width_px: Option<f32>,
+}
+
+impl ViewArgs {
+    /// Applies the flags to `config`; a camera that fails validation is bad input.
+    pub fn apply(&self, config: &mut EngineConfig) -> Result<(), AppError> {
+        if let (Some(eye), Some(target)) = (self.camera_eye, self.camera_target) {
+            let up = self.camera_up.unwrap_or(Vec3::Y);
+            let fov_deg = self.fov_deg.unwrap_or(30.0);
+            let spec = CameraSpec::new(eye, target, up, fov_deg.to_radians()).map_err(|e| {
+                AppError::input(anyhow::anyhow!(
+                    "--camera-eye/--camera-target/--camera-up/--fov-deg: {e}"
+                ))
+            })?;
+            config.camera = CameraSetup::Fixed(spec);
+        }
+        config.draw_solids = !self.no_solids;
+        if let Some(e) = self.irradiance {
+            config.lighting.irradiance = e;
+        }
+        if let Some(a) = self.ambient {
+            config.lighting.ambient = a;
+        }
+        if let Some(w) = self.min_line_width_px {
+            config.line.width = LineWidth::Projected { min_px: w };
+        }
+        Ok(())
+    }
+}
+
+/// `X,Y,Z`: three finite numbers.
+pub fn parse_point(s: &str) -> Result<Vec3, String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != 3 {
+        return Err(format!("expected three numbers X,Y,Z (got `{s}`)"));
+    }
+    let mut v = [0.0f32; 3];
+    for (o, p) in v.iter_mut().zip(&parts) {
+        *o = parse_finite_f32(p)?;
+    }
+    Ok(Vec3::from(v))
+}
+
+/// `V` or `R,G,B`: finite numbers >= 0 (one number is grey).
+pub fn parse_rgb(s: &str) -> Result<Vec3, String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    let values = parts
+        .iter()
+        .map(|p| parse_finite_f32(p))
+        .collect::<Result<Vec<f32>, String>>()?;
+    let v = match values[..] {
+        [g] => Vec3::splat(g),
+        [r, g, b] => Vec3::new(r, g, b),
+        _ => return Err(format!("expected one number or three R,G,B (got `{s}`)")),
+    };
+    if v.min_element() < 0.0 {
+        return Err(format!("must be >= 0 (got `{s}`)"));
+    }
+    Ok(v)
+}

@@ -1,0 +1,131 @@
+//! wisp fibre parameters mapped to Mitsuba 3's `hair` BSDF (Chiang et al. 2016), following
+//! `../shared/reference/MAPPING.md` (checked there against the 3.9.1 source and by evaluating
+//! the BSDF):
+//!
+//! | wisp | Mitsuba | mapping |
+//! |---|---|---|
+//! | `eta` | `int_ior`, `ext_ior` = 1 | 1:1 (Mitsuba's default `ext_ior` is 1.000277) |
+//! | `sigma_a` per unit radius | `sigma_a` | 1:1: both use the Beer-Lambert chord 2 cos γt / cos θt |
+//! | `beta_r_deg` (std of the R lobe in θh) | `longitudinal_roughness` b | the R lobe's std in θo is 2β_R; b solves 0.726b + 0.812b² + 3.7b²⁰ = 2β_R (radians) |
+//! | `alpha_r_deg` | `scale_tilt` (degrees) | same value and sign |
+//! | `azimuthal_roughness` ("chiang") | `azimuthal_roughness` | 1:1; Marschner 2003 has none, see [`MARSCHNER_AZIMUTHAL_ROUGHNESS`] |
+//!
+//! The fibre is read as JSON (the hairstyle's `fiber` object) so that fields added by other
+//! fibre models (`model`, `azimuthal_roughness`) are mapped when present.
+
+// `!(a > b)` on purpose: unlike `a <= b` it is also true for NaN, so one test rejects both.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+use serde::{Deserialize, Serialize};
+
+/// Azimuthal roughness given to Mitsuba for a Marschner 2003 fibre, which has none: 0.1 gives a
+/// trimmed-logistic scale of 0.024 rad (1.4°), close to a smooth fibre; smaller values are
+/// closer still but make the glints' fireflies much noisier (MAPPING.md).
+pub const MARSCHNER_AZIMUTHAL_ROUGHNESS: f64 = 0.1;
+
+/// The parameters of Mitsuba 3's `hair` BSDF.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MitsubaHair {
+    /// Always `"hair"`.
+    #[serde(rename = "type")]
+    pub kind: String,
+    pub int_ior: f64,
+    pub ext_ior: f64,
+    /// Absorption per unit fibre radius, linear RGB.
+    pub sigma_a: [f64; 3],
+    pub longitudinal_roughness: f64,
+    pub azimuthal_roughness: f64,
+    /// Cuticle tilt in degrees.
+    pub scale_tilt: f64,
+}
+
+/// Chiang's longitudinal roughness b whose R lobe has standard deviation `std_theta_o_rad` in
+/// θo: the root of 0.726b + 0.812b² + 3.7b²⁰ = std (MAPPING.md, verified there against
+/// Mitsuba's lobes), by bisection on [0, 1] (the left side is increasing and reaches 5.2 at
+/// b = 1, above any valid 2β_R ≤ π/2). Inputs ≤ 0 or NaN give 0.
+pub fn longitudinal_roughness_for_std(std_theta_o_rad: f64) -> f64 {
+    let f = |b: f64| 0.726 * b + 0.812 * b * b + 3.7 * b.powi(20);
+    if !(std_theta_o_rad > 0.0) {
+        return 0.0;
+    }
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if f(mid) < std_theta_o_rad {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// The fibre model named in the fibre JSON (`"model"`), `"marschner"` when absent.
+pub fn fiber_model(fiber: &serde_json::Value) -> String {
+    fiber
+        .get("model")
+        .and_then(|m| m.as_str())
+        .unwrap_or("marschner")
+        .to_string()
+}
+
+/// Maps a fibre (the hairstyle's `fiber` JSON object, already validated by the hairstyle
+/// loader) to Mitsuba's `hair` BSDF. Missing fields take wisp's defaults' meaning: a fibre
+/// without `azimuthal_roughness` gets [`MARSCHNER_AZIMUTHAL_ROUGHNESS`], and so does any fibre
+/// whose model is Marschner's.
+pub fn mitsuba_hair(fiber: &serde_json::Value) -> MitsubaHair {
+    let num = |k: &str, default: f64| fiber.get(k).and_then(|v| v.as_f64()).unwrap_or(default);
+    let sigma = |c: usize| {
+        fiber
+            .get("sigma_a")
+            .and_then(|s| s.get(c))
+            .and_then(|v| v.as_f64())
+            .unwrap_or(0.0)
+    };
+    let azimuthal = if fiber_model(fiber) == "marschner" {
+        MARSCHNER_AZIMUTHAL_ROUGHNESS
+    } else {
+        num("azimuthal_roughness", MARSCHNER_AZIMUTHAL_ROUGHNESS)
+    };
+    MitsubaHair {
+        kind: "hair".into(),
+        int_ior: num("eta", 1.55),
+        ext_ior: 1.0,
+        sigma_a: [sigma(0), sigma(1), sigma(2)],
+        longitudinal_roughness: longitudinal_roughness_for_std(
+            2.0 * num("beta_r_deg", 7.5).to_radians(),
+        ),
+        azimuthal_roughness: azimuthal,
+        scale_tilt: num("alpha_r_deg", 0.0),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// MAPPING.md's table: β_R = 2.5/5/7.5/10° gives b = 0.107/0.197/0.276/0.347 (3 digits).
+    #[test]
+    fn roughness_matches_the_mapping_table() {
+        for (beta_deg, b) in [(2.5, 0.107), (5.0, 0.197), (7.5, 0.276), (10.0, 0.347)] {
+            let got = longitudinal_roughness_for_std(2.0 * f64::to_radians(beta_deg));
+            assert!((got - b).abs() < 6e-4, "beta {beta_deg}: {got} vs {b}");
+        }
+        assert_eq!(longitudinal_roughness_for_std(f64::NAN), 0.0);
+        assert_eq!(longitudinal_roughness_for_std(-1.0), 0.0);
+    }
+
+    #[test]
+    fn maps_fields_and_model() {
+        let f = serde_json::json!({"eta": 1.6, "sigma_a": [0.1, 0.2, 0.3], "beta_r_deg": 5.0,
+            "alpha_r_deg": -3.0, "azimuthal_roughness": 0.3});
+        let m = mitsuba_hair(&f);
+        assert_eq!((m.int_ior, m.ext_ior, m.scale_tilt), (1.6, 1.0, -3.0));
+        assert_eq!(m.sigma_a, [0.1, 0.2, 0.3]);
+        assert_eq!(m.azimuthal_roughness, MARSCHNER_AZIMUTHAL_ROUGHNESS);
+        let mut c = f.clone();
+        c["model"] = "chiang".into();
+        assert_eq!(fiber_model(&c), "chiang");
+        assert_eq!(mitsuba_hair(&c).azimuthal_roughness, 0.3);
+    }
+}

@@ -1,0 +1,206 @@
+//! Reference scenes out: a frame's render strands, camera, light and fibre, written so that a
+//! path tracer can render the same scene (`tools/reference/`), next to wisp's own linear image
+//! of it.
+//!
+//! [`write_reference_scene`] writes into a directory:
+//! - `hair.hair`: the render strands as cyHair ([`cyhair`]), metres, root first, thickness =
+//!   the fibre diameter (a path tracer draws each render strand as one fibre);
+//! - `scene.json`: [`ReferenceScene`] — camera, light (direction of travel, irradiance),
+//!   ambient, image size, fibres per strand, wisp's fibre parameters verbatim and their
+//!   mapping to Mitsuba 3's `hair` BSDF ([`mitsuba`]);
+//! - `wisp.exr`: the frame as linear RGBA float, coverage in alpha (RGB premultiplied: the
+//!   engine must have drawn over a black background), and `wisp.png` to look at.
+//!
+//! Every file is written under a temporary name and renamed into place.
+
+pub mod cyhair;
+pub mod mitsuba;
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use crate::frame::Engine;
+use crate::output::{OutputError, write_atomically, write_exr_rgba_f32, write_png_rgb8};
+use crate::scene::CameraSpec;
+use cyhair::CyHairError;
+use mitsuba::MitsubaHair;
+
+/// `scene.json`'s `format` value; bump the number when a field changes meaning.
+pub const SCENE_FORMAT: &str = "wisp-reference-scene/1";
+
+/// What `scene.json` holds. Angles in degrees (a file format is an edge), lengths in metres.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ReferenceScene {
+    /// [`SCENE_FORMAT`].
+    pub format: String,
+    /// `wisp <version>`.
+    pub generator: String,
+    /// Hairstyle name.
+    pub hairstyle: String,
+    /// Time of the frame in seconds of the motion.
+    pub time_s: f64,
+    /// The strands (relative to `scene.json`), and wisp's image of the frame.
+    pub hair_file: String,
+    pub wisp_image: String,
+    /// Render strands and points per strand in `hair_file`.
+    pub strands: usize,
+    pub points_per_strand: usize,
+    /// Real fibres each render strand stands for in wisp. A path tracer draws each render
+    /// strand as one fibre, so the two renderers see the same hair only when this is 1.
+    pub fibers_per_strand: f32,
+    /// Fibre radius in metres (the `.hair` thickness is twice this).
+    pub fiber_radius_m: f32,
+    pub image: ImageSize,
+    pub camera: CameraJson,
+    pub light: LightJson,
+    /// Ambient (sky) radiance, linear RGB; 0 for a comparison with a directional light alone.
+    pub ambient: [f32; 3],
+    /// wisp's shader for `wisp_image`.
+    pub shading: String,
+    /// Whether wisp drew the head and body (a path tracer scene of hair alone needs `false`).
+    pub draw_solids: bool,
+    /// Fibre model (`fiber.model`, "marschner" when absent).
+    pub fiber_model: String,
+    /// wisp's fibre parameters exactly as the hairstyle JSON holds them.
+    pub fiber: serde_json::Value,
+    /// The same fibre for Mitsuba 3's `hair` BSDF (MAPPING.md).
+    pub mitsuba_hair_bsdf: MitsubaHair,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ImageSize {
+    pub width: u32,
+    pub height: u32,
+}
+
+/// A pinhole camera; `fov_y_deg` is the vertical field of view (Mitsuba: `fov_axis = "y"`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CameraJson {
+    pub eye: [f32; 3],
+    pub target: [f32; 3],
+    pub up: [f32; 3],
+    pub fov_y_deg: f32,
+}
+
+/// A directional light: `direction` is the way its light travels (unit, world), `irradiance`
+/// is linear RGB on a surface facing it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LightJson {
+    pub direction: [f32; 3],
+    pub irradiance: [f32; 3],
+}
+
+/// Why a reference scene could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum ExportError {
+    #[error(transparent)]
+    Hair(#[from] CyHairError),
+    #[error(transparent)]
+    Output(#[from] OutputError),
+    #[error("{path}: {message}")]
+    Scene { path: PathBuf, message: String },
+}
+
+/// File names inside the export directory.
+pub const HAIR_FILE: &str = "hair.hair";
+pub const SCENE_FILE: &str = "scene.json";
+pub const WISP_EXR: &str = "wisp.exr";
+pub const WISP_PNG: &str = "wisp.png";
+
+impl ReferenceScene {
+    /// The description of `engine`'s last rendered frame at time `time_s`.
+    pub fn of_engine(engine: &Engine, time_s: f64) -> Result<ReferenceScene, String> {
+        let cam = engine.camera();
+        let spec = CameraSpec::from_camera(cam)
+            .ok_or_else(|| format!("the engine's camera is degenerate: {cam:?}"))?;
+        // Through text, so that f32 fields read back as written (0.7, not 0.699999988).
+        let fiber = serde_json::to_string(&engine.style.fiber)
+            .and_then(|t| serde_json::from_str::<serde_json::Value>(&t))
+            .map_err(|e| e.to_string())?;
+        let l = &engine.config.lighting;
+        let fb = engine.framebuffer();
+        Ok(ReferenceScene {
+            format: SCENE_FORMAT.into(),
+            generator: format!("wisp {}", env!("CARGO_PKG_VERSION")),
+            hairstyle: engine.style.name.clone(),
+            time_s,
+            hair_file: HAIR_FILE.into(),
+            wisp_image: WISP_EXR.into(),
+            strands: engine.strands.strand_count(),
+            points_per_strand: engine.strands.points_per_strand,
+            fibers_per_strand: engine.style.strands.fibers_per_strand,
+            fiber_radius_m: engine.style.fiber.radius_m,
+            image: ImageSize {
+                width: fb.width,
+                height: fb.height,
+            },
+            camera: CameraJson {
+                eye: spec.eye().to_array(),
+                target: spec.target().to_array(),
+                up: spec.up().to_array(),
+                fov_y_deg: spec.fov_y_rad().to_degrees(),
+            },
+            light: LightJson {
+                direction: l.light_dir.normalize_or_zero().to_array(),
+                irradiance: l.irradiance.to_array(),
+            },
+            ambient: l.ambient.to_array(),
+            shading: format!("{:?}", l.mode),
+            draw_solids: engine.config.draw_solids,
+            fiber_model: mitsuba::fiber_model(&fiber),
+            mitsuba_hair_bsdf: mitsuba::mitsuba_hair(&fiber),
+            fiber,
+        })
+    }
+}
+
+/// Writes `hair.hair`, `scene.json`, `wisp.exr` and `wisp.png` for `engine`'s last rendered
+/// frame (call [`Engine::frame`] first) into the existing directory `dir`. Returns the scene
+/// description written.
+pub fn write_reference_scene(
+    engine: &Engine,
+    dir: &Path,
+    time_s: f64,
+) -> Result<ReferenceScene, ExportError> {
+    let scene_path = dir.join(SCENE_FILE);
+    let scene =
+        ReferenceScene::of_engine(engine, time_s).map_err(|message| ExportError::Scene {
+            path: scene_path.clone(),
+            message,
+        })?;
+    cyhair::write_hair(
+        &dir.join(HAIR_FILE),
+        &engine.strands.positions,
+        engine.strands.points_per_strand,
+        2.0 * engine.style.fiber.radius_m,
+        &format!(
+            "{}: {}, metres, root first",
+            scene.generator, scene.hairstyle
+        ),
+    )?;
+    let fb = engine.framebuffer();
+    write_exr_rgba_f32(
+        &dir.join(WISP_EXR),
+        fb.width,
+        fb.height,
+        &fb.color,
+        &fb.coverage,
+    )?;
+    write_png_rgb8(&dir.join(WISP_PNG), fb.width, fb.height, &fb.to_srgb8())?;
+    let text = serde_json::to_string_pretty(&scene).map_err(|e| ExportError::Scene {
+        path: scene_path.clone(),
+        message: e.to_string(),
+    })?;
+    write_atomically(&scene_path, |mut file| {
+        use std::io::Write;
+        file.write_all(text.as_bytes())
+            .and_then(|()| file.write_all(b"\n"))
+            .map_err(|source| OutputError::Io {
+                path: scene_path.clone(),
+                source,
+            })?;
+        Ok(file)
+    })?;
+    Ok(scene)
+}

@@ -1,0 +1,119 @@
+//! Atomic OpenEXR writing: linear RGBA in 32-bit float, for measurements against other
+//! renderers (no transfer curve, no clamping, coverage as alpha).
+
+use std::io::BufWriter;
+use std::path::{Path, PathBuf};
+
+use exr::prelude::{Image, SpecificChannels, Vec2, WritableImage};
+use glam::Vec3;
+
+use super::OutputError;
+
+/// Writes a `width` x `height` image to `path` as OpenEXR, channels R, G, B, A in 32-bit float
+/// (rows top to bottom, `rgb` linear radiance and `alpha` coverage, one entry per pixel each),
+/// lossless compression. Written to `<path>.tmp`, synced, then renamed into place.
+///
+/// The colour is written as given: OpenEXR readers take RGB as premultiplied by A, which holds
+/// when the image was composited over a black background (see `raster::framebuffer`).
+/// Non-finite values are written as they are (a pixel's NaN stays visible to the reader).
+pub fn write_exr_rgba_f32(
+    path: &Path,
+    width: u32,
+    height: u32,
+    rgb: &[Vec3],
+    alpha: &[f32],
+) -> Result<(), OutputError> {
+    let expected = width as usize * height as usize;
+    if rgb.len() != expected || alpha.len() != expected || width == 0 || height == 0 {
+        return Err(OutputError::PixelCount {
+            path: path.into(),
+            rgb: rgb.len(),
+            alpha: alpha.len(),
+            width,
+            height,
+        });
+    }
+    let w = width as usize;
+    let channels = SpecificChannels::rgba(|Vec2(x, y): Vec2<usize>| {
+        let i = y * w + x;
+        let c = rgb[i];
+        (c.x, c.y, c.z, alpha[i])
+    });
+    let image = Image::from_channels((w, height as usize), channels);
+    super::write_atomically(path, |file| {
+        let mut writer = BufWriter::new(file);
+        image
+            .write()
+            .to_buffered(&mut writer)
+            .map_err(|e| OutputError::Encode {
+                path: path.into(),
+                message: format!("OpenEXR: {e}"),
+            })?;
+        writer.into_inner().map_err(|e| OutputError::Io {
+            path: path.into(),
+            source: e.into_error(),
+        })
+    })
+}
+
+/// Reads an RGBA OpenEXR file written by [`write_exr_rgba_f32`] (any RGBA file with f32, f16
+/// or u32 samples): `(width, height, rgb, alpha)`, rows top to bottom.
+pub fn read_exr_rgba_f32(path: &Path) -> Result<(u32, u32, Vec<Vec3>, Vec<f32>), OutputError> {
+    use exr::prelude::{ReadChannels, ReadLayers, read};
+    type Pixels = (usize, Vec<[f32; 4]>);
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .rgba_channels(
+            |size, _| -> Pixels { (size.width(), vec![[0.0; 4]; size.area()]) },
+            |(w, px): &mut Pixels, pos, (r, g, b, a): (f32, f32, f32, f32)| {
+                px[pos.y() * *w + pos.x()] = [r, g, b, a];
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .from_file(path)
+        .map_err(|e| OutputError::Encode {
+            path: PathBuf::from(path),
+            message: format!("OpenEXR: {e}"),
+        })?;
+    let size = image.layer_data.size;
+    let (_, px) = image.layer_data.channel_data.pixels;
+    let rgb = px.iter().map(|p| Vec3::new(p[0], p[1], p[2])).collect();
+    let alpha = px.iter().map(|p| p[3]).collect();
+    Ok((size.width() as u32, size.height() as u32, rgb, alpha))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn round_trips_linear_floats_and_coverage_exactly() {
+        let dir = std::env::temp_dir().join(format!("wisp-exr-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("a.exr");
+        // Values an 8-bit PNG cannot hold: above 1, tiny, and many distinct levels.
+        let rgb: Vec<Vec3> = (0..12)
+            .map(|i| Vec3::new(i as f32 * 0.37, 1e-6 * i as f32, 7.5))
+            .collect();
+        let alpha: Vec<f32> = (0..12).map(|i| i as f32 / 11.0).collect();
+        assert!(matches!(
+            write_exr_rgba_f32(&p, 4, 4, &rgb, &alpha),
+            Err(OutputError::PixelCount { .. })
+        ));
+        assert!(!p.exists());
+        write_exr_rgba_f32(&p, 4, 3, &rgb, &alpha).unwrap();
+        assert!(!dir.join("a.exr.tmp").exists());
+        let (w, h, rgb2, alpha2) = read_exr_rgba_f32(&p).unwrap();
+        assert_eq!((w, h), (4, 3));
+        assert_eq!(rgb2, rgb);
+        assert_eq!(alpha2, alpha);
+        let missing = dir.join("no-such-dir").join("b.exr");
+        assert!(matches!(
+            write_exr_rgba_f32(&missing, 4, 3, &rgb, &alpha),
+            Err(OutputError::Io { .. })
+        ));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

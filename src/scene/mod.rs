@@ -1,0 +1,8 @@
+//! What a frame is looked at with: the scene description that is not hair, motion or light,
+//! as validated types that a scene file can later be built on.
+//!
+//! - [`camera`]: a fixed camera ([`CameraSpec`]) or the engine's head-following framing.
+
+pub mod camera;
+
+pub use camera::{CameraError, CameraSetup, CameraSpec, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};

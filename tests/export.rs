@@ -1,0 +1,209 @@
+//! `wisp export` and `wisp::export`: the cyHair file reads back as the frame's strands, the
+//! scene description reads back, the EXR holds the framebuffer, and bad camera flags are bad
+//! input (exit 2).
+
+use glam::{Affine3A, Vec3};
+use std::path::Path;
+use std::process::Command;
+use wisp::export::{ReferenceScene, cyhair, write_reference_scene};
+use wisp::frame::{Engine, EngineConfig};
+use wisp::hairstyle::Hairstyle;
+use wisp::motion::Motion;
+use wisp::output::read_exr_rgba_f32;
+
+fn tmp(name: &str) -> std::path::PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+#[test]
+fn exported_scene_reads_back() {
+    let dir = tmp("export-roundtrip");
+    let config = EngineConfig {
+        width: 96,
+        height: 64,
+        background: Vec3::ZERO,
+        draw_solids: false,
+        ..Default::default()
+    };
+    let mut e = Engine::new(
+        Hairstyle::default_smooth(),
+        Motion::still(Affine3A::IDENTITY),
+        config,
+    );
+    e.frame(0.0);
+    let scene = write_reference_scene(&e, &dir, 0.0).unwrap();
+    for f in ["hair.hair", "scene.json", "wisp.exr", "wisp.png"] {
+        assert!(dir.join(f).exists(), "{f}");
+        assert!(
+            !dir.join(format!("{f}.tmp")).exists(),
+            "{f}.tmp left behind"
+        );
+    }
+
+    // cyHair: every strand, root first, bit for bit; thickness = fibre diameter.
+    let hair = cyhair::read_hair(&dir.join("hair.hair")).unwrap();
+    let n = e.strands.points_per_strand;
+    assert_eq!(hair.segments.len(), e.strands.strand_count());
+    assert!(hair.segments.iter().all(|s| usize::from(*s) == n - 1));
+    assert_eq!(hair.points, e.strands.positions);
+    let d = 2.0 * e.style.fiber.radius_m;
+    assert!(hair.thickness.iter().all(|t| *t == d));
+    assert!(hair.info.contains("metres"));
+    // Root first: each strand's first point is the one nearest the head centre's scalp, i.e.
+    // nearer the origin (the still head sits there) than its last.
+    for s in hair.points.chunks(n) {
+        assert!(s[0].length() < s[n - 1].length());
+    }
+
+    // scene.json parses back into the same description.
+    let text = std::fs::read_to_string(dir.join("scene.json")).unwrap();
+    let back: ReferenceScene = serde_json::from_str(&text).unwrap();
+    assert_eq!(back, scene);
+    assert_eq!((back.image.width, back.image.height), (96, 64));
+    assert_eq!(back.camera.eye, e.camera().eye.to_array());
+    assert!((back.camera.fov_y_deg - 30.0).abs() < 1e-4);
+    assert_eq!(back.fiber_model, "marschner");
+    assert!(!back.draw_solids);
+    assert_eq!(back.fibers_per_strand, 30.0);
+    // MAPPING.md: beta_R 7.5 deg gives longitudinal roughness 0.276.
+    assert!((back.mitsuba_hair_bsdf.longitudinal_roughness - 0.276).abs() < 1e-3);
+    assert_eq!(back.mitsuba_hair_bsdf.ext_ior, 1.0);
+    // The fibre parameters are written as the hairstyle has them (no f32 -> f64 noise).
+    assert!(text.contains("\"eta\": 1.55"), "{text}");
+
+    // The EXR is the framebuffer, colour and coverage, exactly.
+    let (w, h, rgb, alpha) = read_exr_rgba_f32(&dir.join("wisp.exr")).unwrap();
+    let fb = e.framebuffer();
+    assert_eq!((w, h), (96, 64));
+    assert_eq!(rgb, fb.color);
+    assert_eq!(alpha, fb.coverage);
+}
+
+#[test]
+fn hair_writer_refuses_what_cyhair_cannot_hold() {
+    let dir = tmp("export-bad-hair");
+    let p = dir.join("a.hair");
+    let pts = [Vec3::ZERO, Vec3::X, Vec3::Y];
+    for (points, per, thick) in [
+        (&pts[..], 2, 1.0),                     // not whole strands
+        (&pts[..], 1, 1.0),                     // a strand needs 2 points
+        (&[Vec3::ZERO, Vec3::NAN][..], 2, 1.0), // non-finite point
+        (&pts[..2], 2, f32::NAN),               // bad thickness
+    ] {
+        let err = cyhair::write_hair(&p, points, per, thick, "").unwrap_err();
+        assert!(err.to_string().contains("a.hair"), "{err}");
+        assert!(!p.exists());
+    }
+    // Not a cyHair file, a truncated one, counts that do not add up: clear errors.
+    std::fs::write(&p, b"HAIR").unwrap();
+    assert!(cyhair::read_hair(&p).is_err());
+    cyhair::write_hair(&p, &pts[..2], 2, 1e-4, "x").unwrap();
+    let mut bytes = std::fs::read(&p).unwrap();
+    bytes.truncate(bytes.len() - 3);
+    std::fs::write(&p, &bytes).unwrap();
+    let err = cyhair::read_hair(&p).unwrap_err().to_string();
+    assert!(err.contains("header announces"), "{err}");
+    bytes[8] = 9; // point_count 9 with one strand of 1 segment
+    std::fs::write(&p, &bytes).unwrap();
+    assert!(cyhair::read_hair(&p).is_err());
+}
+
+fn wisp(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_wisp"))
+        .args(args)
+        .output()
+        .expect("run wisp")
+}
+
+#[test]
+fn export_command_writes_the_scene_and_refuses_bad_cameras() {
+    let dir = tmp("export-cli");
+    let out = dir.join("scene");
+    let out_s = out.to_str().unwrap();
+    let o = wisp(&[
+        "export",
+        "--still",
+        "--no-solids",
+        "--ambient",
+        "0",
+        "--irradiance",
+        "1",
+        "--width",
+        "48",
+        "--height",
+        "40",
+        "--camera-eye",
+        "0.6,0,1",
+        "--camera-target",
+        "0,-0.1,0",
+        "--fov-deg",
+        "35",
+        "--light-dir",
+        "-1,0,-1",
+        "--out",
+        out_s,
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let scene: ReferenceScene =
+        serde_json::from_str(&std::fs::read_to_string(out.join("scene.json")).unwrap()).unwrap();
+    assert_eq!(scene.camera.eye, [0.6, 0.0, 1.0]);
+    assert!((scene.camera.fov_y_deg - 35.0).abs() < 1e-4);
+    assert_eq!(scene.light.irradiance, [1.0; 3]);
+    assert_eq!(scene.ambient, [0.0; 3]);
+    let s = std::f32::consts::FRAC_1_SQRT_2;
+    assert!((Vec3::from(scene.light.direction) - Vec3::new(-s, 0.0, -s)).length() < 1e-6);
+    let (w, h, _, alpha) = read_exr_rgba_f32(&out.join("wisp.exr")).unwrap();
+    assert_eq!((w, h), (48, 40));
+    assert!(alpha.iter().any(|a| *a > 0.0));
+
+    for (args, needle) in [
+        (
+            vec!["--camera-eye", "0,0,1", "--camera-target", "0,0,1"],
+            "must differ",
+        ),
+        (
+            vec![
+                "--camera-eye",
+                "0,0,1",
+                "--camera-target",
+                "0,0,0",
+                "--camera-up",
+                "0,0,1",
+            ],
+            "parallel",
+        ),
+        (
+            vec![
+                "--camera-eye",
+                "0,0,1",
+                "--camera-target",
+                "0,0,0",
+                "--fov-deg",
+                "180",
+            ],
+            "field of view",
+        ),
+        (vec!["--camera-eye", "0,0,1"], "--camera-target"),
+        (vec!["--fov-deg", "30"], "--camera-eye"),
+        (
+            vec!["--camera-eye", "0,nan,1", "--camera-target", "0,0,0"],
+            "finite",
+        ),
+        (vec!["--ambient", "-1"], ">= 0"),
+        (vec!["--irradiance", "1,2"], "three"),
+        (vec!["--min-line-width-px", "0"], "--min-line-width-px"),
+    ] {
+        let mut a = vec!["export", "--still", "--out", out_s];
+        a.extend(args.iter().copied());
+        let o = wisp(&a);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+        assert!(!err.contains("panicked"));
+    }
+    // Missing --out is a usage error too.
+    assert_eq!(wisp(&["export", "--still"]).status.code(), Some(2));
+}

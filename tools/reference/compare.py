@@ -1,0 +1,163 @@
+#!/usr/bin/env python3
+"""wisp's image against a path-traced one (not run by CI).
+
+    compare.py WISP_EXR MITSUBA_EXR [--passes NPY] [--png OUT.png] [--label TEXT] [--json OUT]
+
+Over the pixels fully covered in both images (alpha >= --coverage in each, default 0.99, so
+both hold radiance of hair alone; with fewer than 500 such pixels, as for isolated fibres,
+over the whole image: the ratio of the light each sends to the camera), reports per channel the ratio of mean linear radiance
+wisp / path traced, its standard error (from the path tracer's independent passes, --passes;
+wisp is deterministic), the ratio of the 10th-percentile luminance (the darkest hair) per pixel and over 4 x 4
+blocks (the path tracer's single pixels are mostly noise), the coverage ratio, and the pixel
+count. Prints one Markdown table row, optionally writes the figures as JSON and a
+side-by-side PNG: wisp | path traced (same exposure, sRGB) | log2(wisp / path traced) of
+luminance summed over 8 x 8 blocks of compared pixels (blue: wisp darker, red: wisp
+brighter, white: equal, +-2 stops full scale; grey where fewer than a quarter of a block's
+pixels are compared, or where neither image has hair).
+"""
+
+import argparse
+import json
+import sys
+
+import numpy as np
+
+LUMA = np.array([0.2126, 0.7152, 0.0722])
+
+
+def load_rgba(mi, path):
+    a = np.array(mi.Bitmap(path), dtype=np.float64)
+    if a.ndim != 3 or a.shape[2] != 4:
+        raise SystemExit(f"compare.py: {path}: expected an RGBA image, got shape {a.shape}")
+    return a
+
+
+def block_sum(a, k):
+    """Sums over k x k blocks (the image cropped to whole blocks)."""
+    h, w = (a.shape[0] // k) * k, (a.shape[1] // k) * k
+    a = a[:h, :w]
+    return a.reshape(h // k, k, w // k, k, *a.shape[2:]).sum(axis=(1, 3))
+
+
+def compare(wisp, ref, passes=None, coverage=0.99, region="auto", min_pixels=500):
+    """Figures over the compared region: "covered" (alpha >= coverage in both), "all" (every
+    pixel: the ratio of the images' summed premultiplied RGB, i.e. of the light each renderer
+    sends to the camera; what sparse hair such as isolated fibres needs, where no pixel is
+    fully covered), or "auto" (covered if it has at least min_pixels pixels, else all)."""
+    if wisp.shape != ref.shape:
+        raise SystemExit(f"compare.py: image sizes differ: {wisp.shape} vs {ref.shape}")
+    mask = (wisp[..., 3] >= coverage) & (ref[..., 3] >= coverage)
+    if region == "all" or (region == "auto" and mask.sum() < min_pixels):
+        region = "all"
+        mask = np.ones(wisp.shape[:2], bool)
+    else:
+        region = "covered"
+    n = int(mask.sum())
+    out = {"pixels": n, "coverage_threshold": coverage, "region": region}
+    if n == 0:
+        return out, mask
+    w = wisp[..., :3][mask].mean(axis=0)
+    r = ref[..., :3][mask].mean(axis=0)
+    ratio = w / r
+    out.update(wisp_mean=w.tolist(), ref_mean=r.tolist(), ratio=ratio.tolist())
+    if passes is not None and len(passes) >= 2:
+        per_pass = np.array([p[..., :3][mask].mean(axis=0) for p in passes])
+        se_ref = per_pass.std(axis=0, ddof=1) / np.sqrt(len(passes))
+        out["ref_se"] = se_ref.tolist()
+        out["ratio_se"] = (ratio * se_ref / r).tolist()
+    out["coverage_ratio"] = float(wisp[..., 3].sum() / max(ref[..., 3].sum(), 1e-12))
+    if region == "covered":
+        lw = wisp[..., :3][mask] @ LUMA
+        lr = ref[..., :3][mask] @ LUMA
+        p10w, p10r = np.percentile(lw, 10), np.percentile(lr, 10)
+        # At hard-shadowed pixels the path tracer's p10 can be exactly 0: no ratio then.
+        out.update(p10_wisp=float(p10w), p10_ref=float(p10r),
+                   p10_ratio=float(p10w / p10r) if p10r > 0 else None)
+        # The same over 4 x 4 blocks whose 16 pixels are all compared: at 128 spp a single
+        # pixel of the path tracer is mostly noise (fireflies next to zeros), so its per-pixel
+        # p10 is biased low; block means keep the spatial scale of "the darkest hair".
+        k = 4
+        full = block_sum(mask.astype(float), k) == k * k
+        if full.sum() >= 50:
+            bw = block_sum(wisp[..., :3] @ LUMA, k)[full]
+            br = block_sum(ref[..., :3] @ LUMA, k)[full]
+            q_w, q_r = np.percentile(bw, 10), np.percentile(br, 10)
+            out.update(p10_block4_ratio=float(q_w / q_r) if q_r > 0 else None)
+    return out, mask
+
+
+def markdown_row(label, fig):
+    if "ratio" not in fig:
+        return f"| {label} | no pixel covered in both | | | 0 |"
+    ratio = " / ".join(f"{v:.2f}" for v in fig["ratio"])
+    se = " / ".join(f"{v:.3f}" for v in fig.get("ratio_se", [float("nan")] * 3))
+    p10 = "-" if "p10_wisp" not in fig else (
+        f"{fig['p10_ratio']:.2f}" if fig["p10_ratio"] is not None else "PT p10 = 0")
+    if fig.get("p10_block4_ratio") is not None:
+        p10 += f" (4x4 blocks {fig['p10_block4_ratio']:.2f})"
+    return f"| {label} | {ratio} | {se} | {p10} | {fig['pixels']} {fig['region']} |"
+
+
+def side_by_side(mi, wisp, ref, mask, path, block=8):
+    lum = ref[..., :3] @ LUMA
+    sel = ref[..., 3] > 0.5
+    if sel.sum() < 500:
+        sel = ref[..., 3] > 0
+    # Exposure from the mean (robust to the path tracer's fireflies), the same for both.
+    scale = 0.25 / max(lum[sel].mean(), 1e-9) if sel.any() else 1.0
+    panels = [np.clip(wisp[..., :3] * scale, 0, 1), np.clip(ref[..., :3] * scale, 0, 1)]
+    # Ratio of block sums over the compared pixels: per-pixel ratios are mostly the path
+    # tracer's noise; 8 x 8 blocks show where wisp is too dark or too bright.
+    m = mask[..., None].astype(float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        lr = np.log2(block_sum((wisp[..., :3] * m) @ LUMA, block) / block_sum((ref[..., :3] * m) @ LUMA, block))
+    t = np.clip(np.nan_to_num(lr, nan=0.0, posinf=1.0, neginf=-1.0) / 2.0, -1, 1)
+    heat = np.ones(t.shape + (3,))
+    heat[..., 0] = np.where(t < 0, 1 + t, 1)  # blue when wisp is darker
+    heat[..., 1] = 1 - np.abs(t)
+    heat[..., 2] = np.where(t > 0, 1 - t, 1)  # red when wisp is brighter
+    empty = block_sum(wisp[..., 3] + ref[..., 3], block) <= 0
+    heat[(block_sum(mask.astype(float), block) < 0.25 * block * block) | empty] = 0.25
+    heat = np.repeat(np.repeat(heat, block, 0), block, 1)
+    full = np.full(wisp.shape[:2] + (3,), 0.25)
+    full[: heat.shape[0], : heat.shape[1]] = heat
+    # The heat map is display-referred: undo the sRGB encoding applied below.
+    panels.append(np.where(full <= 0.04045, full / 12.92, ((full + 0.055) / 1.055) ** 2.4))
+    gap = np.ones((wisp.shape[0], 4, 3))
+    img = np.concatenate([panels[0], gap, panels[1], gap, panels[2]], axis=1).astype(np.float32)
+    bmp = mi.Bitmap(img, mi.Bitmap.PixelFormat.RGB)
+    bmp.convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.UInt8, srgb_gamma=True).write(path)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("wisp_exr")
+    ap.add_argument("ref_exr")
+    ap.add_argument("--passes", help="the path tracer's passes (.npy [P, H, W, 4]) for errors")
+    ap.add_argument("--coverage", type=float, default=0.99)
+    ap.add_argument("--region", choices=["auto", "covered", "all"], default="auto",
+                    help="compared pixels (see compare()); auto falls back to all below 500 covered pixels")
+    ap.add_argument("--png", help="side-by-side image to write")
+    ap.add_argument("--label", default="")
+    ap.add_argument("--json", help="write the figures here")
+    args = ap.parse_args()
+
+    import mitsuba as mi
+
+    mi.set_variant("scalar_rgb")
+    wisp = load_rgba(mi, args.wisp_exr)
+    ref = load_rgba(mi, args.ref_exr)
+    passes = np.load(args.passes).astype(np.float64) if args.passes else None
+    fig, mask = compare(wisp, ref, passes, args.coverage, args.region)
+    fig["label"] = args.label
+    if not np.isfinite(wisp).all():
+        print("compare.py: warning: wisp's image has non-finite values", file=sys.stderr)
+    if args.json:
+        json.dump(fig, open(args.json, "w"), indent=1)
+    if args.png:
+        side_by_side(mi, wisp, ref, mask, args.png)
+    print(markdown_row(args.label, fig))
+
+
+if __name__ == "__main__":
+    main()
