@@ -58,6 +58,7 @@ pub fn measure_map(
             points_per_strand: strands.points_per_strand,
             fibers_per_strand: style.strands.fibers_per_strand.round().max(1.0) as u32,
             bundle_radius_m: 0.5 * style.strand_spacing_m(),
+            fibre_share: &strands.fibre_share,
             light_dir,
             fiber: &engine.fiber,
         },

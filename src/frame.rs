@@ -336,10 +336,15 @@ impl Engine {
         if self.config.draw_solids {
             self.draw_solids();
         }
+        // A strand's physical width: its fibres side by side, thinning where they end.
         let strand_width_m = self.style.strands.fibers_per_strand * 2.0 * self.style.fiber.radius_m;
         self.widths_m.clear();
-        self.widths_m
-            .resize(self.strands.positions.len(), strand_width_m);
+        self.widths_m.extend(
+            self.strands
+                .fibre_share
+                .iter()
+                .map(|share| strand_width_m * share),
+        );
         let lines = Polylines {
             points: &self.strands.positions,
             colors: &self.colors,

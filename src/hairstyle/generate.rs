@@ -134,6 +134,10 @@ pub fn generate(style: &Hairstyle) -> (GuideSet, StrandLayout) {
     let mut strand_wisp = Vec::with_capacity(wisps * spw);
     let mut strand_weights = Vec::with_capacity(wisps * spw);
     let mut strand_phase = Vec::with_capacity(wisps * spw);
+    let mut strand_length = Vec::with_capacity(wisps * spw);
+    // Strand lengths come from their own stream, so the other placements do not change with
+    // `length_variation`.
+    let mut lengths = SplitMix64::new(style.seed ^ 0x5EED_1E57_0F_5742);
     for w in 0..wisps {
         for _ in 0..spw {
             // Uniform point in a triangle: (1 - √r1, √r1 (1 - r2), √r1 r2).
@@ -142,6 +146,7 @@ pub fn generate(style: &Hairstyle) -> (GuideSet, StrandLayout) {
             strand_wisp.push(w as u32);
             strand_weights.push([1.0 - s1, s1 * (1.0 - r2), s1 * r2]);
             strand_phase.push(std::f32::consts::TAU * rng.unit());
+            strand_length.push(1.0 - style.strands.length_variation * lengths.unit());
         }
     }
 
@@ -157,6 +162,8 @@ pub fn generate(style: &Hairstyle) -> (GuideSet, StrandLayout) {
             strand_wisp,
             strand_weights,
             strand_phase,
+            strand_length,
+            tip_taper: style.strands.tip_taper,
             points_per_strand: style.strands.points as usize,
         },
     )

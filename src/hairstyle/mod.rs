@@ -126,6 +126,17 @@ pub struct StrandSpec {
     /// Real hair fibres that one render strand stands for (> 0): it scales the optical
     /// density the strand puts into the map.
     pub fibers_per_strand: f32,
+    /// How much shorter than its guides a render strand may be, as a fraction of their length
+    /// in [0, 0.9] (default 0: every strand reaches its guides' tips). Each strand draws its
+    /// own length in [1 − v, 1] of the guides', so a wisp ends in a spread of tips, not a cut.
+    #[serde(default)]
+    pub length_variation: f32,
+    /// The last fraction of each render strand, in [0, 1], over which its fibres end one by one
+    /// (default 0: all F fibres reach the tip). Real hair thins toward the tips because its
+    /// fibres have different lengths; the share of a strand's fibres present falls linearly to
+    /// 0 over this fraction, in the map's fill as in the drawn coverage.
+    #[serde(default)]
+    pub tip_taper: f32,
 }
 
 /// Helical curls added to each render strand around its interpolated centre line.
@@ -321,6 +332,14 @@ impl Hairstyle {
             1.0e5,
             true,
         )?;
+        in_range(
+            "strands.length_variation",
+            self.strands.length_variation,
+            0.0,
+            0.9,
+            false,
+        )?;
+        in_range("strands.tip_taper", self.strands.tip_taper, 0.0, 1.0, false)?;
         in_range("curl.radius_m", self.curl.radius_m, 0.0, 0.1, false)?;
         if self.curl.radius_m > 0.0 {
             in_range("curl.period_m", self.curl.period_m, 0.0, 10.0, true)?;

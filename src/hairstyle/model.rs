@@ -38,6 +38,10 @@ pub struct StrandLayout {
     pub strand_weights: Vec<[f32; 3]>,
     /// Curl phase of each render strand in radians.
     pub strand_phase: Vec<f32>,
+    /// Length of each render strand as a fraction of its guides' (in (0, 1]).
+    pub strand_length: Vec<f32>,
+    /// The last fraction of each strand over which its fibres end one by one (in [0, 1]).
+    pub tip_taper: f32,
     /// Smoothed points per render strand (Catmull-Rom output, drawn and filled), >= 2.
     pub points_per_strand: usize,
 }

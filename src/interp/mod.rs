@@ -30,8 +30,13 @@ pub struct StrandGeometry {
     pub positions: Vec<Vec3>,
     /// Unit tangents from root to tip.
     pub tangents: Vec<Vec3>,
-    /// Length of hair each point stands for (half of each adjacent segment), metres.
+    /// Length of hair each point stands for (half of each adjacent segment), metres, times the
+    /// share of the strand's fibres present there (`fibre_share`): the length of *fibre*, in
+    /// units of the strand's F fibres, that the map fills.
     pub lengths_m: Vec<f32>,
+    /// Share of the strand's fibres present at each point, in [0, 1]: 1 along the strand, falling
+    /// linearly to 0 over its tip taper (fibres end one by one toward the tip).
+    pub fibre_share: Vec<f32>,
 }
 
 impl StrandGeometry {
@@ -58,14 +63,16 @@ pub fn interpolate(
     out.positions.resize(total, Vec3::ZERO);
     out.tangents.resize(total, Vec3::ZERO);
     out.lengths_m.resize(total, 0.0);
+    out.fibre_share.resize(total, 1.0);
     let ppg = guides.points_per_guide;
     debug_assert!(ppg <= MAX_GUIDE_POINTS);
     out.positions
         .par_chunks_mut(n)
         .zip(out.tangents.par_chunks_mut(n))
         .zip(out.lengths_m.par_chunks_mut(n))
+        .zip(out.fibre_share.par_chunks_mut(n))
         .enumerate()
-        .for_each(|(s, ((pos, tan), len))| {
+        .for_each(|(s, (((pos, tan), len), share))| {
             let wisp = layout.wisp_guides[layout.strand_wisp[s] as usize];
             let w = layout.strand_weights[s];
             let g = wisp.map(|g| &guide_pos[g as usize * ppg..(g as usize + 1) * ppg]);
@@ -73,12 +80,14 @@ pub fn interpolate(
             for i in 0..ppg {
                 ctrl[i] = g[0][i] * w[0] + g[1][i] * w[1] + g[2][i] * w[2];
             }
-            catmull_rom_resample(&ctrl[..ppg], pos);
+            let length = layout.strand_length.get(s).copied().unwrap_or(1.0);
+            catmull_rom_resample_to(&ctrl[..ppg], length, pos);
             let reference = g[1][0] - g[0][0];
             if curl.radius_m > 0.0 {
                 add_curl(pos, reference, curl, layout.strand_phase[s]);
             }
             tangents_and_lengths(pos, tan, len);
+            tip_taper(layout.tip_taper, pos, share, len);
         });
 }
 
@@ -86,6 +95,14 @@ pub fn interpolate(
 /// spaced parameters from the first to the last control point; end tangents use reflected
 /// phantom points, so the curve passes through both ends.
 pub fn catmull_rom_resample(ctrl: &[Vec3], out: &mut [Vec3]) {
+    catmull_rom_resample_to(ctrl, 1.0, out);
+}
+
+/// [`catmull_rom_resample`] over the first `fraction` ∈ (0, 1] of the spline's parameter
+/// range: a strand that stops short of its guides' tips, still sampled at `out.len()` points.
+/// The guides' links are of equal length, so the parameter is proportional to arc length up to
+/// the spline's bending.
+pub fn catmull_rom_resample_to(ctrl: &[Vec3], fraction: f32, out: &mut [Vec3]) {
     let m = ctrl.len();
     let n = out.len();
     if n == 0 {
@@ -104,7 +121,12 @@ pub fn catmull_rom_resample(ctrl: &[Vec3], out: &mut [Vec3]) {
             ctrl[i as usize]
         }
     };
-    let scale = (m - 1) as f32 / (n - 1) as f32;
+    let fraction = if fraction.is_finite() {
+        fraction.clamp(1e-3, 1.0)
+    } else {
+        1.0
+    };
+    let scale = (m - 1) as f32 * fraction / (n - 1) as f32;
     for (k, o) in out.iter_mut().enumerate() {
         let u = k as f32 * scale;
         let seg = (u as usize).min(m - 2);
@@ -150,6 +172,27 @@ fn add_curl(pos: &mut [Vec3], reference: Vec3, curl: &CurlSpec, phase: f32) {
         let r = curl.radius_m * (s / RAMP_M).min(1.0);
         let a = k * s + phase;
         pos[i] = centre + r * (a.cos() * b1 + a.sin() * b2);
+    }
+}
+
+/// The share of a strand's fibres present at each point: fibres end one by one over the last
+/// `taper` of the strand's arc length (their lengths spread evenly there), so the share falls
+/// linearly from 1 to 0 over it, reaching 0 at the tip. Scales each point's fibre length `len`.
+fn tip_taper(taper: f32, pos: &[Vec3], share: &mut [f32], len: &mut [f32]) {
+    let n = share.len().min(pos.len());
+    if !(taper > 0.0) || n < 2 {
+        share.fill(1.0);
+        return;
+    }
+    let total: f32 = pos.windows(2).map(|w| (w[1] - w[0]).length()).sum();
+    let mut arc = 0.0f32;
+    for i in 0..n {
+        if i > 0 {
+            arc += (pos[i] - pos[i - 1]).length();
+        }
+        let u = if total > 0.0 { arc / total } else { 0.0 };
+        share[i] = ((1.0 - u) / taper).clamp(0.0, 1.0);
+        len[i] *= share[i];
     }
 }
 
@@ -205,7 +248,9 @@ mod tests {
     #[test]
     fn strands_of_a_wisp_lie_between_its_guides_and_roots_stay_on_guides_plane() {
         let style = Hairstyle::default_smooth();
-        let (g, layout) = generate(&style);
+        let (g, mut layout) = generate(&style);
+        // Full-length strands: their tips are the blend of the guides' tips.
+        layout.strand_length.fill(1.0);
         let mut geo = StrandGeometry::default();
         interpolate(&g, &layout, &style.curl, &g.rest, &mut geo);
         assert_eq!(
@@ -224,6 +269,51 @@ mod tests {
         }
         assert!(geo.tangents.iter().all(|t| (t.length() - 1.0).abs() < 1e-4));
         assert!(geo.lengths_m.iter().all(|l| l.is_finite() && *l >= 0.0));
+    }
+
+    #[test]
+    fn strands_end_short_of_their_guides_and_thin_toward_the_tips() {
+        let style = Hairstyle::default_smooth();
+        let (g, layout) = generate(&style);
+        let mut full_layout = layout.clone();
+        full_layout.strand_length.fill(1.0);
+        full_layout.tip_taper = 0.0;
+        let (mut geo, mut full) = (StrandGeometry::default(), StrandGeometry::default());
+        interpolate(&g, &layout, &style.curl, &g.rest, &mut geo);
+        interpolate(&g, &full_layout, &style.curl, &g.rest, &mut full);
+        let n = layout.points_per_strand;
+        let arc = |p: &[Vec3]| p.windows(2).map(|w| (w[1] - w[0]).length()).sum::<f32>();
+        let v = style.strands.length_variation;
+        assert!(
+            v > 0.0 && layout.tip_taper > 0.0,
+            "the preset varies its strands"
+        );
+        for s in 0..layout.count() {
+            let f = layout.strand_length[s];
+            assert!((1.0 - v..=1.0).contains(&f), "{f}");
+            // Arc length follows the length fraction (within the spline's bending).
+            let (a, b) = (
+                arc(&geo.positions[s * n..(s + 1) * n]),
+                arc(&full.positions[s * n..(s + 1) * n]),
+            );
+            assert!((a / b - f).abs() < 0.05, "strand {s}: {a} / {b} vs {f}");
+            let share = &geo.fibre_share[s * n..(s + 1) * n];
+            assert_eq!(share[0], 1.0);
+            assert_eq!(share[n - 1], 0.0, "no fibre reaches past the tip");
+            assert!(
+                share.windows(2).all(|w| w[1] <= w[0]),
+                "fibres only end: {share:?}"
+            );
+            // The fibre length filled into the map: a linear taper over the last fraction t of
+            // the strand removes t/2 of its length.
+            let filled: f32 = geo.lengths_m[s * n..(s + 1) * n].iter().sum();
+            let expect = a * (1.0 - 0.5 * layout.tip_taper);
+            assert!(
+                (filled / expect - 1.0).abs() < 0.06,
+                "strand {s}: {filled} vs {expect}"
+            );
+        }
+        assert!(full.fibre_share.iter().all(|s| *s == 1.0));
     }
 
     #[test]

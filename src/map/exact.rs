@@ -62,6 +62,10 @@ pub struct ExactInput<'a> {
     /// Radius of the disc across the strand within which its fibres are placed, metres
     /// (unused when `fibers_per_strand` is 1).
     pub bundle_radius_m: f32,
+    /// Share of each strand's fibres present at each point (`StrandGeometry::fibre_share`), or
+    /// empty for all. Fibre f of F ends where the share falls below (f + ½)/F, so the fibres
+    /// end one by one as the share falls.
+    pub fibre_share: &'a [f32],
     /// Direction the light travels (need not be normalised).
     pub light_dir: Vec3,
     /// The fibre: radius and per-crossing forward scattering.
@@ -227,9 +231,17 @@ impl<'a> ExactReference<'a> {
             .flat_map_iter(|fi| {
                 let pts = &fibre_points[fi * ppl..(fi + 1) * ppl];
                 let finite = pts.iter().all(|p| p.is_finite());
+                let (strand, f) = (fi / f_count, fi % f_count);
+                let threshold = (f as f32 + 0.5) / f_count as f32;
+                let share = input.fibre_share;
+                let present = move |k: usize| {
+                    share
+                        .get(strand * ppl + k)
+                        .is_none_or(|sh| *sh >= threshold)
+                };
                 pts.windows(2)
                     .enumerate()
-                    .filter(move |_| finite)
+                    .filter(move |(k, _)| finite && present(k + 1))
                     .filter_map(move |(k, w)| {
                         let (a, b) = (w[0], w[1]);
                         let d = Vec2::new(b.y - a.y, b.z - a.z);
