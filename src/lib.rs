@@ -26,6 +26,7 @@
 pub mod fiber;
 pub mod frame;
 pub mod hairstyle;
+pub mod input;
 pub mod interp;
 pub mod map;
 pub mod motion;

@@ -12,6 +12,7 @@ pub use generate::{SplitMix64, generate};
 pub use model::{GuideSet, StrandLayout};
 
 use crate::fiber::FiberParams;
+use crate::input::{self, ReadError};
 use crate::sim::SimParams;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -21,11 +22,20 @@ pub const SMOOTH_JSON: &str = include_str!("../../hairstyles/smooth.json");
 /// The curly preset, embedded too.
 pub const CURLY_JSON: &str = include_str!("../../hairstyles/curly.json");
 
-/// Upper bounds that keep memory finite (about 2 GB worst case).
+/// Upper bounds of single fields. They are absolute limits; what a whole run may allocate is
+/// checked against the memory budget (`wisp::budget`), which the product of these can exceed.
 pub const MAX_WISPS: u32 = 100_000;
 pub const MAX_STRANDS: u64 = 2_000_000;
 pub const MAX_RENDER_POINTS: u64 = 40_000_000;
 pub const MAX_GUIDE_LINKS: u32 = 256;
+/// Largest hairstyle file read, in bytes (a hairstyle is a few dozen numbers; the presets are
+/// about 1 KB).
+pub const MAX_FILE_BYTES: u64 = 1 << 20;
+/// Smallest head semi-axis in metres. The hair model works at millimetres: roots sit on wisp
+/// layers 2–8 mm above the scalp and collisions keep a 1 mm margin, so a head smaller than
+/// 1 cm would be a point inside its own hair (at 1e-30 m the scalp area was 0, the strand
+/// spacing 0 and the map 1024³).
+pub const MIN_HEAD_RADIUS_M: f32 = 0.01;
 
 /// A hairstyle as written in JSON. Lengths in metres, angles in degrees (`*_deg`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -143,11 +153,9 @@ pub struct CurlSpec {
 /// Why a hairstyle could not be loaded.
 #[derive(Debug, thiserror::Error)]
 pub enum HairstyleError {
-    #[error("{file}: cannot read: {source}")]
-    Io {
-        file: String,
-        source: std::io::Error,
-    },
+    /// The file could not be read (missing, not a regular file, over [`MAX_FILE_BYTES`]).
+    #[error("{file}: {error}")]
+    Io { file: String, error: ReadError },
     #[error("{file}: field `{field}`: {message}")]
     Parse {
         file: String,
@@ -163,14 +171,28 @@ pub enum HairstyleError {
 }
 
 impl Hairstyle {
-    /// Reads and validates a hairstyle file.
+    /// Reads and validates a hairstyle file (at most [`MAX_FILE_BYTES`], UTF-8, a leading
+    /// byte-order mark is skipped).
     pub fn load(path: &Path) -> Result<Self, HairstyleError> {
         let file = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|source| HairstyleError::Io {
-            file: file.clone(),
-            source,
+        let bytes =
+            input::read_capped(path, MAX_FILE_BYTES, "a hairstyle file").map_err(|error| {
+                HairstyleError::Io {
+                    file: file.clone(),
+                    error,
+                }
+            })?;
+        Self::from_bytes(&bytes, &file)
+    }
+
+    /// Parses and validates the bytes of a hairstyle file; `file` names it in errors.
+    pub fn from_bytes(bytes: &[u8], file: &str) -> Result<Self, HairstyleError> {
+        let text = input::json::decode_text(bytes).map_err(|e| HairstyleError::Parse {
+            file: file.to_string(),
+            field: e.field,
+            message: e.message,
         })?;
-        Self::from_json(&text, &file)
+        Self::from_json(text, file)
     }
 
     /// The embedded default (`smooth`).
@@ -183,20 +205,15 @@ impl Hairstyle {
         Self::from_json(CURLY_JSON, "<embedded curly.json>").expect("embedded hairstyle is valid")
     }
 
-    /// Parses and validates JSON text; `file` names the source in errors.
+    /// Parses and validates JSON text; `file` names the source in errors. Parsing is strict
+    /// ([`input::json::from_str`]): no array for an object, no number beyond `f32`, no text
+    /// after the object.
     pub fn from_json(text: &str, file: &str) -> Result<Self, HairstyleError> {
-        let de = &mut serde_json::Deserializer::from_str(text);
-        let style: Hairstyle = serde_path_to_error::deserialize(de).map_err(|e| {
-            let field = e.path().to_string();
-            HairstyleError::Parse {
-                file: file.to_string(),
-                field: if field == "." {
-                    "(top level)".into()
-                } else {
-                    field
-                },
-                message: e.into_inner().to_string(),
-            }
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        let style: Hairstyle = input::json::from_str(text).map_err(|e| HairstyleError::Parse {
+            file: file.to_string(),
+            field: e.field,
+            message: e.message,
         })?;
         style
             .validate()
@@ -232,7 +249,16 @@ impl Hairstyle {
             }
         }
         for (i, r) in self.head.radii_m.iter().enumerate() {
-            in_range(&format!("head.radii_m[{i}]"), *r, 0.0, 1.0, true)?;
+            if !(r.is_finite() && (MIN_HEAD_RADIUS_M..=1.0).contains(r)) {
+                return bad(
+                    &format!("head.radii_m[{i}]"),
+                    format!(
+                        "must be a finite number in [{MIN_HEAD_RADIUS_M}, 1] metres (got {r}): the hair model \
+                         works at millimetres (1 mm collision margin, 2-8 mm wisp layers), so a \
+                         head needs at least 1 cm"
+                    ),
+                );
+            }
         }
         in_range(
             "scalp.max_polar_deg",
