@@ -168,6 +168,11 @@ impl Track {
     }
 
     /// The vec3 value (translation in metres, or scale) at `t_s`.
+    /// Key times in seconds (strictly increasing).
+    pub fn times_s(&self) -> &[f32] {
+        &self.times_s
+    }
+
     pub fn sample_vec3(&self, t_s: f32) -> Vec3 {
         self.sample_raw(t_s, false).truncate()
     }
