@@ -23,6 +23,7 @@
 //! - A directional light travels along `L`; the map's X axis is `L`.
 //! - Colours are linear RGB until the PNG encoder converts to 8-bit sRGB.
 
+pub mod budget;
 pub mod fiber;
 pub mod frame;
 pub mod hairstyle;

@@ -53,6 +53,39 @@ fn median(v: &mut [f64]) -> f64 {
 
 pub fn run(args: BenchArgs) -> Result<(), AppError> {
     let (style, motion, config) = args.scene.resolve()?;
+    if let Some(&n) = args
+        .threads_list
+        .iter()
+        .find(|&&n| n as usize > super::max_threads())
+    {
+        return Err(AppError::input(anyhow::anyhow!(
+            "--threads-list: {n} threads is more than {} per core ({} here), which only measures oversubscription",
+            super::THREADS_PER_CORE,
+            super::max_threads()
+        )));
+    }
+    // The clip loops: a time beyond one loop is wrapped into it (as `render --start-s`).
+    let at_s =
+        super::render_cmd::wrapped_start_s(args.at_s as f64, motion.duration_s(), motion.speed()).0;
+    // The largest map of the speed-against-error sweep, and the scene's own.
+    let plan = wisp::budget::RunPlan {
+        frame_interval_s: 1.0 / 30.0,
+        warm_up_s: at_s,
+        export_png: false,
+    };
+    for map_res in args
+        .map_res_list
+        .iter()
+        .copied()
+        .map(Some)
+        .chain([config.map_res])
+    {
+        let config = wisp::frame::EngineConfig {
+            map_res,
+            ..config.clone()
+        };
+        args.scene.check_budget(&style, &motion, &config, &plan)?;
+    }
     let mut json = serde_json::Map::new();
     println!(
         "wisp bench: {} ({} strands, {} segments), {}x{} px, {} frames of \"{}\"",
@@ -166,8 +199,8 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
 
     // 3. Speed against error over map resolutions, against the grid-free reference.
     let mut engine = Engine::new(style.clone(), motion.clone(), config.clone());
-    engine.run_up_to(args.at_s as f64);
-    engine.frame(args.at_s as f64);
+    engine.run_up_to(at_s);
+    engine.frame(at_s);
     let eye = engine.camera().eye();
     let span = MapGeometry::span_m(style.max_length_m(), style.head_size_m());
     let h = style.strand_spacing_m();
@@ -210,7 +243,7 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         "\nspeed against error: map build + shading of {} vertices at t = {} s, against the grid-free reference \
          (Gaussian fibre spread h = {:.2} mm, {:.0} ms); the scene's own choice is N = {}:",
         positions.len(),
-        args.at_s,
+        at_s,
         h * 1e3,
         reference_ms,
         engine.map_geometry().n

@@ -28,6 +28,12 @@ pub struct PlayArgs {
 
 pub fn run(args: PlayArgs) -> Result<(), AppError> {
     let (style, motion, config) = args.scene.resolve()?;
+    let plan = wisp::budget::RunPlan {
+        frame_interval_s: 1.0 / 60.0,
+        warm_up_s: 0.0,
+        export_png: args.screenshot.is_some(),
+    };
+    args.scene.check_budget(&style, &motion, &config, &plan)?;
     let (w, h) = (config.width as usize, config.height as usize);
     let mut window = Window::new("wisp", w, h, WindowOptions::default()).map_err(|e| {
         AppError::other(anyhow::anyhow!(

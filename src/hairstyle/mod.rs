@@ -28,6 +28,13 @@ pub const MAX_WISPS: u32 = 100_000;
 pub const MAX_STRANDS: u64 = 2_000_000;
 pub const MAX_RENDER_POINTS: u64 = 40_000_000;
 pub const MAX_GUIDE_LINKS: u32 = 256;
+/// Smallest scalp polar angle in degrees. Roots come from a Fibonacci lattice grown until the
+/// scalp cap holds enough points; a cap of 5° is 0.19% of the sphere (100,000 wisps need a
+/// lattice of about 50 M points, a few seconds), while 1e-30° never held one (a hang).
+pub const MIN_SCALP_POLAR_DEG: f32 = 5.0;
+/// Shortest wave or curl period in metres. Phases are 2π·s / period: a denormal period made
+/// them infinite and the strands NaN (blank frames); real curls are 5 mm and longer.
+pub const MIN_PERIOD_M: f32 = 0.001;
 /// Largest hairstyle file read, in bytes (a hairstyle is a few dozen numbers; the presets are
 /// about 1 KB).
 pub const MAX_FILE_BYTES: u64 = 1 << 20;
@@ -85,9 +92,9 @@ pub struct HeadSpec {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ScalpSpec {
-    /// Largest polar angle of a root at the back and sides, degrees in (0, 150].
+    /// Largest polar angle of a root at the back and sides, degrees in [5, 150].
     pub max_polar_deg: f32,
-    /// Largest polar angle of a root at the front (hairline), degrees in (0, max_polar_deg].
+    /// Largest polar angle of a root at the front (hairline), degrees in [5, max_polar_deg].
     pub front_polar_deg: f32,
 }
 
@@ -117,7 +124,7 @@ pub struct GuideSpec {
     /// Wave amplitude of the guides' rest shape in metres (kept by bending stiffness), >= 0.
     #[serde(default)]
     pub wave_amplitude_m: f32,
-    /// Wave period along the guide in metres (used when the amplitude is > 0), > 0.
+    /// Wave period along the guide in metres (used when the amplitude is > 0), in [0.001, 10].
     #[serde(default = "default_wave_period")]
     pub wave_period_m: f32,
 }
@@ -145,7 +152,7 @@ pub struct CurlSpec {
     /// Helix radius in metres (0: straight hair).
     #[serde(default)]
     pub radius_m: f32,
-    /// Helix period along the strand in metres (> 0 when the radius is > 0).
+    /// Helix period along the strand in metres (in [0.001, 10] when the radius is > 0).
     #[serde(default)]
     pub period_m: f32,
 }
@@ -263,16 +270,16 @@ impl Hairstyle {
         in_range(
             "scalp.max_polar_deg",
             self.scalp.max_polar_deg,
-            0.0,
+            MIN_SCALP_POLAR_DEG,
             150.0,
-            true,
+            false,
         )?;
         in_range(
             "scalp.front_polar_deg",
             self.scalp.front_polar_deg,
-            0.0,
-            self.scalp.max_polar_deg.max(0.0),
-            true,
+            MIN_SCALP_POLAR_DEG,
+            self.scalp.max_polar_deg.max(MIN_SCALP_POLAR_DEG),
+            false,
         )?;
         if self.wisps.count == 0 || self.wisps.count > MAX_WISPS {
             return bad(
@@ -320,9 +327,9 @@ impl Hairstyle {
         in_range(
             "guides.wave_period_m",
             self.guides.wave_period_m,
-            0.0,
+            MIN_PERIOD_M,
             10.0,
-            true,
+            false,
         )?;
         if self.strands.points < 2 {
             return bad(
@@ -349,7 +356,13 @@ impl Hairstyle {
         )?;
         in_range("curl.radius_m", self.curl.radius_m, 0.0, 0.1, false)?;
         if self.curl.radius_m > 0.0 {
-            in_range("curl.period_m", self.curl.period_m, 0.0, 10.0, true)?;
+            in_range(
+                "curl.period_m",
+                self.curl.period_m,
+                MIN_PERIOD_M,
+                10.0,
+                false,
+            )?;
         }
         self.fiber
             .validate()

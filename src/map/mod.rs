@@ -43,6 +43,7 @@
 //! A slab of hair perpendicular to L then reads exactly 1 in front of it and exactly the
 //! analytic attenuation behind it (`tests/map_slab.rs`).
 
+mod budget;
 mod build;
 mod lookup;
 pub mod reference;

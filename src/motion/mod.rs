@@ -373,6 +373,18 @@ impl Motion {
         }
     }
 
+    /// Heap bytes held: the key times and values of the evaluated nodes' tracks.
+    pub fn held_bytes(&self) -> u64 {
+        let tracks = self
+            .nodes
+            .iter()
+            .flat_map(|n| [&n.translation, &n.rotation, &n.scale])
+            .flatten()
+            .map(|t| t.held_bytes())
+            .sum::<u64>();
+        tracks + (self.nodes.len() * size_of::<ChainNode>()) as u64
+    }
+
     /// Clip length in seconds of clip time (last key − first key; 0 for [`Motion::still`]).
     pub fn duration_s(&self) -> f32 {
         self.duration_s
