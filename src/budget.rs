@@ -237,6 +237,46 @@ pub fn map_geometry(style: &Hairstyle, config: &EngineConfig) -> MapGeometry {
     }
 }
 
+/// When the map resolution is automatic (`config.map_res` is `None`) and the run is over the
+/// memory budget, the largest resolution below the automatic one that brings it within the
+/// budget: `Some((automatic N, chosen N))`. The map's worst case grows as N³ (its per-column
+/// slot tables), so a scene whose automatic cells are very fine (a 1 cm head: strands 0.1 mm
+/// apart at the scalp, N = 930) is better drawn with coarser cells than refused. `None` when
+/// the resolution is given, the run already fits, or no resolution down to 8 fits.
+pub fn fit_map_resolution(
+    style: &Hairstyle,
+    motion: &Motion,
+    config: &EngineConfig,
+    plan: &RunPlan,
+    budget: &Budget,
+) -> Option<(u32, u32)> {
+    if config.map_res.is_some() {
+        return None;
+    }
+    let fits = |n: u32| {
+        let c = EngineConfig {
+            map_res: Some(n),
+            ..config.clone()
+        };
+        estimate(style, motion, &c, plan).memory_bytes() <= budget.memory_bytes
+    };
+    let auto = map_geometry(style, config).n;
+    if estimate(style, motion, config, plan).memory_bytes() <= budget.memory_bytes || !fits(8) {
+        return None;
+    }
+    // The estimate grows with N: binary search for the largest N that fits.
+    let (mut lo, mut hi) = (8u32, auto);
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        if fits(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Some((auto, lo))
+}
+
 /// Memory and work of a run (see the module doc). Pure arithmetic: nothing is allocated
 /// beyond the returned lists.
 pub fn estimate(

@@ -53,6 +53,9 @@ fn median(v: &mut [f64]) -> f64 {
 
 pub fn run(args: BenchArgs) -> Result<(), AppError> {
     let (style, motion, config) = args.scene.resolve()?;
+    if let Some(path) = &args.json {
+        super::check_output_file("--json", path)?;
+    }
     if let Some(&n) = args
         .threads_list
         .iter()
@@ -67,25 +70,24 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
     // The clip loops: a time beyond one loop is wrapped into it (as `render --start-s`).
     let at_s =
         super::render_cmd::wrapped_start_s(args.at_s as f64, motion.duration_s(), motion.speed()).0;
-    // The largest map of the speed-against-error sweep, and the scene's own.
+    // Every map of the speed-against-error sweep, and the scene's own (an automatic
+    // resolution is lowered to fit, with a warning).
     let plan = wisp::budget::RunPlan {
         frame_interval_s: 1.0 / 30.0,
         warm_up_s: at_s,
         export_png: false,
     };
-    for map_res in args
-        .map_res_list
-        .iter()
-        .copied()
-        .map(Some)
-        .chain([config.map_res])
-    {
-        let config = wisp::frame::EngineConfig {
-            map_res,
+    for &n in &args.map_res_list {
+        let mut sweep = wisp::frame::EngineConfig {
+            map_res: Some(n),
             ..config.clone()
         };
-        args.scene.check_budget(&style, &motion, &config, &plan)?;
+        args.scene
+            .check_budget(&style, &motion, &mut sweep, &plan)?;
     }
+    let mut config = config;
+    args.scene
+        .check_budget(&style, &motion, &mut config, &plan)?;
     let mut json = serde_json::Map::new();
     println!(
         "wisp bench: {} ({} strands, {} segments), {}x{} px, {} frames of \"{}\"",
@@ -295,7 +297,7 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         let text = serde_json::to_string_pretty(&serde_json::Value::Object(json))
             .map_err(AppError::other)?;
         std::fs::write(path, text)
-            .map_err(|e| AppError::other(anyhow::anyhow!("{}: {e}", path.display())))?;
+            .map_err(|e| AppError::input(anyhow::anyhow!("--json {}: {e}", path.display())))?;
     }
     Ok(())
 }

@@ -210,14 +210,25 @@ impl SceneArgs {
         }
     }
 
-    /// Refuses a run over the budget (exit code 2), before the engine allocates.
+    /// Refuses a run over the budget (exit code 2), before the engine allocates. An automatic
+    /// map resolution is lowered first, with a warning, when that brings the run within the
+    /// memory budget.
     pub fn check_budget(
         &self,
         style: &Hairstyle,
         motion: &Motion,
-        config: &EngineConfig,
+        config: &mut EngineConfig,
         plan: &RunPlan,
     ) -> Result<(), AppError> {
+        if let Some((auto, n)) =
+            wisp::budget::fit_map_resolution(style, motion, config, plan, &self.budget())
+        {
+            eprintln!(
+                "wisp: warning: the automatic map resolution {auto} (cells of twice the strand spacing at the scalp) could need more memory than --max-memory-gb {}; using {n}",
+                self.max_memory_gb
+            );
+            config.map_res = Some(n);
+        }
         wisp::budget::estimate(style, motion, config, plan)
             .check(&self.budget())
             .map_err(|e| {
@@ -248,6 +259,28 @@ pub fn load_hairstyle(arg: &str) -> Result<Hairstyle, AppError> {
         )),
         e => AppError::input(e),
     })
+}
+
+/// Checks, before any work, that `path` can be an output file: not a directory, in a folder
+/// that exists. `flag` names the option in the message.
+pub fn check_output_file(flag: &str, path: &std::path::Path) -> Result<(), AppError> {
+    let shown = path.display();
+    if path.is_dir() {
+        return Err(AppError::input(anyhow::anyhow!(
+            "{flag} {shown}: is a directory, not a file name"
+        )));
+    }
+    let parent = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => std::path::Path::new("."),
+    };
+    if !parent.is_dir() {
+        return Err(AppError::input(anyhow::anyhow!(
+            "{flag} {shown}: the folder {} does not exist",
+            parent.display()
+        )));
+    }
+    Ok(())
 }
 
 /// A budget: a finite number > 0, at most 10⁶.
@@ -298,6 +331,19 @@ pub fn parse_positive_f32(s: &str) -> Result<f32, String> {
         Ok(v)
     } else {
         Err(format!("must be a finite number > 0 (got {v})"))
+    }
+}
+
+/// A number for a validator to judge (NaN and infinities pass through), refusing only a finite
+/// number f32 cannot hold, which would otherwise arrive as "inf".
+pub fn parse_f32_as_written(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v.abs() > f32::MAX as f64 => Err(format!(
+            "{} is outside the range of a 32-bit float (about ±3.4e38)",
+            s.trim()
+        )),
+        Ok(v) => Ok(v as f32),
+        Err(_) => Err(format!("`{s}` is not a number")),
     }
 }
 

@@ -66,7 +66,7 @@ pub fn wrapped_start_s(start_s: f64, duration_s: f32, speed: f32) -> (f64, bool)
 }
 
 pub fn run(args: RenderArgs) -> Result<(), AppError> {
-    let (style, motion, config) = args.scene.resolve()?;
+    let (style, motion, mut config) = args.scene.resolve()?;
     let still = args.scene.still;
     let frames = args.frames.unwrap_or_else(|| {
         if still {
@@ -92,7 +92,8 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
         warm_up_s: start_s,
         export_png: true,
     };
-    args.scene.check_budget(&style, &motion, &config, &plan)?;
+    args.scene
+        .check_budget(&style, &motion, &mut config, &plan)?;
     prepare_output_dir(&args.out, frames, args.quiet)?;
     let name = style.name.clone();
     let started = std::time::Instant::now();

@@ -137,7 +137,11 @@ fn check_shape(given: &Value, kept: &Value, path: &mut String) -> Result<(), Jso
         // non-finite floats as null).
         (Value::Number(n), Value::Null) => Err(here(
             path,
-            format!("{n} is outside the range of a 32-bit float (about ±3.4e38)"),
+            format!(
+                "{} is outside the range of a 32-bit float (about ±3.4e38)",
+                n.as_f64()
+                    .map_or_else(|| n.to_string(), |f| format!("{f:e}"))
+            ),
         )),
         _ => Ok(()),
     }

@@ -163,10 +163,25 @@ fn describe(e: gltf::Error) -> String {
     }
 }
 
-/// What the gltf crate's validation leaves unchecked and its accessors then unwrap: each
-/// animation channel's target node and path.
-fn check_channel_targets(root: &gltf::json::Root) -> Result<(), String> {
+/// Indices the gltf crate's validation trusts (it indexes `accessors` with a primitive's
+/// POSITION attribute before checking it, and panics) or never checks (each animation channel's
+/// target node and path, which its accessors then unwrap). Run before the crate's validation.
+fn check_trusted_indices(root: &gltf::json::Root) -> Result<(), String> {
     let mut problems = Vec::new();
+    let position = Checked::Valid(gltf::json::mesh::Semantic::Positions);
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            if let Some(acc) = prim.attributes.get(&position)
+                && acc.value() >= root.accessors.len()
+            {
+                problems.push(format!(
+                    "meshes[{m}].primitives[{p}].attributes.POSITION: accessor {} is out of range (the file has {} accessors)",
+                    acc.value(),
+                    root.accessors.len()
+                ));
+            }
+        }
+    }
     for (a, anim) in root.animations.iter().enumerate() {
         for (c, ch) in anim.channels.iter().enumerate() {
             let node = ch.target.node.value();
@@ -232,8 +247,8 @@ pub(crate) fn parse(
     }
     let root =
         gltf::json::Root::from_slice(json).map_err(|e| invalid(file, format!("JSON: {e}")))?;
+    check_trusted_indices(&root).map_err(|reason| invalid(file, reason))?;
     let doc = gltf::Document::from_json(root).map_err(|e| invalid(file, describe(e)))?;
-    check_channel_targets(doc.as_json()).map_err(|reason| invalid(file, reason))?;
     let mut buffers = Vec::new();
     let mut external_bytes = 0u64;
     for buffer in doc.buffers() {
