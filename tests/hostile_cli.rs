@@ -450,6 +450,22 @@ fn a_second_export_removes_what_the_first_left() {
     assert_eq!(&png[1..4], b"PNG", "frame 1 was rewritten");
 }
 
+#[test]
+fn a_directory_named_like_a_frame_is_reported_before_the_work() {
+    let dir = scratch_dir("hostile-cli-in-the-way");
+    let out = dir.join("frames");
+    std::fs::create_dir_all(out.join("frame_00000.png")).unwrap();
+    let r = wisp(
+        &quick("", &out)
+            .iter()
+            .map(String::as_str)
+            .collect::<Vec<_>>(),
+        &dir,
+    );
+    assert_eq!(r.code, Some(2), "{}", r.stderr);
+    assert!(r.says("frame_00000.png is in the way"), "{}", r.stderr);
+}
+
 /// Generated inputs through the binary: a sample of `hostile_loaders`' mutated hairstyles and
 /// glTF files, rendered (when accepted) as one small frame.
 #[test]

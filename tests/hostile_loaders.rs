@@ -125,3 +125,153 @@ fn mutated_inputs_never_panic_hang_or_balloon() {
             .join("\n")
     );
 }
+
+/// What an accepted hairstyle promises further down the pipeline: a small frame of the dance
+/// renders with every pixel finite, no render point skipped as non-finite, and hair or head
+/// drawn (not a blank frame). Generated hairstyles are loaded until 24 accepted ones within a
+/// small budget have rendered (`WISP_HOSTILE_RENDERS=<n>` for more).
+#[test]
+fn accepted_hairstyles_render_finite_nonblank_frames() {
+    use wisp::budget::{Budget, RunPlan, estimate, fit_map_resolution};
+    use wisp::frame::{Engine, EngineConfig};
+    use wisp::hairstyle::Hairstyle;
+    use wisp::motion::Motion;
+
+    let format = &formats::all()[0];
+    let small = Budget {
+        memory_bytes: 400_000_000,
+        work_cpu_s: 3.0,
+    };
+    let plan = RunPlan {
+        export_png: false,
+        ..RunPlan::default()
+    };
+    let wanted = env_u64("WISP_HOSTILE_RENDERS").unwrap_or(24) as usize;
+    let (mut rendered, mut heavy) = (0usize, 0usize);
+    let mut failures = Vec::new();
+    for seed in 0xF11_0008u64..0xF11_0008 + 1_000_000 {
+        if rendered == wanted {
+            break;
+        }
+        let mut rng = Rng::new(seed);
+        let (case, what) = formats::mutated(format, &mut rng);
+        let Ok(style) = Hairstyle::from_bytes(&case.files[0].1, "h.json") else {
+            continue;
+        };
+        let motion = Motion::default_dance();
+        let mut config = EngineConfig {
+            width: 48,
+            height: 48,
+            settle_s: 0.2,
+            ..EngineConfig::default()
+        };
+        if let Some((_, n)) = fit_map_resolution(&style, &motion, &config, &plan, &small) {
+            config.map_res = Some(n);
+        }
+        if estimate(&style, &motion, &config, &plan)
+            .check(&small)
+            .is_err()
+        {
+            heavy += 1;
+            continue;
+        }
+        let outcome = run_bounded(
+            move || {
+                let background = config.background;
+                let mut engine = Engine::new(style, motion, config);
+                engine.frame(0.3);
+                let fb = engine.framebuffer();
+                if let Some(c) = fb.color.iter().find(|c| !c.is_finite()) {
+                    return Err(format!("a pixel is {c}"));
+                }
+                let stats = engine.map_stats();
+                if stats.skipped > 0 {
+                    return Err(format!("{} render points are not finite", stats.skipped));
+                }
+                if fb.color.iter().all(|c| *c == background) {
+                    return Err("the frame is blank".into());
+                }
+                Ok(())
+            },
+            Duration::from_secs(120),
+        );
+        rendered += 1;
+        let problem = match outcome {
+            Err(e) => Some(e),
+            Ok(r) => r.value.err(),
+        };
+        if let Some(p) = problem {
+            failures.push(format!("seed {seed} ({}): {p}", what.join("; ")));
+        }
+    }
+    println!("rendered {rendered} accepted hairstyles; {heavy} over the small budget skipped");
+    assert_eq!(rendered, wanted);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The same promise for accepted glTF motions (mutated dance clips, odd options included):
+/// the smooth preset rides them through two small frames with every pixel finite.
+#[test]
+fn accepted_motions_render_finite_nonblank_frames() {
+    use wisp::frame::{Engine, EngineConfig};
+    use wisp::hairstyle::Hairstyle;
+    use wisp::motion::Motion;
+
+    let format = &formats::all()[1];
+    let wanted = env_u64("WISP_HOSTILE_RENDERS").map_or(8, |n| n as usize);
+    let mut rendered = 0usize;
+    let mut failures = Vec::new();
+    for seed in 0xF12_0008u64..0xF12_0008 + 1_000_000 {
+        if rendered == wanted {
+            break;
+        }
+        let mut rng = Rng::new(seed);
+        let (case, what) = formats::mutated(format, &mut rng);
+        // The dance seed only (RobotExpressive's meshes make each load slower).
+        if case.files[0].1.len() > 100_000 {
+            continue;
+        }
+        let Ok(motion) = Motion::from_glb_bytes(&case.files[0].1, "m.glb", &Default::default())
+        else {
+            continue;
+        };
+        let outcome = run_bounded(
+            move || {
+                let config = EngineConfig {
+                    width: 48,
+                    height: 48,
+                    settle_s: 0.2,
+                    ..EngineConfig::default()
+                };
+                let background = config.background;
+                let mut engine = Engine::new(Hairstyle::default_smooth(), motion, config);
+                for t in [0.3, 2.1] {
+                    engine.frame(t);
+                    let fb = engine.framebuffer();
+                    if let Some(c) = fb.color.iter().find(|c| !c.is_finite()) {
+                        return Err(format!("at {t} s a pixel is {c}"));
+                    }
+                    if engine.map_stats().skipped > 0 {
+                        return Err(format!("at {t} s render points are not finite"));
+                    }
+                    if fb.color.iter().all(|c| *c == background) {
+                        return Err(format!("the frame at {t} s is blank"));
+                    }
+                }
+                Ok(())
+            },
+            Duration::from_secs(120),
+        );
+        rendered += 1;
+        let problem = match outcome {
+            Err(e) => Some(e),
+            Ok(r) => r.value.err(),
+        };
+        if let Some(p) = problem {
+            failures.push(format!("seed {seed} ({}): {p}", what.join("; ")));
+        }
+    }
+    println!("rendered {rendered} accepted motions");
+    assert_eq!(rendered, wanted);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

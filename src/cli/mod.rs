@@ -283,6 +283,14 @@ pub fn check_output_file(flag: &str, path: &std::path::Path) -> Result<(), AppEr
     Ok(())
 }
 
+/// A name from an input file (hairstyle, clip, joint) safe to print on a terminal: control
+/// characters (an escape sequence could clear the screen) become `?`.
+pub fn printable(name: &str) -> String {
+    name.chars()
+        .map(|c| if c.is_control() { '?' } else { c })
+        .collect()
+}
+
 /// A budget: a finite number > 0, at most 10⁶.
 pub fn parse_budget(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
@@ -374,7 +382,9 @@ pub fn parse_direction(s: &str) -> Result<Vec3, String> {
     if v.length_squared() < 1e-12 {
         return Err("the direction must not be zero".into());
     }
-    Ok(v.normalize())
+    // Scaled by its largest component first: 1e30,1e30,1e30 squares to infinity and
+    // normalised to zero.
+    Ok((v / v.abs().max_element()).normalize())
 }
 
 /// An error with its exit code: 2 for bad input, 1 otherwise.
@@ -437,5 +447,49 @@ pub fn main() -> ExitCode {
             eprintln!("wisp: error: {:#}", e.error);
             ExitCode::from(e.code)
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn huge_directions_normalise_without_overflow() {
+        let d = parse_direction("1e30,1e30,1e30").unwrap();
+        let third = 1.0 / 3f32.sqrt();
+        assert!((d - Vec3::splat(third)).abs().max_element() < 1e-6, "{d}");
+        assert!(parse_direction("1e-30,0,0").is_err());
+        assert!(
+            parse_direction("1e39,0,0")
+                .unwrap_err()
+                .contains("outside the range")
+        );
+    }
+
+    #[test]
+    fn names_from_files_print_without_control_characters() {
+        assert_eq!(printable("a\u{1b}[2Jb\n"), "a?[2Jb?");
+        assert_eq!(printable("Tête"), "Tête");
+    }
+
+    #[test]
+    fn numbers_beyond_f32_are_reported_as_written() {
+        assert!(
+            parse_finite_f32("1e308")
+                .unwrap_err()
+                .starts_with("1e308 is outside")
+        );
+        assert!(parse_f32_as_written("nan").unwrap().is_nan());
+        assert!(
+            parse_finite_f64("1e400")
+                .unwrap_err()
+                .starts_with("1e400 is outside")
+        );
+        assert!(
+            parse_finite_f64("inf")
+                .unwrap_err()
+                .contains("must be finite")
+        );
     }
 }

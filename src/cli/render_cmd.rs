@@ -104,11 +104,11 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
         let g = engine.map_geometry();
         eprintln!(
             "wisp: {} ({} wisps, {} strands, {} segments), clip \"{}\" {:.2} s, map {}^3 cells of {:.1} mm, {}x{} px, set-up {:.2} s",
-            name,
+            super::printable(&name),
             engine.layout.wisp_guides.len(),
             engine.layout.count(),
             engine.layout.segments(),
-            engine.motion.clip_name(),
+            super::printable(engine.motion.clip_name()),
             engine.motion.duration_s(),
             g.n,
             g.ds_m * 1e3,
@@ -234,10 +234,16 @@ pub fn prepare_output_dir(dir: &Path, frames: u32, quiet: bool) -> Result<(), Ap
         let Some((index, temporary)) = frame_index(name) else {
             continue;
         };
+        let is_file = entry.file_type().is_ok_and(|t| t.is_file());
         if !temporary && index < frames {
+            if !is_file && !entry.path().is_file() {
+                return Err(AppError::input(anyhow::anyhow!(
+                    "--out {shown}: {name} is in the way (not a file, so this run cannot replace it)"
+                )));
+            }
             continue;
         }
-        if !entry.file_type().is_ok_and(|t| t.is_file()) {
+        if !is_file {
             continue;
         }
         std::fs::remove_file(entry.path())
