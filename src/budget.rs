@@ -181,8 +181,8 @@ impl Estimate {
             });
         }
         let total_cpu_s = self.work_cpu_s();
-        // `!(a <= b)` also refuses a NaN estimate.
-        if !(total_cpu_s <= budget.work_cpu_s)
+        // A NaN estimate is refused too.
+        if (total_cpu_s.is_nan() || total_cpu_s > budget.work_cpu_s)
             && let Some(p) = self.work.iter().max_by(|a, b| a.cpu_s.total_cmp(&b.cpu_s))
         {
             return Err(BudgetError::Work {
@@ -214,7 +214,7 @@ fn grouped(n: u64) -> String {
     let digits = n.to_string();
     let mut out = String::new();
     for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
             out.push(',');
         }
         out.push(c);

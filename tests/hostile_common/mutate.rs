@@ -178,17 +178,20 @@ fn hostile_value(rng: &mut Rng, old: &Value) -> Value {
             ];
             rng.pick(&choices).clone()
         }
-        2 => raw(*rng.pick(&[
-            "NaN",
-            "Infinity",
-            "-Infinity",
-            "1e999",
-            "-1e999",
-            "0x10",
-            "01",
-            "1.",
-            "18446744073709551616",
-        ])),
+        2 => {
+            let tokens: [&str; 9] = [
+                "NaN",
+                "Infinity",
+                "-Infinity",
+                "1e999",
+                "-1e999",
+                "0x10",
+                "01",
+                "1.",
+                "18446744073709551616",
+            ];
+            raw(tokens[rng.below(tokens.len())])
+        }
         3 => Value::String(
             (*rng.pick(&[
                 "",
@@ -255,7 +258,10 @@ fn typed_value(rng: &mut Rng, old: &Value) -> Value {
         }
         Value::Number(_) => {
             if rng.chance(0.3) {
-                raw(*rng.pick(&["NaN", "Infinity", "-Infinity", "1e999"]))
+                {
+                    let tokens: [&str; 4] = ["NaN", "Infinity", "-Infinity", "1e999"];
+                    raw(tokens[rng.below(tokens.len())])
+                }
             } else {
                 num(*rng.pick(&[0.0, -0.0, -1.0, 1e30, -1e30, 1e308, 3.5e38, 1e-45, 1e-320]))
             }
@@ -459,11 +465,11 @@ pub fn split_glb(b: &[u8]) -> Option<(Value, Vec<u8>)> {
 /// A GLB of `json` text and a binary chunk, with correct lengths.
 pub fn make_glb(json: &str, bin: &[u8]) -> Vec<u8> {
     let mut j = json.as_bytes().to_vec();
-    while j.len() % 4 != 0 {
+    while !j.len().is_multiple_of(4) {
         j.push(b' ');
     }
     let mut bin = bin.to_vec();
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let total = 12 + 8 + j.len() + if bin.is_empty() { 0 } else { 8 + bin.len() };
