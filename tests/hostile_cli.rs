@@ -515,3 +515,102 @@ fn generated_inputs_through_the_binary() {
     assert!(runs >= 48);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// Generated command lines: random subsets of the render flags with hostile and edge values,
+/// under a 1 GB and 1 CPU-minute budget. Each ends with 0 or 2, never a panic or a hang.
+#[test]
+fn generated_flag_combinations() {
+    let dir = scratch_dir("hostile-cli-generated-flags");
+    let dance = Path::new(env!("CARGO_MANIFEST_DIR")).join("animations/dance.glb");
+    let dance = dance.display().to_string();
+    let table: Vec<(&str, Vec<&str>)> = vec![
+        ("--frames", vec!["0", "1", "2", "100001", "-1", "1e3", "x"]),
+        (
+            "--fps",
+            vec!["0", "-1", "1e-30", "0.001", "1000", "1001", "nan", "inf"],
+        ),
+        (
+            "--start-s",
+            vec!["-1e300", "1e300", "nan", "-0", "1e12", "3.5"],
+        ),
+        (
+            "--speed",
+            vec!["-inf", "0", "1e-30", "1000", "1e308", "-1", "0.25"],
+        ),
+        (
+            "--width",
+            vec!["15", "16", "8192", "8193", "-16", "1e3", "64"],
+        ),
+        ("--height", vec!["15", "16", "8192", "8193", "-16", "48"]),
+        ("--map-res", vec!["3", "4", "1024", "1025", "33"]),
+        (
+            "--light-dir",
+            vec![
+                "0,0,0",
+                "1e30,1e30,1e30",
+                "1,nan,0",
+                "-1,-1,-1",
+                "1,2",
+                "a,b,c",
+            ],
+        ),
+        (
+            "--shading",
+            vec!["dual", "single", "kajiya-kay", "phong", ""],
+        ),
+        (
+            "--hairstyle",
+            vec!["smooth", "curly", "wavy", "", "/dev/null"],
+        ),
+        ("--animation", vec!["/dev/zero", dance.as_str(), ""]),
+        ("--clip", vec!["Dance", "", "#0"]),
+        ("--head-joint", vec!["0", "Head", "99999999999999999999"]),
+    ];
+    let switches = ["--still", "--no-sim", "--no-self-collision"];
+    let runs = std::env::var("WISP_HOSTILE_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(40u64);
+    let (mut failures, mut accepted) = (Vec::new(), 0);
+    for i in 0..runs {
+        let seed = 0xF1A6_0008 + i;
+        let mut rng = Rng::new(seed);
+        let mut a = args("render --max-memory-gb 1 --max-work-cpu-min 1 --quiet");
+        for (flag, values) in &table {
+            if rng.chance(0.25) {
+                a.push(flag.to_string());
+                a.push(rng.pick(values).to_string());
+            }
+        }
+        for s in switches {
+            if rng.chance(0.2) {
+                a.push(s.to_string());
+            }
+        }
+        // Keep accepted runs small unless the generator chose a size.
+        if !a.iter().any(|x| x == "--frames") {
+            a.extend(args("--frames 1"));
+        }
+        if !a.iter().any(|x| x == "--width") {
+            a.extend(args("--width 32"));
+        }
+        if !a.iter().any(|x| x == "--height") {
+            a.extend(args("--height 32"));
+        }
+        a.push("--out".into());
+        a.push(dir.join("out").display().to_string());
+        let r = wisp(&a.iter().map(String::as_str).collect::<Vec<_>>(), &dir);
+        accepted += usize::from(r.code == Some(0));
+        if r.timed_out || r.says("panicked") || !matches!(r.code, Some(0) | Some(2)) {
+            failures.push(format!(
+                "seed {seed}: wisp {}: exit {:?}, timed out {}: {}",
+                a.join(" "),
+                r.code,
+                r.timed_out,
+                r.stderr.trim()
+            ));
+        }
+    }
+    println!("{runs} command lines, {accepted} accepted");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
