@@ -181,18 +181,7 @@ impl Engine {
         let pose = motion.sample(0.0);
         let sim = Simulator::new(&style.dynamics, &guides, radii);
         let state = SimState::at_rest(&guides, &colliders_of(&pose, radii), -config.settle_s);
-        let geom = match config.map_res {
-            Some(n) => MapGeometry::with_resolution(
-                MapGeometry::span_m(style.max_length_m(), style.head_size_m()),
-                n,
-            ),
-            None => MapGeometry::for_scene(
-                style.max_length_m(),
-                style.head_size_m(),
-                style.strand_spacing_m(),
-                style.strands.fibers_per_strand,
-            ),
-        };
+        let geom = map_geometry(&style, &config);
         // Replaced once the settled hair is framed (`place_camera`), before any render.
         let camera = Camera::look_at(
             Vec3::Z,
@@ -439,6 +428,21 @@ impl Engine {
                 self.config.height,
             );
         }
+    }
+}
+
+/// The map geometry an engine uses for `style` under `config`: `config.map_res` cells per axis
+/// over the span the hair needs, or sized from the scene (`MapGeometry::for_scene`).
+pub fn map_geometry(style: &Hairstyle, config: &EngineConfig) -> MapGeometry {
+    let span = MapGeometry::span_m(style.max_length_m(), style.head_size_m());
+    match config.map_res {
+        Some(n) => MapGeometry::with_resolution(span, n),
+        None => MapGeometry::for_scene(
+            style.max_length_m(),
+            style.head_size_m(),
+            style.strand_spacing_m(),
+            style.strands.fibers_per_strand,
+        ),
     }
 }
 

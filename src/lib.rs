@@ -25,10 +25,12 @@
 //! - Colours are linear RGB until the PNG encoder converts to 8-bit sRGB.
 
 pub mod accuracy;
+pub mod budget;
 pub mod export;
 pub mod fiber;
 pub mod frame;
 pub mod hairstyle;
+pub mod input;
 pub mod interp;
 pub mod map;
 pub mod motion;

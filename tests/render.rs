@@ -58,23 +58,37 @@ fn default_render_has_the_right_size_covers_the_frame_and_is_darker_away_from_th
     );
 
     // Vertex level: hair whose direction from the head centre faces the light against hair
-    // facing away; the far side is in the hair's own shadow and must be clearly darker.
+    // facing away. The far side is in the hair's (and the head's) shadow: almost no direct
+    // light reaches it, and it is clearly darker. Its luminance is not near 0: forward-
+    // scattered light crosses the hair to it (measured: direct fraction 0.055 against 0.002;
+    // luminance ratio 0.65, where the map that lit deep hair too brightly gave 0.55).
     let (mut lit, mut nl, mut dark, mut nd) = (0.0f64, 0usize, 0.0f64, 0usize);
+    let (mut lit_direct, mut dark_direct) = (0.0f64, 0.0f64);
     for (p, c) in engine.strands.positions.iter().zip(engine.colors()) {
         let facing = p.normalize_or_zero().dot(-light.normalize());
+        let direct = engine.map().light_at(*p).direct_fraction as f64;
         if facing > 0.5 {
             lit += luminance(*c) as f64;
+            lit_direct += direct;
             nl += 1;
         } else if facing < -0.5 {
             dark += luminance(*c) as f64;
+            dark_direct += direct;
             nd += 1;
         }
     }
     let (lit, dark) = (lit / nl as f64, dark / nd as f64);
-    println!("mean vertex luminance: lit side {lit:.4}, far side {dark:.4}");
+    let (lit_direct, dark_direct) = (lit_direct / nl as f64, dark_direct / nd as f64);
+    println!(
+        "mean vertex luminance: lit side {lit:.4}, far side {dark:.4}; direct fraction {lit_direct:.4} / {dark_direct:.4}"
+    );
     assert!(nl > 1000 && nd > 1000);
     assert!(
-        dark < 0.6 * lit,
+        dark_direct < 0.2 * lit_direct,
+        "far side direct light {dark_direct} not far below the lit side's {lit_direct}"
+    );
+    assert!(
+        dark < 0.8 * lit,
         "far side {dark} not clearly darker than lit side {lit}"
     );
 

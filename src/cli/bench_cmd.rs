@@ -50,6 +50,41 @@ fn median(v: &mut [f64]) -> f64 {
 
 pub fn run(args: BenchArgs) -> Result<(), AppError> {
     let (style, motion, config) = args.scene.resolve()?;
+    if let Some(path) = &args.json {
+        super::check_output_file("--json", path)?;
+    }
+    if let Some(&n) = args
+        .threads_list
+        .iter()
+        .find(|&&n| n as usize > super::max_threads())
+    {
+        return Err(AppError::input(anyhow::anyhow!(
+            "--threads-list: {n} threads is more than {} per core ({} here), which only measures oversubscription",
+            super::THREADS_PER_CORE,
+            super::max_threads()
+        )));
+    }
+    // The clip loops: a time beyond one loop is wrapped into it (as `render --start-s`).
+    let at_s =
+        super::render_cmd::wrapped_start_s(args.at_s as f64, motion.duration_s(), motion.speed()).0;
+    // Every map of the speed-against-error sweep, and the scene's own (an automatic
+    // resolution is lowered to fit, with a warning).
+    let plan = wisp::budget::RunPlan {
+        frame_interval_s: 1.0 / 30.0,
+        warm_up_s: at_s,
+        export_png: false,
+    };
+    for &n in &args.map_res_list {
+        let mut sweep = wisp::frame::EngineConfig {
+            map_res: Some(n),
+            ..config.clone()
+        };
+        args.scene
+            .check_budget(&style, &motion, &mut sweep, &plan)?;
+    }
+    let mut config = config;
+    args.scene
+        .check_budget(&style, &motion, &mut config, &plan)?;
     let mut json = serde_json::Map::new();
     println!(
         "wisp bench: {} ({} strands, {} segments), {}x{} px, {} frames of \"{}\"",
@@ -163,8 +198,8 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
 
     // 3. Speed against error over map resolutions, against the exact reference.
     let mut engine = Engine::new(style.clone(), motion.clone(), config.clone());
-    engine.run_up_to(args.at_s as f64);
-    engine.frame(args.at_s as f64);
+    engine.run_up_to(at_s);
+    engine.frame(at_s);
     let default_n = engine.map_geometry().n;
     let mut ns = args.map_res_list.clone();
     if !ns.contains(&default_n) {
@@ -178,7 +213,7 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         "\nspeed against error at t = {} s: map build + a lookup at all {} vertices, against the \
          exact reference (ray shooting through the placed fibres, 2,000 vertices, 128 rays each, \
          {:.0} ms; see ACCURACY.md); the scene's own choice is N = {default_n}:\n",
-        args.at_s,
+        at_s,
         engine.strands.positions.len(),
         reference_ms,
     );
@@ -202,7 +237,7 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         let text = serde_json::to_string_pretty(&serde_json::Value::Object(json))
             .map_err(AppError::other)?;
         std::fs::write(path, text)
-            .map_err(|e| AppError::other(anyhow::anyhow!("{}: {e}", path.display())))?;
+            .map_err(|e| AppError::input(anyhow::anyhow!("--json {}: {e}", path.display())))?;
     }
     Ok(())
 }

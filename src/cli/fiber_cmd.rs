@@ -36,35 +36,35 @@ pub struct FiberFlags {
     #[arg(long)]
     pub hairstyle: Option<PathBuf>,
     /// Index of refraction η, in (1, 4).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
     pub eta: Option<f32>,
     /// Absorption per unit radius, "R,G,B".
-    #[arg(long = "sigma-a")]
+    #[arg(long = "sigma-a", allow_hyphen_values = true)]
     pub sigma_a: Option<String>,
     /// R lobe shift α_R in degrees.
-    #[arg(long = "alpha-r-deg", allow_hyphen_values = true)]
+    #[arg(long = "alpha-r-deg", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
     pub alpha_r_deg: Option<f32>,
     /// R lobe width β_R in degrees.
-    #[arg(long = "beta-r-deg")]
+    #[arg(long = "beta-r-deg", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
     pub beta_r_deg: Option<f32>,
     /// Cross-section eccentricity a/b.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
     pub eccentricity: Option<f32>,
 }
 
 #[derive(Args, Debug)]
 pub struct EvalArgs {
     /// Light inclination θi from the normal plane, degrees in [−90, 90].
-    #[arg(long = "theta-i-deg", allow_hyphen_values = true)]
+    #[arg(long = "theta-i-deg", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
     pub theta_i_deg: f32,
     /// Light azimuth φi, degrees.
-    #[arg(long = "phi-i-deg", allow_hyphen_values = true)]
+    #[arg(long = "phi-i-deg", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
     pub phi_i_deg: f32,
     /// View inclination θo, degrees in [−90, 90].
-    #[arg(long = "theta-o-deg", allow_hyphen_values = true)]
+    #[arg(long = "theta-o-deg", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
     pub theta_o_deg: f32,
     /// View azimuth φo, degrees.
-    #[arg(long = "phi-o-deg", allow_hyphen_values = true)]
+    #[arg(long = "phi-o-deg", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
     pub phi_o_deg: f32,
     #[command(flatten)]
     pub fiber: FiberFlags,
@@ -73,7 +73,7 @@ pub struct EvalArgs {
 #[derive(Args, Debug)]
 pub struct TablesArgs {
     /// Step of the θ column in degrees, in [0.1, 90] (default 5).
-    #[arg(long = "theta-step-deg", default_value_t = 5.0)]
+    #[arg(long = "theta-step-deg", default_value_t = 5.0, allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
     pub theta_step_deg: f32,
     #[command(flatten)]
     pub fiber: FiberFlags,
@@ -101,7 +101,7 @@ impl FiberFlags {
     pub fn resolve(&self) -> Result<FiberParams, AppError> {
         let mut p = match &self.hairstyle {
             Some(path) => Hairstyle::load(path)
-                .map_err(|e| AppError::input(anyhow::anyhow!("{e}")))?
+                .map_err(AppError::input)?
                 .fiber
                 .clone(),
             None => FiberParams::default(),

@@ -1,6 +1,7 @@
 //! Command-line edge: argument parsing, degrees and file formats live here, nowhere deeper.
 //!
-//! Exit codes: 0 success, 2 bad input (flags or files), 1 any other failure.
+//! Exit codes: 0 success, 2 bad input (flags, files, output paths, or a run over its memory or
+//! work budget), 1 any other failure.
 
 pub mod accuracy_cmd;
 pub mod bench_cmd;
@@ -14,10 +15,28 @@ use clap::{Parser, Subcommand, ValueEnum};
 use glam::Vec3;
 use std::path::PathBuf;
 use std::process::ExitCode;
+use wisp::budget::{Budget, RunPlan};
 use wisp::fiber::ShadingMode;
 use wisp::frame::EngineConfig;
-use wisp::hairstyle::Hairstyle;
-use wisp::motion::{JointRef, Motion, MotionOptions};
+use wisp::hairstyle::{Hairstyle, HairstyleError};
+use wisp::motion::{JointRef, Motion, MotionError, MotionOptions};
+
+/// Most worker threads per core. More only slows wisp down, and faster than linearly: on 2
+/// cores, 2 frames at 160×120 took 0.25 s with 2 threads, 1.0 s with 256, 4.8 s with 512 and
+/// 36 s with 1,000.
+pub const THREADS_PER_CORE: usize = 4;
+
+/// The most worker threads accepted on this machine.
+pub fn max_threads() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get()) * THREADS_PER_CORE
+}
+
+/// Highest `--speed` (a clip played a thousand times faster is a blur).
+pub const MAX_SPEED: f32 = 1000.0;
+/// Highest `--fps`.
+pub const MAX_FPS: f32 = 1000.0;
+/// Embedded hairstyle presets, by `--hairstyle` name.
+pub const PRESETS: [&str; 2] = ["smooth", "curly"];
 
 #[derive(Parser, Debug)]
 #[command(
@@ -26,7 +45,8 @@ use wisp::motion::{JointRef, Motion, MotionOptions};
     about = "Animate and render human hair on the CPU"
 )]
 pub struct Cli {
-    /// Worker threads for the parallel stages (default: all cores). Output does not depend on it.
+    /// Worker threads for the parallel stages (default: all cores; at most 4 per core, more
+    /// are reduced to that with a warning). Output does not depend on it.
     #[arg(long, global = true, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub threads: Option<u32>,
     #[command(subcommand)]
@@ -46,6 +66,7 @@ pub enum Command {
     #[command(allow_negative_numbers = true)]
     Bench(bench_cmd::BenchArgs),
     /// Inspect the fibre scattering model: evaluate, tabulate, plot.
+    #[command(allow_negative_numbers = true)]
     Fiber(fiber_cmd::FiberArgs),
     /// The light map against the exact reference (ray shooting through explicit fibres) over
     /// map resolutions: the tables of ACCURACY.md.
@@ -93,8 +114,8 @@ pub struct SceneArgs {
     /// Head joint: a node name or index (default: the joint whose name contains "head").
     #[arg(long)]
     pub head_joint: Option<String>,
-    /// Playback speed of the motion (1 = real time).
-    #[arg(long, default_value_t = 1.0, value_parser = parse_positive_f32)]
+    /// Playback speed of the motion (1 = real time), in (0, 1000].
+    #[arg(long, default_value_t = 1.0, value_parser = parse_speed, allow_hyphen_values = true)]
     pub speed: f32,
     /// Hold the head still in its rest pose (no motion).
     #[arg(long)]
@@ -122,16 +143,20 @@ pub struct SceneArgs {
     pub no_self_collision: bool,
     #[command(flatten)]
     pub view: view_args::ViewArgs,
+    /// Memory budget in GB (10⁹ bytes): a run whose estimated memory is larger is refused
+    /// before it allocates anything large (see README, "Limits").
+    #[arg(long, default_value_t = 4.0, value_parser = parse_budget, allow_hyphen_values = true)]
+    pub max_memory_gb: f64,
+    /// Work budget in CPU-minutes: a run whose set-up (settle, warm-up and first frame) is
+    /// estimated to take longer is refused (20 CPU-minutes: 10 minutes on 2 cores).
+    #[arg(long, default_value_t = 20.0, value_parser = parse_budget, allow_hyphen_values = true)]
+    pub max_work_cpu_min: f64,
 }
 
 impl SceneArgs {
     /// Loads the hairstyle and motion and builds the engine configuration.
     pub fn resolve(&self) -> Result<(Hairstyle, Motion, EngineConfig), AppError> {
-        let style = match self.hairstyle.as_str() {
-            "smooth" => Hairstyle::default_smooth(),
-            "curly" => Hairstyle::default_curly(),
-            path => Hairstyle::load(std::path::Path::new(path)).map_err(AppError::input)?,
-        };
+        let style = load_hairstyle(&self.hairstyle)?;
         let motion = if self.still {
             Motion::still(glam::Affine3A::IDENTITY)
         } else {
@@ -148,7 +173,7 @@ impl SceneArgs {
                 ..MotionOptions::default()
             };
             match &self.animation {
-                Some(path) => Motion::load(path, &opts).map_err(AppError::input)?,
+                Some(path) => Motion::load(path, &opts).map_err(|e| self.motion_error(e))?,
                 None => {
                     if self.clip.is_some() || self.head_joint.is_some() {
                         return Err(AppError::input(anyhow::anyhow!(
@@ -174,21 +199,184 @@ impl SceneArgs {
         self.view.apply(&mut config)?;
         Ok((style, motion, config))
     }
+
+    /// A motion error, with the flag that fixes it when there is one.
+    fn motion_error(&self, e: MotionError) -> AppError {
+        let hint = match &e {
+            MotionError::UnknownJoint { role, .. } if role == "head joint" => {
+                if self.head_joint.is_none() {
+                    "; choose the head with --head-joint NAME|INDEX"
+                } else {
+                    "; give one of these to --head-joint"
+                }
+            }
+            MotionError::UnknownClip { .. } => "; give one of these to --clip",
+            _ => "",
+        };
+        AppError::input(anyhow::anyhow!("{e}{hint}"))
+    }
+
+    /// The budget the flags set.
+    pub fn budget(&self) -> Budget {
+        Budget {
+            memory_bytes: (self.max_memory_gb * 1e9) as u64,
+            work_cpu_s: self.max_work_cpu_min * 60.0,
+        }
+    }
+
+    /// Refuses a run over the budget (exit code 2), before the engine allocates. An automatic
+    /// map resolution is lowered first, with a warning, when that brings the run within the
+    /// memory budget.
+    pub fn check_budget(
+        &self,
+        style: &Hairstyle,
+        motion: &Motion,
+        config: &mut EngineConfig,
+        plan: &RunPlan,
+    ) -> Result<(), AppError> {
+        if let Some((auto, n)) =
+            wisp::budget::fit_map_resolution(style, motion, config, plan, &self.budget())
+        {
+            eprintln!(
+                "wisp: warning: the automatic map resolution {auto} (cells of twice the strand spacing at the scalp) could need more memory than --max-memory-gb {}; using {n}",
+                self.max_memory_gb
+            );
+            config.map_res = Some(n);
+        }
+        wisp::budget::estimate(style, motion, config, plan)
+            .check(&self.budget())
+            .map_err(|e| {
+                let flag = match e {
+                    wisp::budget::BudgetError::Memory { .. } => "--max-memory-gb",
+                    wisp::budget::BudgetError::Work { .. } => "--max-work-cpu-min",
+                };
+                AppError::input(anyhow::anyhow!(
+                    "{e}. Lower it, or raise the budget with {flag}"
+                ))
+            })
+    }
 }
 
-/// A finite number > 0.
-pub fn parse_positive_f32(s: &str) -> Result<f32, String> {
-    match s.trim().parse::<f32>() {
-        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
-        Ok(v) => Err(format!("must be a finite number > 0 (got {v})")),
+/// A preset by name, else a hairstyle file; a missing file that is no preset says which
+/// presets exist.
+pub fn load_hairstyle(arg: &str) -> Result<Hairstyle, AppError> {
+    match arg {
+        "smooth" => return Ok(Hairstyle::default_smooth()),
+        "curly" => return Ok(Hairstyle::default_curly()),
+        _ => {}
+    }
+    let path = std::path::Path::new(arg);
+    Hairstyle::load(path).map_err(|e| match e {
+        HairstyleError::Io { .. } if !path.exists() => AppError::input(anyhow::anyhow!(
+            "--hairstyle {arg}: not a preset ({}) and no such file",
+            PRESETS.join(", ")
+        )),
+        e => AppError::input(e),
+    })
+}
+
+/// Checks, before any work, that `path` can be an output file: not a directory, in a folder
+/// that exists. `flag` names the option in the message.
+pub fn check_output_file(flag: &str, path: &std::path::Path) -> Result<(), AppError> {
+    let shown = path.display();
+    if path.is_dir() {
+        return Err(AppError::input(anyhow::anyhow!(
+            "{flag} {shown}: is a directory, not a file name"
+        )));
+    }
+    let parent = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => std::path::Path::new("."),
+    };
+    if !parent.is_dir() {
+        return Err(AppError::input(anyhow::anyhow!(
+            "{flag} {shown}: the folder {} does not exist",
+            parent.display()
+        )));
+    }
+    Ok(())
+}
+
+/// A name from an input file (hairstyle, clip, joint) safe to print on a terminal: control
+/// characters (an escape sequence could clear the screen) become `?`.
+pub fn printable(name: &str) -> String {
+    name.chars()
+        .map(|c| if c.is_control() { '?' } else { c })
+        .collect()
+}
+
+/// A budget: a finite number > 0, at most 10⁶.
+pub fn parse_budget(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 && v <= 1e6 => Ok(v),
+        Ok(v) => Err(format!("must be a number in (0, 1e6] (got {v})")),
         Err(_) => Err(format!("`{s}` is not a number")),
     }
 }
 
-/// A finite number.
-pub fn parse_finite_f32(s: &str) -> Result<f32, String> {
-    match s.trim().parse::<f32>() {
+/// A playback speed in (0, [`MAX_SPEED`]].
+pub fn parse_speed(s: &str) -> Result<f32, String> {
+    let v = parse_positive_f32(s)?;
+    if v > MAX_SPEED {
+        return Err(format!("must be at most {MAX_SPEED} (got {v})"));
+    }
+    Ok(v)
+}
+
+/// A frame rate in (0, [`MAX_FPS`]].
+pub fn parse_fps(s: &str) -> Result<f32, String> {
+    let v = parse_positive_f32(s)?;
+    if v > MAX_FPS {
+        return Err(format!("must be at most {MAX_FPS} (got {v})"));
+    }
+    Ok(v)
+}
+
+/// A finite f64 (times in seconds, which may exceed f32 precision).
+pub fn parse_finite_f64(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(v),
+        Ok(v) if v.is_infinite() && !s.trim().to_ascii_lowercase().contains("inf") => Err(format!(
+            "{} is outside the range of a 64-bit float (about ±1.8e308)",
+            s.trim()
+        )),
+        Ok(v) => Err(format!("must be finite (got {v})")),
+        Err(_) => Err(format!("`{s}` is not a number")),
+    }
+}
+
+/// A finite number > 0. Parsed as f64 first, so that 1e308 is reported as written, not as the
+/// infinity f32 would make of it.
+pub fn parse_positive_f32(s: &str) -> Result<f32, String> {
+    let v = parse_finite_f32(s)?;
+    if v > 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("must be a finite number > 0 (got {v})"))
+    }
+}
+
+/// A number for a validator to judge (NaN and infinities pass through), refusing only a finite
+/// number f32 cannot hold, which would otherwise arrive as "inf".
+pub fn parse_f32_as_written(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v.abs() > f32::MAX as f64 => Err(format!(
+            "{} is outside the range of a 32-bit float (about ±3.4e38)",
+            s.trim()
+        )),
+        Ok(v) => Ok(v as f32),
+        Err(_) => Err(format!("`{s}` is not a number")),
+    }
+}
+
+/// A finite number that f32 holds.
+pub fn parse_finite_f32(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v.abs() <= f32::MAX as f64 => Ok(v as f32),
+        Ok(v) if v.is_finite() => Err(format!(
+            "{} is outside the range of a 32-bit float (about ±3.4e38)",
+            s.trim()
+        )),
         Ok(v) => Err(format!("must be finite (got {v})")),
         Err(_) => Err(format!("`{s}` is not a number")),
     }
@@ -208,7 +396,9 @@ pub fn parse_direction(s: &str) -> Result<Vec3, String> {
     if v.length_squared() < 1e-12 {
         return Err("the direction must not be zero".into());
     }
-    Ok(v.normalize())
+    // Scaled by its largest component first: 1e30,1e30,1e30 squares to infinity and
+    // normalised to zero.
+    Ok((v / v.abs().max_element()).normalize())
 }
 
 /// An error with its exit code: 2 for bad input, 1 otherwise.
@@ -243,13 +433,21 @@ pub fn main() -> ExitCode {
             return ExitCode::from(code);
         }
     };
-    if let Some(n) = cli.threads
-        && let Err(e) = rayon::ThreadPoolBuilder::new()
-            .num_threads(n as usize)
+    if let Some(asked) = cli.threads {
+        let n = (asked as usize).min(max_threads());
+        if n < asked as usize {
+            eprintln!(
+                "wisp: warning: --threads {asked} is more than {THREADS_PER_CORE} per core ({} cores here), which only slows wisp down; using {n}",
+                max_threads() / THREADS_PER_CORE
+            );
+        }
+        if let Err(e) = rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
             .build_global()
-    {
-        eprintln!("wisp: error: cannot start {n} threads: {e}");
-        return ExitCode::from(1);
+        {
+            eprintln!("wisp: error: cannot start {n} threads: {e}");
+            return ExitCode::from(1);
+        }
     }
     let result = match cli.command {
         Command::Render(args) => render_cmd::run(args),
@@ -265,5 +463,49 @@ pub fn main() -> ExitCode {
             eprintln!("wisp: error: {:#}", e.error);
             ExitCode::from(e.code)
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn huge_directions_normalise_without_overflow() {
+        let d = parse_direction("1e30,1e30,1e30").unwrap();
+        let third = 1.0 / 3f32.sqrt();
+        assert!((d - Vec3::splat(third)).abs().max_element() < 1e-6, "{d}");
+        assert!(parse_direction("1e-30,0,0").is_err());
+        assert!(
+            parse_direction("1e39,0,0")
+                .unwrap_err()
+                .contains("outside the range")
+        );
+    }
+
+    #[test]
+    fn names_from_files_print_without_control_characters() {
+        assert_eq!(printable("a\u{1b}[2Jb\n"), "a?[2Jb?");
+        assert_eq!(printable("Tête"), "Tête");
+    }
+
+    #[test]
+    fn numbers_beyond_f32_are_reported_as_written() {
+        assert!(
+            parse_finite_f32("1e308")
+                .unwrap_err()
+                .starts_with("1e308 is outside")
+        );
+        assert!(parse_f32_as_written("nan").unwrap().is_nan());
+        assert!(
+            parse_finite_f64("1e400")
+                .unwrap_err()
+                .starts_with("1e400 is outside")
+        );
+        assert!(
+            parse_finite_f64("inf")
+                .unwrap_err()
+                .contains("must be finite")
+        );
     }
 }

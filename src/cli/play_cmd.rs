@@ -27,7 +27,17 @@ pub struct PlayArgs {
 }
 
 pub fn run(args: PlayArgs) -> Result<(), AppError> {
-    let (style, motion, config) = args.scene.resolve()?;
+    let (style, motion, mut config) = args.scene.resolve()?;
+    if let Some(path) = &args.screenshot {
+        super::check_output_file("--screenshot", path)?;
+    }
+    let plan = wisp::budget::RunPlan {
+        frame_interval_s: 1.0 / 60.0,
+        warm_up_s: 0.0,
+        export_png: args.screenshot.is_some(),
+    };
+    args.scene
+        .check_budget(&style, &motion, &mut config, &plan)?;
     let (w, h) = (config.width as usize, config.height as usize);
     let mut window = Window::new("wisp", w, h, WindowOptions::default()).map_err(|e| {
         AppError::other(anyhow::anyhow!(
@@ -109,7 +119,7 @@ pub fn run(args: PlayArgs) -> Result<(), AppError> {
     }
     if let Some(path) = &args.screenshot {
         let fb = engine.framebuffer();
-        write_png_rgb8(path, fb.width, fb.height, &fb.to_srgb8()).map_err(AppError::other)?;
+        write_png_rgb8(path, fb.width, fb.height, &fb.to_srgb8()).map_err(AppError::input)?;
     }
     Ok(())
 }

@@ -4,26 +4,38 @@
 //! bounded crossbeam channel to a writer thread that encodes and writes them (temporary name,
 //! then rename: an interrupted export leaves complete frames only). Pixel buffers travel back
 //! on a second channel, so the export allocates nothing per frame once running.
+//!
+//! Before anything large is allocated, the run is checked against the memory and work budget
+//! (`wisp::budget`), and the output directory is prepared: it must be a writable directory,
+//! and what an earlier export left there (temporary files of a killed run, frames beyond this
+//! run's count) is removed, so the folder holds exactly this run's frames.
 
 use super::{AppError, SceneArgs};
 use anyhow::Context;
 use std::path::{Path, PathBuf};
+use wisp::budget::RunPlan;
 use wisp::frame::{Engine, StageTimings};
 use wisp::output::write_png_rgb8;
+
+/// Most frames one export writes (`--frames`, and the default of one loop of the clip).
+pub const MAX_FRAMES: u32 = 100_000;
 
 #[derive(clap::Args, Debug)]
 pub struct RenderArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Number of frames to render (default: one loop of the clip at --fps; 1 with --still).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    /// Number of frames to render (default: one loop of the clip at --fps; 1 with --still), at
+    /// most 100,000.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_FRAMES as i64))]
     pub frames: Option<u32>,
-    /// Output frame rate in frames per second (the simulation step is independent of it).
-    #[arg(long, default_value_t = 30.0, value_parser = super::parse_positive_f32)]
+    /// Output frame rate in frames per second, in (0, 1000] (the simulation step is independent
+    /// of it).
+    #[arg(long, default_value_t = 30.0, value_parser = super::parse_fps, allow_hyphen_values = true)]
     pub fps: f32,
-    /// Time of the first frame in seconds of the motion.
-    #[arg(long, default_value_t = 0.0, value_parser = super::parse_finite_f32)]
-    pub start_s: f32,
+    /// Time of the first frame in seconds of the motion. The clip loops, so a start beyond one
+    /// loop is wrapped into it (the hair's history is simulated from the start of that loop).
+    #[arg(long, default_value_t = 0.0, value_parser = super::parse_finite_f64, allow_hyphen_values = true)]
+    pub start_s: f64,
     /// Output directory (created if missing); frames are frame_00000.png, frame_00001.png, ...
     #[arg(long, default_value = "frames")]
     pub out: PathBuf,
@@ -40,33 +52,63 @@ struct Job {
     rgb: Vec<u8>,
 }
 
+/// The first frame's time in seconds, wrapped into one loop of the motion (`duration_s /
+/// speed` seconds long; a still motion starts at 0), and whether it was wrapped.
+pub fn wrapped_start_s(start_s: f64, duration_s: f32, speed: f32) -> (f64, bool) {
+    let period = duration_s as f64 / speed as f64;
+    if !(period.is_finite() && period > 0.0) {
+        return (0.0, start_s != 0.0);
+    }
+    let wrapped = start_s.rem_euclid(period);
+    // rem_euclid can round up to exactly `period` for a tiny negative start.
+    let wrapped = if wrapped >= period { 0.0 } else { wrapped };
+    (wrapped, wrapped != start_s)
+}
+
 pub fn run(args: RenderArgs) -> Result<(), AppError> {
-    let (style, motion, config) = args.scene.resolve()?;
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("{}: cannot create the output directory", args.out.display()))
-        .map_err(AppError::input)?;
-    let name = style.name.clone();
-    let started = std::time::Instant::now();
+    let (style, motion, mut config) = args.scene.resolve()?;
     let still = args.scene.still;
-    let mut engine = Engine::new(style, motion, config);
     let frames = args.frames.unwrap_or_else(|| {
         if still {
             1
         } else {
-            ((engine.motion.duration_s() * args.fps).round() as u32).clamp(1, 100_000)
+            let n = (motion.duration_s() as f64 * args.fps as f64).round();
+            n.clamp(1.0, MAX_FRAMES as f64) as u32
         }
     });
-    engine.run_up_to(args.start_s as f64);
+    let (start_s, wrapped) = wrapped_start_s(args.start_s, motion.duration_s(), motion.speed());
+    if wrapped && !args.quiet && motion.duration_s() == 0.0 {
+        eprintln!("wisp: the motion is still, so --start-s is ignored");
+    } else if wrapped && !args.quiet {
+        eprintln!(
+            "wisp: --start-s {} is {:.3} s into one {:.3} s loop of the clip; the hair is simulated from the start of that loop",
+            args.start_s,
+            start_s,
+            motion.duration_s() / motion.speed()
+        );
+    }
+    let plan = RunPlan {
+        frame_interval_s: 1.0 / args.fps as f64,
+        warm_up_s: start_s,
+        export_png: true,
+    };
+    args.scene
+        .check_budget(&style, &motion, &mut config, &plan)?;
+    prepare_output_dir(&args.out, frames, args.quiet)?;
+    let name = style.name.clone();
+    let started = std::time::Instant::now();
+    let mut engine = Engine::new(style, motion, config);
+    engine.run_up_to(start_s);
     let setup_s = started.elapsed().as_secs_f64();
     if !args.quiet {
         let g = engine.map_geometry();
         eprintln!(
             "wisp: {} ({} wisps, {} strands, {} segments), clip \"{}\" {:.2} s, map {}^3 cells of {:.1} mm, {}x{} px, set-up {:.2} s",
-            name,
+            super::printable(&name),
             engine.layout.wisp_guides.len(),
             engine.layout.count(),
             engine.layout.segments(),
-            engine.motion.clip_name(),
+            super::printable(engine.motion.clip_name()),
             engine.motion.duration_s(),
             g.n,
             g.ds_m * 1e3,
@@ -93,10 +135,13 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
     let (width, height) = (engine.config.width, engine.config.height);
     let mut failed = None;
     for i in 0..frames {
-        let t = args.start_s as f64 + i as f64 / args.fps as f64;
-        let fb = engine.frame(t);
+        let t = start_s + i as f64 / args.fps as f64;
+        engine.frame(t);
+        if i == 0 {
+            warn_about_first_frame(&engine);
+        }
         let mut rgb = spare.recv().unwrap_or_default();
-        fb.to_srgb8_into(&mut rgb);
+        engine.framebuffer().to_srgb8_into(&mut rgb);
         total.add(&engine.timings);
         if to_writer
             .send(Job {
@@ -131,6 +176,106 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
     Ok(())
 }
 
+/// Says on stderr what makes the first frame wrong or empty, instead of writing blank frames
+/// silently: render points that are not finite, hair wider than the map, a picture with
+/// nothing but background.
+pub fn warn_about_first_frame(engine: &Engine) {
+    let stats = engine.map_stats();
+    if stats.skipped > 0 {
+        eprintln!(
+            "wisp: warning: {} of {} render points are not finite numbers and are not drawn",
+            stats.skipped,
+            stats.skipped + stats.samples
+        );
+    }
+    if stats.overflow {
+        let g = engine.map_geometry();
+        eprintln!(
+            "wisp: warning: the hair extends beyond the light map ({} cells of {:.1} mm per axis), so far-apart hair shadows itself; the map is sized for hair no longer than the hairstyle's guides",
+            g.n,
+            g.ds_m * 1e3
+        );
+    }
+    let fb = engine.framebuffer();
+    let background = engine.config.background;
+    if fb.color.iter().all(|c| *c == background) {
+        eprintln!(
+            "wisp: warning: the first frame shows only the background: the head and the hair are out of view"
+        );
+    }
+}
+
+/// Makes `dir` ready for `frames` frames: creates it, checks that files can be written there,
+/// and removes what an earlier export left: `frame_NNNNN.png.tmp` files of an interrupted run
+/// and `frame_NNNNN.png` files numbered `frames` or more (which this run would not overwrite).
+/// Only files named exactly like wisp's frames are touched.
+pub fn prepare_output_dir(dir: &Path, frames: u32, quiet: bool) -> Result<(), AppError> {
+    let shown = dir.display();
+    if dir.exists() && !dir.is_dir() {
+        return Err(AppError::input(anyhow::anyhow!(
+            "--out {shown}: exists and is not a directory"
+        )));
+    }
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("--out {shown}: cannot create the output directory"))
+        .map_err(AppError::input)?;
+    let probe = dir.join(format!(".wisp-write-test-{}", std::process::id()));
+    std::fs::write(&probe, b"")
+        .with_context(|| format!("--out {shown}: cannot write files into the directory"))
+        .map_err(AppError::input)?;
+    let _ = std::fs::remove_file(&probe);
+    let entries = std::fs::read_dir(dir)
+        .with_context(|| format!("--out {shown}: cannot list the directory"))
+        .map_err(AppError::input)?;
+    let (mut temporaries, mut stale) = (0usize, 0usize);
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let Some(name) = name.to_str() else { continue };
+        let Some((index, temporary)) = frame_index(name) else {
+            continue;
+        };
+        let is_file = entry.file_type().is_ok_and(|t| t.is_file());
+        if !temporary && index < frames {
+            if !is_file && !entry.path().is_file() {
+                return Err(AppError::input(anyhow::anyhow!(
+                    "--out {shown}: {name} is in the way (not a file, so this run cannot replace it)"
+                )));
+            }
+            continue;
+        }
+        if !is_file {
+            continue;
+        }
+        std::fs::remove_file(entry.path())
+            .with_context(|| format!("{}: cannot remove it", entry.path().display()))
+            .map_err(AppError::input)?;
+        if temporary {
+            temporaries += 1;
+        } else {
+            stale += 1;
+        }
+    }
+    if !quiet && temporaries + stale > 0 {
+        eprintln!(
+            "wisp: removed from {shown} what an earlier export left: {stale} frames numbered {frames} or more, {temporaries} temporary files"
+        );
+    }
+    Ok(())
+}
+
+/// `frame_00012.png` -> (12, false); `frame_00012.png.tmp` -> (12, true); anything else -> None.
+fn frame_index(name: &str) -> Option<(u32, bool)> {
+    let rest = name.strip_prefix("frame_")?;
+    let (digits, temporary) = match rest.strip_suffix(".png.tmp") {
+        Some(d) => (d, true),
+        None => (rest.strip_suffix(".png")?, false),
+    };
+    if digits.len() < 5 || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    digits.parse().ok().map(|i| (i, temporary))
+}
+
 /// `DIR/frame_00012.png`.
 pub fn frame_path(dir: &Path, index: u32) -> PathBuf {
     dir.join(format!("frame_{index:05}.png"))
@@ -151,4 +296,33 @@ pub fn print_timings(total: &StageTimings, frames: u32, wall_s: f64) {
         wall_s,
         frames
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn frame_names_are_recognised_exactly() {
+        assert_eq!(frame_index("frame_00012.png"), Some((12, false)));
+        assert_eq!(frame_index("frame_00012.png.tmp"), Some((12, true)));
+        assert_eq!(frame_index("frame_123456.png"), Some((123_456, false)));
+        assert_eq!(frame_index("frame_0012.png"), None);
+        assert_eq!(frame_index("frame_00012.PNG"), None);
+        assert_eq!(frame_index("my_frame_00012.png"), None);
+        assert_eq!(frame_index("frame_000a2.png"), None);
+    }
+
+    #[test]
+    fn start_wraps_into_one_loop() {
+        assert_eq!(wrapped_start_s(4.0, 8.0, 1.0), (4.0, false));
+        assert_eq!(wrapped_start_s(1e12, 8.0, 1.0), (0.0, true));
+        assert_eq!(wrapped_start_s(-1.0, 8.0, 1.0), (7.0, true));
+        // At speed 2 one loop of an 8 s clip lasts 4 s.
+        assert_eq!(wrapped_start_s(5.0, 8.0, 2.0), (1.0, true));
+        // A still motion has no loop: it starts at 0.
+        assert_eq!(wrapped_start_s(3.0, 0.0, 1.0), (0.0, true));
+        let (t, _) = wrapped_start_s(-1e-300, 8.0, 1.0);
+        assert!((0.0..8.0).contains(&t));
+    }
 }

@@ -110,9 +110,9 @@ pub fn write_hair(
     debug_assert_eq!(header.len(), HEADER_BYTES);
 
     write_atomically(path, |file| {
-        let io = |source| OutputError::Io {
+        let io = |error| OutputError::Io {
             path: path.into(),
-            source,
+            error,
         };
         let mut w = std::io::BufWriter::new(file);
         w.write_all(&header).map_err(io)?;

@@ -196,9 +196,9 @@ pub fn write_reference_scene(
         use std::io::Write;
         file.write_all(text.as_bytes())
             .and_then(|()| file.write_all(b"\n"))
-            .map_err(|source| OutputError::Io {
+            .map_err(|error| OutputError::Io {
                 path: scene_path.clone(),
-                source,
+                error,
             })?;
         Ok(file)
     })?;

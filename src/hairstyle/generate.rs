@@ -78,12 +78,16 @@ fn root_directions(style: &Hairstyle) -> Vec<Vec3> {
         let phi = d.x.atan2(d.z);
         (polar <= polar_limit(style, phi)).then_some(d)
     };
-    // Grow the lattice until the region holds enough points (the region's area fraction is
-    // at least ~10% for valid specs, so this ends within a few rounds).
+    // Grow the lattice until the region holds enough points. Validation keeps the polar limits
+    // at 5° or more (a cap of at least 0.19% of the sphere), so this ends within a few rounds;
+    // the size bound only keeps an unvalidated spec from looping for ever.
     let mut n = count.max(4) * 2;
     loop {
         let dirs: Vec<Vec3> = (0..n).filter_map(|i| inside(n, i)).collect();
-        if dirs.len() >= count {
+        if dirs.is_empty() && n > 1 << 31 {
+            return vec![Vec3::Y; count];
+        }
+        if dirs.len() >= count || n > 1 << 31 {
             // Keep an even subset: take evenly spaced indices.
             let m = dirs.len();
             return (0..count).map(|k| dirs[k * m / count]).collect();

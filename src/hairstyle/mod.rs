@@ -12,6 +12,7 @@ pub use generate::{SplitMix64, generate};
 pub use model::{GuideSet, StrandLayout};
 
 use crate::fiber::FiberParams;
+use crate::input::{self, ReadError};
 use crate::sim::SimParams;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -21,11 +22,27 @@ pub const SMOOTH_JSON: &str = include_str!("../../hairstyles/smooth.json");
 /// The curly preset, embedded too.
 pub const CURLY_JSON: &str = include_str!("../../hairstyles/curly.json");
 
-/// Upper bounds that keep memory finite (about 2 GB worst case).
+/// Upper bounds of single fields. They are absolute limits; what a whole run may allocate is
+/// checked against the memory budget (`wisp::budget`), which the product of these can exceed.
 pub const MAX_WISPS: u32 = 100_000;
 pub const MAX_STRANDS: u64 = 2_000_000;
 pub const MAX_RENDER_POINTS: u64 = 40_000_000;
 pub const MAX_GUIDE_LINKS: u32 = 256;
+/// Smallest scalp polar angle in degrees. Roots come from a Fibonacci lattice grown until the
+/// scalp cap holds enough points; a cap of 5° is 0.19% of the sphere (100,000 wisps need a
+/// lattice of about 50 M points, a few seconds), while 1e-30° never held one (a hang).
+pub const MIN_SCALP_POLAR_DEG: f32 = 5.0;
+/// Shortest wave or curl period in metres. Phases are 2π·s / period: a denormal period made
+/// them infinite and the strands NaN (blank frames); real curls are 5 mm and longer.
+pub const MIN_PERIOD_M: f32 = 0.001;
+/// Largest hairstyle file read, in bytes (a hairstyle is a few dozen numbers; the presets are
+/// about 1 KB).
+pub const MAX_FILE_BYTES: u64 = 1 << 20;
+/// Smallest head semi-axis in metres. The hair model works at millimetres: roots sit on wisp
+/// layers 2–8 mm above the scalp and collisions keep a 1 mm margin, so a head smaller than
+/// 1 cm would be a point inside its own hair (at 1e-30 m the scalp area was 0, the strand
+/// spacing 0 and the map 1024³).
+pub const MIN_HEAD_RADIUS_M: f32 = 0.01;
 
 /// A hairstyle as written in JSON. Lengths in metres, angles in degrees (`*_deg`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -75,9 +92,9 @@ pub struct HeadSpec {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ScalpSpec {
-    /// Largest polar angle of a root at the back and sides, degrees in (0, 150].
+    /// Largest polar angle of a root at the back and sides, degrees in [5, 150].
     pub max_polar_deg: f32,
-    /// Largest polar angle of a root at the front (hairline), degrees in (0, max_polar_deg].
+    /// Largest polar angle of a root at the front (hairline), degrees in [5, max_polar_deg].
     pub front_polar_deg: f32,
 }
 
@@ -107,7 +124,7 @@ pub struct GuideSpec {
     /// Wave amplitude of the guides' rest shape in metres (kept by bending stiffness), >= 0.
     #[serde(default)]
     pub wave_amplitude_m: f32,
-    /// Wave period along the guide in metres (used when the amplitude is > 0), > 0.
+    /// Wave period along the guide in metres (used when the amplitude is > 0), in [0.001, 10].
     #[serde(default = "default_wave_period")]
     pub wave_period_m: f32,
 }
@@ -146,7 +163,7 @@ pub struct CurlSpec {
     /// Helix radius in metres (0: straight hair).
     #[serde(default)]
     pub radius_m: f32,
-    /// Helix period along the strand in metres (> 0 when the radius is > 0).
+    /// Helix period along the strand in metres (in [0.001, 10] when the radius is > 0).
     #[serde(default)]
     pub period_m: f32,
 }
@@ -154,11 +171,9 @@ pub struct CurlSpec {
 /// Why a hairstyle could not be loaded.
 #[derive(Debug, thiserror::Error)]
 pub enum HairstyleError {
-    #[error("{file}: cannot read: {source}")]
-    Io {
-        file: String,
-        source: std::io::Error,
-    },
+    /// The file could not be read (missing, not a regular file, over [`MAX_FILE_BYTES`]).
+    #[error("{file}: {error}")]
+    Io { file: String, error: ReadError },
     #[error("{file}: field `{field}`: {message}")]
     Parse {
         file: String,
@@ -174,14 +189,28 @@ pub enum HairstyleError {
 }
 
 impl Hairstyle {
-    /// Reads and validates a hairstyle file.
+    /// Reads and validates a hairstyle file (at most [`MAX_FILE_BYTES`], UTF-8, a leading
+    /// byte-order mark is skipped).
     pub fn load(path: &Path) -> Result<Self, HairstyleError> {
         let file = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|source| HairstyleError::Io {
-            file: file.clone(),
-            source,
+        let bytes =
+            input::read_capped(path, MAX_FILE_BYTES, "a hairstyle file").map_err(|error| {
+                HairstyleError::Io {
+                    file: file.clone(),
+                    error,
+                }
+            })?;
+        Self::from_bytes(&bytes, &file)
+    }
+
+    /// Parses and validates the bytes of a hairstyle file; `file` names it in errors.
+    pub fn from_bytes(bytes: &[u8], file: &str) -> Result<Self, HairstyleError> {
+        let text = input::json::decode_text(bytes).map_err(|e| HairstyleError::Parse {
+            file: file.to_string(),
+            field: e.field,
+            message: e.message,
         })?;
-        Self::from_json(&text, &file)
+        Self::from_json(text, file)
     }
 
     /// The embedded default (`smooth`).
@@ -194,20 +223,15 @@ impl Hairstyle {
         Self::from_json(CURLY_JSON, "<embedded curly.json>").expect("embedded hairstyle is valid")
     }
 
-    /// Parses and validates JSON text; `file` names the source in errors.
+    /// Parses and validates JSON text; `file` names the source in errors. Parsing is strict
+    /// ([`input::json::from_str`]): no array for an object, no number beyond `f32`, no text
+    /// after the object.
     pub fn from_json(text: &str, file: &str) -> Result<Self, HairstyleError> {
-        let de = &mut serde_json::Deserializer::from_str(text);
-        let style: Hairstyle = serde_path_to_error::deserialize(de).map_err(|e| {
-            let field = e.path().to_string();
-            HairstyleError::Parse {
-                file: file.to_string(),
-                field: if field == "." {
-                    "(top level)".into()
-                } else {
-                    field
-                },
-                message: e.into_inner().to_string(),
-            }
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        let style: Hairstyle = input::json::from_str(text).map_err(|e| HairstyleError::Parse {
+            file: file.to_string(),
+            field: e.field,
+            message: e.message,
         })?;
         style
             .validate()
@@ -243,21 +267,30 @@ impl Hairstyle {
             }
         }
         for (i, r) in self.head.radii_m.iter().enumerate() {
-            in_range(&format!("head.radii_m[{i}]"), *r, 0.0, 1.0, true)?;
+            if !(r.is_finite() && (MIN_HEAD_RADIUS_M..=1.0).contains(r)) {
+                return bad(
+                    &format!("head.radii_m[{i}]"),
+                    format!(
+                        "must be a finite number in [{MIN_HEAD_RADIUS_M}, 1] metres (got {r}): the hair model \
+                         works at millimetres (1 mm collision margin, 2-8 mm wisp layers), so a \
+                         head needs at least 1 cm"
+                    ),
+                );
+            }
         }
         in_range(
             "scalp.max_polar_deg",
             self.scalp.max_polar_deg,
-            0.0,
+            MIN_SCALP_POLAR_DEG,
             150.0,
-            true,
+            false,
         )?;
         in_range(
             "scalp.front_polar_deg",
             self.scalp.front_polar_deg,
-            0.0,
-            self.scalp.max_polar_deg.max(0.0),
-            true,
+            MIN_SCALP_POLAR_DEG,
+            self.scalp.max_polar_deg.max(MIN_SCALP_POLAR_DEG),
+            false,
         )?;
         if self.wisps.count == 0 || self.wisps.count > MAX_WISPS {
             return bad(
@@ -305,9 +338,9 @@ impl Hairstyle {
         in_range(
             "guides.wave_period_m",
             self.guides.wave_period_m,
-            0.0,
+            MIN_PERIOD_M,
             10.0,
-            true,
+            false,
         )?;
         if self.strands.points < 2 {
             return bad(
@@ -342,7 +375,13 @@ impl Hairstyle {
         in_range("strands.tip_taper", self.strands.tip_taper, 0.0, 1.0, false)?;
         in_range("curl.radius_m", self.curl.radius_m, 0.0, 0.1, false)?;
         if self.curl.radius_m > 0.0 {
-            in_range("curl.period_m", self.curl.period_m, 0.0, 10.0, true)?;
+            in_range(
+                "curl.period_m",
+                self.curl.period_m,
+                MIN_PERIOD_M,
+                10.0,
+                false,
+            )?;
         }
         self.fiber
             .validate()

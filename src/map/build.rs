@@ -60,7 +60,7 @@ pub struct MapStats {
 
 /// A sample piece before sorting.
 #[derive(Clone, Copy, Debug, Default)]
-struct Entry {
+pub(super) struct Entry {
     /// Column index, or `u32::MAX` for a skipped (non-finite) sample.
     col: u32,
     /// Unwrapped slice ⌊x/ds⌋.
@@ -108,10 +108,10 @@ pub(super) struct Scratch {
 }
 
 /// Columns a piece is shared between (2 × 2, bilinear weights).
-const SPLAT: usize = 4;
+pub(super) const SPLAT: usize = 4;
 
 /// Most pieces a sample is split into (a sample longer than 8 cells still makes 8).
-const MAX_PIECES: usize = 8;
+pub(super) const MAX_PIECES: usize = 8;
 
 /// Coordinates beyond this many cells are treated as invalid (keeps `as i64` well defined).
 const MAX_CELL_COORD: f32 = 1.0e12;

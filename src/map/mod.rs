@@ -65,10 +65,11 @@
 //! [`accuracy`] compares the map with it; `wisp accuracy` prints the tables of ACCURACY.md.
 
 pub mod accuracy;
+mod budget;
 mod build;
 pub mod exact;
 mod lookup;
-mod occluders;
+pub(crate) mod occluders;
 
 pub use build::{CountModel, MapBuildInput, MapStats};
 pub use occluders::{OccluderGrid, Solid};

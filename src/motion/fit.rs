@@ -68,7 +68,8 @@ pub const MIN_SPHERE_RADIUS_M: f32 = 0.01;
 /// Estimates the fit (see the module doc).
 pub(crate) fn estimate(loaded: &Loaded, skel: &Skeleton, head: usize) -> (Fit, FitMethod) {
     let origin = skel.rest_world(head).translation;
-    let verts = head_vertices(loaded, skel, head);
+    let in_head = skel.subtree(head);
+    let verts = head_vertices(loaded, skel, &in_head);
     if verts.len() >= 4 {
         let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
         for v in &verts {
@@ -95,7 +96,7 @@ pub(crate) fn estimate(loaded: &Loaded, skel: &Skeleton, head: usize) -> (Fit, F
         }
     }
     let farthest = (0..skel.names.len())
-        .filter(|&i| i != head && skel.is_in_subtree(i, head))
+        .filter(|&i| i != head && in_head[i])
         .map(|i| Vec3::from(skel.rest_world(i).translation - origin))
         .max_by(|a, b| a.length().total_cmp(&b.length()));
     if let Some(d) = farthest.filter(|d| d.length() > 1e-6) {
@@ -119,40 +120,51 @@ pub(crate) fn estimate(loaded: &Loaded, skel: &Skeleton, head: usize) -> (Fit, F
     (Fit::IDENTITY, FitMethod::Default)
 }
 
-/// Rest-pose world positions of the head's vertices (see the module doc).
-fn head_vertices(loaded: &Loaded, skel: &Skeleton, head: usize) -> Vec<Vec3> {
+/// Rest-pose world positions of the head's vertices (see the module doc); `in_head` marks
+/// the head joint's subtree.
+fn head_vertices(loaded: &Loaded, skel: &Skeleton, in_head: &[bool]) -> Vec<Vec3> {
+    /// What a skin contributes, worked out once per skin (a file may point a million nodes at
+    /// one skin of a million joints).
+    struct SkinUse {
+        /// Per joint of the skin: in the head's subtree.
+        in_head: Vec<bool>,
+        /// Per joint: rest world matrix × inverse bind matrix.
+        mats: Vec<Affine3A>,
+    }
+    let mut skins: Vec<Option<Option<SkinUse>>> =
+        (0..loaded.doc.skins().len()).map(|_| None).collect();
     let mut out = Vec::new();
     for node in loaded.doc.nodes() {
         let Some(mesh) = node.mesh() else { continue };
         if let Some(skin) = node.skin() {
-            let joints: Vec<usize> = skin.joints().map(|j| j.index()).collect();
-            let in_head: Vec<bool> = joints
-                .iter()
-                .map(|&j| skel.is_in_subtree(j, head))
-                .collect();
-            if !in_head.contains(&true) {
+            let entry = skins[skin.index()].get_or_insert_with(|| {
+                let joints: Vec<usize> = skin.joints().map(|j| j.index()).collect();
+                let in_head: Vec<bool> = joints.iter().map(|&j| in_head[j]).collect();
+                if !in_head.contains(&true) {
+                    return None;
+                }
+                let ibm: Vec<Affine3A> = skin
+                    .inverse_bind_matrices()
+                    .and_then(|a| read_accessor(&a, loaded).ok())
+                    .filter(|(v, c)| *c == 16 && v.len() == 16 * joints.len())
+                    .map(|(v, _)| {
+                        v.chunks_exact(16)
+                            .map(|m| Affine3A::from_mat4(Mat4::from_cols_slice(m)))
+                            .collect()
+                    })
+                    .unwrap_or_else(|| vec![Affine3A::IDENTITY; joints.len()]);
+                let mats = joints
+                    .iter()
+                    .zip(&ibm)
+                    .map(|(&j, b)| skel.rest_world(j) * *b)
+                    .collect();
+                Some(SkinUse { in_head, mats })
+            });
+            let Some(SkinUse { in_head, mats }) = entry.as_ref() else {
                 continue;
-            }
-            let ibm: Vec<Affine3A> = skin
-                .inverse_bind_matrices()
-                .and_then(|a| read_accessor(&a, &loaded.buffers).ok())
-                .filter(|(v, c)| *c == 16 && v.len() == 16 * joints.len())
-                .map(|(v, _)| {
-                    v.chunks_exact(16)
-                        .map(|m| Affine3A::from_mat4(Mat4::from_cols_slice(m)))
-                        .collect()
-                })
-                .unwrap_or_else(|| vec![Affine3A::IDENTITY; joints.len()]);
-            let mats: Vec<Affine3A> = joints
-                .iter()
-                .zip(&ibm)
-                .map(|(&j, b)| skel.rest_world(j) * *b)
-                .collect();
+            };
             for prim in mesh.primitives() {
-                let read = |s: Semantic| {
-                    prim.get(&s)
-                        .and_then(|a| read_accessor(&a, &loaded.buffers).ok())
-                };
+                let read = |s: Semantic| prim.get(&s).and_then(|a| read_accessor(&a, loaded).ok());
                 let (Some((pos, 3)), Some((jnt, 4)), Some((wgt, 4))) = (
                     read(Semantic::Positions),
                     read(Semantic::Joints(0)),
@@ -182,12 +194,12 @@ fn head_vertices(loaded: &Loaded, skel: &Skeleton, head: usize) -> Vec<Vec3> {
                     }
                 }
             }
-        } else if skel.is_in_subtree(node.index(), head) {
+        } else if in_head[node.index()] {
             let m = skel.rest_world(node.index());
             for prim in mesh.primitives() {
                 if let Some((pos, 3)) = prim
                     .get(&Semantic::Positions)
-                    .and_then(|a| read_accessor(&a, &loaded.buffers).ok())
+                    .and_then(|a| read_accessor(&a, loaded).ok())
                 {
                     out.extend(
                         pos.chunks_exact(3)
@@ -208,13 +220,8 @@ fn head_vertices(loaded: &Loaded, skel: &Skeleton, head: usize) -> Vec<Vec3> {
 /// [`MIN_SPHERE_RADIUS_M`]).
 pub(crate) fn default_spheres(skel: &Skeleton, head: usize, fit: &Fit) -> Vec<(usize, Vec3, f32)> {
     let lower: Vec<String> = skel.names.iter().map(|n| n.to_lowercase()).collect();
-    let ancestors: Vec<usize> = skel
-        .chain(head)
-        .unwrap_or_default()
-        .into_iter()
-        .rev()
-        .skip(1)
-        .collect();
+    let in_head = skel.subtree(head);
+    let ancestors: Vec<usize> = skel.chain(head).into_iter().rev().skip(1).collect();
     let is_shoulder = |i: usize| lower[i].contains("shoulder") || lower[i].contains("clavicle");
     let neck = ancestors
         .iter()
@@ -227,7 +234,7 @@ pub(crate) fn default_spheres(skel: &Skeleton, head: usize, fit: &Fit) -> Vec<(u
                 .any(|k| lower[i].contains(k))
     });
     let shoulders = (0..skel.names.len())
-        .filter(|&i| skel.is_joint[i] && is_shoulder(i) && !skel.is_in_subtree(i, head))
+        .filter(|&i| skel.is_joint[i] && is_shoulder(i) && !in_head[i])
         .filter(|&i| !skel.parents[i].is_some_and(is_shoulder))
         .take(2);
 

@@ -5,18 +5,43 @@
 //! readers because those index slices after trusting the header lengths (a header whose length
 //! is below 12 underflows `length − 12`); every offset below is checked, so a truncated or
 //! corrupt file is an error, never a panic. The JSON itself is parsed and validated by the
-//! gltf crate.
+//! gltf crate, and then checked further where the crate's validation has gaps: it does not
+//! check an animation channel's `target` (an out-of-range node or an unknown `path` made the
+//! crate unwrap and panic later).
+//!
+//! Every size is bounded before it is allocated: the file and each external buffer are read
+//! through [`crate::input::read_capped`], the JSON may hold at most [`MAX_JSON_CONTAINERS`]
+//! objects and arrays (each becomes a struct of up to a few hundred bytes), and all accessor
+//! data decoded during one load shares one budget of [`MAX_DECODED_VALUES`] numbers (one
+//! accessor read by a thousand channels is charged a thousand times).
 
 use std::path::Path;
 
 use gltf::accessor::{DataType, Dimensions};
+use gltf::json::validation::Checked;
 
 use super::MotionError;
+use crate::input::{ReadError, read_capped};
+
+/// Largest glTF file (`.glb` or `.gltf`) read, in bytes.
+pub const MAX_FILE_BYTES: u64 = 256 << 20;
+/// Largest total of external buffer files (`.bin` next to a `.gltf`) read for one load, bytes.
+pub const MAX_BUFFER_BYTES: u64 = 256 << 20;
+/// Most JSON objects and arrays in a glTF document. A real rig with meshes has a few thousand;
+/// without a bound, 256 MB of `{},` would deserialize into tens of gigabytes of structs.
+pub const MAX_JSON_CONTAINERS: usize = 1_000_000;
+/// Most accessor values (numbers) decoded during one load, over all accessors: 64 M values,
+/// 256 MB as f32.
+pub const MAX_DECODED_VALUES: usize = 64 << 20;
+/// Most problems listed in one message (a broken file can have thousands).
+const MAX_LISTED: usize = 8;
 
 /// Buffer contents and the parsed document.
 pub(crate) struct Loaded {
     pub(crate) doc: gltf::Document,
     pub(crate) buffers: Vec<Vec<u8>>,
+    /// Accessor values that may still be decoded in this load (see [`MAX_DECODED_VALUES`]).
+    pub(crate) decoded_left: std::cell::Cell<usize>,
 }
 
 pub(crate) fn invalid(file: &str, reason: impl Into<String>) -> MotionError {
@@ -86,12 +111,113 @@ fn split_glb<'a>(bytes: &'a [u8], file: &str) -> Result<(&'a [u8], Option<&'a [u
     Ok((json, bin))
 }
 
+/// Objects and arrays in a JSON text, counted without parsing (string contents skipped).
+fn count_containers(json: &[u8]) -> usize {
+    let (mut n, mut in_string, mut escaped) = (0usize, false, false);
+    for &b in json {
+        if in_string {
+            if escaped {
+                escaped = false;
+            } else if b == b'\\' {
+                escaped = true;
+            } else if b == b'"' {
+                in_string = false;
+            }
+        } else {
+            match b {
+                b'"' => in_string = true,
+                b'{' | b'[' => n += 1,
+                _ => {}
+            }
+        }
+    }
+    n
+}
+
+/// "a; b; c (and 12 more)": the first few items of a long list.
+pub(crate) fn short_list(items: impl ExactSizeIterator<Item = String>, sep: &str) -> String {
+    let total = items.len();
+    let shown: Vec<String> = items.take(MAX_LISTED).collect();
+    let mut s = shown.join(sep);
+    if total > shown.len() {
+        s.push_str(&format!(" (and {} more)", total - shown.len()));
+    }
+    s
+}
+
+/// The gltf crate's error as one short sentence (its own Display lists every problem and
+/// starts with "invalid glTF:", which our message already says).
+fn describe(e: gltf::Error) -> String {
+    match e {
+        gltf::Error::Validation(list) => {
+            let n = list.len();
+            let items = list.into_iter().map(|(path, err)| format!("{path}: {err}"));
+            format!(
+                "{n} problem{}: {}",
+                if n == 1 { "" } else { "s" },
+                short_list(items, "; ")
+            )
+        }
+        gltf::Error::Deserialize(e) => format!("JSON: {e}"),
+        other => other.to_string(),
+    }
+}
+
+/// Indices the gltf crate's validation trusts (it indexes `accessors` with a primitive's
+/// POSITION attribute before checking it, and panics) or never checks (each animation channel's
+/// target node and path, which its accessors then unwrap). Run before the crate's validation.
+fn check_trusted_indices(root: &gltf::json::Root) -> Result<(), String> {
+    let mut problems = Vec::new();
+    let position = Checked::Valid(gltf::json::mesh::Semantic::Positions);
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            if let Some(acc) = prim.attributes.get(&position)
+                && acc.value() >= root.accessors.len()
+            {
+                problems.push(format!(
+                    "meshes[{m}].primitives[{p}].attributes.POSITION: accessor {} is out of range (the file has {} accessors)",
+                    acc.value(),
+                    root.accessors.len()
+                ));
+            }
+        }
+    }
+    for (a, anim) in root.animations.iter().enumerate() {
+        for (c, ch) in anim.channels.iter().enumerate() {
+            let node = ch.target.node.value();
+            if node >= root.nodes.len() {
+                problems.push(format!(
+                    "animations[{a}].channels[{c}].target.node: {node} is out of range (the file has {} nodes)",
+                    root.nodes.len()
+                ));
+            }
+            if matches!(ch.target.path, Checked::Invalid) {
+                problems.push(format!(
+                    "animations[{a}].channels[{c}].target.path: not one of \"translation\", \"rotation\", \"scale\", \"weights\""
+                ));
+            }
+        }
+    }
+    if problems.is_empty() {
+        return Ok(());
+    }
+    let n = problems.len();
+    Err(format!(
+        "{n} problem{}: {}",
+        if n == 1 { "" } else { "s" },
+        short_list(problems.into_iter(), "; ")
+    ))
+}
+
 /// Parses the container and resolves the buffers.
 pub(crate) fn parse(
     bytes: &[u8],
     file: &str,
     base_dir: Option<&Path>,
 ) -> Result<Loaded, MotionError> {
+    // A UTF-8 byte-order mark before a .gltf's JSON is skipped (glTF §3.1 forbids writing one,
+    // RFC 8259 lets a reader ignore it).
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
     let (json, bin) = if bytes.starts_with(b"glTF") {
         split_glb(bytes, file)?
     } else if bytes.iter().find(|b| !b.is_ascii_whitespace()) == Some(&b'{') {
@@ -110,9 +236,21 @@ pub(crate) fn parse(
             },
         });
     };
-    let gltf = gltf::Gltf::from_slice(json).map_err(|e| invalid(file, e.to_string()))?;
-    let doc = gltf.document;
+    let containers = count_containers(json);
+    if containers > MAX_JSON_CONTAINERS {
+        return Err(invalid(
+            file,
+            format!(
+                "the JSON has {containers} objects and arrays, more than the {MAX_JSON_CONTAINERS} accepted"
+            ),
+        ));
+    }
+    let root =
+        gltf::json::Root::from_slice(json).map_err(|e| invalid(file, format!("JSON: {e}")))?;
+    check_trusted_indices(&root).map_err(|reason| invalid(file, reason))?;
+    let doc = gltf::Document::from_json(root).map_err(|e| invalid(file, describe(e)))?;
     let mut buffers = Vec::new();
+    let mut external_bytes = 0u64;
     for buffer in doc.buffers() {
         let index = buffer.index();
         let err = |reason: String| MotionError::Buffer {
@@ -121,10 +259,22 @@ pub(crate) fn parse(
             reason,
         };
         let data = match buffer.source() {
+            // Only the first buffer may be the GLB's binary chunk (glTF §4.4.3.3); without this
+            // rule a thousand URI-less buffers would copy the chunk a thousand times.
+            gltf::buffer::Source::Bin if index > 0 => {
+                return Err(err(
+                    "has no uri, but only buffer 0 may refer to the GLB binary chunk".into(),
+                ));
+            }
             gltf::buffer::Source::Bin => bin
                 .ok_or_else(|| err("refers to the GLB binary chunk, which is absent".into()))?
                 .to_vec(),
-            gltf::buffer::Source::Uri(uri) => read_uri(uri, base_dir).map_err(err)?,
+            gltf::buffer::Source::Uri(uri) => {
+                let left = MAX_BUFFER_BYTES.saturating_sub(external_bytes);
+                let data = read_uri(uri, base_dir, left).map_err(err)?;
+                external_bytes += data.len() as u64;
+                data
+            }
         };
         if data.len() < buffer.length() {
             return Err(err(format!(
@@ -135,11 +285,16 @@ pub(crate) fn parse(
         }
         buffers.push(data);
     }
-    Ok(Loaded { doc, buffers })
+    Ok(Loaded {
+        doc,
+        buffers,
+        decoded_left: std::cell::Cell::new(MAX_DECODED_VALUES),
+    })
 }
 
-/// Bytes of a buffer URI: `data:...;base64,...` or a relative path next to the file.
-fn read_uri(uri: &str, base_dir: Option<&Path>) -> Result<Vec<u8>, String> {
+/// Bytes of a buffer URI: `data:...;base64,...` or a relative path next to the file (at most
+/// `limit` bytes).
+fn read_uri(uri: &str, base_dir: Option<&Path>, limit: u64) -> Result<Vec<u8>, String> {
     if let Some(rest) = uri.strip_prefix("data:") {
         let (meta, payload) = rest
             .split_once(',')
@@ -158,7 +313,13 @@ fn read_uri(uri: &str, base_dir: Option<&Path>) -> Result<Vec<u8>, String> {
         format!("relative URI {uri:?} needs the file's folder: load the .gltf with Motion::load")
     })?;
     let path = dir.join(percent_decode(uri));
-    std::fs::read(&path).map_err(|e| format!("cannot read {}: {e}", path.display()))
+    read_capped(&path, limit, "the buffers of one glTF").map_err(|e| match e {
+        ReadError::TooLarge { bytes, .. } if limit < MAX_BUFFER_BYTES => format!(
+            "{}: {bytes} bytes would take the buffers of this glTF over {MAX_BUFFER_BYTES} bytes",
+            path.display()
+        ),
+        e => format!("{}: {e}", path.display()),
+    })
 }
 
 /// Decodes `%XX` escapes of a URI path (other characters pass through).
@@ -215,11 +376,13 @@ pub(crate) fn decode_base64(s: &str) -> Result<Vec<u8>, String> {
 }
 
 /// An accessor's elements as f32 (integer types converted, normalised ones per glTF §3.11),
-/// flattened: `count × components` values.
+/// flattened: `count × components` values. The values are charged to `decoded_left` before
+/// anything is allocated (see [`MAX_DECODED_VALUES`]).
 pub(crate) fn read_accessor(
     acc: &gltf::Accessor,
-    buffers: &[Vec<u8>],
+    loaded: &Loaded,
 ) -> Result<(Vec<f32>, usize), String> {
+    let buffers = &loaded.buffers;
     let comps = match acc.dimensions() {
         Dimensions::Scalar => 1,
         Dimensions::Vec2 => 2,
@@ -240,16 +403,18 @@ pub(crate) fn read_accessor(
         ));
     }
     let count = acc.count();
+    let values = count.saturating_mul(comps);
+    let left = loaded.decoded_left.get();
+    if values > left {
+        return Err(format!(
+            "accessor {}: {count} elements would take the data decoded from this file over {MAX_DECODED_VALUES} values",
+            acc.index()
+        ));
+    }
+    loaded.decoded_left.set(left - values);
     let Some(view) = acc.view() else {
-        // No buffer view: all zeros (glTF §3.6.2.1). Bounded so that a hostile count cannot
-        // exhaust memory.
-        if count > 1 << 24 {
-            return Err(format!(
-                "accessor {}: {count} elements without data",
-                acc.index()
-            ));
-        }
-        return Ok((vec![0.0; count * comps], comps));
+        // No buffer view: all zeros (glTF §3.6.2.1), bounded by the budget above.
+        return Ok((vec![0.0; values], comps));
     };
     let csize = acc.data_type().size();
     let elem = comps * csize;

@@ -8,58 +8,91 @@ use glam::{Affine3A, Mat4, Quat, Vec3, Vec4};
 use gltf::animation::{Interpolation as GltfInterpolation, Property};
 
 use super::fit::{self, FitMethod};
-use super::gltf_io::{Loaded, invalid, parse, read_accessor};
+use super::gltf_io::{Loaded, invalid, parse, read_accessor, short_list};
 use super::sampler::{Interpolation, Track};
 use super::{ChainNode, JointChain, JointRef, Motion, MotionError, MotionOptions};
 
-/// Node hierarchy of the file at rest (node default transforms).
+/// Node hierarchy of the file at rest (node default transforms). Acyclic (checked when built),
+/// and every per-node quantity is computed once in O(nodes): a file may have a million nodes
+/// in one chain, where walking each node's chain would cost a million squared.
 pub(crate) struct Skeleton {
     pub(crate) names: Vec<String>,
     pub(crate) parents: Vec<Option<usize>>,
-    pub(crate) rest_local: Vec<Affine3A>,
     /// Node is a joint of some skin (all true when the file has no skin).
     pub(crate) is_joint: Vec<bool>,
+    /// World matrix of each node at rest.
+    rest_world: Vec<Affine3A>,
+    /// All nodes, every parent before its children.
+    order: Vec<usize>,
 }
 
 impl Skeleton {
-    /// Node indices from the root to `node` (inclusive); `None` on a cycle.
-    pub(crate) fn chain(&self, node: usize) -> Option<Vec<usize>> {
+    /// Node indices from the root to `node` (inclusive).
+    pub(crate) fn chain(&self, node: usize) -> Vec<usize> {
         let mut chain = vec![node];
         let mut at = node;
         while let Some(p) = self.parents[at] {
-            if chain.len() > self.parents.len() {
-                return None;
-            }
             chain.push(p);
             at = p;
         }
         chain.reverse();
-        Some(chain)
+        chain
     }
 
-    /// World matrix of `node` at rest; identity for a node on a cycle (reported earlier).
+    /// World matrix of `node` at rest.
     pub(crate) fn rest_world(&self, node: usize) -> Affine3A {
-        self.chain(node)
-            .map(|c| {
-                c.iter()
-                    .fold(Affine3A::IDENTITY, |m, &i| m * self.rest_local[i])
-            })
-            .unwrap_or(Affine3A::IDENTITY)
+        self.rest_world[node]
     }
 
-    /// Whether `node` is `ancestor` or lies below it.
-    pub(crate) fn is_in_subtree(&self, node: usize, ancestor: usize) -> bool {
-        self.chain(node).is_some_and(|c| c.contains(&ancestor))
+    /// Which nodes are `root` or lie below it.
+    pub(crate) fn subtree(&self, root: usize) -> Vec<bool> {
+        let mut inside = vec![false; self.names.len()];
+        for &i in &self.order {
+            inside[i] = i == root || self.parents[i].is_some_and(|p| inside[p]);
+        }
+        inside
     }
 
-    /// "index name" list of the joints, for error messages.
+    /// "index name" list of the joints, for error messages (the first few of a long list).
     fn joint_list(&self) -> String {
-        let list: Vec<String> = (0..self.names.len())
+        let joints: Vec<String> = (0..self.names.len())
             .filter(|&i| self.is_joint[i])
             .map(|i| format!("{i} {}", self.names[i]))
             .collect();
-        list.join(", ")
+        short_list(joints.into_iter(), ", ")
     }
+}
+
+/// All nodes of the forest given by `parents`, every parent before its children (sorted by
+/// depth), or a node on a cycle. O(nodes): each node is walked once.
+fn parent_first_order(parents: &[Option<usize>]) -> Result<Vec<usize>, usize> {
+    let n = parents.len();
+    let mut depth: Vec<Option<usize>> = vec![None; n];
+    let mut on_path = vec![false; n];
+    let mut path = Vec::new();
+    for start in 0..n {
+        // Walk up to a node of known depth or to a root...
+        let mut at = start;
+        while depth[at].is_none() {
+            if on_path[at] {
+                return Err(at);
+            }
+            on_path[at] = true;
+            path.push(at);
+            match parents[at] {
+                Some(p) => at = p,
+                None => break,
+            }
+        }
+        // ...then give the walked nodes their depths, top down.
+        while let Some(node) = path.pop() {
+            on_path[node] = false;
+            depth[node] = Some(parents[node].map_or(0, |p| depth[p].map_or(0, |d| d + 1)));
+        }
+    }
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by_key(|&i| depth[i]);
+    Ok(order)
 }
 
 fn rest_trs(node: &gltf::Node) -> (Vec3, Quat, Vec3, Affine3A) {
@@ -104,22 +137,46 @@ fn build_skeleton(doc: &gltf::Document, file: &str) -> Result<Skeleton, MotionEr
             is_joint[j.index()] = true;
         }
     }
-    let skel = Skeleton {
-        names: doc
-            .nodes()
-            .map(|nd| {
-                nd.name()
-                    .map_or_else(|| format!("#{}", nd.index()), str::to_string)
-            })
-            .collect(),
-        parents,
-        rest_local: doc.nodes().map(|nd| rest_trs(&nd).3).collect(),
-        is_joint,
-    };
-    if (0..n).any(|i| skel.chain(i).is_none()) {
-        return Err(invalid(file, "the node hierarchy has a cycle"));
+    let names: Vec<String> = doc
+        .nodes()
+        .map(|nd| {
+            nd.name()
+                .map_or_else(|| format!("#{}", nd.index()), str::to_string)
+        })
+        .collect();
+    let mut rest_local = Vec::with_capacity(n);
+    for nd in doc.nodes() {
+        let (t, r, s, m) = rest_trs(&nd);
+        // A zero quaternion normalises to NaN, and JSON numbers beyond f32 arrive as inf.
+        if !(t.is_finite() && r.is_finite() && s.is_finite() && m.is_finite()) {
+            return Err(invalid(
+                file,
+                format!(
+                    "node {} ({:?}): its rest transform is not finite (translation, scale and matrix must be finite numbers, rotation a non-zero quaternion)",
+                    nd.index(),
+                    names[nd.index()]
+                ),
+            ));
+        }
+        rest_local.push(m);
     }
-    Ok(skel)
+    let order = parent_first_order(&parents).map_err(|node| {
+        invalid(
+            file,
+            format!("the node hierarchy has a cycle through node {node}"),
+        )
+    })?;
+    let mut rest_world = vec![Affine3A::IDENTITY; n];
+    for &i in &order {
+        rest_world[i] = parents[i].map_or(Affine3A::IDENTITY, |p| rest_world[p]) * rest_local[i];
+    }
+    Ok(Skeleton {
+        names,
+        parents,
+        is_joint,
+        rest_world,
+        order,
+    })
 }
 
 /// Resolves a [`JointRef`]: exact name, then case-insensitive; joints before other nodes.
@@ -172,7 +229,7 @@ fn default_head(skel: &Skeleton, file: &str) -> Result<usize, MotionError> {
         .ok_or_else(|| MotionError::UnknownJoint {
             file: file.to_string(),
             role: "head joint".to_string(),
-            requested: "named like \"head\" (give MotionOptions::head_joint)".to_string(),
+            requested: "named like \"head\"".to_string(),
             available: skel.joint_list(),
         })
 }
@@ -210,13 +267,16 @@ fn choose_clip<'a>(
     }
 }
 
-/// The clip's tracks per node: `[translation, rotation, scale]`, and the key range.
-type NodeTracks = Vec<[Option<Track>; 3]>;
+/// The clip's tracks of the animated nodes: `[translation, rotation, scale]` by node index.
+type NodeTracks = std::collections::BTreeMap<usize, [Option<Track>; 3]>;
+
+/// Shortest and longest length accepted for a rotation key (glTF rotations are unit
+/// quaternions; integer-encoded ones are slightly off, and sampling normalises).
+const ROTATION_KEY_LENGTH: (f32, f32) = (0.1, 10.0);
 
 fn read_clip(
     anim: &gltf::Animation,
     loaded: &Loaded,
-    n_nodes: usize,
     file: &str,
     clip: &str,
 ) -> Result<(NodeTracks, f32, f32), MotionError> {
@@ -225,12 +285,21 @@ fn read_clip(
         clip: clip.to_string(),
         reason,
     };
-    let mut tracks: NodeTracks = (0..n_nodes).map(|_| [None, None, None]).collect();
+    let mut tracks = NodeTracks::new();
     let (mut start_s, mut end_s) = (f32::INFINITY, f32::NEG_INFINITY);
     for (ci, ch) in anim.channels().enumerate() {
         let sampler = ch.sampler();
-        let (times, _) = read_accessor(&sampler.input(), &loaded.buffers)
+        let (times, _) = read_accessor(&sampler.input(), loaded)
             .map_err(|e| bad(format!("channel {ci} input: {e}")))?;
+        // Every channel's times set the clip's range, so check them all (weights too).
+        if let Some(k) =
+            (0..times.len()).find(|&k| !times[k].is_finite() || (k > 0 && times[k] <= times[k - 1]))
+        {
+            return Err(bad(format!(
+                "channel {ci} input: key time {k} ({} s) is not finite or not after the previous key",
+                times[k]
+            )));
+        }
         if let (Some(&a), Some(&b)) = (times.first(), times.last()) {
             start_s = start_s.min(a);
             end_s = end_s.max(b);
@@ -241,7 +310,7 @@ fn read_clip(
             Property::Scale => 2,
             Property::MorphTargetWeights => continue,
         };
-        let (vals, comps) = read_accessor(&sampler.output(), &loaded.buffers)
+        let (vals, comps) = read_accessor(&sampler.output(), loaded)
             .map_err(|e| bad(format!("channel {ci} output: {e}")))?;
         let want = if slot == 1 { 4 } else { 3 };
         if comps != want {
@@ -265,9 +334,30 @@ fn read_clip(
             GltfInterpolation::CubicSpline => Interpolation::CubicSpline,
         };
         let node = ch.target().node().index();
+        if slot == 1 {
+            let per_key = if interp == Interpolation::CubicSpline {
+                3
+            } else {
+                1
+            };
+            let middle = per_key / 2;
+            let (lo, hi) = ROTATION_KEY_LENGTH;
+            if let Some((k, q)) = values
+                .iter()
+                .skip(middle)
+                .step_by(per_key)
+                .enumerate()
+                .find(|(_, q)| !(lo..=hi).contains(&q.length()))
+            {
+                return Err(bad(format!(
+                    "channel {ci} (node {node}): rotation key {k} has length {} (glTF rotations are unit quaternions)",
+                    q.length()
+                )));
+            }
+        }
         let track = Track::new(times, values, interp)
             .map_err(|e| bad(format!("channel {ci} (node {node}): {e}")))?;
-        tracks[node][slot] = Some(track);
+        tracks.entry(node).or_default()[slot] = Some(track);
     }
     if !start_s.is_finite() || !end_s.is_finite() {
         return Err(bad("the clip has no keys".to_string()));
@@ -300,8 +390,7 @@ pub(crate) fn from_bytes(
         Some(r) => resolve_joint(&skel, r, file, "head joint")?,
         None => default_head(&skel, file)?,
     };
-    let (mut tracks, start_s, end_s) =
-        read_clip(&anim, &loaded, skel.names.len(), file, &clip_name)?;
+    let (mut tracks, start_s, end_s) = read_clip(&anim, &loaded, file, &clip_name)?;
 
     let (fit, fit_method) = match opts.fit {
         Some(f) => {
@@ -339,11 +428,11 @@ pub(crate) fn from_bytes(
     let mut nodes: Vec<ChainNode> = Vec::new();
     let mut slot_of: Vec<Option<usize>> = vec![None; skel.names.len()];
     let mut make_chain = |joint: usize| -> JointChain {
-        let chain = skel.chain(joint).unwrap_or_else(|| vec![joint]);
+        let chain = skel.chain(joint);
         let mut idx = Vec::with_capacity(chain.len());
         for &n in &chain {
             let slot = *slot_of[n].get_or_insert_with(|| {
-                let [t, r, s] = std::mem::take(&mut tracks[n]);
+                let [t, r, s] = tracks.remove(&n).unwrap_or_default();
                 let nd = doc.nodes().nth(n);
                 let (rt, rr, rs, m) = nd.as_ref().map_or(
                     (Vec3::ZERO, Quat::IDENTITY, Vec3::ONE, Affine3A::IDENTITY),
@@ -377,7 +466,7 @@ pub(crate) fn from_bytes(
         .map(|(j, off, r)| (make_chain(j), off, r))
         .collect();
 
-    Ok(Motion {
+    let motion = Motion {
         clip_name,
         start_s,
         duration_s: (end_s - start_s).max(0.0),
@@ -389,5 +478,13 @@ pub(crate) fn from_bytes(
         spheres,
         head_joint_name: skel.names[head].clone(),
         head_joint_index: head,
-    })
+    };
+    motion
+        .check_reach()
+        .map_err(|reason| MotionError::BadClip {
+            file: file.to_string(),
+            clip: motion.clip_name.clone(),
+            reason,
+        })?;
+    Ok(motion)
 }

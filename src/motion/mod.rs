@@ -42,11 +42,21 @@ mod gltf_io;
 mod load;
 pub mod sampler;
 
+pub use gltf_io::{MAX_BUFFER_BYTES, MAX_DECODED_VALUES, MAX_FILE_BYTES, MAX_JSON_CONTAINERS};
+
 use std::path::Path;
 
 use glam::{Affine3A, Mat3A, Quat, Vec3, Vec3A};
 
 use sampler::Track;
+
+/// Farthest a head or body collider may be from the world origin, pose metres. Positions are
+/// f32: at 10 km their spacing is 1 mm, the collision margin, and beyond it the hair simulation
+/// and the camera lose the hair (keyframes of 1e30 gave blank frames).
+pub const MAX_POSE_DISTANCE_M: f32 = 10_000.0;
+
+/// Most clip times [`Motion`] loading samples to check [`MAX_POSE_DISTANCE_M`].
+const REACH_SAMPLES: usize = 10_000;
 
 /// Head radius in metres that hairstyles are made for (the fit maps a head of this size onto
 /// the model's head).
@@ -153,13 +163,14 @@ impl Default for MotionOptions {
 /// Why a motion could not be loaded. Every message names the file.
 #[derive(Debug, thiserror::Error)]
 pub enum MotionError {
-    /// The file could not be read.
-    #[error("{file}: cannot read: {source}")]
+    /// The file could not be read (missing, not a regular file, over
+    /// [`MAX_FILE_BYTES`]).
+    #[error("{file}: {error}")]
     Io {
         /// File name.
         file: String,
-        /// The I/O error.
-        source: std::io::Error,
+        /// What went wrong.
+        error: crate::input::ReadError,
     },
     /// Not glTF at all (neither the GLB magic nor JSON).
     #[error("{file}: not a glTF 2.0 file: {reason}")]
@@ -202,7 +213,7 @@ pub enum MotionError {
         file: String,
     },
     /// The requested clip does not exist.
-    #[error("{file}: no clip named {requested:?}; clips: {}", available.join(", "))]
+    #[error("{file}: no clip named {requested:?}; clips: {}", gltf_io::short_list(available.iter().cloned(), ", "))]
     UnknownClip {
         /// File name.
         file: String,
@@ -308,10 +319,13 @@ impl Motion {
     /// buffer URIs are resolved next to the file; `data:` base64 URIs are decoded.
     pub fn load(path: &Path, opts: &MotionOptions) -> Result<Motion, MotionError> {
         let name = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|source| MotionError::Io {
-            file: name.clone(),
-            source,
-        })?;
+        let bytes =
+            crate::input::read_capped(path, MAX_FILE_BYTES, "a glTF file").map_err(|error| {
+                MotionError::Io {
+                    file: name.clone(),
+                    error,
+                }
+            })?;
         load::from_bytes(&bytes, &name, path.parent(), opts)
     }
 
@@ -357,6 +371,18 @@ impl Motion {
             head_joint_name: "still".to_string(),
             head_joint_index: 0,
         }
+    }
+
+    /// Heap bytes held: the key times and values of the evaluated nodes' tracks.
+    pub fn held_bytes(&self) -> u64 {
+        let tracks = self
+            .nodes
+            .iter()
+            .flat_map(|n| [&n.translation, &n.rotation, &n.scale])
+            .flatten()
+            .map(|t| t.held_bytes())
+            .sum::<u64>();
+        tracks + (self.nodes.len() * size_of::<ChainNode>()) as u64
     }
 
     /// Clip length in seconds of clip time (last key − first key; 0 for [`Motion::still`]).
@@ -412,7 +438,11 @@ impl Motion {
     /// The pose at wall time `t_s` (looped), written into `pose` without allocating once
     /// `pose.spheres` has the capacity.
     pub fn sample_into(&self, t_s: f32, pose: &mut Pose) {
-        let clip_t = self.clip_time_s(t_s);
+        self.pose_at_clip_time(self.clip_time_s(t_s), pose);
+    }
+
+    /// The pose at clip time `clip_t` (seconds within the key range).
+    fn pose_at_clip_time(&self, clip_t: f32, pose: &mut Pose) {
         let inv_scale = 1.0 / self.fit.scale;
         let (rot, origin) = self.joint_frame(&self.head, clip_t);
         let center_model = origin + rot * Vec3A::from(self.fit.offset_m);
@@ -429,6 +459,53 @@ impl Motion {
                 radius_m: *radius_m,
             });
         }
+    }
+
+    /// Checks that the head and the colliders stay finite and within [`MAX_POSE_DISTANCE_M`]
+    /// of the origin over the clip: at every key time of the evaluated nodes and at uniform
+    /// times between (at most [`REACH_SAMPLES`] poses in all).
+    pub(crate) fn check_reach(&self) -> Result<(), String> {
+        let mut times: Vec<f32> = self
+            .nodes
+            .iter()
+            .flat_map(|n| [&n.translation, &n.rotation, &n.scale])
+            .flatten()
+            .flat_map(|t| t.times_s().iter().copied())
+            .collect();
+        let uniform = 1000;
+        if times.len() > REACH_SAMPLES - uniform - 1 {
+            let stride = times.len().div_ceil(REACH_SAMPLES - uniform - 1);
+            times = times.into_iter().step_by(stride).collect();
+        }
+        times.extend(
+            (0..=uniform).map(|i| self.start_s + self.duration_s * (i as f32 / uniform as f32)),
+        );
+        let mut pose = Pose::default();
+        for clip_t in times {
+            self.pose_at_clip_time(clip_t, &mut pose);
+            let head = Vec3::from(pose.head.translation);
+            let far = |p: Vec3| !(p.is_finite() && p.length() <= MAX_POSE_DISTANCE_M);
+            if far(head) || !pose.head.matrix3.is_finite() {
+                return Err(format!(
+                    "at clip time {clip_t} s the head is at {head} (pose metres, after the fit); \
+                     it must stay finite and within {MAX_POSE_DISTANCE_M} m of the origin, where \
+                     f32 positions still resolve the 1 mm collision margin"
+                ));
+            }
+            if let Some(s) = pose
+                .spheres
+                .iter()
+                .find(|s| far(s.center) || !s.radius_m.is_finite())
+            {
+                return Err(format!(
+                    "at clip time {clip_t} s a body collider is at {} (pose metres, after the \
+                     fit); colliders must stay finite and within {MAX_POSE_DISTANCE_M} m of \
+                     the origin",
+                    s.center
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// World matrix of a joint at clip time (model units, including node scales).

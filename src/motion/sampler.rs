@@ -168,6 +168,16 @@ impl Track {
     }
 
     /// The vec3 value (translation in metres, or scale) at `t_s`.
+    /// Heap bytes held (key times and values).
+    pub fn held_bytes(&self) -> u64 {
+        (self.times_s.len() * size_of::<f32>() + self.values.len() * size_of::<Vec4>()) as u64
+    }
+
+    /// Key times in seconds (strictly increasing).
+    pub fn times_s(&self) -> &[f32] {
+        &self.times_s
+    }
+
     pub fn sample_vec3(&self, t_s: f32) -> Vec3 {
         self.sample_raw(t_s, false).truncate()
     }

@@ -51,7 +51,7 @@ pub fn write_exr_rgba_f32(
             })?;
         writer.into_inner().map_err(|e| OutputError::Io {
             path: path.into(),
-            source: e.into_error(),
+            error: e.into_error(),
         })
     })
 }

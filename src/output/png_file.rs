@@ -7,14 +7,16 @@ use std::path::{Path, PathBuf};
 /// Why an image could not be written.
 #[derive(Debug, thiserror::Error)]
 pub enum OutputError {
-    #[error("{path}: {source}")]
+    /// The message carries the cause; it is not also a `source()`, so `{:#}` chains (anyhow)
+    /// do not print it twice.
+    #[error("{}: {error}", path.display())]
     Io {
         path: PathBuf,
-        source: std::io::Error,
+        error: std::io::Error,
     },
-    #[error("{path}: PNG encoding failed: {message}")]
+    #[error("{}: PNG encoding failed: {message}", path.display())]
     Encode { path: PathBuf, message: String },
-    #[error("{path}: image buffer has {got} bytes, expected {expected} for {width}x{height} RGB")]
+    #[error("{}: image buffer has {got} bytes, expected {expected} for {width}x{height} RGB", path.display())]
     Size {
         path: PathBuf,
         got: usize,
@@ -64,7 +66,7 @@ pub fn write_png_rgb8(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Resul
         }
         w.into_inner().map_err(|e| OutputError::Io {
             path: path.into(),
-            source: e.into_error(),
+            error: e.into_error(),
         })
     })
 }
@@ -81,7 +83,7 @@ pub fn write_atomically(
     let tmp = PathBuf::from(tmp_name);
     let io_err = |p: &Path| {
         let p = p.to_path_buf();
-        move |source| OutputError::Io { path: p, source }
+        move |error| OutputError::Io { path: p, error }
     };
     let result = (|| {
         let file = File::create(&tmp).map_err(io_err(&tmp))?;
@@ -138,10 +140,11 @@ mod tests {
         assert_eq!(&bytes[1..4], b"PNG");
         assert!(!dir.join("a.png.tmp").exists());
         let missing = dir.join("no-such-dir").join("b.png");
-        assert!(matches!(
-            write_png_rgb8(&missing, 1, 1, &[0; 3]),
-            Err(OutputError::Io { .. })
-        ));
+        let e = write_png_rgb8(&missing, 1, 1, &[0; 3]).unwrap_err();
+        assert!(matches!(e, OutputError::Io { .. }));
+        // The cause is in the message once, and not repeated as a source.
+        assert_eq!(e.to_string().matches("No such file").count(), 1, "{e}");
+        assert!(std::error::Error::source(&e).is_none());
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -18,6 +18,7 @@
 // test rejects both out-of-range and NaN values.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+mod budget;
 pub mod camera;
 pub mod framebuffer;
 pub mod lines;

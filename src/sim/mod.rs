@@ -23,6 +23,7 @@
 //! [`dance`] holds an analytic dance motion used by tests and benches.
 
 mod bend;
+mod budget;
 pub mod collide;
 pub mod dance;
 pub mod density;

@@ -1,0 +1,490 @@
+//! One budget for what a run may allocate and compute, checked before anything large exists.
+//!
+//! A hairstyle's fields are each bounded (`hairstyle::MAX_*`), but their products are not: a
+//! file at exactly the documented maxima passed validation, set up for 66 s and then aborted
+//! on a 17.9 GB allocation in the map, and one with 100,000 wisps of 256 links ran for more
+//! than five minutes at 7 GB. [`estimate`] therefore adds up, from the hairstyle, the motion,
+//! the engine configuration and the run's plan (frames, warm-up, export):
+//!
+//! - **memory**: every buffer the [`Engine`](crate::frame::Engine) and the export hold, each
+//!   as a product of item counts and per-item sizes taken from the real structs with
+//!   `size_of` (the map, simulation and raster parts come from estimators next to their
+//!   private structs: `MapGeometry::estimated_bytes`, `Simulator::estimated_bytes`,
+//!   `Framebuffer::estimated_bytes`, `LineScratch::estimated_bytes`);
+//! - **work before the first frame**: the settle and warm-up simulation and the first frame,
+//!   in CPU-seconds from per-item costs measured on the development machine (one core of a
+//!   shared 2-core VM; `NOTES-hostile-inputs.md`). A frame costs less than this set-up, so the
+//!   bound also holds for every later frame: no run sits for long without output.
+//!
+//! [`Estimate::check`] refuses an estimate over a [`Budget`], naming the largest part, the
+//! product it comes from and the inputs that set it. To extend it (a groom, a cache, a
+//! scene), add one [`MemoryPart`] or [`WorkPart`] per new buffer or stage in [`estimate`], with
+//! its count times a `size_of`.
+
+use crate::frame::EngineConfig;
+use crate::hairstyle::Hairstyle;
+use crate::input::human_bytes;
+use crate::map::MapGeometry;
+use crate::motion::Motion;
+use crate::raster::{Framebuffer, LineScratch};
+use crate::sim::Simulator;
+use glam::Vec3;
+
+/// Default memory budget: 4 GB.
+pub const DEFAULT_MEMORY_BYTES: u64 = 4_000_000_000;
+/// Default work budget before the first frame: 20 CPU-minutes (10 minutes on 2 cores).
+pub const DEFAULT_WORK_CPU_S: f64 = 1200.0;
+
+/// Measured single-core costs (release build, shared 2-core VM, `wisp --threads 1 render`
+/// stage timings of the presets; see `NOTES-hostile-inputs.md`). Estimates, good to about 2×.
+mod cost_ns {
+    /// One simulation step of one guide particle, self-collision on (smooth: 8.6 ms for 8
+    /// steps of 6,432 particles).
+    pub const PARTICLE_STEP: f64 = 200.0;
+    /// Interpolation, map and shading of one render point, plus drawing its segment (smooth:
+    /// 108 ms for 103,850 points; curly: 280 ms for 207,700).
+    pub const POINT: f64 = 1_500.0;
+    /// Interpolation only, as in each 0.2 s slice of the warm-up (curly: 11 ms).
+    pub const POINT_INTERP: f64 = 60.0;
+    /// Clearing, the head and body, sRGB conversion and PNG encoding of one pixel.
+    pub const PIXEL: f64 = 150.0;
+}
+
+/// How much a run may use.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Budget {
+    /// Bytes of memory.
+    pub memory_bytes: u64,
+    /// Estimated CPU-seconds before the first frame (and so per frame).
+    pub work_cpu_s: f64,
+}
+
+impl Default for Budget {
+    fn default() -> Self {
+        Self {
+            memory_bytes: DEFAULT_MEMORY_BYTES,
+            work_cpu_s: DEFAULT_WORK_CPU_S,
+        }
+    }
+}
+
+/// What the run does beyond building the engine.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RunPlan {
+    /// Seconds between frames (1 / fps).
+    pub frame_interval_s: f64,
+    /// Seconds simulated after the settle and before the first frame (the first frame's time).
+    pub warm_up_s: f64,
+    /// The frames are exported as PNG (sRGB buffers in flight and the encoder).
+    pub export_png: bool,
+}
+
+impl Default for RunPlan {
+    fn default() -> Self {
+        Self {
+            frame_interval_s: 1.0 / 30.0,
+            warm_up_s: 0.0,
+            export_png: true,
+        }
+    }
+}
+
+/// One buffer (or group of buffers) of the run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MemoryPart {
+    /// What it is ("light map").
+    pub what: &'static str,
+    /// The product it comes from ("103,850 samples × 2 pieces × 96 B + ...").
+    pub product: String,
+    /// Bytes.
+    pub bytes: u64,
+    /// The inputs that set it.
+    pub set_by: &'static str,
+}
+
+/// One stage of the work before the first frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WorkPart {
+    /// What it is ("settle and warm-up simulation").
+    pub what: &'static str,
+    /// The product it comes from.
+    pub product: String,
+    /// Estimated CPU-seconds.
+    pub cpu_s: f64,
+    /// The inputs that set it.
+    pub set_by: &'static str,
+}
+
+/// What a run will use, part by part.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Estimate {
+    pub memory: Vec<MemoryPart>,
+    pub work: Vec<WorkPart>,
+}
+
+/// A run over its budget.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum BudgetError {
+    #[error(
+        "this run needs about {} of memory, over the budget of {}; the largest part is the {what}: {product} = {} (set by {set_by})",
+        human_bytes(*total_bytes), human_bytes(*budget_bytes), human_bytes(*part_bytes)
+    )]
+    Memory {
+        total_bytes: u64,
+        budget_bytes: u64,
+        what: &'static str,
+        product: String,
+        part_bytes: u64,
+        set_by: &'static str,
+    },
+    #[error(
+        "this run needs about {} before its first frame, over the budget of {}; the largest part is the {what}: {product} = {} (set by {set_by})",
+        cpu_time(*total_cpu_s), cpu_time(*budget_cpu_s), cpu_time(*part_cpu_s)
+    )]
+    Work {
+        total_cpu_s: f64,
+        budget_cpu_s: f64,
+        what: &'static str,
+        product: String,
+        part_cpu_s: f64,
+        set_by: &'static str,
+    },
+}
+
+impl Estimate {
+    /// Total bytes.
+    pub fn memory_bytes(&self) -> u64 {
+        self.memory
+            .iter()
+            .map(|p| p.bytes)
+            .fold(0, u64::saturating_add)
+    }
+
+    /// Total CPU-seconds before the first frame.
+    pub fn work_cpu_s(&self) -> f64 {
+        self.work.iter().map(|p| p.cpu_s).sum()
+    }
+
+    /// Refuses an estimate over `budget`, naming its largest part.
+    pub fn check(&self, budget: &Budget) -> Result<(), BudgetError> {
+        let total_bytes = self.memory_bytes();
+        if total_bytes > budget.memory_bytes
+            && let Some(p) = self.memory.iter().max_by_key(|p| p.bytes)
+        {
+            return Err(BudgetError::Memory {
+                total_bytes,
+                budget_bytes: budget.memory_bytes,
+                what: p.what,
+                product: p.product.clone(),
+                part_bytes: p.bytes,
+                set_by: p.set_by,
+            });
+        }
+        let total_cpu_s = self.work_cpu_s();
+        // A NaN estimate is refused too.
+        if (total_cpu_s.is_nan() || total_cpu_s > budget.work_cpu_s)
+            && let Some(p) = self.work.iter().max_by(|a, b| a.cpu_s.total_cmp(&b.cpu_s))
+        {
+            return Err(BudgetError::Work {
+                total_cpu_s,
+                budget_cpu_s: budget.work_cpu_s,
+                what: p.what,
+                product: p.product.clone(),
+                part_cpu_s: p.cpu_s,
+                set_by: p.set_by,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// "0.25 CPU-seconds", "37 CPU-minutes", "3.1 CPU-hours".
+fn cpu_time(s: f64) -> String {
+    if s < 120.0 {
+        format!("{s:.2} CPU-seconds")
+    } else if s < 7200.0 {
+        format!("{:.0} CPU-minutes", s / 60.0)
+    } else {
+        format!("{:.1} CPU-hours", s / 3600.0)
+    }
+}
+
+/// "1,234,567".
+fn grouped(n: u64) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// The map geometry the engine will choose.
+pub fn map_geometry(style: &Hairstyle, config: &EngineConfig) -> MapGeometry {
+    crate::frame::map_geometry(style, config)
+}
+
+/// When the map resolution is automatic (`config.map_res` is `None`) and the run is over the
+/// memory budget, the largest resolution below the automatic one that brings it within the
+/// budget: `Some((automatic N, chosen N))`. The map's worst case grows as N³ (its per-column
+/// slot tables), so a scene whose automatic cells are very fine (a 1 cm head: strands 0.1 mm
+/// apart at the scalp, N = 930) is better drawn with coarser cells than refused. `None` when
+/// the resolution is given, the run already fits, or no resolution down to 8 fits.
+pub fn fit_map_resolution(
+    style: &Hairstyle,
+    motion: &Motion,
+    config: &EngineConfig,
+    plan: &RunPlan,
+    budget: &Budget,
+) -> Option<(u32, u32)> {
+    if config.map_res.is_some() {
+        return None;
+    }
+    let fits = |n: u32| {
+        let c = EngineConfig {
+            map_res: Some(n),
+            ..config.clone()
+        };
+        estimate(style, motion, &c, plan).memory_bytes() <= budget.memory_bytes
+    };
+    let auto = map_geometry(style, config).n;
+    if estimate(style, motion, config, plan).memory_bytes() <= budget.memory_bytes || !fits(8) {
+        return None;
+    }
+    // The estimate grows with N: binary search for the largest N that fits.
+    let (mut lo, mut hi) = (8u32, auto);
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        if fits(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Some((auto, lo))
+}
+
+/// Memory and work of a run (see the module doc). Pure arithmetic: nothing is allocated
+/// beyond the returned lists.
+pub fn estimate(
+    style: &Hairstyle,
+    motion: &Motion,
+    config: &EngineConfig,
+    plan: &RunPlan,
+) -> Estimate {
+    let wisps = style.wisps.count as u64;
+    let guides = 3 * wisps;
+    let points_per_guide = style.guides.links as u64 + 1;
+    let particles = guides * points_per_guide;
+    let strands = wisps * style.wisps.strands_per_wisp as u64;
+    let points_per_strand = style.strands.points as u64;
+    let points = strands * points_per_strand;
+    let segments = strands * points_per_strand.saturating_sub(1);
+    let pixels = config.width as u64 * config.height as u64;
+    let b = |n: usize| n as u64;
+
+    // The longest render sample: the strand's length over its segments, plus the chord a
+    // curl can add between two samples.
+    let strand_length_m = style.max_length_m() as f64;
+    let sample_len_m = strand_length_m / points_per_strand.saturating_sub(1).max(1) as f64
+        + 2.0 * style.curl.radius_m as f64;
+    let geom = map_geometry(style, config);
+    let pieces = geom.pieces_for(sample_len_m as f32);
+    // Rows a segment covers: the camera frames about the hair's extent, lmax + hmax.
+    let px_per_m = config.height as f64 / (style.max_length_m() + style.head_size_m()) as f64;
+
+    let mut memory = vec![
+        MemoryPart {
+            what: "guides at rest",
+            product: format!(
+                "{} guide particles × {} B + {} guides × {} B",
+                grouped(particles),
+                size_of::<Vec3>(),
+                grouped(guides),
+                size_of::<Vec3>() + size_of::<f32>()
+            ),
+            bytes: particles * b(size_of::<Vec3>())
+                + guides * b(size_of::<Vec3>() + size_of::<f32>()),
+            set_by: "wisps.count × guides.links",
+        },
+        MemoryPart {
+            what: "simulation",
+            product: format!(
+                "{} guides × {} particles",
+                grouped(guides),
+                points_per_guide
+            ),
+            bytes: Simulator::estimated_bytes(guides, points_per_guide),
+            set_by: "wisps.count × guides.links",
+        },
+        MemoryPart {
+            what: "strand layout",
+            product: format!(
+                "{} render strands × {} B",
+                grouped(strands),
+                size_of::<u32>() + size_of::<[f32; 3]>() + size_of::<f32>()
+            ),
+            bytes: strands * b(size_of::<u32>() + size_of::<[f32; 3]>() + size_of::<f32>())
+                + wisps * b(size_of::<[u32; 3]>()),
+            set_by: "wisps.count × wisps.strands_per_wisp",
+        },
+        MemoryPart {
+            what: "render strands",
+            product: format!(
+                "{} render points × {} B (position, tangent, length, colour)",
+                grouped(points),
+                3 * size_of::<Vec3>() + size_of::<f32>()
+            ),
+            bytes: points * b(3 * size_of::<Vec3>() + size_of::<f32>()),
+            set_by: "wisps.count × wisps.strands_per_wisp × strands.points",
+        },
+        MemoryPart {
+            what: "light map",
+            product: format!(
+                "{} render points × {pieces} pieces in a {}³ map",
+                grouped(points),
+                geom.n
+            ),
+            bytes: geom.estimated_bytes(points, pieces),
+            set_by: "wisps.count × wisps.strands_per_wisp × strands.points, and --map-res",
+        },
+        MemoryPart {
+            what: "framebuffer",
+            product: format!("{}×{} pixels", config.width, config.height),
+            bytes: Framebuffer::estimated_bytes(config.width, config.height),
+            set_by: "--width × --height",
+        },
+        MemoryPart {
+            what: "hair line raster",
+            product: format!("{} segments on {} rows", grouped(segments), config.height),
+            bytes: LineScratch::estimated_bytes(segments, config.height, sample_len_m * px_per_m),
+            set_by: "render strands × strands.points, and --height",
+        },
+        MemoryPart {
+            what: "motion",
+            product: format!("clip \"{}\" keyframes", motion.clip_name()),
+            bytes: motion.held_bytes(),
+            set_by: "the glTF clip",
+        },
+    ];
+    if plan.export_png {
+        // Three sRGB buffers in flight between the renderer and the writer, and the PNG
+        // encoder's filtered copy of the one being written.
+        memory.push(MemoryPart {
+            what: "PNG export",
+            product: format!("4 × {}×{} pixels × 3 B", config.width, config.height),
+            bytes: 4 * 3 * pixels,
+            set_by: "--width × --height",
+        });
+    }
+
+    let step_s = style.dynamics.step_s.max(1e-5) as f64;
+    let before_first_s = (config.settle_s.max(0.0) + plan.warm_up_s.max(0.0)).min(1e15);
+    let frame_s = plan.frame_interval_s.clamp(0.0, 1e15);
+    // The engine advances in 0.2 s slices before the first frame, interpolating each time.
+    let slices = (before_first_s / 0.2).ceil();
+    let (sim_product, sim_cpu_s) = if config.simulate {
+        let steps = ((before_first_s + frame_s) / step_s).ceil();
+        (
+            format!(
+                "{} guide particles × {} steps of {:.4} s",
+                grouped(particles),
+                grouped(steps as u64),
+                step_s
+            ),
+            particles as f64 * steps * cost_ns::PARTICLE_STEP * 1e-9,
+        )
+    } else {
+        (
+            format!(
+                "{} guide particles × {} rigid updates",
+                grouped(particles),
+                slices + 1.0
+            ),
+            particles as f64 * (slices + 1.0) * cost_ns::POINT_INTERP * 1e-9,
+        )
+    };
+    let work = vec![
+        WorkPart {
+            what: "settle and warm-up simulation",
+            product: sim_product,
+            cpu_s: sim_cpu_s,
+            set_by: "wisps.count × guides.links, dynamics.step_s, --start-s",
+        },
+        WorkPart {
+            what: "warm-up interpolation",
+            product: format!(
+                "{} render points × {slices} slices of 0.2 s",
+                grouped(points)
+            ),
+            cpu_s: points as f64 * slices * cost_ns::POINT_INTERP * 1e-9,
+            set_by: "render strands × strands.points, --start-s",
+        },
+        WorkPart {
+            what: "first frame",
+            product: format!(
+                "{} render points and {}×{} pixels",
+                grouped(points),
+                config.width,
+                config.height
+            ),
+            cpu_s: (points as f64 * cost_ns::POINT + pixels as f64 * cost_ns::PIXEL) * 1e-9,
+            set_by: "render strands × strands.points, --width × --height",
+        },
+    ];
+    Estimate { memory, work }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grouped_inserts_thousands_separators() {
+        assert_eq!(grouped(0), "0");
+        assert_eq!(grouped(999), "999");
+        assert_eq!(grouped(1_000), "1,000");
+        assert_eq!(grouped(40_000_000), "40,000,000");
+    }
+
+    #[test]
+    fn presets_fit_the_default_budget_with_room() {
+        let est = estimate(
+            &Hairstyle::default_smooth(),
+            &Motion::still(glam::Affine3A::IDENTITY),
+            &EngineConfig::default(),
+            &RunPlan::default(),
+        );
+        est.check(&Budget::default()).unwrap();
+        assert!(est.memory_bytes() < DEFAULT_MEMORY_BYTES / 20, "{est:#?}");
+        assert!(est.work_cpu_s() < DEFAULT_WORK_CPU_S / 100.0, "{est:#?}");
+    }
+
+    #[test]
+    fn over_budget_names_the_largest_part() {
+        let est = estimate(
+            &Hairstyle::default_smooth(),
+            &Motion::still(glam::Affine3A::IDENTITY),
+            &EngineConfig::default(),
+            &RunPlan::default(),
+        );
+        let tight = Budget {
+            memory_bytes: 1_000,
+            ..Budget::default()
+        };
+        let e = est.check(&tight).unwrap_err().to_string();
+        assert!(e.contains("over the budget of 1.0 KB"), "{e}");
+        let slow = Budget {
+            work_cpu_s: 1e-6,
+            ..Budget::default()
+        };
+        let e = est.check(&slow).unwrap_err().to_string();
+        assert!(e.contains("CPU-seconds before its first frame"), "{e}");
+        assert_eq!(cpu_time(0.5), "0.50 CPU-seconds");
+        assert_eq!(cpu_time(1200.0), "20 CPU-minutes");
+        assert_eq!(cpu_time(9000.0), "2.5 CPU-hours");
+    }
+}

@@ -1,0 +1,149 @@
+//! Reading input files defensively, for every loader (hairstyles, motions, and the formats to
+//! come: grooms, caches).
+//!
+//! A file is examined before it is opened: directories, devices (`/dev/zero`), named pipes
+//! and sockets are refused with a message saying what they are (opening a FIFO would block,
+//! reading `/dev/zero` would never end), and a regular file larger than the loader's cap is
+//! refused from its size alone, so no loader ever allocates more than its cap for the raw
+//! bytes. The read itself is bounded too (`take(cap + 1)`), so a file that grows between the
+//! check and the read is still caught.
+//!
+//! [`json`] holds the strict JSON reading shared by the JSON formats.
+
+pub mod json;
+
+use std::io::Read;
+use std::path::Path;
+
+/// Why an input file could not be read. The message does not repeat the file name: the
+/// loader's own error names it.
+#[derive(Debug, thiserror::Error)]
+pub enum ReadError {
+    /// The operating system refused (missing file, no permission, ...).
+    #[error("cannot read: {0}")]
+    Io(std::io::Error),
+    /// A directory, device, named pipe or socket.
+    #[error("is {kind}, not a regular file")]
+    NotAFile {
+        /// What the path is ("a directory", "a character device (like /dev/zero)", ...).
+        kind: &'static str,
+    },
+    /// Larger than the loader accepts.
+    #[error("is {}, over the {} limit for {what}", human_bytes(*bytes), human_bytes(*limit))]
+    TooLarge {
+        /// Size of the file in bytes.
+        bytes: u64,
+        /// The cap in bytes.
+        limit: u64,
+        /// What kind of file was expected ("a hairstyle file", ...).
+        what: &'static str,
+    },
+}
+
+/// What a path that is not a regular file is, for messages.
+fn kind_of(ft: &std::fs::FileType) -> &'static str {
+    if ft.is_dir() {
+        return "a directory";
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if ft.is_char_device() {
+            return "a character device (like /dev/zero or a terminal)";
+        }
+        if ft.is_block_device() {
+            return "a block device";
+        }
+        if ft.is_fifo() {
+            return "a named pipe (FIFO)";
+        }
+        if ft.is_socket() {
+            return "a socket";
+        }
+    }
+    "not a regular file"
+}
+
+/// Reads the whole of `path` if it is a regular file of at most `limit` bytes (symbolic links
+/// are followed). `what` names the expected content in the size message ("a hairstyle file").
+pub fn read_capped(path: &Path, limit: u64, what: &'static str) -> Result<Vec<u8>, ReadError> {
+    let too_large = |bytes: u64| ReadError::TooLarge { bytes, limit, what };
+    // Stat before opening: opening a FIFO blocks until a writer appears.
+    let meta = std::fs::metadata(path).map_err(ReadError::Io)?;
+    if !meta.file_type().is_file() {
+        return Err(ReadError::NotAFile {
+            kind: kind_of(&meta.file_type()),
+        });
+    }
+    if meta.len() > limit {
+        return Err(too_large(meta.len()));
+    }
+    let file = std::fs::File::open(path).map_err(ReadError::Io)?;
+    // The path may have been replaced between the two calls: check what was opened.
+    let opened = file.metadata().map_err(ReadError::Io)?;
+    if !opened.file_type().is_file() {
+        return Err(ReadError::NotAFile {
+            kind: kind_of(&opened.file_type()),
+        });
+    }
+    let mut bytes = Vec::with_capacity(opened.len().min(limit) as usize);
+    file.take(limit.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(ReadError::Io)?;
+    if bytes.len() as u64 > limit {
+        return Err(too_large(bytes.len() as u64));
+    }
+    Ok(bytes)
+}
+
+/// A byte count for people: "512 B", "1.5 KB", "17.9 GB" (powers of 1000, as disk sizes).
+pub fn human_bytes(bytes: u64) -> String {
+    const UNITS: [&str; 6] = ["B", "KB", "MB", "GB", "TB", "PB"];
+    let mut v = bytes as f64;
+    let mut unit = 0;
+    while v >= 1000.0 && unit + 1 < UNITS.len() {
+        v /= 1000.0;
+        unit += 1;
+    }
+    if unit == 0 {
+        format!("{bytes} B")
+    } else {
+        format!("{v:.1} {}", UNITS[unit])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn human_bytes_rounds_to_one_decimal() {
+        assert_eq!(human_bytes(0), "0 B");
+        assert_eq!(human_bytes(999), "999 B");
+        assert_eq!(human_bytes(1_500), "1.5 KB");
+        assert_eq!(human_bytes(17_920_000_000), "17.9 GB");
+    }
+
+    #[test]
+    fn refuses_directories_and_devices_before_reading() {
+        let e = read_capped(Path::new("/"), 10, "a test file").unwrap_err();
+        assert!(e.to_string().contains("a directory"), "{e}");
+        #[cfg(unix)]
+        {
+            let e = read_capped(Path::new("/dev/zero"), 10, "a test file").unwrap_err();
+            assert!(e.to_string().contains("character device"), "{e}");
+        }
+    }
+
+    #[test]
+    fn refuses_a_file_over_the_cap_and_reads_one_at_the_cap() {
+        let dir = std::env::temp_dir().join(format!("wisp-input-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("ten.bin");
+        std::fs::write(&p, [7u8; 10]).unwrap();
+        assert_eq!(read_capped(&p, 10, "a test file").unwrap(), vec![7u8; 10]);
+        let e = read_capped(&p, 9, "a test file").unwrap_err();
+        assert_eq!(e.to_string(), "is 10 B, over the 9 B limit for a test file");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

@@ -1,0 +1,48 @@
+//! What a [`LightMap`](super::LightMap) holds, for the run's memory budget (`crate::budget`):
+//! an upper bound from the map's geometry and the number of samples, computed before the map
+//! exists. Keep it in step with `build.rs` (the vectors listed below) when the map changes;
+//! `tests/hostile_budget.rs` measures a real build against it.
+
+use super::MapGeometry;
+use super::build::{Entry, MAX_PIECES, SPLAT};
+use super::{Cell, OccluderGrid, occluders::MAX_TEXELS};
+
+impl MapGeometry {
+    /// Pieces each sample is split into when the longest sample is `sample_len_m` long
+    /// (`build.rs`: ⌈ℓ / ds⌉, clamped to [1, 8]).
+    pub fn pieces_for(&self, sample_len_m: f32) -> u64 {
+        let pieces = (sample_len_m / self.ds_m).ceil();
+        let max = MAX_PIECES as u64;
+        if pieces.is_finite() {
+            (pieces as u64).clamp(1, max)
+        } else {
+            max
+        }
+    }
+
+    /// Upper bound, in bytes, of what a map of this geometry holds once built from `samples`
+    /// render-strand samples split into `pieces` each:
+    /// - `col_start`, `slot_start` (N² + 1 `u32` each) and the scratch `col_count` (N²);
+    /// - the scratch `entries` (one per piece and column it is splatted to, `SPLAT` = 4);
+    /// - `cells` (one per entry at most);
+    /// - the occluder grid (at most `MAX_TEXELS`² depths);
+    /// - `slots`: per filled column, one `u32` per slice of its span, at most N; filled columns
+    ///   are at most min(pieces, N²). `slots` grows by `push`, so its capacity may reach twice
+    ///   its length.
+    pub fn estimated_bytes(&self, samples: u64, pieces: u64) -> u64 {
+        let n = self.n as u64;
+        let columns = n * n;
+        let u32_bytes = size_of::<u32>() as u64;
+        let entries = samples.saturating_mul(pieces).saturating_mul(SPLAT as u64);
+        let entry_bytes = size_of::<Entry>() as u64;
+        let occluders = (MAX_TEXELS * MAX_TEXELS * size_of::<f32>()) as u64
+            + size_of::<OccluderGrid>() as u64;
+        let cell_bytes = size_of::<Cell>() as u64;
+        let offsets = (3 * columns + 2) * u32_bytes;
+        let slots = 2 * entries.min(columns).saturating_mul(n) * u32_bytes;
+        offsets
+            .saturating_add(entries.saturating_mul(entry_bytes + cell_bytes))
+            .saturating_add(slots)
+            .saturating_add(occluders)
+    }
+}

@@ -1,0 +1,35 @@
+//! What the raster buffers hold, for the run's memory budget (`crate::budget`), computed
+//! before they exist. Keep it in step with `framebuffer.rs` and `lines.rs`.
+
+use super::segment::Seg;
+use super::{Framebuffer, LineScratch};
+use glam::Vec3;
+
+/// Rows of a band: `BAND_ROWS` in `lines.rs`.
+const BAND_ROWS: u64 = 16;
+/// Segments per set-up chunk: `SETUP_CHUNK` in `lines.rs`.
+const SETUP_CHUNK: u64 = 4096;
+
+impl Framebuffer {
+    /// Bytes of a `width` × `height` framebuffer: linear RGB (`Vec3`) and depth (`f32`) per
+    /// pixel.
+    pub fn estimated_bytes(width: u32, height: u32) -> u64 {
+        width as u64 * height as u64 * (size_of::<Vec3>() + size_of::<f32>()) as u64
+    }
+}
+
+impl LineScratch {
+    /// Bytes [`draw_polylines`](super::draw_polylines) keeps for `segments` segments on an
+    /// image `height` rows high, when a segment covers `rows_per_segment` rows on average:
+    /// each segment is binned once per band it touches (`Seg` in its chunk's list, then
+    /// gathered into the band's list) with two `u64` sort keys, plus one list header per chunk
+    /// and band.
+    pub fn estimated_bytes(segments: u64, height: u32, rows_per_segment: f64) -> u64 {
+        let bands = (height as u64).div_ceil(BAND_ROWS).max(1);
+        let touched = (1.0 + rows_per_segment.max(0.0) / BAND_ROWS as f64).min(bands as f64);
+        let binned = (segments as f64 * touched).ceil() as u64;
+        let per_binned = 2 * size_of::<Seg>() as u64 + 2 * size_of::<u64>() as u64;
+        let headers = segments.div_ceil(SETUP_CHUNK) * bands * size_of::<Vec<Seg>>() as u64;
+        binned.saturating_mul(per_binned).saturating_add(headers)
+    }
+}
