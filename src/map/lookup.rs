@@ -69,6 +69,7 @@ impl LightMap {
             direct_fraction: acc.direct.clamp(0.0, 1.0),
             tf: acc.tf.clamp(Vec3::ZERO, Vec3::ONE),
             sigma_f2: acc.sigma2.max(Vec3::ZERO),
+            crossings_behind: LightAtPoint::DENSE,
         }
     }
 
@@ -83,6 +84,7 @@ impl LightMap {
             direct_fraction: 0.0,
             tf: Vec3::ZERO,
             sigma_f2: Vec3::ZERO,
+            crossings_behind: LightAtPoint::DENSE,
         };
         for o in [dy + dz, dy - dz, -dy + dz, -dy - dz] {
             let l = self.light_at(p + o);

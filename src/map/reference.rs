@@ -142,6 +142,7 @@ pub fn reference_light(input: &MapBuildInput, h_m: f32, points: &[Vec3]) -> Vec<
                 direct_fraction: (-n).exp(),
                 tf: (-loss).exp(),
                 sigma_f2: var,
+                crossings_behind: LightAtPoint::DENSE,
             }
         })
         .collect()
