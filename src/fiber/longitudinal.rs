@@ -39,38 +39,80 @@ fn i0_small(t2: f32) -> f32 {
                 + t2 * (1.206_749_2 + t2 * (0.265_973_2 + t2 * (0.036_076_8 + t2 * 0.004_581_3)))))
 }
 
+/// The variance-independent part of d'Eon's lobe at one direction pair: 1 − cos(θi + θo)
+/// (without cancellation near 0) and cos θi cos θo.
+#[derive(Clone, Copy, Debug)]
+pub struct DeonGeometry {
+    one_minus_cos: f32,
+    cos_cos: f32,
+}
+
+impl DeonGeometry {
+    /// From sin and (non-negative) cos of θi and θo.
+    #[inline]
+    pub fn new(si: f32, ci: f32, so: f32, co: f32) -> Self {
+        let cos_x = ci * co - si * so;
+        let sin_x = si * co + ci * so;
+        let one_minus_cos = if cos_x > 0.0 {
+            sin_x * sin_x / (1.0 + cos_x)
+        } else {
+            1.0 - cos_x
+        };
+        Self {
+            one_minus_cos,
+            cos_cos: ci * co,
+        }
+    }
+
+    /// M at 1/v = `inv_v` with normalisation `norm` = 1/(v(1 − e^{−2/v})). 1/rad.
+    #[inline]
+    pub fn m(&self, inv_v: f32, norm: f32) -> f32 {
+        let e = self.one_minus_cos * inv_v;
+        let a = self.cos_cos * inv_v;
+        if a >= 3.75 {
+            norm * (-e).exp() * i0_scaled_large(3.75 / a) / a.sqrt()
+        } else {
+            let t = a * (1.0 / 3.75);
+            norm * (-e - a).exp() * i0_small(t * t)
+        }
+    }
+}
+
 /// d'Eon's M at 1/v = `inv_v` with normalisation `norm` = 1/(v(1 − e^{−2/v})), from sin and
 /// (non-negative) cos of θi and θo. 1/rad.
 #[inline]
 pub fn deon_m_f32(inv_v: f32, norm: f32, si: f32, ci: f32, so: f32, co: f32) -> f32 {
-    let cos_x = ci * co - si * so;
-    let sin_x = si * co + ci * so;
-    let one_minus_cos = if cos_x > 0.0 {
-        sin_x * sin_x / (1.0 + cos_x)
-    } else {
-        1.0 - cos_x
-    };
-    let e = one_minus_cos * inv_v;
-    let a = ci * co * inv_v;
-    if a >= 3.75 {
-        norm * (-e).exp() * i0_scaled_large(3.75 / a) / a.sqrt()
-    } else {
-        let t = a * (1.0 / 3.75);
-        norm * (-e - a).exp() * i0_small(t * t)
-    }
+    DeonGeometry::new(si, ci, so, co).m(inv_v, norm)
 }
 
-/// 1/(v (1 − e^{−2/v})) from 1/v; e^{−2/v} is below f32 rounding once 2/v > 40.
+/// 1/(v (1 − e^{−2/v})) from 1/v. e^{−2/v} is below half an f32 ulp of 1 once 1/v > 9; below
+/// that 1 − e^{−2/v} ≥ 0.18 for every accepted v (≤ 4·(2·45°)² = 9.9 rad²), so the plain
+/// exponential loses nothing to cancellation (and costs half of `exp_m1` in f32).
 #[inline]
 fn norm_from_inv_v(inv_v: f32) -> f32 {
-    if inv_v > 20.0 {
+    if inv_v > 9.0 {
         inv_v
     } else {
-        inv_v / -(-2.0 * inv_v).exp_m1()
+        inv_v / (1.0 - (-2.0 * inv_v).exp())
     }
 }
 
-/// The four Chiang lobes' constants [R, TT, TRT, p ≥ 3] in f32.
+/// 1/v and the normalisation of the d'Eon lobe of variance v + extra, per channel.
+#[inline]
+fn broadened_constants(v: f32, extra: Vec3) -> (Vec3, Vec3) {
+    let inv = Vec3::ONE / (Vec3::splat(v) + extra.max(Vec3::ZERO));
+    (
+        inv,
+        Vec3::new(
+            norm_from_inv_v(inv.x),
+            norm_from_inv_v(inv.y),
+            norm_from_inv_v(inv.z),
+        ),
+    )
+}
+
+/// The four Chiang lobes' constants [R, TT, TRT, p ≥ 3] in f32. TRT and p ≥ 3 have the same
+/// variance (4v₀, C16); `m_broadened_all` relies on it.
 #[derive(Clone, Copy, Debug)]
 pub struct DeonLobes {
     /// Variance v_p (rad²).
@@ -83,6 +125,7 @@ pub struct DeonLobes {
 
 impl DeonLobes {
     pub fn new(c: &ChiangConstants) -> Self {
+        debug_assert_eq!(c.v[2], c.v[3], "TRT and p ≥ 3 share 4v₀");
         let v = c.v.map(|v| v as f32);
         let inv_v = c.v.map(|v| (1.0 / v) as f32);
         Self {
@@ -119,11 +162,27 @@ impl DeonLobes {
         so_p: f32,
         co_p: f32,
     ) -> Vec3 {
-        let f = |x: f32| {
-            let inv = 1.0 / (self.v[p] + x.max(0.0));
-            deon_m_f32(inv, norm_from_inv_v(inv), si, ci, so_p, co_p)
-        };
-        Vec3::new(f(extra.x), f(extra.y), f(extra.z))
+        let g = DeonGeometry::new(si, ci, so_p, co_p);
+        let (inv, norm) = broadened_constants(self.v[p], extra);
+        Vec3::new(g.m(inv.x, norm.x), g.m(inv.y, norm.y), g.m(inv.z, norm.z))
+    }
+
+    /// All four broadened lobes [R, TT, TRT, p ≥ 3] at sin/cos θi and (untilted) sin/cos θo.
+    /// TRT and p ≥ 3 share their variance 4v₀ (C16), so their 1/v and normalisation are computed
+    /// once.
+    #[inline]
+    pub fn m_broadened_all(&self, extra: Vec3, si: f32, ci: f32, so: f32, co: f32) -> [Vec3; 4] {
+        let consts = [
+            broadened_constants(self.v[0], extra),
+            broadened_constants(self.v[1], extra),
+            broadened_constants(self.v[2], extra),
+        ];
+        std::array::from_fn(|p| {
+            let (so_p, co_p) = self.tilted(p, so, co);
+            let g = DeonGeometry::new(si, ci, so_p, co_p);
+            let (inv, norm) = consts[p.min(2)];
+            Vec3::new(g.m(inv.x, norm.x), g.m(inv.y, norm.y), g.m(inv.z, norm.z))
+        })
     }
 }
 

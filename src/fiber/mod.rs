@@ -325,12 +325,12 @@ impl Fiber {
         wo: Vec3,
         light: &LightAtPoint,
     ) -> Vec3 {
-        let Some(a) = HairAngles::from_vectors(u, wi, wo) else {
+        let Some((a, t)) = HairAngles::from_vectors_trig(u, wi, wo) else {
             return Vec3::ZERO;
         };
         let v = match mode {
-            ShadingMode::DualScattering => self.shade_dual(&a, light),
-            ShadingMode::SingleScattering => self.shade_single(&a, light),
+            ShadingMode::DualScattering => self.shade_dual(&a, &t, light),
+            ShadingMode::SingleScattering => self.shade_single(&a, &t, light),
             ShadingMode::KajiyaKay => self.kk.shade(&a, light),
         };
         if v.is_finite() { v } else { Vec3::ZERO }

@@ -62,6 +62,13 @@ impl HairAngles {
     /// asin (no atan2): the shader needs only |φ| and cos(φi + φo).
     #[inline]
     pub fn from_vectors(u: Vec3, wi: Vec3, wo: Vec3) -> Option<Self> {
+        Self::from_vectors_trig(u, wi, wo).map(|(a, _)| a)
+    }
+
+    /// [`Self::from_vectors`] with the sines and cosines of θi and θo it computes on the way
+    /// (the shader needs them; recomputing them from the angles costs two `sin_cos`).
+    #[inline]
+    pub(crate) fn from_vectors_trig(u: Vec3, wi: Vec3, wo: Vec3) -> Option<(Self, Trig)> {
         let u = unit(u)?;
         let wi = unit(wi)?;
         let wo = unit(wo)?;
@@ -92,12 +99,20 @@ impl HairAngles {
         let cos_phi = (ai.0 * ao.0 + ai.1 * ao.1).clamp(-1.0, 1.0);
         let sin_phi = ai.0 * ao.1 - ai.1 * ao.0;
         let phi = cos_phi.acos().copysign(sin_phi);
-        Some(Self {
-            theta_i: sin_i.asin(),
-            theta_o: sin_o.asin(),
-            phi,
-            cos_2phi_h: ai.0 * ao.0 - ai.1 * ao.1,
-        })
+        Some((
+            Self {
+                theta_i: sin_i.asin(),
+                theta_o: sin_o.asin(),
+                phi,
+                cos_2phi_h: ai.0 * ao.0 - ai.1 * ao.1,
+            },
+            Trig {
+                si: sin_i,
+                ci: (1.0 - sin_i * sin_i).max(0.0).sqrt(),
+                so: sin_o,
+                co: (1.0 - sin_o * sin_o).max(0.0).sqrt(),
+            },
+        ))
     }
 }
 
@@ -146,7 +161,7 @@ impl Fiber {
         match &self.model {
             ModelShading::Marschner(m) => {
                 let [n_r, n_tt, ..] = m.lobes.lookup(a.theta_d().abs(), a.phi.abs());
-                let [r, tt, trt] = self.marschner_lobes(m, a, n_r, n_tt);
+                let [r, tt, trt] = self.marschner_lobes(m, a, n_r, n_tt, inv_cos2(a.theta_d()));
                 [r, tt, trt, Vec3::ZERO]
             }
             ModelShading::Chiang(c) => {
@@ -164,7 +179,7 @@ impl Fiber {
         r + tt + trt + rest
     }
 
-    /// Marschner's lobes with N_R and N_TT already looked up.
+    /// Marschner's lobes with N_R and N_TT already looked up; `inv` = 1/cos²θd.
     #[inline]
     fn marschner_lobes(
         &self,
@@ -172,9 +187,9 @@ impl Fiber {
         a: &HairAngles,
         n_r: Vec3,
         n_tt: Vec3,
+        inv: f32,
     ) -> [Vec3; 3] {
         let theta_d = a.theta_d();
-        let inv = inv_cos2(theta_d);
         let x = a.theta_i + a.theta_o;
         let n_trt = m
             .n_tables
@@ -187,7 +202,7 @@ impl Fiber {
     }
 
     /// SingleScattering mode: S cos θi · direct_fraction (hard shadows; module doc).
-    pub(crate) fn shade_single(&self, a: &HairAngles, light: &LightAtPoint) -> Vec3 {
+    pub(crate) fn shade_single(&self, a: &HairAngles, t: &Trig, light: &LightAtPoint) -> Vec3 {
         let direct = unit_or_zero(light.direct_fraction);
         if direct == 0.0 {
             return Vec3::ZERO;
@@ -195,12 +210,12 @@ impl Fiber {
         let s_cos = match &self.model {
             ModelShading::Marschner(m) => {
                 let [n_r, n_tt, ..] = m.lobes.lookup(a.theta_d().abs(), a.phi.abs());
-                let [r, tt, trt] = self.marschner_lobes(m, a, n_r, n_tt);
-                (r + tt + trt) * a.theta_i.cos().max(0.0)
+                let [r, tt, trt] = self.marschner_lobes(m, a, n_r, n_tt, inv_cos2(a.theta_d()));
+                (r + tt + trt) * t.ci
             }
             ModelShading::Chiang(c) => {
                 let n = c.lobes.lookup(a.theta_o.abs(), a.phi.abs());
-                let [r, tt, trt, rest] = chiang_lobes(c, &Trig::new(a), &n);
+                let [r, tt, trt, rest] = chiang_lobes(c, t, &n);
                 r + tt + trt + rest
             }
         };
@@ -208,90 +223,102 @@ impl Fiber {
     }
 
     /// The local back-scattering lobe shared by both models (Zinke Eqs. 10, 15): its weight
-    /// d_b Ā_b · truncation · 2/(π cos²θd) · cos θi, its shift Δ̄_b and variance σ̄_b² (RGB), so
-    /// that f_back cos θi = weight · g(θi + θo − Δ̄_b, σ̄_b² [+ σ̄f²]).
+    /// d_b Ā_b · truncation · 2/(π cos²θd), its shift Δ̄_b and variance σ̄_b² (RGB), so that
+    /// f_back = weight · g(θi + θo − Δ̄_b, σ̄_b² [+ σ̄f²]). `inv` = 1/cos²θd.
     #[inline]
-    fn back_lobe(&self, a: &HairAngles, light: &LightAtPoint) -> (Vec3, Vec3, Vec3) {
+    fn back_lobe(&self, a: &HairAngles, light: &LightAtPoint, inv: f32) -> (Vec3, Vec3, Vec3) {
         let (a_b, delta_b, sigma_b2) = self.dual.back_at(a.theta_i);
-        let mut weight = a_b * self.d_b;
+        let mut weight = a_b;
         if light.crossings_behind != LightAtPoint::DENSE {
             let (af, ab) = self.dual.attenuations_at(a.theta_i);
             weight *= backscatter::truncation(af, ab, light.crossings_behind);
         }
-        let scale = 2.0 / PI * inv_cos2(a.theta_d()) * a.theta_i.cos().max(0.0);
-        (weight * scale, delta_b, sigma_b2)
+        (weight * (self.d_b * 2.0 / PI * inv), delta_b, sigma_b2)
     }
 
-    /// DualScattering mode: Zinke 2008 Figure 5 (module doc for the combination).
-    pub(crate) fn shade_dual(&self, a: &HairAngles, light: &LightAtPoint) -> Vec3 {
-        let direct = unit_or_zero(light.direct_fraction);
-        let tf = finite_or_zero(light.tf).clamp(Vec3::ZERO, Vec3::ONE);
-        let sigma_f2 = finite_or_zero(light.sigma_f2).max(Vec3::ZERO);
-        let scattered = (tf - Vec3::splat(direct)).max(Vec3::ZERO);
-        let any_scattered = scattered.max_element() > 0.0;
-        let (back_w, delta_b, sigma_b2) = self.back_lobe(a, light);
+    /// DualScattering mode: Zinke 2008 Figure 5 (module doc for the combination). One branch
+    /// per model, each straight-line code.
+    pub(crate) fn shade_dual(&self, a: &HairAngles, t: &Trig, light: &LightAtPoint) -> Vec3 {
+        let l = DualLight::new(light);
+        let inv = inv_cos2(a.theta_d());
+        let (back_w, delta_b, sigma_b2) = self.back_lobe(a, light, inv);
         let dx = Vec3::splat(a.theta_i + a.theta_o) - delta_b;
-        // f_s cos θi (direct) and f_s^G cos θi (forward-scattered), per model.
-        let (f_s, f_s_g) = match &self.model {
+        let cos_i = t.ci;
+        match &self.model {
             ModelShading::Marschner(m) => {
-                let cos_i = a.theta_i.cos().max(0.0);
-                let theta_d = a.theta_d();
-                let [n_r, n_tt, ng_r, ng_tt, ng_trt] = m.lobes.lookup(theta_d.abs(), a.phi.abs());
-                let f_s = if direct > 0.0 {
-                    let [r, tt, trt] = self.marschner_lobes(m, a, n_r, n_tt);
-                    (r + tt + trt) * cos_i
-                } else {
-                    Vec3::ZERO
-                };
-                let mut f_s_g = Vec3::ZERO;
-                if any_scattered {
-                    let x = a.theta_i + a.theta_o;
-                    for (l, n_g) in [ng_r, ng_tt, ng_trt].into_iter().enumerate() {
-                        let m = gauss3(
-                            Vec3::splat(x - m.mean_x[l]),
-                            Vec3::splat(m.var_x[l]) + sigma_f2,
-                        );
-                        f_s_g += m * n_g;
-                    }
-                    f_s_g *= inv_cos2(theta_d) * cos_i;
+                // F = direct (f_s + f_back) + scattered d_f (f_s^G + π f_back^G), times cos θi.
+                let [n_r, n_tt, ng_r, ng_tt, ng_trt] =
+                    m.lobes.lookup(a.theta_d().abs(), a.phi.abs());
+                let mut out = Vec3::ZERO;
+                if l.direct > 0.0 {
+                    let [r, tt, trt] = self.marschner_lobes(m, a, n_r, n_tt, inv);
+                    out += l.direct * (r + tt + trt + back_w * gauss3(dx, sigma_b2));
                 }
-                (f_s, f_s_g)
+                if l.any_scattered {
+                    let x = a.theta_i + a.theta_o;
+                    let mut f_s_g = Vec3::ZERO;
+                    for (p, n_g) in [ng_r, ng_tt, ng_trt].into_iter().enumerate() {
+                        let mp = gauss3(
+                            Vec3::splat(x - m.mean_x[p]),
+                            Vec3::splat(m.var_x[p]) + l.sigma_f2,
+                        );
+                        f_s_g += mp * n_g;
+                    }
+                    f_s_g *= inv;
+                    let f_back_g = back_w * gauss3(dx, sigma_b2 + l.sigma_f2);
+                    out += l.scattered * self.d_f * (f_s_g + PI * f_back_g);
+                }
+                finite_or_zero(out * cos_i)
             }
             ModelShading::Chiang(c) => {
+                // The lobes give ḡ = f_s cos θi directly; only f_back needs the cosine.
                 let n = c.lobes.lookup(a.theta_o.abs(), a.phi.abs());
-                let t = Trig::new(a);
-                let f_s = if direct > 0.0 {
-                    let [r, tt, trt, rest] = chiang_lobes(c, &t, &n);
-                    r + tt + trt + rest
-                } else {
-                    Vec3::ZERO
-                };
-                let mut f_s_g = Vec3::ZERO;
-                if any_scattered {
-                    // N^G of the residual is N̄_3 (uniform in φ).
-                    let n_g = [n[4], n[5], n[6], n[3]];
-                    for (p, n_g) in n_g.into_iter().enumerate() {
-                        let (so, co) = c.deon.tilted(p, t.so, t.co);
-                        f_s_g += c.deon.m_broadened(p, sigma_f2, t.si, t.ci, so, co) * n_g;
-                    }
+                let mut out = Vec3::ZERO;
+                if l.direct > 0.0 {
+                    let [r, tt, trt, rest] = chiang_lobes(c, t, &n);
+                    out += l.direct * (r + tt + trt + rest + back_w * gauss3(dx, sigma_b2) * cos_i);
                 }
-                (f_s, f_s_g)
+                if l.any_scattered {
+                    // N^G of the residual is N̄_3 (uniform in φ).
+                    let [m_r, m_tt, m_trt, m_rest] =
+                        c.deon.m_broadened_all(l.sigma_f2, t.si, t.ci, t.so, t.co);
+                    let g_s_g = m_r * n[4] + m_tt * n[5] + m_trt * n[6] + m_rest * n[3];
+                    let f_back_g = back_w * gauss3(dx, sigma_b2 + l.sigma_f2);
+                    out += l.scattered * self.d_f * (g_s_g + PI * cos_i * f_back_g);
+                }
+                finite_or_zero(out)
             }
-        };
-        let mut out = Vec3::ZERO;
-        if direct > 0.0 {
-            out += direct * (f_s + back_w * gauss3(dx, sigma_b2));
         }
-        if any_scattered {
-            let back_g = back_w * gauss3(dx, sigma_b2 + sigma_f2);
-            out += scattered * self.d_f * (f_s_g + PI * back_g);
-        }
-        finite_or_zero(out)
     }
 }
 
-/// sin and cos of θi and θo, computed once per call for the d'Eon lobes.
-struct Trig {
+/// The map's light, sanitised: direct fraction in [0, 1], T_f in [0, 1], σ̄f² ≥ 0, and the
+/// forward-scattered share max(T_f − direct, 0).
+struct DualLight {
+    direct: f32,
+    sigma_f2: Vec3,
+    scattered: Vec3,
+    any_scattered: bool,
+}
+
+impl DualLight {
+    #[inline]
+    fn new(light: &LightAtPoint) -> Self {
+        let direct = unit_or_zero(light.direct_fraction);
+        let tf = finite_or_zero(light.tf).clamp(Vec3::ZERO, Vec3::ONE);
+        let scattered = (tf - Vec3::splat(direct)).max(Vec3::ZERO);
+        Self {
+            direct,
+            sigma_f2: finite_or_zero(light.sigma_f2).max(Vec3::ZERO),
+            scattered,
+            any_scattered: scattered.max_element() > 0.0,
+        }
+    }
+}
+
+/// sin and cos (≥ 0) of θi and θo, computed once per call.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Trig {
     si: f32,
     ci: f32,
     so: f32,
