@@ -26,9 +26,7 @@
 //! ~s/ΔΦ more samples to resolve small roughness).
 
 use super::azimuthal::AzimuthalSamples;
-use super::chiang::{
-    self, ChiangConstants, N_LOBES, RESIDUAL, trimmed_logistic, trimmed_logistic_cdf,
-};
+use super::chiang::{self, ChiangConstants, N_LOBES, RESIDUAL, TrimmedLogistic};
 use super::tables::{Table2, TableResolution};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -44,6 +42,7 @@ pub const N_GAMMA: usize = 256;
 pub struct ChiangSamples {
     residual: bool,
     s: f64,
+    logistic: TrimmedLogistic,
     nodes: Vec<f64>,
     mid: Vec<f64>,
     weight: Vec<[f64; 3]>,
@@ -84,6 +83,7 @@ impl ChiangSamples {
         Self {
             residual,
             s: c.s,
+            logistic: TrimmedLogistic::new(c.s),
             nodes,
             mid,
             weight,
@@ -98,15 +98,16 @@ impl ChiangSamples {
         }
         let s = self.s;
         let mut acc = [0.0; 3];
-        let mut prev = trimmed_logistic_cdf(phi - self.nodes[0], s);
+        let l = &self.logistic;
+        let mut prev = l.cdf(phi - self.nodes[0]);
         for k in 0..self.weight.len() {
-            let next = trimmed_logistic_cdf(phi - self.nodes[k + 1], s);
+            let next = l.cdf(phi - self.nodes[k + 1]);
             let d = self.nodes[k + 1] - self.nodes[k];
             // A segment much shorter than the logistic is a point mass (avoids 0/0).
             let density = if d.abs() > 1e-7 * s {
                 (prev - next) / d
             } else {
-                trimmed_logistic(phi - self.mid[k], s)
+                l.pdf(phi - self.mid[k])
             };
             for (a, w) in acc.iter_mut().zip(&self.weight[k]) {
                 *a += w * density;
@@ -213,8 +214,7 @@ impl AzimuthalSamples for ChiangSamples {
         let kernel: Vec<f64> = (0..m_count)
             .map(|i| {
                 let d = i as f64 - (m_count / 2) as f64;
-                trimmed_logistic_cdf((d + 0.5) * dl, self.s)
-                    - trimmed_logistic_cdf((d - 0.5) * dl, self.s)
+                self.logistic.cdf((d + 0.5) * dl) - self.logistic.cdf((d - 0.5) * dl)
             })
             .collect();
         (0..n_phi)

@@ -150,24 +150,9 @@ impl DeonLobes {
         deon_m_f32(self.inv_v[p], self.norm[p], si, ci, so_p, co_p)
     }
 
-    /// M_p broadened by a longitudinal variance `extra` (rad², per channel): the d'Eon lobe of
-    /// variance v_p + extra (Zinke 2008 Eq. 23: variances of narrow lobes add).
-    #[inline]
-    pub fn m_broadened(
-        &self,
-        p: usize,
-        extra: Vec3,
-        si: f32,
-        ci: f32,
-        so_p: f32,
-        co_p: f32,
-    ) -> Vec3 {
-        let g = DeonGeometry::new(si, ci, so_p, co_p);
-        let (inv, norm) = broadened_constants(self.v[p], extra);
-        Vec3::new(g.m(inv.x, norm.x), g.m(inv.y, norm.y), g.m(inv.z, norm.z))
-    }
-
-    /// All four broadened lobes [R, TT, TRT, p ≥ 3] at sin/cos θi and (untilted) sin/cos θo.
+    /// All four lobes [R, TT, TRT, p ≥ 3] broadened by a longitudinal variance `extra` (rad², per
+    /// channel): d'Eon lobes of variance v_p + extra (Zinke 2008 Eq. 23: variances of narrow
+    /// lobes add), at sin/cos θi and (untilted) sin/cos θo.
     /// TRT and p ≥ 3 share their variance 4v₀ (C16), so their 1/v and normalisation are computed
     /// once.
     #[inline]
