@@ -54,6 +54,7 @@ pub mod tables;
 
 pub use params::{ECCENTRICITY_MIN, FiberModel, FiberParams, Lobe, LobeConstants};
 pub use shader::HairAngles;
+use shader::Trig;
 pub use tables::TableResolution;
 
 use chiang::ChiangConstants;
@@ -325,12 +326,12 @@ impl Fiber {
         wo: Vec3,
         light: &LightAtPoint,
     ) -> Vec3 {
-        let Some((a, t)) = HairAngles::from_vectors_trig(u, wi, wo) else {
+        let Some((a, sines)) = HairAngles::from_vectors_trig(u, wi, wo) else {
             return Vec3::ZERO;
         };
         let v = match mode {
-            ShadingMode::DualScattering => self.shade_dual(&a, &t, light),
-            ShadingMode::SingleScattering => self.shade_single(&a, &t, light),
+            ShadingMode::DualScattering => self.shade_dual(&a, &Trig::from_sines(sines), light),
+            ShadingMode::SingleScattering => self.shade_single(&a, &Trig::from_sines(sines), light),
             ShadingMode::KajiyaKay => self.kk.shade(&a, light),
         };
         if v.is_finite() { v } else { Vec3::ZERO }

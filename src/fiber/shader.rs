@@ -65,10 +65,10 @@ impl HairAngles {
         Self::from_vectors_trig(u, wi, wo).map(|(a, _)| a)
     }
 
-    /// [`Self::from_vectors`] with the sines and cosines of θi and θo it computes on the way
-    /// (the shader needs them; recomputing them from the angles costs two `sin_cos`).
+    /// [`Self::from_vectors`] with the sines of θi and θo it computes on the way (the shader
+    /// needs them; recomputing them from the angles costs two `sin_cos`).
     #[inline]
-    pub(crate) fn from_vectors_trig(u: Vec3, wi: Vec3, wo: Vec3) -> Option<(Self, Trig)> {
+    pub(crate) fn from_vectors_trig(u: Vec3, wi: Vec3, wo: Vec3) -> Option<(Self, [f32; 2])> {
         let u = unit(u)?;
         let wi = unit(wi)?;
         let wo = unit(wo)?;
@@ -106,12 +106,7 @@ impl HairAngles {
                 phi,
                 cos_2phi_h: ai.0 * ao.0 - ai.1 * ao.1,
             },
-            Trig {
-                si: sin_i,
-                ci: (1.0 - sin_i * sin_i).max(0.0).sqrt(),
-                so: sin_o,
-                co: (1.0 - sin_o * sin_o).max(0.0).sqrt(),
-            },
+            [sin_i, sin_o],
         ))
     }
 }
@@ -326,6 +321,17 @@ pub(crate) struct Trig {
 }
 
 impl Trig {
+    /// From sin θi and sin θo.
+    #[inline]
+    pub(crate) fn from_sines([si, so]: [f32; 2]) -> Self {
+        Self {
+            si,
+            ci: (1.0 - si * si).max(0.0).sqrt(),
+            so,
+            co: (1.0 - so * so).max(0.0).sqrt(),
+        }
+    }
+
     #[inline]
     fn new(a: &HairAngles) -> Self {
         let (si, ci) = a.theta_i.sin_cos();
