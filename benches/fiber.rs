@@ -1,12 +1,13 @@
-//! Fibre model costs: building every table (`Fiber::new`, runs at program start), one shade
-//! call per mode (runs per render-strand vertex per frame), and `forward_scatter` (per map
-//! sample per frame). Inputs are 1024 fixed pseudo-random direction pairs, so results compare
-//! across runs.
+//! Fibre model costs, for both models (Marschner 2003, Chiang 2016): building every table
+//! (`Fiber::new`, runs at program start), one shade call per mode (runs per render-strand vertex
+//! per frame), and `forward_scatter` (per map sample per frame). Inputs are 1024 fixed
+//! pseudo-random direction pairs, so results compare across runs. Names without a model suffix
+//! are Marschner's (as before); Chiang's end in `_chiang`.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use glam::Vec3;
 use std::hint::black_box;
-use wisp::fiber::{Fiber, FiberParams, LightAtPoint, ShadingMode};
+use wisp::fiber::{Fiber, FiberModel, FiberParams, LightAtPoint, ShadingMode};
 
 fn directions(n: usize) -> Vec<(Vec3, Vec3)> {
     let mut s: u64 = 1;
@@ -26,8 +27,19 @@ fn directions(n: usize) -> Vec<(Vec3, Vec3)> {
 }
 
 fn bench(c: &mut Criterion) {
-    let params = FiberParams::default();
-    c.bench_function("fiber_new", |b| b.iter(|| Fiber::new(black_box(&params))));
+    for (suffix, model) in [("", FiberModel::Marschner), ("_chiang", FiberModel::Chiang)] {
+        bench_model(c, suffix, model);
+    }
+}
+
+fn bench_model(c: &mut Criterion, suffix: &str, model: FiberModel) {
+    let params = FiberParams {
+        model,
+        ..Default::default()
+    };
+    c.bench_function(&format!("fiber_new{suffix}"), |b| {
+        b.iter(|| Fiber::new(black_box(&params)))
+    });
     let fiber = Fiber::new(&params);
     let pairs = directions(1024);
     let u = Vec3::new(0.2, 0.9, 0.1).normalize();
@@ -35,13 +47,14 @@ fn bench(c: &mut Criterion) {
         direct_fraction: 0.3,
         tf: Vec3::new(0.6, 0.4, 0.2),
         sigma_f2: Vec3::splat(0.02),
+        crossings_behind: LightAtPoint::DENSE,
     };
     for (name, mode) in [
         ("shade_dual_x1024", ShadingMode::DualScattering),
         ("shade_single_x1024", ShadingMode::SingleScattering),
         ("shade_kajiya_kay_x1024", ShadingMode::KajiyaKay),
     ] {
-        c.bench_function(name, |b| {
+        c.bench_function(&format!("{name}{suffix}"), |b| {
             b.iter(|| {
                 let mut acc = Vec3::ZERO;
                 for (wi, wo) in &pairs {
@@ -51,6 +64,20 @@ fn bench(c: &mut Criterion) {
             })
         });
     }
+    // The local-density truncation of Ā_b (a finite `crossings_behind`).
+    let sparse = LightAtPoint {
+        crossings_behind: 2.0,
+        ..light
+    };
+    c.bench_function(&format!("shade_dual_density_x1024{suffix}"), |b| {
+        b.iter(|| {
+            let mut acc = Vec3::ZERO;
+            for (wi, wo) in &pairs {
+                acc += fiber.shade(ShadingMode::DualScattering, u, *wi, *wo, black_box(&sparse));
+            }
+            acc
+        })
+    });
     // Coherent input, as along a strand: the view sweeps slowly across 1024 vertices.
     let sweep: Vec<(Vec3, Vec3)> = (0..1024)
         .map(|k| {
@@ -60,7 +87,7 @@ fn bench(c: &mut Criterion) {
             (wi, wo)
         })
         .collect();
-    c.bench_function("shade_dual_coherent_x1024", |b| {
+    c.bench_function(&format!("shade_dual_coherent_x1024{suffix}"), |b| {
         b.iter(|| {
             let mut acc = Vec3::ZERO;
             for (wi, wo) in &sweep {
@@ -69,7 +96,7 @@ fn bench(c: &mut Criterion) {
             acc
         })
     });
-    c.bench_function("forward_scatter_x1024", |b| {
+    c.bench_function(&format!("forward_scatter_x1024{suffix}"), |b| {
         b.iter(|| {
             let mut acc = Vec3::ZERO;
             for (wi, _) in &pairs {

@@ -226,3 +226,63 @@ fn plot_writes_pngs() {
     }
     assert!(dir.join("plots.txt").exists());
 }
+
+/// A hairstyle whose fibre says `"model": "chiang"` is evaluated with the Chiang model: S is the
+/// sum of the four lobes (p ≥ 3 included), equal to the library's tabulated BCSDF.
+#[test]
+fn eval_chiang_from_hairstyle() {
+    let src = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("hairstyles/smooth.json");
+    let mut style: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&src).expect("preset")).expect("JSON");
+    style["fiber"]["model"] = serde_json::json!("chiang");
+    let dir = std::env::temp_dir().join(format!("wisp_fiber_cli_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join("smooth_chiang.json");
+    std::fs::write(&path, style.to_string()).expect("write");
+    let (code, out, err) = wisp(&[
+        "fiber",
+        "eval",
+        "--theta-i-deg",
+        "20",
+        "--phi-i-deg",
+        "0",
+        "--theta-o-deg",
+        "-10",
+        "--phi-o-deg",
+        "150",
+        "--hairstyle",
+        path.to_str().expect("utf-8 path"),
+    ]);
+    let _ = std::fs::remove_dir_all(&dir);
+    assert_eq!(code, 0, "{err}");
+    let j: serde_json::Value = serde_json::from_str(&out).expect("JSON");
+    assert_eq!(j["m_normalization"], "sphere");
+    let params: FiberParams =
+        serde_json::from_value(style["fiber"].clone()).expect("fibre parameters");
+    let fiber = Fiber::new(&params);
+    let a = HairAngles {
+        theta_i: 20f32.to_radians(),
+        theta_o: (-10f32).to_radians(),
+        phi: 150f32.to_radians(),
+        cos_2phi_h: (150f64.to_radians().cos()) as f32,
+    };
+    let want = fiber.bcsdf(&a);
+    let (s, r, tt, trt, rest) = (
+        rgb(&j["S"]),
+        rgb(&j["R"]),
+        rgb(&j["TT"]),
+        rgb(&j["TRT"]),
+        rgb(&j["p_ge_3"]),
+    );
+    for ch in 0..3 {
+        assert!((s[ch] - (r[ch] + tt[ch] + trt[ch] + rest[ch])).abs() <= 1e-6 * s[ch]);
+        assert!(
+            (s[ch] - want[ch] as f64).abs() <= 1e-6 * s[ch],
+            "{s:?} vs {want}"
+        );
+        assert!(
+            rest[ch] > 0.0,
+            "the p ≥ 3 residual is part of the Chiang model"
+        );
+    }
+}

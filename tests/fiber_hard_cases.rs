@@ -5,7 +5,9 @@
 use glam::Vec3;
 use std::f64::consts::PI;
 use wisp::fiber::marschner::{Azimuth, bcsdf_exact, eta_star, gaussian, n_lobe};
-use wisp::fiber::{Fiber, FiberParams, HairAngles, LightAtPoint, Lobe, LobeConstants, ShadingMode};
+use wisp::fiber::{
+    Fiber, FiberModel, FiberParams, HairAngles, LightAtPoint, Lobe, LobeConstants, ShadingMode,
+};
 
 const THETAS_DEG: [f64; 11] = [
     0.0, 45.0, -45.0, 80.0, -80.0, 89.9, -89.9, 90.0, -90.0, 30.0, -60.0,
@@ -77,10 +79,19 @@ fn check_fiber(fiber: &Fiber) {
             assert!(q.sigma_b2[ch].is_finite() && q.sigma_b2[ch] >= 0.0);
             assert!(q.beta_f2[ch].is_finite() && q.beta_f2[ch] >= 0.0);
             assert!(q.beta_b2[ch].is_finite() && q.beta_b2[ch] >= 0.0);
-            // Shifts are energy-weighted means of the lobe shifts 2α_p: inside their range.
-            let c = fiber.lobe_constants();
-            let lo = (0..3).map(|l| 2.0 * c.alpha[l]).fold(f64::MAX, f64::min);
-            let hi = (0..3).map(|l| 2.0 * c.alpha[l]).fold(f64::MIN, f64::max);
+            // Shifts are energy-weighted means of the lobe shifts: inside their range.
+            let means: Vec<f64> = match fiber.model() {
+                FiberModel::Marschner => {
+                    let c = fiber.lobe_constants();
+                    (0..3).map(|l| 2.0 * c.alpha[l]).collect()
+                }
+                FiberModel::Chiang => {
+                    let c = fiber.chiang_constants();
+                    (0..4).map(|l| c.mean_x(l)).collect()
+                }
+            };
+            let lo = means.iter().copied().fold(f64::MAX, f64::min);
+            let hi = means.iter().copied().fold(f64::MIN, f64::max);
             assert!(q.alpha_f[ch] >= lo - 1e-12 && q.alpha_f[ch] <= hi + 1e-12);
             assert!(q.alpha_b[ch] >= lo - 1e-12 && q.alpha_b[ch] <= hi + 1e-12);
         }
@@ -110,16 +121,19 @@ fn check_fiber(fiber: &Fiber) {
             direct_fraction: 0.0,
             tf: Vec3::new(0.3, 0.2, 0.1),
             sigma_f2: Vec3::splat(0.05),
+            crossings_behind: LightAtPoint::DENSE,
         },
         LightAtPoint {
             direct_fraction: 0.5,
             tf: Vec3::splat(0.2),
             sigma_f2: Vec3::ZERO,
+            crossings_behind: LightAtPoint::DENSE,
         },
         LightAtPoint {
             direct_fraction: f32::NAN,
             tf: Vec3::splat(f32::INFINITY),
             sigma_f2: Vec3::splat(-1.0),
+            crossings_behind: LightAtPoint::DENSE,
         },
     ];
     for mode in [
@@ -339,6 +353,7 @@ fn dual_unshadowed_is_direct_only() {
         direct_fraction: 0.0,
         tf: Vec3::ZERO,
         sigma_f2: Vec3::splat(0.1),
+        crossings_behind: LightAtPoint::DENSE,
     };
     assert_eq!(
         fiber.shade(ShadingMode::DualScattering, u, wi, wo, &dark),
@@ -358,11 +373,13 @@ fn direct_fraction_above_tf_is_clamped() {
         direct_fraction: 0.5,
         tf: Vec3::splat(0.2),
         sigma_f2: Vec3::ZERO,
+        crossings_behind: LightAtPoint::DENSE,
     };
     let l2 = LightAtPoint {
         direct_fraction: 0.5,
         tf: Vec3::splat(0.5),
         sigma_f2: Vec3::ZERO,
+        crossings_behind: LightAtPoint::DENSE,
     };
     assert_eq!(
         fiber.shade(ShadingMode::DualScattering, u, wi, wo, &l1),
@@ -409,6 +426,7 @@ fn dual_composition_properties() {
                 direct_fraction: 0.0,
                 tf: Vec3::splat(t),
                 sigma_f2: Vec3::splat(0.03),
+                crossings_behind: LightAtPoint::DENSE,
             };
             fiber.shade(ShadingMode::DualScattering, u, wi, wo, &l)
         };
@@ -437,4 +455,64 @@ fn kajiya_kay_colour_from_absorption() {
     let (b, l) = (shade(&brown), shade(&light));
     assert!(b.x > b.y && b.y > b.z, "{b}");
     assert!(l.cmpgt(b).all(), "{l} vs {b}");
+}
+
+/// The Chiang model where it breaks: grazing and exactly ±90° angles (every pair of
+/// `hard_directions`, degenerate vectors included), σa = 0 and 1000, longitudinal roughness
+/// β_R = 0.5° (v_TT = 7.6e-5 rad²) and 45°, azimuthal roughness 0.01 (s = 0.1°) and 1 (s = 4.3
+/// rad, near uniform), tilt ±20°, η near 1 and 3.9. Every table value and every shaded value is
+/// finite and non-negative (`check_fiber`), and the BCSDF is finite everywhere.
+#[test]
+fn chiang_hard_cases() {
+    let base = FiberParams {
+        model: FiberModel::Chiang,
+        ..Default::default()
+    };
+    let cases = [
+        base.clone(),
+        FiberParams {
+            sigma_a: [0.0; 3],
+            ..base.clone()
+        },
+        FiberParams {
+            sigma_a: [1000.0; 3],
+            ..base.clone()
+        },
+        FiberParams {
+            beta_r_deg: 0.5,
+            azimuthal_roughness: 0.01,
+            ..base.clone()
+        },
+        FiberParams {
+            beta_r_deg: 45.0,
+            azimuthal_roughness: 1.0,
+            ..base.clone()
+        },
+        FiberParams {
+            alpha_r_deg: 20.0,
+            eta: 1.01,
+            ..base.clone()
+        },
+        FiberParams {
+            alpha_r_deg: -20.0,
+            eta: 3.9,
+            ..base.clone()
+        },
+    ];
+    for p in cases {
+        assert!(p.validate().is_ok(), "{p:?}");
+        let fiber = Fiber::new(&p);
+        check_fiber(&fiber);
+        for wi in hard_directions() {
+            for wo in hard_directions() {
+                if let Some(a) = HairAngles::from_vectors(Vec3::Y, wi, wo) {
+                    let s = fiber.bcsdf(&a);
+                    assert!(
+                        s.is_finite() && s.min_element() >= 0.0,
+                        "{p:?} {wi} {wo}: {s}"
+                    );
+                }
+            }
+        }
+    }
 }

@@ -186,13 +186,15 @@ fn eval(a: EvalArgs) -> Result<(), AppError> {
         cos_2phi_h: (pi_ as f64 + po as f64).cos() as f32,
     };
     let lobes = fiber.bcsdf_lobes(&angles);
-    let s = lobes[0] + lobes[1] + lobes[2];
+    let s = fiber.bcsdf(&angles);
+    let chiang = params.model == wisp::fiber::FiberModel::Chiang;
     let out = json!({
         "S": rgb(s),
         "R": rgb(lobes[Lobe::R as usize]),
         "TT": rgb(lobes[Lobe::TT as usize]),
         "TRT": rgb(lobes[Lobe::TRT as usize]),
-        "m_normalization": "theta_o",
+        "p_ge_3": rgb(lobes[3]),
+        "m_normalization": if chiang { "sphere" } else { "theta_o" },
     });
     println!("{out}");
     Ok(())

@@ -103,11 +103,12 @@ impl LobeSamples {
         acc
     }
 
-    /// N^G_p(φ) = (1/π) ∫_{φ−π/2}^{φ+π/2} N_p(ψ) dψ (Eq. 25 read as a convolution, trap 5),
-    /// for φ at the `n_phi` grid points over [0, π]. The sampled (notched) part is deposited into
-    /// a `bins`-bin histogram over the circle (linear split between the two nearest bins) and
+    /// N^G_p(φ) = (1/2w) ∫_{φ−w}^{φ+w} N_p(ψ) dψ (Eq. 25 read as a convolution, trap 5; w =
+    /// `window` radians, Zinke's π/2 by default, `FiberParams::forward_spread_deg`), for φ at the
+    /// `n_phi` grid points over [0, π]. The sampled (notched) part is deposited into a
+    /// `bins`-bin histogram over the circle (linear split between the two nearest bins) and
     /// integrated through its cumulative sum; the glints use the Gaussian's closed-form CDF.
-    pub fn n_g(&self, n_phi: usize, bins: usize) -> Vec<[f64; 3]> {
+    pub fn n_g(&self, n_phi: usize, bins: usize, window: f64) -> Vec<[f64; 3]> {
         let dw = 2.0 * PI / bins as f64;
         let mut hist = vec![[0.0f64; 3]; bins];
         for (ph, wt) in self.phi.iter().zip(&self.weight) {
@@ -140,9 +141,9 @@ impl LobeSamples {
         (0..n_phi)
             .map(|k| {
                 let phi = PI * k as f64 / (n_phi - 1) as f64;
-                let (lo, hi) = (phi - FRAC_PI_2, phi + FRAC_PI_2);
+                let (lo, hi) = (phi - window, phi + window);
                 let (c_hi, c_lo) = (cum_at(hi), cum_at(lo));
-                let mut out = [0, 1, 2].map(|ch| (c_hi[ch] - c_lo[ch]) / PI);
+                let mut out = [0, 1, 2].map(|ch| (c_hi[ch] - c_lo[ch]) / (2.0 * window));
                 if let Some((amp, phi_c, w_c)) = self.glint {
                     let mut mass = 0.0;
                     for mu in [phi_c, -phi_c] {
@@ -152,7 +153,7 @@ impl LobeSamples {
                         }
                     }
                     for ch in 0..3 {
-                        out[ch] += amp[ch] * mass / PI;
+                        out[ch] += amp[ch] * mass / (2.0 * window);
                     }
                 }
                 out
@@ -172,23 +173,51 @@ pub fn lobe_integral(
     LobeSamples::new(c, lobe, sin_theta_d, N_H).integral(w)
 }
 
-/// Direct N^G_p(θd, φ) by midpoint quadrature of the exact N_p over ψ ∈ [φ − π/2, φ + π/2]
-/// (reference for the tests), circular fibre.
-pub fn n_g_direct(c: &LobeConstants, lobe: Lobe, theta_d: f64, phi: f64, n: usize) -> [f64; 3] {
+/// Direct N^G_p(θd, φ) by midpoint quadrature of the exact N_p over ψ ∈ [φ − w, φ + w] with
+/// weight 1/(2w) (reference for the tests), circular fibre; `window` = w in radians.
+pub fn n_g_direct(
+    c: &LobeConstants,
+    lobe: Lobe,
+    theta_d: f64,
+    phi: f64,
+    window: f64,
+    n: usize,
+) -> [f64; 3] {
     let az = Azimuth::new(c.eta, theta_d.sin(), c.sigma_a);
-    let d = PI / n as f64;
+    let d = 2.0 * window / n as f64;
     let mut acc = [0.0; 3];
     for k in 0..n {
-        let psi = phi - FRAC_PI_2 + (k as f64 + 0.5) * d;
+        let psi = phi - window + (k as f64 + 0.5) * d;
         let v = match lobe {
             Lobe::TRT => az.n_trt_smoothed(c, psi),
             _ => az.n_raw(lobe.p(), psi),
         };
         for ch in 0..3 {
-            acc[ch] += v[ch] * d / PI;
+            acc[ch] += v[ch] * d / (2.0 * window);
         }
     }
     acc
+}
+
+/// What the dual-scattering tables need from one lobe at one value of the azimuthal table's key
+/// (|θd| for Marschner, |θo| for Chiang): its integrals against the front/back weights (Eqs. 6,
+/// 12) and N^G (Eq. 25).
+pub trait AzimuthalSamples {
+    /// (∫ N_p w_f dφ, ∫ N_p w_b dφ) over the circle, RGB.
+    fn split(&self) -> ([f64; 3], [f64; 3]);
+    /// N^G_p at `n_phi` grid points over |φ| ∈ [0, π], for a forward window of half-width
+    /// `window` radians.
+    fn n_g_row(&self, n_phi: usize, window: f64) -> Vec<[f64; 3]>;
+}
+
+impl AzimuthalSamples for LobeSamples {
+    fn split(&self) -> ([f64; 3], [f64; 3]) {
+        (self.integral(w_forward), self.integral(w_backward))
+    }
+
+    fn n_g_row(&self, n_phi: usize, window: f64) -> Vec<[f64; 3]> {
+        self.n_g(n_phi, N_G_BINS, window)
+    }
 }
 
 #[cfg(test)]

@@ -66,6 +66,75 @@ pub fn sigma_b2(a_f: f64, a_b: f64, beta_f2: f64, beta_b2: f64) -> f64 {
     s * s
 }
 
+/// Ā_b for a point with a finite amount of hair behind it: the expected number of fibre crossings
+/// n that a light ray still makes after the point, continuing along the light direction until it
+/// leaves the hair (`LightAtPoint::crossings_behind`).
+///
+/// **Derivation.** Write x = ā_f². In the sums of Eqs. 11 and 13, a path whose deepest
+/// back-scattering happens at the D-th fibre behind the point carries x^{D−1}: Eq. 11's term i
+/// is D = i + 1, and Eq. 13's term (i, j, k) reaches D = i − j + k with exponent
+/// i − j − 1 + k = D − 1; counting the (i, j, k) with a given D gives D(D − 1)/2 of them. So
+/// Ā_b(∞) = Σ_{D≥2} (ā_b + ā_b³ D(D−1)/2) x^{D−1}: Zinke's closed forms assume infinitely many
+/// fibres behind the point. With N fibres behind, only D ≤ N exist, and the partial sums are
+/// Ā_1(N) = ā_b (x − x^N)/(1 − x) and Ā_3(N) = ā_b³ (x/(1−x)³ − t(N)) with the tail
+/// t(N) = x^N/2 · (N(N−1)/(1−x) + (2N−1)/(1−x)² + (1+x)/(1−x)³). The number of fibres behind a
+/// point is Poisson with mean n (the map's reading of crossing counts, DESIGN "Counts to
+/// transmittance"), and averaging over it with E[x^N] = q = e^{−n(1−x)}, E[N x^N] = n x q,
+/// E[N(N−1) x^N] = (nx)² q gives
+///   E Ā_1 = ā_b (x(1 − e^{−n}) − q + e^{−n})/(1 − x),
+///   E Ā_3 = ā_b³ (x/(1−x)³ − q/2 · ((nx)²/(1−x) + (2nx − 1)/(1−x)² + (1+x)/(1−x)³)).
+/// Both vanish like n² as n → 0 (an isolated fibre gets no local back-scattering: a path needs
+/// at least two fibres behind it) and tend to Eqs. 11 and 13 as n → ∞. Pinned against the
+/// literal truncated series in `truncation_matches_series`.
+pub fn big_a_b_behind(a_f: f64, a_b: f64, n: f64) -> f64 {
+    if n.is_infinite() && n > 0.0 {
+        return big_a_b(a_f, a_b);
+    }
+    let n = if n.is_nan() { 0.0 } else { n.max(0.0) };
+    let x = a_f.min(A_F_MAX).powi(2);
+    let u = 1.0 - x;
+    let q = (-n * u).exp();
+    let e = (-n).exp();
+    let a1 = a_b * (x * (1.0 - e) - q + e) / u;
+    let nx = n * x;
+    let a3 = a_b.powi(3)
+        * (x / u.powi(3)
+            - 0.5 * q * (nx * nx / u + (2.0 * nx - 1.0) / (u * u) + (1.0 + x) / u.powi(3)));
+    (a1 + a3).max(0.0)
+}
+
+/// The factor Ā_b(n)/Ā_b(∞) of [`big_a_b_behind`] per channel, in [0, 1], in f32 for the shader
+/// (`a_f`, `a_b` from the dual tables at the light's inclination). 1 exactly for n = +∞ (dense
+/// hair, the default), 0 for n ≤ 0 or NaN.
+#[inline]
+pub fn truncation(a_f: glam::Vec3, a_b: glam::Vec3, n: f32) -> glam::Vec3 {
+    if n == f32::INFINITY {
+        return glam::Vec3::ONE;
+    }
+    if n.is_nan() || n <= 0.0 {
+        return glam::Vec3::ZERO;
+    }
+    let e = (-n).exp();
+    let x_max = (A_F_MAX * A_F_MAX) as f32;
+    let f = |a_f: f32, a_b: f32| {
+        let x = (a_f * a_f).clamp(0.0, x_max);
+        let u = 1.0 - x;
+        let q = (-n * u).exp();
+        let ab2 = a_b * a_b;
+        let full = x / u + ab2 * x / (u * u * u);
+        if full.is_nan() || full <= 0.0 {
+            return 0.0;
+        }
+        let nx = n * x;
+        let a1 = (x * (1.0 - e) - q + e) / u;
+        let a3 = ab2
+            * (x / (u * u * u)
+                - 0.5 * q * (nx * nx / u + (2.0 * nx - 1.0) / (u * u) + (1.0 + x) / (u * u * u)));
+        ((a1 + a3) / full).clamp(0.0, 1.0)
+    };
+    glam::Vec3::new(f(a_f.x, a_b.x), f(a_f.y, a_b.y), f(a_f.z, a_b.z))
+}
+
 /// Eq. 17 as printed (standard deviation), evaluated with angles in the caller's unit; for the
 /// trap-2 test only.
 pub fn sigma_b_printed(a_f: f64, a_b: f64, beta_f: f64, beta_b: f64) -> f64 {
@@ -137,6 +206,69 @@ mod tests {
         // events, so σ_b lies between β_b and √3 β_b.
         let s = sigma_b2(a_f, a_b, 0.0, bb * bb).sqrt();
         assert!(s > bb && s < 3f64.sqrt() * bb);
+    }
+
+    /// The closed forms of `big_a_b_behind` against the literal series: terms with deepest fibre
+    /// D ≤ N summed directly for each integer N (Eq. 11's i and Eq. 13's (i, j, k) enumerated,
+    /// D = i + 1 and D = i − j + k), then averaged over N ~ Poisson(n).
+    #[test]
+    fn truncation_matches_series() {
+        let literal = |a_f: f64, a_b: f64, big_n: i64| {
+            let x = a_f * a_f;
+            let mut sum = 0.0;
+            for i in 1..400i64 {
+                if i < big_n {
+                    sum += a_b * x.powi(i as i32);
+                }
+            }
+            for i in 1..60i64 {
+                for j in 0..i {
+                    for k in (j + 1)..60 {
+                        if i - j + k <= big_n {
+                            sum += a_b.powi(3) * x.powi((i - j - 1 + k) as i32);
+                        }
+                    }
+                }
+            }
+            sum
+        };
+        for (a_f, a_b) in [(0.6, 0.05), (0.3, 0.2), (0.85, 0.1)] {
+            // Dense limit: Zinke's Ā_b (truncated sums of 60 terms converge to 1e-9 here).
+            assert!((big_a_b_behind(a_f, a_b, f64::INFINITY) - big_a_b(a_f, a_b)).abs() < 1e-15);
+            assert!((literal(a_f, a_b, 1000) - big_a_b(a_f, a_b)).abs() < 1e-6 * big_a_b(a_f, a_b));
+            for n in [0.0f64, 0.3, 1.0, 2.5, 7.0, 30.0] {
+                // Poisson average of the literal series.
+                let mut p = (-n).exp();
+                let mut avg = 0.0;
+                for big_n in 0..200i64 {
+                    if big_n > 0 {
+                        p *= n / big_n as f64;
+                    }
+                    avg += p * literal(a_f, a_b, big_n);
+                }
+                let got = big_a_b_behind(a_f, a_b, n);
+                assert!(
+                    (got - avg).abs() <= 1e-6 * big_a_b(a_f, a_b),
+                    "a_f={a_f} a_b={a_b} n={n}: {got} vs {avg}"
+                );
+                let r = truncation(
+                    glam::Vec3::splat(a_f as f32),
+                    glam::Vec3::splat(a_b as f32),
+                    n as f32,
+                )
+                .x as f64;
+                assert!(
+                    (r - avg / big_a_b(a_f, a_b)).abs() < 2e-5,
+                    "f32 ratio {r} vs {}",
+                    avg / big_a_b(a_f, a_b)
+                );
+            }
+        }
+        // Isolated fibre: no local back-scattering; dense: exactly Zinke's.
+        let v = glam::Vec3::splat(0.5);
+        assert_eq!(truncation(v, v, 0.0), glam::Vec3::ZERO);
+        assert_eq!(truncation(v, v, f32::NAN), glam::Vec3::ZERO);
+        assert_eq!(truncation(v, v, f32::INFINITY), glam::Vec3::ONE);
     }
 
     /// Trap 6: ā_f = 1 (or above) is clamped; everything stays finite and positive.

@@ -1,11 +1,14 @@
 //! Dual-scattering fibre quantities (Zinke et al. 2008 §3 and Table 1), tabulated over the
 //! light's inclination θ ∈ [−π/2, π/2] (radians; the tables are not even in θ because the
-//! cuticle tilt α shifts the lobes), plus N^G(θd, φ) (Eq. 25).
+//! cuticle tilt α shifts the lobes), plus N^G(key, φ) (Eq. 25), for either fibre model
+//! ([`DualModel`]: Marschner 2003 or Chiang 2016; the key of the azimuthal tables is |θd| for
+//! Marschner and |θo| for Chiang).
 //!
 //! How: every azimuthal integral of N_p is done in h (Eq. 8's bookkeeping: ∫ N_p w(φ) dφ =
 //! ∫ A(p, h) w(φ(p, h)) dh / 2), which needs no root solving and has a smooth integrand; only
-//! the TRT glints are integrated in φ. Then one longitudinal quadrature over θo per table entry.
-//! Building every table for the default fibre takes tens of milliseconds (see `benches/fiber.rs`).
+//! the TRT glints are integrated in φ (Marschner) and Chiang's logistic is convolved in closed
+//! form (`chiang_tables`). Then one longitudinal quadrature over θo per table entry. Building
+//! every table for the default fibre takes tens of milliseconds (see `benches/fiber.rs`).
 //!
 //! Readings chosen (each pinned by a test in `tests/fiber_tables.rs`, `backscatter.rs` or
 //! `tests/fiber_energy.rs`):
@@ -39,16 +42,25 @@
 //!   minus sign is wrong (its ᾱ_f coefficient is right). We use the exact closed form.
 //! - **Trap 6.** 1 − ā_f² divides A_b, Δ_b and σ_b; ā_f is clamped to [`A_F_MAX`] before them.
 //! - **Trap 5, Eq. 25** is read as the convolution N^G(θ, φ) = ∫ s̃_f(φ') N(θ, φ − φ') dφ' over
-//!   φ' ∈ [−π/2, π/2] with s̃_f = 1/π: light arriving isotropically from the front half circle
-//!   around the light direction. The printed form (N(θ, φ') with no φ) would be a constant in φ,
+//!   φ' ∈ [−w, w] with s̃_f = 1/(2w), w = π/2 (Zinke's 1/π; `FiberParams::forward_spread_deg`):
+//!   light arriving isotropically from the front half circle around the light direction. The printed form (N(θ, φ') with no φ) would be a constant in φ,
 //!   making forward-scattered light look the same from every side; the convolution keeps TT's
 //!   preference for φ ≈ π (more than 5× its φ = 0 value, `trap5_n_g_is_a_convolution`).
-//! - Lobe shifts/variances of the front and back halves: ᾱ = Σ_p w_p 2α_p, β̄² = Σ_p w_p
-//!   ((2β_p)² + (2α_p)²) − ᾱ² (moment matching the mixture), w_p the lobe's share of ā.
+//! - Lobe shifts/variances of the front and back halves: ᾱ = Σ_p w_p μ_p, β̄² = Σ_p w_p
+//!   (v_p + μ_p²) − ᾱ² (moment matching the mixture), w_p the lobe's share of ā, μ_p and v_p the
+//!   lobe's mean and variance in x = θi + θo (Marschner: 2α_p, (2β_p)²; Chiang: the tilt and
+//!   d'Eon's v_p, whose true spread is slightly wider than √v_p for v_p ≳ 0.1).
+//! - **Chiang's forward albedo** ∫ S cos θo dωo exceeds 1 at grazing incidence (S = ḡ/cos θi,
+//!   `chiang.rs`: 1.40 at 80° for β_R = 7.5°) although a white fibre in a white furnace looks
+//!   exactly white; the same max(1, ρ_w) normalisation keeps ā_f + ā_b ≤ 1 (a path tracer with
+//!   this model would let grazing light gain energy per crossing; wisp does not).
 //! - Tables ignore eccentricity (circular fibre of index η), as Zinke §4.2 does for N^G.
 
-pub use super::azimuthal::{LobeSamples, lobe_integral, n_g_direct, w_backward, w_forward};
-use super::azimuthal::{N_G_BINS, N_H};
+use super::azimuthal::N_H;
+pub use super::azimuthal::{
+    AzimuthalSamples, LobeSamples, lobe_integral, n_g_direct, w_backward, w_forward,
+};
+use super::chiang::{self, ChiangConstants};
 use super::marschner::{inv_cos2_theta_d, longitudinal_m};
 use super::params::{Lobe, LobeConstants};
 use super::tables::{Table1, Table2, TableResolution};
@@ -59,6 +71,91 @@ pub use super::backscatter::{
 use glam::Vec3;
 use rayon::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};
+
+/// Most lobes of any model: Marschner's R, TT, TRT and Chiang's p ≥ 3 residual.
+pub const MAX_LOBES: usize = 4;
+
+/// What the dual-scattering tables need from a fibre model: Marschner's [`LobeConstants`] or
+/// Chiang's [`ChiangConstants`]. Only table building calls it (not the per-vertex path), so the
+/// generic code is monomorphised per model and costs nothing in `shade`.
+pub trait DualModel: Sync + Sized {
+    type Samples: AzimuthalSamples;
+    /// Number of lobes (3 for Marschner, 4 with Chiang's p ≥ 3 residual).
+    fn lobes(&self) -> usize;
+    /// The azimuthal table key of a direction pair, radians in [0, π/2]: |θd| for Marschner
+    /// (N depends on θd), |θo| for Chiang (its A_p and η' live on the camera side).
+    fn key(&self, theta_i: f64, theta_o: f64) -> f64;
+    /// Lobe `lobe` sampled at `key` (radians).
+    fn samples(&self, lobe: usize, key: f64) -> Self::Samples;
+    /// M_p(θi, θo) times S's geometric factor, 1/rad: S = Σ_p longitudinal_p · N_p. Marschner:
+    /// M_p / cos²θd (Eq. 9); Chiang: M_p / cos θi (S = ḡ/cos θi, cos θi floored at 0.01).
+    fn longitudinal(&self, lobe: usize, theta_i: f64, theta_o: f64) -> f64;
+    /// Lobe p's mean in x = θi + θo (radians).
+    fn lobe_mean_x(&self, lobe: usize) -> f64;
+    /// Lobe p's variance in x (rad²).
+    fn lobe_var_x(&self, lobe: usize) -> f64;
+    /// The same fibre with σa = 0 (white furnace).
+    fn white(&self) -> Self;
+}
+
+impl DualModel for LobeConstants {
+    type Samples = LobeSamples;
+    fn lobes(&self) -> usize {
+        3
+    }
+    fn key(&self, theta_i: f64, theta_o: f64) -> f64 {
+        (0.5 * (theta_o - theta_i)).abs()
+    }
+    fn samples(&self, lobe: usize, key: f64) -> LobeSamples {
+        LobeSamples::new(self, Lobe::ALL[lobe], key.sin(), N_H)
+    }
+    fn longitudinal(&self, lobe: usize, theta_i: f64, theta_o: f64) -> f64 {
+        longitudinal_m(self, Lobe::ALL[lobe], theta_i, theta_o)
+            * inv_cos2_theta_d(0.5 * (theta_o - theta_i))
+    }
+    fn lobe_mean_x(&self, lobe: usize) -> f64 {
+        self.mean_x(Lobe::ALL[lobe])
+    }
+    fn lobe_var_x(&self, lobe: usize) -> f64 {
+        self.std_x(Lobe::ALL[lobe]).powi(2)
+    }
+    fn white(&self) -> Self {
+        Self {
+            sigma_a: [0.0; 3],
+            ..*self
+        }
+    }
+}
+
+impl DualModel for ChiangConstants {
+    type Samples = super::chiang_tables::ChiangSamples;
+    fn lobes(&self) -> usize {
+        chiang::N_LOBES
+    }
+    fn key(&self, _theta_i: f64, theta_o: f64) -> f64 {
+        theta_o.abs()
+    }
+    fn samples(&self, lobe: usize, key: f64) -> Self::Samples {
+        super::chiang_tables::ChiangSamples::new(
+            self,
+            lobe,
+            key.sin(),
+            super::chiang_tables::N_GAMMA,
+        )
+    }
+    fn longitudinal(&self, lobe: usize, theta_i: f64, theta_o: f64) -> f64 {
+        self.m(lobe, theta_i, theta_o) / theta_i.cos().max(super::marschner::COS_THETA_D_MIN)
+    }
+    fn lobe_mean_x(&self, lobe: usize) -> f64 {
+        self.mean_x(lobe)
+    }
+    fn lobe_var_x(&self, lobe: usize) -> f64 {
+        self.v[lobe]
+    }
+    fn white(&self) -> Self {
+        ChiangConstants::white(self)
+    }
+}
 
 /// Which cosine weights Eq. 6 (trap 4); the tables use `Outgoing`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -72,87 +169,96 @@ pub enum CosineReading {
 /// Per-lobe forward and backward shares at one light inclination, before combination.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct LobeShares {
-    /// ā_f contribution of each lobe [R, TT, TRT], RGB.
-    pub forward: [[f64; 3]; 3],
+    /// ā_f contribution of each lobe [R, TT, TRT, p ≥ 3 (Chiang only; 0 for Marschner)], RGB.
+    pub forward: [[f64; 3]; MAX_LOBES],
     /// ā_b contribution of each lobe, RGB.
-    pub backward: [[f64; 3]; 3],
+    pub backward: [[f64; 3]; MAX_LOBES],
 }
 
 impl LobeShares {
     /// ā_f + ā_b of channel 0 (for σa = 0: the hemispherical albedo, all channels equal).
     pub fn albedo(&self) -> f64 {
-        (0..3)
+        (0..MAX_LOBES)
             .map(|l| self.forward[l][0] + self.backward[l][0])
             .sum()
     }
 }
 
 /// σa = 0 albedo ρ_w(θ) of the fibre `c` (direct quadrature; the tables use the same integral).
-pub fn white_albedo(c: &LobeConstants, theta: f64) -> f64 {
-    let white = LobeConstants {
-        sigma_a: [0.0; 3],
-        ..*c
-    };
-    shares_direct(&white, theta, CosineReading::Outgoing).albedo()
+pub fn white_albedo<M: DualModel>(c: &M, theta: f64) -> f64 {
+    shares_direct(&c.white(), theta, CosineReading::Outgoing).albedo()
 }
 
-/// The azimuthal integrals of each lobe against w_f and w_b, tabulated over |θd|.
+type Split = ([f64; 3], [f64; 3]);
+
+/// One key row of `SplitTable::build_with_n_g`: per-lobe splits and N^G rows.
+type SplitRow = ([Split; MAX_LOBES], Vec<Vec<[f64; 3]>>);
+
+/// The azimuthal integrals of each lobe against w_f and w_b, tabulated over the model's key.
 struct SplitTable {
     n: usize,
-    /// [θd index][lobe] -> (forward RGB, backward RGB)
-    values: Vec<[([f64; 3], [f64; 3]); 3]>,
+    /// [key index][lobe] -> (forward RGB, backward RGB)
+    values: Vec<[Split; MAX_LOBES]>,
 }
 
 impl SplitTable {
     /// The split integrals alone.
-    fn build(c: &LobeConstants, n: usize) -> Self {
+    fn build<M: DualModel>(c: &M, n: usize) -> Self {
         let values = (0..n)
             .into_par_iter()
             .map(|i| {
-                let td = FRAC_PI_2 * i as f64 / (n - 1) as f64;
-                Lobe::ALL.map(|lobe| {
-                    let s = LobeSamples::new(c, lobe, td.sin(), N_H);
-                    (s.integral(w_forward), s.integral(w_backward))
+                let key = FRAC_PI_2 * i as f64 / (n - 1) as f64;
+                std::array::from_fn(|l| {
+                    if l < c.lobes() {
+                        c.samples(l, key).split()
+                    } else {
+                        ([0.0; 3], [0.0; 3])
+                    }
                 })
             })
             .collect();
         Self { n, values }
     }
 
-    /// The split integrals and the N^G rows (φ over [0, π], `n_phi` samples) on the same
-    /// `n` samples of |θd|, from one set of h samples per (θd, lobe).
-    fn build_with_n_g(c: &LobeConstants, n: usize, n_phi: usize) -> (Self, [Table2; 3]) {
-        #[allow(clippy::type_complexity)]
-        let rows: Vec<([([f64; 3], [f64; 3]); 3], [Vec<[f64; 3]>; 3])> = (0..n)
+    /// The split integrals and the N^G rows (φ over [0, π], `n_phi` samples, forward window of
+    /// half-width `window`) on the same `n` samples of the key, from one set of samples per
+    /// (key, lobe).
+    fn build_with_n_g<M: DualModel>(
+        c: &M,
+        n: usize,
+        n_phi: usize,
+        window: f64,
+    ) -> (Self, Vec<Table2>) {
+        let lobes = c.lobes();
+        let rows: Vec<SplitRow> = (0..n)
             .into_par_iter()
             .map(|i| {
-                let td = FRAC_PI_2 * i as f64 / (n - 1) as f64;
-                let samples = Lobe::ALL.map(|lobe| LobeSamples::new(c, lobe, td.sin(), N_H));
-                let split = [0, 1, 2].map(|l| {
-                    (
-                        samples[l].integral(w_forward),
-                        samples[l].integral(w_backward),
-                    )
+                let key = FRAC_PI_2 * i as f64 / (n - 1) as f64;
+                let samples: Vec<M::Samples> = (0..lobes).map(|l| c.samples(l, key)).collect();
+                let split = std::array::from_fn(|l| {
+                    samples.get(l).map_or(([0.0; 3], [0.0; 3]), |s| s.split())
                 });
-                let n_g = [0, 1, 2].map(|l| samples[l].n_g(n_phi, N_G_BINS));
+                let n_g = samples.iter().map(|s| s.n_g_row(n_phi, window)).collect();
                 (split, n_g)
             })
             .collect();
         let values = rows.iter().map(|r| r.0).collect();
-        let n_g = [0, 1, 2].map(|l| {
-            Table2::from_values(
-                n,
-                n_phi,
-                rows.iter()
-                    .flat_map(|r| r.1[l].iter().map(|v| Vec3::from(v.map(|x| x as f32))))
-                    .collect(),
-            )
-        });
+        let n_g = (0..lobes)
+            .map(|l| {
+                Table2::from_values(
+                    n,
+                    n_phi,
+                    rows.iter()
+                        .flat_map(|r| r.1[l].iter().map(|v| Vec3::from(v.map(|x| x as f32))))
+                        .collect(),
+                )
+            })
+            .collect();
         (Self { n, values }, n_g)
     }
 
-    fn lookup(&self, abs_theta_d: f64, lobe: usize) -> ([f64; 3], [f64; 3]) {
-        let f = (abs_theta_d / FRAC_PI_2 * (self.n - 1) as f64).clamp(0.0, (self.n - 1) as f64);
+    fn lookup(&self, key: f64, lobe: usize) -> Split {
+        let f = (key / FRAC_PI_2 * (self.n - 1) as f64).clamp(0.0, (self.n - 1) as f64);
         let i = (f as usize).min(self.n - 2);
         let t = f - i as f64;
         let (a, b) = (self.values[i][lobe], self.values[i + 1][lobe]);
@@ -162,40 +268,39 @@ impl SplitTable {
 }
 
 /// Lobe shares at θi by one longitudinal quadrature over θo, with azimuthal integrals from
-/// `split` (or from `lobe_integral` directly when `split` is None: the reference).
-fn shares_at(
-    c: &LobeConstants,
+/// `split` (or recomputed at every node when `split` is None: the reference).
+fn shares_at<M: DualModel>(
+    c: &M,
     theta_i: f64,
     split: Option<&SplitTable>,
     reading: CosineReading,
 ) -> LobeShares {
-    let min_std = c.std_x(Lobe::TT);
+    let min_std = (0..c.lobes())
+        .map(|l| c.lobe_var_x(l).sqrt())
+        .fold(f64::MAX, f64::min);
     let n_o = ((PI / (min_std / 4.0)).ceil() as usize).clamp(256, 8192);
     let d_o = PI / n_o as f64;
     let mut out = LobeShares::default();
     for k in 0..n_o {
         let theta_o = -FRAC_PI_2 + (k as f64 + 0.5) * d_o;
-        let theta_d = 0.5 * (theta_o - theta_i);
         let cos_w = match reading {
             CosineReading::Incident => theta_i.cos(),
             CosineReading::Outgoing => theta_o.cos(),
         };
-        let geom = cos_w * theta_o.cos() * inv_cos2_theta_d(theta_d) * d_o;
-        for lobe in Lobe::ALL {
-            let m = longitudinal_m(c, lobe, theta_i, theta_o);
+        let geom = cos_w * theta_o.cos() * d_o;
+        let key = c.key(theta_i, theta_o);
+        for lobe in 0..c.lobes() {
+            let m = c.longitudinal(lobe, theta_i, theta_o);
             if m * geom < 1e-300 {
                 continue;
             }
             let (f, b) = match split {
-                Some(s) => s.lookup(theta_d.abs(), lobe as usize),
-                None => (
-                    lobe_integral(c, lobe, theta_d.sin(), w_forward),
-                    lobe_integral(c, lobe, theta_d.sin(), w_backward),
-                ),
+                Some(s) => s.lookup(key, lobe),
+                None => c.samples(lobe, key).split(),
             };
             for ch in 0..3 {
-                out.forward[lobe as usize][ch] += m * geom * f[ch];
-                out.backward[lobe as usize][ch] += m * geom * b[ch];
+                out.forward[lobe][ch] += m * geom * f[ch];
+                out.backward[lobe][ch] += m * geom * b[ch];
             }
         }
     }
@@ -204,7 +309,7 @@ fn shares_at(
 
 /// Direct (untabulated) lobe shares at θi, for checking the tables: azimuthal integrals are
 /// recomputed at every θo node instead of interpolated. Slow (≈ 0.1 s).
-pub fn shares_direct(c: &LobeConstants, theta_i: f64, reading: CosineReading) -> LobeShares {
+pub fn shares_direct<M: DualModel>(c: &M, theta_i: f64, reading: CosineReading) -> LobeShares {
     shares_at(c, theta_i, None, reading)
 }
 
@@ -226,21 +331,20 @@ pub struct DualQuantities {
 impl DualQuantities {
     /// Combines lobe shares into the Zinke quantities (module doc for the readings).
     /// `white_albedo` is ρ_w(θ), the σa = 0 albedo at the same θ ([`white_albedo`]).
-    pub fn from_shares(c: &LobeConstants, s: &LobeShares, white_albedo: f64) -> Self {
+    pub fn from_shares<M: DualModel>(c: &M, s: &LobeShares, white_albedo: f64) -> Self {
         let mut q = Self::default();
-        let moments = |shares: &[[f64; 3]; 3], ch: usize| {
-            let total: f64 = (0..3).map(|p| shares[p][ch]).sum();
+        let lobes = c.lobes();
+        let moments = |shares: &[[f64; 3]; MAX_LOBES], ch: usize| {
+            let total: f64 = (0..lobes).map(|p| shares[p][ch]).sum();
             if total <= 0.0 {
                 return (0.0, 0.0, 0.0);
             }
-            let mean: f64 = Lobe::ALL
-                .iter()
-                .map(|&l| shares[l as usize][ch] * c.mean_x(l))
+            let mean: f64 = (0..lobes)
+                .map(|l| shares[l][ch] * c.lobe_mean_x(l))
                 .sum::<f64>()
                 / total;
-            let second: f64 = Lobe::ALL
-                .iter()
-                .map(|&l| shares[l as usize][ch] * (c.std_x(l).powi(2) + c.mean_x(l).powi(2)))
+            let second: f64 = (0..lobes)
+                .map(|l| shares[l][ch] * (c.lobe_var_x(l) + c.lobe_mean_x(l).powi(2)))
                 .sum::<f64>()
                 / total;
             (total, mean, (second - mean * mean).max(0.0))
@@ -281,17 +385,19 @@ pub struct DualTables {
     /// Lobe shares at each grid θ.
     pub shares: Vec<LobeShares>,
     pub(crate) a_f: Table1,
+    pub(crate) a_b: Table1,
     pub(crate) beta_f2: Table1,
     pub(crate) big_a_b: Table1,
     pub(crate) delta_b: Table1,
     pub(crate) sigma_b2: Table1,
-    /// N^G_p(θd, φ) (Eq. 25) per lobe [R, TT, TRT].
-    pub(crate) n_g: [Table2; 3],
+    /// N^G_p(key, φ) (Eq. 25) per lobe [R, TT, TRT (, p ≥ 3)], keyed like the model's N.
+    pub(crate) n_g: Vec<Table2>,
 }
 
 impl DualTables {
-    pub fn build(c: &LobeConstants, res: &TableResolution) -> Self {
-        let (split, n_g) = SplitTable::build_with_n_g(c, res.n_theta_d, res.n_phi);
+    /// Builds every table of model `c`; `window` is the forward spread's half-width (radians).
+    pub fn build<M: DualModel>(c: &M, res: &TableResolution, window: f64) -> Self {
+        let (split, n_g) = SplitTable::build_with_n_g(c, res.n_theta_d, res.n_phi, window);
         let n = res.n_theta.max(2);
         let theta: Vec<f64> = (0..n)
             .map(|i| -FRAC_PI_2 + PI * i as f64 / (n - 1) as f64)
@@ -300,10 +406,7 @@ impl DualTables {
             .par_iter()
             .map(|&t| shares_at(c, t, Some(&split), CosineReading::Outgoing))
             .collect();
-        let white = LobeConstants {
-            sigma_a: [0.0; 3],
-            ..*c
-        };
+        let white = c.white();
         let white_split = SplitTable::build(&white, res.n_theta_d);
         let at: Vec<DualQuantities> = theta
             .par_iter()
@@ -324,6 +427,7 @@ impl DualTables {
         };
         Self {
             a_f: lut(&|q| q.a_f),
+            a_b: lut(&|q| q.a_b),
             beta_f2: lut(&|q| q.beta_f2),
             big_a_b: lut(&|q| q.big_a_b),
             delta_b: lut(&|q| q.delta_b),
@@ -357,10 +461,29 @@ impl DualTables {
         }
     }
 
-    /// N^G_p(|θd|, |φ|) from the table, RGB, 1/rad.
+    /// N^G_p(key, |φ|) from the table, RGB, 1/rad; the key is |θd| (Marschner) or |θo|
+    /// (Chiang).
     #[inline]
-    pub fn n_g(&self, lobe: Lobe, abs_theta_d: f32, abs_phi: f32) -> Vec3 {
-        self.n_g[lobe as usize].lookup(abs_theta_d, abs_phi)
+    pub fn n_g(&self, lobe: Lobe, abs_key: f32, abs_phi: f32) -> Vec3 {
+        self.n_g[lobe as usize].lookup(abs_key, abs_phi)
+    }
+
+    /// N^G of lobe index `lobe` (0 R, 1 TT, 2 TRT, 3 Chiang's p ≥ 3; clamped to the model's
+    /// lobes) at (key, |φ|), RGB, 1/rad.
+    pub fn n_g_lobe(&self, lobe: usize, abs_key: f32, abs_phi: f32) -> Vec3 {
+        self.n_g[lobe.min(self.n_g.len() - 1)].lookup(abs_key, abs_phi)
+    }
+
+    /// Number of N^G tables (the model's lobes).
+    pub fn n_g_lobes(&self) -> usize {
+        self.n_g.len()
+    }
+
+    /// (ā_f, ā_b) at light inclination θ (radians), interpolated (for the local-density
+    /// truncation of Ā_b, `backscatter::truncation`).
+    #[inline]
+    pub fn attenuations_at(&self, theta: f32) -> (Vec3, Vec3) {
+        (self.a_f.lookup(theta), self.a_b.lookup(theta))
     }
 
     /// (Ā_b, Δ̄_b, σ̄_b²) at light inclination θ (radians), interpolated.

@@ -2,8 +2,8 @@
 //! for comparison with the physically based modes.
 //!
 //! The colours are derived from the fibre, not tuned:
-//! - diffuse: K_d cos θi with K_d = E_d / π², where E_d is the fibre's TT + TRT energy at normal
-//!   incidence (ā_f + ā_b of those lobes at θ = 0, from the dual tables). Derivation: a radiance
+//! - diffuse: K_d cos θi with K_d = E_d / π², where E_d is the fibre's TT + TRT (+ Chiang's
+//!   p ≥ 3) energy at normal incidence (ā_f + ā_b of those lobes at θ = 0, from the dual tables). Derivation: a radiance
 //!   K_d cos θi leaving uniformly over the sphere carries ∫ K_d cos θo dωo = K_d ∫cos²θo dθo ∫dφ
 //!   = K_d π² per unit irradiance, so this diffuse lobe holds exactly the energy that the
 //!   absorbing interior passes on;
@@ -31,11 +31,9 @@ impl KajiyaKay {
         let s = &dual.shares[mid];
         let e = |p: usize, ch: usize| s.forward[p][ch] + s.backward[p][ch];
         let pi2 = std::f64::consts::PI.powi(2);
-        let k_d = Vec3::new(
-            ((e(1, 0) + e(2, 0)) / pi2) as f32,
-            ((e(1, 1) + e(2, 1)) / pi2) as f32,
-            ((e(1, 2) + e(2, 2)) / pi2) as f32,
-        );
+        // TT + TRT (+ Chiang's p ≥ 3 residual; 0 for Marschner).
+        let inner = |ch: usize| ((e(1, ch) + e(2, ch) + e(3, ch)) / pi2) as f32;
+        let k_d = Vec3::new(inner(0), inner(1), inner(2));
         let w = 2.0 * c.beta[0];
         let e_r = e(0, 0);
         Self {

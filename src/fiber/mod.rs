@@ -1,21 +1,31 @@
-//! Fibre scattering: Marschner 2003 BCSDF and Zinke 2008 dual-scattering quantities.
+//! Fibre scattering: the Marschner 2003 and Chiang 2016 fibre models and the Zinke 2008
+//! dual-scattering quantities built from either.
 //!
 //! This module knows nothing of grids, strands or pixels. The rest of the engine uses only:
-//! - [`FiberParams`] (serde, from hairstyle JSON; `validate`),
+//! - [`FiberParams`] (serde, from hairstyle JSON; `validate`), whose `model` picks the model,
 //! - [`Fiber::new`] (precomputes everything, tables included),
 //! - [`Fiber::forward_scatter`] (per-crossing quantities for the map fill),
 //! - [`Fiber::shade`] with a [`ShadingMode`] and a [`LightAtPoint`] from the map.
 //!
 //! Layout: `params` (JSON parameters, per-lobe constants), `fresnel` (Bravais indices,
-//! generalised Fresnel), `marschner` (exact M, N, A, roots of Eq. 3, caustics), `tables`
-//! (tabulated N_p, lerp tables), `azimuthal` (integrals of N_p over φ in h-space, N^G),
-//! `dual` (Zinke's ā_f, ā_b and their tables),
-//! `backscatter` (Ā_b, Δ̄_b, σ̄_b² from them), `shader`
-//! (Figure 5 and single scattering), `kajiya_kay`.
+//! generalised Fresnel), `marschner` (exact M, N, A, roots of Eq. 3, caustics), `chiang` (exact
+//! d'Eon M, A_p, logistic N_p, far-field N̄), `tables` (tabulated Marschner N_p, lerp tables),
+//! `chiang_tables` (tabulated N̄_p), `azimuthal` (integrals of N_p over φ in h-space, N^G),
+//! `dual` (Zinke's ā_f, ā_b and their tables, for either model), `backscatter` (Ā_b, Δ̄_b, σ̄_b²
+//! and their truncation by the local density), `longitudinal` (the shader's f32 lobes),
+//! `shader` (Figure 5 and single scattering), `kajiya_kay`.
 //!
 //! Conventions: radians and SI inside; θ from the normal plane (sin θ = ω·u), ωi toward the
-//! light, ωo toward the camera. Longitudinal Gaussians live in x = θi + θo (= 2θh) and have
-//! unit area in θo ("m_normalization": "theta_o", trap 1); σ̄_f², β̄_f² are variances of x.
+//! light, ωo toward the camera. Marschner's longitudinal Gaussians live in x = θi + θo (= 2θh)
+//! and have unit area in θo ("m_normalization": "theta_o", trap 1); Chiang's d'Eon lobes have
+//! unit area under cos θo dθo. σ̄_f², β̄_f² are variances of x.
+//!
+//! **Two models, one interface.** [`Fiber`] holds the chosen model's tables; `shade` matches on
+//! the model once per call and runs the same Figure 5 composition on either (no dynamic
+//! dispatch): Marschner reads N_p(|θd|, |φ|) and Gaussians over cos²θd, Chiang reads
+//! N̄_p(|θo|, |φ|) and d'Eon lobes. The dual tables (ā_f, ā_b, β̄_f², ᾱ, Ā_b, Δ̄_b, σ̄_b², N^G) are
+//! built from the chosen model by the same code (`dual::DualModel`), so the map and the shader
+//! use them unchanged.
 //!
 //! The ten traps of DESIGN.md and where each is resolved (doc comment + pinning test):
 //! 1. M normalisation (unit area in θo): `marschner::longitudinal_m`.
@@ -31,30 +41,41 @@
 
 pub mod azimuthal;
 pub mod backscatter;
+pub mod chiang;
+pub mod chiang_tables;
 pub mod dual;
 pub mod fresnel;
 pub mod kajiya_kay;
+pub mod longitudinal;
 pub mod marschner;
 mod params;
 pub mod shader;
 pub mod tables;
 
-pub use params::{ECCENTRICITY_MIN, FiberParams, Lobe, LobeConstants};
+pub use params::{ECCENTRICITY_MIN, FiberModel, FiberParams, Lobe, LobeConstants};
 pub use shader::HairAngles;
+use shader::Trig;
 pub use tables::TableResolution;
 
+use chiang::ChiangConstants;
+use chiang_tables::ChiangTables;
 use dual::DualTables;
 use glam::Vec3;
 use kajiya_kay::KajiyaKay;
+use longitudinal::DeonLobes;
 use tables::NTables;
 
 /// Which fibre shader to use (for comparison and benchmarks).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum ShadingMode {
-    /// Zinke 2008 Figure 5: Marschner BCSDF + global and local multiple scattering.
+    /// Zinke 2008 Figure 5: the fibre's BCSDF + global and local multiple scattering.
     #[default]
     DualScattering,
-    /// Marschner BCSDF attenuated by the map's forward transmittance only.
+    /// Single scattering with hard shadows: S cos θi · direct_fraction, the light that reaches
+    /// the point through no fibre at all (what a path tracer computes with one scattering
+    /// event). The earlier S cos θi · T_f variant was not single scattering (T_f already holds
+    /// forward-scattered light) and is gone; `DualScattering` with d_b = 0 is its physical
+    /// successor.
     SingleScattering,
     /// Kajiya-Kay diffuse + specular scaled by transmittance (Bertails 2005 §3.3).
     KajiyaKay,
@@ -71,14 +92,26 @@ pub struct LightAtPoint {
     pub tf: Vec3,
     /// Accumulated forward-scattering variance σ̄f² in rad² (Zinke 2008 Eq. 8), RGB, >= 0.
     pub sigma_f2: Vec3,
+    /// Local hair density behind the point: the expected number of fibre crossings a light ray
+    /// still makes after the point, continuing along the light direction until it leaves the
+    /// hair (dimensionless, >= 0). It truncates the local back-scattering Ā_b, which Zinke
+    /// derives for infinitely many fibres behind the point (`backscatter::big_a_b_behind`): 0
+    /// (an isolated fibre, or the far side of the hair) gives none, a few crossings give most of
+    /// it (x^{D−1} weights decay fast), +∞ gives Zinke's full term. Default
+    /// [`LightAtPoint::DENSE`] (= +∞), today's behaviour when the map does not provide it.
+    pub crossings_behind: f32,
 }
 
 impl LightAtPoint {
-    /// Light that crossed no fibre at all.
+    /// `crossings_behind` of dense hair (Zinke's assumption): +∞.
+    pub const DENSE: f32 = f32::INFINITY;
+
+    /// Light that crossed no fibre at all, at a point in dense hair.
     pub const UNSHADOWED: Self = Self {
         direct_fraction: 1.0,
         tf: Vec3::ONE,
         sigma_f2: Vec3::ZERO,
+        crossings_behind: Self::DENSE,
     };
 }
 
@@ -91,23 +124,47 @@ pub struct ForwardScatter {
     pub beta_f2: Vec3,
 }
 
-/// A fibre with everything precomputed (tables of the dual-scattering quantities).
+/// The Marschner model's shading data: N tables and the Gaussian lobes' constants.
 #[derive(Clone, Debug)]
-pub struct Fiber {
-    params: FiberParams,
-    consts: LobeConstants,
-    resolution: TableResolution,
+pub(crate) struct MarschnerShading {
     pub(crate) n_tables: NTables,
-    /// [N_R, N_TT, N^G_R, N^G_TT, N^G_TRT] interleaved on one grid (the shader's lookups).
+    /// [N_R, N_TT, N^G_R, N^G_TT, N^G_TRT] interleaved on one (|θd|, |φ|) grid.
     pub(crate) lobes: tables::Table2x<5>,
-    pub(crate) dual: DualTables,
-    kk: KajiyaKay,
     /// Lobe means 2α_p and variances (2β_p)² in x = θi + θo (radians, rad²).
     pub(crate) mean_x: [f32; 3],
     pub(crate) var_x: [f32; 3],
     /// 1/√(2π var_x) and −1/(2 var_x): the unbroadened lobes' Gaussian constants.
     pub(crate) m_norm: [f32; 3],
     pub(crate) m_exp: [f32; 3],
+}
+
+/// The Chiang model's shading data: N̄ and N^G tables and the d'Eon lobes' constants.
+#[derive(Clone, Debug)]
+pub(crate) struct ChiangShading {
+    pub(crate) tables: ChiangTables,
+    /// [N̄_R, N̄_TT, N̄_TRT, N̄_3, N^G_R, N^G_TT, N^G_TRT] interleaved on one (|θo|, |φ|) grid
+    /// (N^G_3 = N̄_3: the residual is uniform in φ).
+    pub(crate) lobes: tables::Table2x<7>,
+    pub(crate) deon: DeonLobes,
+}
+
+/// The chosen model's shading data (matched once per `shade` call).
+#[derive(Clone, Debug)]
+pub(crate) enum ModelShading {
+    Marschner(MarschnerShading),
+    Chiang(ChiangShading),
+}
+
+/// A fibre with everything precomputed (tables of the dual-scattering quantities).
+#[derive(Clone, Debug)]
+pub struct Fiber {
+    params: FiberParams,
+    consts: LobeConstants,
+    chiang: ChiangConstants,
+    resolution: TableResolution,
+    pub(crate) model: ModelShading,
+    pub(crate) dual: DualTables,
+    kk: KajiyaKay,
     pub(crate) d_f: f32,
     pub(crate) d_b: f32,
 }
@@ -122,29 +179,64 @@ impl Fiber {
     /// [`Fiber::new`] with explicit table sizes (for measuring table error).
     pub fn with_resolution(params: &FiberParams, resolution: &TableResolution) -> Self {
         let consts = LobeConstants::from_params(params);
-        let n_tables = NTables::build(&consts, resolution);
-        let dual = DualTables::build(&consts, resolution);
+        let chiang = ChiangConstants::from_params(params);
+        let window = (params.forward_spread_deg as f64).to_radians();
+        let (model, dual) = match params.model {
+            FiberModel::Marschner => {
+                let n_tables = NTables::build(&consts, resolution);
+                let dual = DualTables::build(&consts, resolution, window);
+                let lobes = tables::Table2x::zip([
+                    &n_tables.r,
+                    &n_tables.tt,
+                    &dual.n_g[0],
+                    &dual.n_g[1],
+                    &dual.n_g[2],
+                ]);
+                let lobe = |f: &dyn Fn(Lobe) -> f64| Lobe::ALL.map(|l| f(l) as f32);
+                let m = MarschnerShading {
+                    mean_x: lobe(&|l| consts.mean_x(l)),
+                    var_x: lobe(&|l| consts.std_x(l).powi(2)),
+                    m_norm: lobe(&|l| {
+                        1.0 / (2.0 * std::f64::consts::PI * consts.std_x(l).powi(2)).sqrt()
+                    }),
+                    m_exp: lobe(&|l| -0.5 / consts.std_x(l).powi(2)),
+                    n_tables,
+                    lobes,
+                };
+                (ModelShading::Marschner(m), dual)
+            }
+            FiberModel::Chiang => {
+                let tables = ChiangTables::build(&chiang, resolution);
+                let dual = DualTables::build(&chiang, resolution, window);
+                let lobes = tables::Table2x::zip([
+                    &tables.n_bar[0],
+                    &tables.n_bar[1],
+                    &tables.n_bar[2],
+                    &tables.n_bar[3],
+                    &dual.n_g[0],
+                    &dual.n_g[1],
+                    &dual.n_g[2],
+                ]);
+                let deon = DeonLobes::new(&chiang);
+                (
+                    ModelShading::Chiang(ChiangShading {
+                        tables,
+                        lobes,
+                        deon,
+                    }),
+                    dual,
+                )
+            }
+        };
         let kk = KajiyaKay::new(&consts, &dual);
-        let lobes = tables::Table2x::zip([
-            &n_tables.r,
-            &n_tables.tt,
-            &dual.n_g[0],
-            &dual.n_g[1],
-            &dual.n_g[2],
-        ]);
-        let lobe = |f: &dyn Fn(Lobe) -> f64| Lobe::ALL.map(|l| f(l) as f32);
         Self {
             params: params.clone(),
-            mean_x: lobe(&|l| consts.mean_x(l)),
-            var_x: lobe(&|l| consts.std_x(l).powi(2)),
-            m_norm: lobe(&|l| 1.0 / (2.0 * std::f64::consts::PI * consts.std_x(l).powi(2)).sqrt()),
-            m_exp: lobe(&|l| -0.5 / consts.std_x(l).powi(2)),
             d_f: params.d_f,
             d_b: params.d_b,
             consts,
+            chiang,
             resolution: *resolution,
-            n_tables,
-            lobes,
+            model,
             dual,
             kk,
         }
@@ -154,18 +246,52 @@ impl Fiber {
         &self.params
     }
 
-    /// Per-lobe constants in radians.
+    /// The fibre's model.
+    pub fn model(&self) -> FiberModel {
+        self.params.model
+    }
+
+    /// Marschner's per-lobe constants in radians (also built for a Chiang fibre: the shared
+    /// parameters β_R, α_R, η, σa in radians).
     pub fn lobe_constants(&self) -> &LobeConstants {
         &self.consts
+    }
+
+    /// Chiang's constants (also built for a Marschner fibre).
+    pub fn chiang_constants(&self) -> &ChiangConstants {
+        &self.chiang
     }
 
     pub fn resolution(&self) -> &TableResolution {
         &self.resolution
     }
 
-    /// The renderer's tabulated N_p at |θd|, |φ| (radians) and cos 2φh, RGB, 1/rad.
-    pub fn n_table(&self, lobe: Lobe, abs_theta_d: f32, abs_phi: f32, cos_2phi_h: f32) -> Vec3 {
-        self.n_tables.lookup(lobe, abs_theta_d, abs_phi, cos_2phi_h)
+    /// The renderer's tabulated Marschner N_p at |θd|, |φ| (radians) and cos 2φh, RGB, 1/rad;
+    /// None for a Chiang fibre (see [`Fiber::n_bar_table`]).
+    pub fn n_table(
+        &self,
+        lobe: Lobe,
+        abs_theta_d: f32,
+        abs_phi: f32,
+        cos_2phi_h: f32,
+    ) -> Option<Vec3> {
+        match &self.model {
+            ModelShading::Marschner(m) => {
+                Some(m.n_tables.lookup(lobe, abs_theta_d, abs_phi, cos_2phi_h))
+            }
+            ModelShading::Chiang(_) => None,
+        }
+    }
+
+    /// The renderer's tabulated Chiang N̄_p (p = 0..3, 3 the p ≥ 3 residual) at |θo|, |φ|
+    /// (radians), RGB, 1/rad; None for a Marschner fibre.
+    pub fn n_bar_table(&self, lobe: usize, abs_theta_o: f32, abs_phi: f32) -> Option<Vec3> {
+        match &self.model {
+            ModelShading::Chiang(c) if lobe < chiang::N_LOBES => {
+                Some(c.tables.lookup(lobe, abs_theta_o, abs_phi))
+            }
+            _ => None,
+        }
     }
 
     /// The dual-scattering tables (grid values and per-lobe shares).
@@ -200,12 +326,12 @@ impl Fiber {
         wo: Vec3,
         light: &LightAtPoint,
     ) -> Vec3 {
-        let Some(a) = HairAngles::from_vectors(u, wi, wo) else {
+        let Some((a, sines)) = HairAngles::from_vectors_trig(u, wi, wo) else {
             return Vec3::ZERO;
         };
         let v = match mode {
-            ShadingMode::DualScattering => self.shade_dual(&a, light),
-            ShadingMode::SingleScattering => self.shade_single(&a, light),
+            ShadingMode::DualScattering => self.shade_dual(&a, &Trig::from_sines(sines), light),
+            ShadingMode::SingleScattering => self.shade_single(&a, &Trig::from_sines(sines), light),
             ShadingMode::KajiyaKay => self.kk.shade(&a, light),
         };
         if v.is_finite() { v } else { Vec3::ZERO }

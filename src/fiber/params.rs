@@ -5,11 +5,34 @@
 
 use serde::{Deserialize, Serialize};
 
+/// Which fibre scattering model a fibre uses (JSON `"model"`, lower case).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FiberModel {
+    /// Marschner et al. 2003 (`marschner.rs`): Gaussian M_p in θh over cos²θd, N_p from the exact
+    /// roots of Eq. 3 with the §5.2.2 caustic smoothing and eccentricity. Not energy conserving
+    /// (white albedo 0.93–1.8, `tests/fiber_energy.rs`).
+    #[default]
+    Marschner,
+    /// Chiang et al. 2016 (`chiang.rs`), the model of pbrt-v3/v4, Mitsuba 3 and Cycles: d'Eon
+    /// et al. 2011 lobes M_p, trimmed-logistic azimuthal roughness, energy-conserving A_p with the
+    /// p ≥ 3 residual. A white fibre in a white furnace has radiance exactly 1.
+    Chiang,
+}
+
 /// Fibre parameters as written in hairstyle JSON (`"fiber": {...}`); angles in degrees at this
 /// edge only. Defaults lie inside Marschner 2003 Table 1's ranges.
+///
+/// One set of physical parameters drives both models (`model`): η, σa per unit radius, the
+/// longitudinal roughness (`beta_r_deg`), the azimuthal roughness (`azimuthal_roughness`, Chiang
+/// only; Marschner has none) and the cuticle tilt (`alpha_r_deg`). The Marschner-only caustic
+/// parameters (`eccentricity`, `k_g`, `w_c_deg`, `delta_eta_prime`, `delta_h_m`) are ignored by
+/// "chiang".
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct FiberParams {
+    /// Scattering model, "marschner" (default) or "chiang".
+    pub model: FiberModel,
     /// Fibre radius in metres (default 40e-6: an 80 µm fibre). Not used by the BCSDF (which is
     /// per unit radius, Marschner 2003 footnote 2); the map uses it for crossing counts.
     pub radius_m: f32,
@@ -19,11 +42,21 @@ pub struct FiberParams {
     /// brown hair [0.545, 0.906, 1.78], pbrt-v4's eumelanin concentration 1.3).
     pub sigma_a: [f32; 3],
     /// Longitudinal shift of the R lobe in degrees, in [−20, 20] (Table 1: −10 to −5; default
-    /// −7.5). Negative shifts the R lobe toward the root.
+    /// −7.5). Negative shifts the R lobe toward the root. For "chiang" this is the cuticle tilt α
+    /// (Mitsuba's `scale_tilt`, same sign): R peaks at θi + θo = 2α, TT at −α, TRT at −4α
+    /// (Marschner: 2α_R, −α_R, −3α_R, `LobeConstants`).
     pub alpha_r_deg: f32,
     /// Longitudinal width (standard deviation in θh) of the R lobe in degrees, in [0.5, 45]
-    /// (Table 1: 5 to 10; default 7.5).
+    /// (Table 1: 5 to 10; default 7.5). Both models take the R lobe's standard deviation in θo
+    /// from it, 2β_R: "chiang" sets d'Eon's v₀ = (2β_R)² rad², i.e. Chiang's longitudinal
+    /// roughness b solves 0.726b + 0.812b² + 3.7b²⁰ = 2β_R (β_R = 2.5/5/7.5/10° gives b =
+    /// 0.107/0.197/0.276/0.347; [`FiberParams::chiang_longitudinal_roughness`]).
     pub beta_r_deg: f32,
+    /// Azimuthal roughness β_n of "chiang" (dimensionless, in [0.01, 1]; default 0.3 as pbrt and
+    /// Mitsuba). The trimmed logistic's scale is s = √(π/8)(0.265β_n + 1.194β_n² + 5.372β_n²²)
+    /// radians (0.117 rad at 0.3). Below 0.01 (s < 0.1°) N_p tends to a delta that no table
+    /// resolves. Ignored by "marschner".
+    pub azimuthal_roughness: f32,
     /// Cross-section eccentricity a/b, in [0.75, 1/0.75] (Table 1: 0.85 to 1; default 0.9).
     /// Below 1/√2 Marschner's η* (§5.2.3) would fall below 1.
     pub eccentricity: f32,
@@ -37,15 +70,28 @@ pub struct FiberParams {
     pub delta_eta_prime: f32,
     /// Caustic intensity limit Δh_M, in [0, 2] (Table 1: 0.5; default 0.5).
     pub delta_h_m: f32,
-    /// Dual scattering forward density factor d_f, in [0, 1] (Zinke 2008 §3.1.1, default 0.7).
+    /// Dual scattering forward density factor d_f, dimensionless in [0, 1] (Zinke 2008 Eq. 5,
+    /// default 0.7 = Zinke's constant): the share of the forward-scattered light T_f − direct
+    /// that reaches a shadowed fibre (Figure 4: the fibre is not surrounded on all sides).
     pub d_f: f32,
-    /// Dual scattering backward density factor d_b, in [0, 1] (Zinke 2008 §3.2, default 0.7).
+    /// Dual scattering backward density factor d_b, dimensionless in [0, 1] (Zinke 2008 Eq. 9,
+    /// default 0.7 = Zinke's constant): the weight of the local back-scattering f_back in dense
+    /// hair. The local density (`LightAtPoint::crossings_behind`) scales it further, to 0 for an
+    /// isolated fibre (`backscatter::truncation`).
     pub d_b: f32,
+    /// Forward spread: half-width in degrees, in [1, 180], of the azimuthal window from which
+    /// forward-scattered light reaches a fibre (Zinke 2008 Eq. 7: s̃_f = 1/(2w) inside the
+    /// window, 0 outside; N^G of Eq. 25 is N convolved with it). Default 90 = Zinke's s̃_f = 1/π
+    /// over the front half circle; 180 = isotropic in azimuth; small = still along the light.
+    pub forward_spread_deg: f32,
 }
 
 impl Default for FiberParams {
     fn default() -> Self {
         Self {
+            model: FiberModel::Marschner,
+            azimuthal_roughness: 0.3,
+            forward_spread_deg: 90.0,
             radius_m: 40e-6,
             eta: 1.55,
             sigma_a: [0.545, 0.906, 1.78],
@@ -116,7 +162,31 @@ impl FiberParams {
         in_range("delta_h_m", self.delta_h_m, 0.0, 2.0, false, false)?;
         in_range("d_f", self.d_f, 0.0, 1.0, false, false)?;
         in_range("d_b", self.d_b, 0.0, 1.0, false, false)?;
+        in_range(
+            "azimuthal_roughness",
+            self.azimuthal_roughness,
+            0.01,
+            1.0,
+            false,
+            false,
+        )?;
+        in_range(
+            "forward_spread_deg",
+            self.forward_spread_deg,
+            1.0,
+            180.0,
+            false,
+            false,
+        )?;
         Ok(())
+    }
+
+    /// Chiang et al. 2016's longitudinal roughness b (Mitsuba's `longitudinal_roughness`, pbrt's
+    /// β_m) that gives this fibre's R lobe: the root in [0, 1] of 0.726b + 0.812b² + 3.7b²⁰ = 2β_R
+    /// (radians; the fit of d'Eon's √v₀ used by pbrt and Mitsuba), by bisection. For the
+    /// reference exporter; the model itself uses v₀ = (2β_R)² directly.
+    pub fn chiang_longitudinal_roughness(&self) -> f64 {
+        crate::fiber::chiang::roughness_for_std((2.0 * self.beta_r_deg as f64).to_radians())
     }
 }
 

@@ -1,5 +1,5 @@
-//! The per-vertex shaders: hair-frame geometry from world vectors, the tabulated Marschner
-//! BCSDF, and Zinke et al. 2008 Figure 5 (dual scattering).
+//! The per-vertex shaders: hair-frame geometry from world vectors, the tabulated BCSDF of either
+//! fibre model, and Zinke et al. 2008 Figure 5 (dual scattering).
 //!
 //! Everything here is f32, allocation-free and branch-light: it runs 100K–200K times a frame.
 //!
@@ -14,6 +14,19 @@
 //! f_back^G uses σ̄_b² + σ̄_f² (Eq. 24). f_back = 2 Ā_b g(θi + θo − Δ̄_b, σ̄_b²)/(π cos²θd) (Eqs. 10,
 //! 15 with s̃_b = 1/π in every azimuth, as Figure 5 evaluates it).
 //!
+//! **Two models.** The composition is the same for both; only the lobes differ. Marschner: S cos θi
+//! with S = Σ M_p N_p(|θd|, φ)/cos²θd, Gaussian M_p (broadened: variance + σ̄f²). Chiang: S cos θi
+//! = ḡ = Σ M_p N̄_p(|θo|, φ) directly (no cosine division, exact at θi = ±90°), d'Eon M_p
+//! (broadened: v_p + σ̄f², `longitudinal`), four lobes with the p ≥ 3 residual. f_back is
+//! Zinke's cluster BCSDF for both. The model is matched once per call; each branch is
+//! straight-line code over its interleaved table (one bilinear fetch of 5 or 7 lobes).
+//!
+//! **Local density.** Both Ā_b terms are multiplied by the truncation factor of
+//! `backscatter::truncation` for `LightAtPoint::crossings_behind` (skipped, factor 1, for the
+//! default +∞), so an isolated fibre gets no local back-scattering.
+//!
+//! **Single scattering** is S cos θi · direct_fraction: hard shadows, no forward-scattered light.
+//!
 //! **Degenerate input.** Zero or non-finite vectors give 0. A direction along ±u has no azimuth
 //! (trap 9): it takes the other direction's azimuth (φ = 0), which is finite and deterministic.
 //!
@@ -22,9 +35,10 @@
 //! basis built from u alone (Duff et al. 2017), so the ellipse orientation is a fixed,
 //! deterministic function of the tangent direction.
 
+use super::backscatter;
 use super::marschner::COS_THETA_D_MIN;
 use super::params::Lobe;
-use super::{Fiber, LightAtPoint};
+use super::{ChiangShading, Fiber, LightAtPoint, MarschnerShading, ModelShading};
 use glam::Vec3;
 use std::f32::consts::PI;
 
@@ -48,6 +62,13 @@ impl HairAngles {
     /// asin (no atan2): the shader needs only |φ| and cos(φi + φo).
     #[inline]
     pub fn from_vectors(u: Vec3, wi: Vec3, wo: Vec3) -> Option<Self> {
+        Self::from_vectors_trig(u, wi, wo).map(|(a, _)| a)
+    }
+
+    /// [`Self::from_vectors`] with the sines of θi and θo it computes on the way (the shader
+    /// needs them; recomputing them from the angles costs two `sin_cos`).
+    #[inline]
+    pub(crate) fn from_vectors_trig(u: Vec3, wi: Vec3, wo: Vec3) -> Option<(Self, [f32; 2])> {
         let u = unit(u)?;
         let wi = unit(wi)?;
         let wo = unit(wo)?;
@@ -78,12 +99,15 @@ impl HairAngles {
         let cos_phi = (ai.0 * ao.0 + ai.1 * ao.1).clamp(-1.0, 1.0);
         let sin_phi = ai.0 * ao.1 - ai.1 * ao.0;
         let phi = cos_phi.acos().copysign(sin_phi);
-        Some(Self {
-            theta_i: sin_i.asin(),
-            theta_o: sin_o.asin(),
-            phi,
-            cos_2phi_h: ai.0 * ao.0 - ai.1 * ao.1,
-        })
+        Some((
+            Self {
+                theta_i: sin_i.asin(),
+                theta_o: sin_o.asin(),
+                phi,
+                cos_2phi_h: ai.0 * ao.0 - ai.1 * ao.1,
+            },
+            [sin_i, sin_o],
+        ))
     }
 }
 
@@ -124,81 +148,220 @@ fn finite_or_zero(v: Vec3) -> Vec3 {
 }
 
 impl Fiber {
-    /// The tabulated Marschner BCSDF per lobe [R, TT, TRT] at hair-frame angles, RGB, 1/sr:
-    /// M_p(θi, θo) N_p(θd, φ) / cos²θd (Marschner 2003 Eq. 9, M normalised in θo).
-    pub fn bcsdf_lobes(&self, a: &HairAngles) -> [Vec3; 3] {
-        let theta_d = a.theta_d();
-        let [n_r, n_tt, ..] = self.lobes.lookup(theta_d.abs(), a.phi.abs());
-        self.bcsdf_with(a, n_r, n_tt)
+    /// The tabulated BCSDF per lobe [R, TT, TRT, p ≥ 3] at hair-frame angles, RGB, 1/sr (radiance
+    /// = S cos θi E). Marschner: M_p N_p / cos²θd (Eq. 9, M normalised in θo; the fourth lobe is
+    /// 0). Chiang: M_p N̄_p / cos θi with cos θi floored at 0.01 (trap 9's floor; `shade` uses
+    /// S cos θi and needs no floor).
+    pub fn bcsdf_lobes(&self, a: &HairAngles) -> [Vec3; 4] {
+        match &self.model {
+            ModelShading::Marschner(m) => {
+                let [n_r, n_tt, ..] = m.lobes.lookup(a.theta_d().abs(), a.phi.abs());
+                let [r, tt, trt] = self.marschner_lobes(m, a, n_r, n_tt, inv_cos2(a.theta_d()));
+                [r, tt, trt, Vec3::ZERO]
+            }
+            ModelShading::Chiang(c) => {
+                let n = c.lobes.lookup(a.theta_o.abs(), a.phi.abs());
+                let g = chiang_lobes(c, &Trig::new(a), &n);
+                let inv = 1.0 / a.theta_i.cos().max(COS_THETA_D_MIN as f32);
+                g.map(|x| x * inv)
+            }
+        }
     }
 
-    /// [`Self::bcsdf_lobes`] with N_R and N_TT already looked up.
+    /// The BCSDF S summed over lobes, 1/sr.
+    pub fn bcsdf(&self, a: &HairAngles) -> Vec3 {
+        let [r, tt, trt, rest] = self.bcsdf_lobes(a);
+        r + tt + trt + rest
+    }
+
+    /// Marschner's lobes with N_R and N_TT already looked up; `inv` = 1/cos²θd.
     #[inline]
-    fn bcsdf_with(&self, a: &HairAngles, n_r: Vec3, n_tt: Vec3) -> [Vec3; 3] {
+    fn marschner_lobes(
+        &self,
+        m: &MarschnerShading,
+        a: &HairAngles,
+        n_r: Vec3,
+        n_tt: Vec3,
+        inv: f32,
+    ) -> [Vec3; 3] {
         let theta_d = a.theta_d();
-        let inv = inv_cos2(theta_d);
         let x = a.theta_i + a.theta_o;
-        let n_trt = self
+        let n_trt = m
             .n_tables
             .lookup(Lobe::TRT, theta_d.abs(), a.phi.abs(), a.cos_2phi_h);
-        let m = |l: usize| {
-            let dx = x - self.mean_x[l];
-            (dx * dx * self.m_exp[l]).exp() * self.m_norm[l] * inv
+        let lobe = |l: usize| {
+            let dx = x - m.mean_x[l];
+            (dx * dx * m.m_exp[l]).exp() * m.m_norm[l] * inv
         };
-        [n_r * m(0), n_tt * m(1), n_trt * m(2)]
+        [n_r * lobe(0), n_tt * lobe(1), n_trt * lobe(2)]
     }
 
-    /// Marschner S summed over lobes.
-    pub fn bcsdf(&self, a: &HairAngles) -> Vec3 {
-        let [r, tt, trt] = self.bcsdf_lobes(a);
-        r + tt + trt
-    }
-
-    /// SingleScattering mode: S cos θi · T_f. T_f (which counts unobstructed rays as 1) stands
-    /// for all light reaching the point, as if it still came from ωi: no spread, no local
-    /// back-scattering. Used to see what dual scattering adds.
-    pub(crate) fn shade_single(&self, a: &HairAngles, light: &LightAtPoint) -> Vec3 {
-        let tf = finite_or_zero(light.tf).clamp(Vec3::ZERO, Vec3::ONE);
-        self.bcsdf(a) * a.theta_i.cos().max(0.0) * tf
-    }
-
-    /// DualScattering mode: Zinke 2008 Figure 5 (module doc for the combination).
-    pub(crate) fn shade_dual(&self, a: &HairAngles, light: &LightAtPoint) -> Vec3 {
-        let direct = if light.direct_fraction.is_finite() {
-            light.direct_fraction.clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let tf = finite_or_zero(light.tf).clamp(Vec3::ZERO, Vec3::ONE);
-        let sigma_f2 = finite_or_zero(light.sigma_f2).max(Vec3::ZERO);
-        let theta_d = a.theta_d();
-        let inv = inv_cos2(theta_d);
-        let x = a.theta_i + a.theta_o;
-        let (a_b, delta_b, sigma_b2) = self.dual.back_at(a.theta_i);
-        let back_scale = 2.0 / PI * inv;
-        let [n_r, n_tt, ng_r, ng_tt, ng_trt] = self.lobes.lookup(theta_d.abs(), a.phi.abs());
-        let mut out = Vec3::ZERO;
-        if direct > 0.0 {
-            let [r, tt, trt] = self.bcsdf_with(a, n_r, n_tt);
-            let f_s = r + tt + trt;
-            let f_back = a_b * gauss3(Vec3::splat(x) - delta_b, sigma_b2) * back_scale;
-            out += direct * (f_s + self.d_b * f_back);
+    /// SingleScattering mode: S cos θi · direct_fraction (hard shadows; module doc).
+    pub(crate) fn shade_single(&self, a: &HairAngles, t: &Trig, light: &LightAtPoint) -> Vec3 {
+        let direct = unit_or_zero(light.direct_fraction);
+        if direct == 0.0 {
+            return Vec3::ZERO;
         }
-        let scattered = (tf - Vec3::splat(direct)).max(Vec3::ZERO);
-        if scattered.max_element() > 0.0 {
-            let mut f_s_g = Vec3::ZERO;
-            for (l, n_g) in [ng_r, ng_tt, ng_trt].into_iter().enumerate() {
-                let m = gauss3(
-                    Vec3::splat(x - self.mean_x[l]),
-                    Vec3::splat(self.var_x[l]) + sigma_f2,
-                );
-                f_s_g += m * n_g;
+        let s_cos = match &self.model {
+            ModelShading::Marschner(m) => {
+                let [n_r, n_tt, ..] = m.lobes.lookup(a.theta_d().abs(), a.phi.abs());
+                let [r, tt, trt] = self.marschner_lobes(m, a, n_r, n_tt, inv_cos2(a.theta_d()));
+                (r + tt + trt) * t.ci
             }
-            f_s_g *= inv;
-            let f_back_g = a_b * gauss3(Vec3::splat(x) - delta_b, sigma_b2 + sigma_f2) * back_scale;
-            out += scattered * self.d_f * (f_s_g + PI * self.d_b * f_back_g);
+            ModelShading::Chiang(c) => {
+                let n = c.lobes.lookup(a.theta_o.abs(), a.phi.abs());
+                let [r, tt, trt, rest] = chiang_lobes(c, t, &n);
+                r + tt + trt + rest
+            }
+        };
+        finite_or_zero(s_cos * direct)
+    }
+
+    /// The local back-scattering lobe shared by both models (Zinke Eqs. 10, 15): its weight
+    /// d_b Ā_b · truncation · 2/(π cos²θd), its shift Δ̄_b and variance σ̄_b² (RGB), so that
+    /// f_back = weight · g(θi + θo − Δ̄_b, σ̄_b² [+ σ̄f²]). `inv` = 1/cos²θd.
+    #[inline]
+    fn back_lobe(&self, a: &HairAngles, light: &LightAtPoint, inv: f32) -> (Vec3, Vec3, Vec3) {
+        let (a_b, delta_b, sigma_b2) = self.dual.back_at(a.theta_i);
+        let mut weight = a_b;
+        if light.crossings_behind != LightAtPoint::DENSE {
+            let (af, ab) = self.dual.attenuations_at(a.theta_i);
+            weight *= backscatter::truncation(af, ab, light.crossings_behind);
         }
-        finite_or_zero(out * a.theta_i.cos().max(0.0))
+        (weight * (self.d_b * 2.0 / PI * inv), delta_b, sigma_b2)
+    }
+
+    /// DualScattering mode: Zinke 2008 Figure 5 (module doc for the combination). One branch
+    /// per model, each straight-line code.
+    pub(crate) fn shade_dual(&self, a: &HairAngles, t: &Trig, light: &LightAtPoint) -> Vec3 {
+        let l = DualLight::new(light);
+        let inv = inv_cos2(a.theta_d());
+        let (back_w, delta_b, sigma_b2) = self.back_lobe(a, light, inv);
+        let dx = Vec3::splat(a.theta_i + a.theta_o) - delta_b;
+        let cos_i = t.ci;
+        match &self.model {
+            ModelShading::Marschner(m) => {
+                // F = direct (f_s + f_back) + scattered d_f (f_s^G + π f_back^G), times cos θi.
+                let [n_r, n_tt, ng_r, ng_tt, ng_trt] =
+                    m.lobes.lookup(a.theta_d().abs(), a.phi.abs());
+                let mut out = Vec3::ZERO;
+                if l.direct > 0.0 {
+                    let [r, tt, trt] = self.marschner_lobes(m, a, n_r, n_tt, inv);
+                    out += l.direct * (r + tt + trt + back_w * gauss3(dx, sigma_b2));
+                }
+                if l.any_scattered {
+                    let x = a.theta_i + a.theta_o;
+                    let mut f_s_g = Vec3::ZERO;
+                    for (p, n_g) in [ng_r, ng_tt, ng_trt].into_iter().enumerate() {
+                        let mp = gauss3(
+                            Vec3::splat(x - m.mean_x[p]),
+                            Vec3::splat(m.var_x[p]) + l.sigma_f2,
+                        );
+                        f_s_g += mp * n_g;
+                    }
+                    f_s_g *= inv;
+                    let f_back_g = back_w * gauss3(dx, sigma_b2 + l.sigma_f2);
+                    out += l.scattered * self.d_f * (f_s_g + PI * f_back_g);
+                }
+                finite_or_zero(out * cos_i)
+            }
+            ModelShading::Chiang(c) => {
+                // The lobes give ḡ = f_s cos θi directly; only f_back needs the cosine.
+                let n = c.lobes.lookup(a.theta_o.abs(), a.phi.abs());
+                let mut out = Vec3::ZERO;
+                if l.direct > 0.0 {
+                    let [r, tt, trt, rest] = chiang_lobes(c, t, &n);
+                    out += l.direct * (r + tt + trt + rest + back_w * gauss3(dx, sigma_b2) * cos_i);
+                }
+                if l.any_scattered {
+                    // N^G of the residual is N̄_3 (uniform in φ).
+                    let [m_r, m_tt, m_trt, m_rest] =
+                        c.deon.m_broadened_all(l.sigma_f2, t.si, t.ci, t.so, t.co);
+                    let g_s_g = m_r * n[4] + m_tt * n[5] + m_trt * n[6] + m_rest * n[3];
+                    let f_back_g = back_w * gauss3(dx, sigma_b2 + l.sigma_f2);
+                    out += l.scattered * self.d_f * (g_s_g + PI * cos_i * f_back_g);
+                }
+                finite_or_zero(out)
+            }
+        }
+    }
+}
+
+/// The map's light, sanitised: direct fraction in [0, 1], T_f in [0, 1], σ̄f² ≥ 0, and the
+/// forward-scattered share max(T_f − direct, 0).
+struct DualLight {
+    direct: f32,
+    sigma_f2: Vec3,
+    scattered: Vec3,
+    any_scattered: bool,
+}
+
+impl DualLight {
+    #[inline]
+    fn new(light: &LightAtPoint) -> Self {
+        let direct = unit_or_zero(light.direct_fraction);
+        let tf = finite_or_zero(light.tf).clamp(Vec3::ZERO, Vec3::ONE);
+        let scattered = (tf - Vec3::splat(direct)).max(Vec3::ZERO);
+        Self {
+            direct,
+            sigma_f2: finite_or_zero(light.sigma_f2).max(Vec3::ZERO),
+            scattered,
+            any_scattered: scattered.max_element() > 0.0,
+        }
+    }
+}
+
+/// sin and cos (≥ 0) of θi and θo, computed once per call.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Trig {
+    si: f32,
+    ci: f32,
+    so: f32,
+    co: f32,
+}
+
+impl Trig {
+    /// From sin θi and sin θo.
+    #[inline]
+    pub(crate) fn from_sines([si, so]: [f32; 2]) -> Self {
+        Self {
+            si,
+            ci: (1.0 - si * si).max(0.0).sqrt(),
+            so,
+            co: (1.0 - so * so).max(0.0).sqrt(),
+        }
+    }
+
+    #[inline]
+    fn new(a: &HairAngles) -> Self {
+        let (si, ci) = a.theta_i.sin_cos();
+        let (so, co) = a.theta_o.sin_cos();
+        Self {
+            si,
+            ci: ci.max(0.0),
+            so,
+            co: co.max(0.0),
+        }
+    }
+}
+
+/// Chiang's ḡ_p = M_p N̄_p per lobe [R, TT, TRT, p ≥ 3] (= S_p cos θi), from the interleaved
+/// lookup `n` ([N̄_0..3, N^G_0..2]).
+#[inline]
+fn chiang_lobes(c: &ChiangShading, t: &Trig, n: &[Vec3; 7]) -> [Vec3; 4] {
+    std::array::from_fn(|p| {
+        let (so, co) = c.deon.tilted(p, t.so, t.co);
+        n[p] * c.deon.m(p, t.si, t.ci, so, co)
+    })
+}
+
+/// A fraction in [0, 1]; NaN and infinities read as 0.
+#[inline]
+fn unit_or_zero(x: f32) -> f32 {
+    if x.is_finite() {
+        x.clamp(0.0, 1.0)
+    } else {
+        0.0
     }
 }
 

@@ -603,6 +603,7 @@ impl RayAverage {
             direct_fraction: self.direct as f32 * inv,
             tf: self.tf * inv,
             sigma_f2: self.var * inv,
+            crossings_behind: LightAtPoint::DENSE,
         }
     }
 }

@@ -37,7 +37,9 @@ impl LightMap {
     /// the cell's own crossings that lie in front of the point (`Cell::share_before`), turned
     /// into direct fraction exp(−n) and T_f = exp(−loss) per column; across X, the four nearest
     /// columns are blended bilinearly between their centres. Non-finite points and points
-    /// before the hair read as unshadowed.
+    /// before the hair read as unshadowed. `crossings_behind` is each column's total crossings
+    /// minus those in front of the point, blended the same way: the hair further along the
+    /// light that can scatter light back to the point (Zinke's local back-scatter).
     pub fn light_at(&self, p: Vec3) -> LightAtPoint {
         let m = self.frame.to_map(p);
         let c = m * self.inv_ds;
@@ -52,24 +54,38 @@ impl LightMap {
         let (j0, k0) = (yj.floor(), zk.floor());
         let (wy, wz) = (yj - j0, zk - k0);
         let (j0, k0) = (j0 as i64, k0 as i64);
-        let (mut direct, mut tf, mut var) = (0.0f32, Vec3::ZERO, Vec3::ZERO);
+        let (mut direct, mut tf, mut var, mut behind) = (0.0f32, Vec3::ZERO, Vec3::ZERO, 0.0f32);
         for (dj, wj) in [(0, 1.0 - wy), (1, wy)] {
             for (dk, wk) in [(0, 1.0 - wz), (1, wz)] {
                 let w = wj * wk;
                 if w == 0.0 {
                     continue;
                 }
-                let s = self.sums_at(self.column(j0 + dj, k0 + dk), d, lambda);
+                let col = self.column(j0 + dj, k0 + dk);
+                let s = self.sums_at(col, d, lambda);
                 direct += w * (-s.n).exp();
                 tf += w * (-s.loss).exp();
                 var += w * s.var;
+                behind += w * (self.column_total(col) - s.n).max(0.0);
             }
         }
         LightAtPoint {
             direct_fraction: (direct * visible).clamp(0.0, 1.0),
             tf: (tf * visible).clamp(Vec3::ZERO, Vec3::ONE),
             sigma_f2: var.max(Vec3::ZERO),
+            crossings_behind: behind,
         }
+    }
+
+    /// Expected crossings of a ray through the whole of column `col` (0 for an empty column):
+    /// the running sum of its last filled cell, found through the column's slot table.
+    #[inline]
+    fn column_total(&self, col: usize) -> f32 {
+        let end = self.slot_start[col + 1] as usize;
+        if end == self.slot_start[col] as usize {
+            return 0.0;
+        }
+        self.cells[self.slots[end - 1] as usize].n_sum
     }
 
     /// What column `col` has crossed up to depth `lambda` (cell units) inside the cell at
