@@ -128,6 +128,7 @@ mod tests {
             direct_fraction: t,
             tf: Vec3::splat(t),
             sigma_f2: Vec3::ZERO,
+            crossings_behind: LightAtPoint::DENSE,
         }
     }
 
