@@ -50,6 +50,9 @@ def style_variant(preset, name, strand_factor=1, strands_per_wisp=None, sigma_a=
     else:
         s["wisps"]["strands_per_wisp"] *= strand_factor
     s["strands"]["fibers_per_strand"] = 1
+    # One fibre per strand cannot thin toward its tip: the strand's own length (which the
+    # preset varies) is its fibre's length, the same for both renderers.
+    s["strands"]["tip_taper"] = 0.0
     s["fiber"]["alpha_r_deg"] = 0.0
     s["fiber"]["eccentricity"] = 1.0
     if sigma_a is not None:
