@@ -112,3 +112,84 @@ fn one_fibre_per_strand_stays_calibrated() {
     // still depends on where single fibres lie (ACCURACY.md); these bounds guard what holds.
     check_default("smooth, 1 fibre per strand", &rows[0], 0.035, 0.035);
 }
+
+#[test]
+fn fibres_the_camera_sees_near_the_light_are_lit_as_the_exact_rays_say() {
+    // The opposition effect: with the light near the camera, the fibres the camera sees are lit
+    // more often than the average fibre, because the view and light rays cross the same fibres
+    // near the point. The exact reference shoots both rays from the fibres each vertex stands
+    // for; over the vertices, Σ P(seen and lit) against Σ P(seen) × the map's direct fraction
+    // given seen (`light_at_seen`), for light exactly from the camera, 3° and 20° from it. The
+    // unconditional map (`light_at`) is far too dark at 0°.
+    use glam::{Quat, Vec3};
+    use wisp::hairstyle::Hairstyle;
+    use wisp::map::accuracy::sample_vertices;
+    use wisp::map::exact::{ExactInput, ExactReference};
+    use wisp::map::{CountModel, LightMap, MapBuildInput, MapGeometry};
+    let style = single_fibre_variant(&Hairstyle::default_smooth(), 4);
+    let engine = engine_at_4s(style.clone());
+    let strands = &engine.strands;
+    let view = Vec3::new(-0.5, -0.2, -1.0).normalize(); // camera looking along `view`
+    let verts = sample_vertices(strands.positions.len(), 1500);
+    for (g_deg, axis) in [
+        (0.0f32, Vec3::Y),
+        (3.0, Vec3::Y),
+        (3.0, Vec3::X),
+        (20.0, Vec3::Y),
+    ] {
+        let light = Quat::from_axis_angle(axis, g_deg.to_radians()) * view;
+        let input = |dir: Vec3| ExactInput {
+            positions: &strands.positions,
+            points_per_strand: strands.points_per_strand,
+            fibers_per_strand: 1,
+            bundle_radius_m: 0.0,
+            fibre_share: &strands.fibre_share,
+            light_dir: dir,
+            fiber: &engine.fiber,
+        };
+        let bin = 0.5 * style.strand_spacing_m();
+        let lit_ref = ExactReference::build(&input(light), bin);
+        let seen_ref = ExactReference::build(&input(view), bin);
+        let mut map = LightMap::new(
+            MapGeometry::for_scene(
+                style.max_length_m(),
+                style.head_size_m(),
+                style.strand_spacing_m(),
+                1.0,
+            ),
+            CountModel::Poisson,
+        );
+        map.build(&MapBuildInput {
+            positions: &strands.positions,
+            tangents: &strands.tangents,
+            lengths_m: &strands.lengths_m,
+            fibers_per_strand: 1.0,
+            light_dir: light,
+            fiber: &engine.fiber,
+        });
+        let r = engine.fiber.params().radius_m;
+        let (mut exact, mut model, mut plain, mut seen_total) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+        for &v in &verts {
+            let (seen, both) = lit_ref.seen_and_lit(&seen_ref, v, 64);
+            let p = strands.positions[v];
+            exact += both as f64;
+            let u = strands.tangents[v];
+            model += seen as f64 * map.light_at_seen(p, -view, u, r).direct_fraction as f64;
+            plain += seen as f64 * map.light_at(p).direct_fraction as f64;
+            seen_total += seen as f64;
+        }
+        let (model, plain) = (model / exact, plain / exact);
+        println!(
+            "g = {g_deg}° about {axis}: seen share {:.3}, lit given seen {:.3}; map given seen ÷ exact {model:.3}, unconditional ÷ exact {plain:.3}",
+            seen_total / verts.len() as f64,
+            exact / seen_total
+        );
+        assert!((model - 1.0).abs() < 0.15, "g = {g_deg}°: {model}");
+        if g_deg == 0.0 {
+            assert!(
+                plain < 0.8,
+                "at 0° the unconditional map must be clearly too dark: {plain}"
+            );
+        }
+    }
+}

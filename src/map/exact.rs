@@ -509,6 +509,51 @@ impl<'a> ExactReference<'a> {
         }
     }
 
+    /// For the fibres render-strand point `vertex` stands for (as [`Footprint::Fibres`]): the
+    /// share of ray origins the camera sees, and the share both seen and lit by direct light.
+    /// `view` must hold the same fibres with its "light" travelling from the camera into the
+    /// scene (built from the same input with `light_dir` = the view direction): a ray from an
+    /// origin toward its light is then the ray toward the eye. Their ratio is the direct
+    /// fraction *given* that the fibre is seen, which a picture shows; it measures the
+    /// opposition effect the map models in `LightMap::light_at_seen`.
+    pub fn seen_and_lit(&self, view: &ExactReference, vertex: usize, rays: u32) -> (f32, f32) {
+        let ppl = self.points_per_strand;
+        let (strand, k) = (vertex / ppl, vertex % ppl);
+        let f_count = self.fibres_per_strand;
+        if (strand + 1) * f_count * ppl > self.fibre_points.len() {
+            return (0.0, 0.0);
+        }
+        let per_fibre = (rays.max(1) as usize).div_ceil(f_count);
+        let (mut n, mut seen, mut both) = (0u32, 0u32, 0u32);
+        for f in 0..f_count {
+            let base = (strand * f_count + f) * ppl;
+            let pts = &self.fibre_points[base..base + ppl];
+            let own = Exclude {
+                strand: strand as u32,
+                fibre: Some(f as u32),
+                segs: (k as i64 - 2, k as i64 + 1),
+            };
+            for j in 0..per_fibre {
+                let t = (j as f32 + 0.5) / per_fibre as f32 - 0.5;
+                let o = if t < 0.0 && k > 0 {
+                    pts[k].lerp(pts[k - 1], -t)
+                } else if t >= 0.0 && k + 1 < ppl {
+                    pts[k].lerp(pts[k + 1], t)
+                } else {
+                    pts[k]
+                };
+                let o_view = view.frame.to_map(self.frame.to_world(o));
+                let is_seen = view.trace(o_view, Some(own)).0 == 0;
+                let is_lit = self.trace(o, Some(own)).0 == 0;
+                n += 1;
+                seen += is_seen as u32;
+                both += (is_seen && is_lit) as u32;
+            }
+        }
+        let inv = 1.0 / n.max(1) as f32;
+        (seen as f32 * inv, both as f32 * inv)
+    }
+
     /// The light reaching world point `p` over a disc across the light of `radius_m` with
     /// `rays` rays, excluding nothing.
     pub fn light_at_point(&self, p: Vec3, radius_m: f32, rays: u32) -> LightAtPoint {
