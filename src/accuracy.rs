@@ -64,7 +64,20 @@ pub fn measure_map(
         },
         0.5 * style.strand_spacing_m(),
     );
-    let verts = sample_vertices(strands.positions.len(), vertices);
+    // Only points where at least one fibre is present (past the tips, hair is not drawn).
+    let fibres = style.strands.fibers_per_strand.round().max(1.0);
+    let with_hair: Vec<usize> = (0..strands.positions.len())
+        .filter(|&i| {
+            strands
+                .fibre_share
+                .get(i)
+                .is_none_or(|s| *s >= 0.5 / fibres)
+        })
+        .collect();
+    let verts: Vec<usize> = sample_vertices(with_hair.len(), vertices)
+        .into_iter()
+        .map(|k| with_hair[k])
+        .collect();
     let truth = reference.light_at_vertices(&verts, footprint);
     let reference_ms = t0.elapsed().as_secs_f64() * 1e3;
     let pos: Vec<Vec3> = verts.iter().map(|&v| strands.positions[v]).collect();

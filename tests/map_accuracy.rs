@@ -72,9 +72,19 @@ fn check_default(name: &str, row: &Row, max_mae: f64, max_calibration: f64) {
     );
 }
 
+/// The presets with every fibre reaching its strand's tip (the scene the targets were set on).
+fn untapered(mut style: Hairstyle) -> Hairstyle {
+    style.strands.tip_taper = 0.0;
+    style.name = format!("{} (untapered)", style.name);
+    style
+}
+
 #[test]
 fn presets_meet_the_targets_and_error_falls_with_resolution() {
-    for style in [Hairstyle::default_smooth(), Hairstyle::default_curly()] {
+    for style in [
+        untapered(Hairstyle::default_smooth()),
+        untapered(Hairstyle::default_curly()),
+    ] {
         let name = style.name.clone();
         let engine = engine_at_4s(style);
         let n0 = engine.map_geometry().n;
@@ -96,8 +106,22 @@ fn presets_meet_the_targets_and_error_falls_with_resolution() {
 }
 
 #[test]
+fn tapered_presets_stay_calibrated() {
+    // Tips that thin to a few fibres: the light of a tip vertex depends on where its last
+    // fibres lie, which raises the MAE (smooth 0.018 → 0.025 at the default N) while the map
+    // stays calibrated; these bounds guard that.
+    for style in [Hairstyle::default_smooth(), Hairstyle::default_curly()] {
+        let name = style.name.clone();
+        let engine = engine_at_4s(style);
+        let n0 = engine.map_geometry().n;
+        let rows = rows(&engine, &[n0], Footprint::Fibres { rays: 64 });
+        check_default(&name, &rows[0], 0.03, 0.04);
+    }
+}
+
+#[test]
 fn one_fibre_per_strand_stays_calibrated() {
-    let style = single_fibre_variant(&Hairstyle::default_smooth(), 12);
+    let style = single_fibre_variant(&untapered(Hairstyle::default_smooth()), 12);
     let engine = engine_at_4s(style);
     let n0 = engine.map_geometry().n;
     let rows = rows(

@@ -107,6 +107,10 @@ pub(super) struct Scratch {
     col_count: Vec<u32>,
 }
 
+/// Most slots a column's slot table may hold per filled cell (a sparser column is read by binary
+/// search): bounds the tables by the cells, whatever the span of a column.
+pub(super) const SLOT_SPAN_PER_CELL: usize = 4;
+
 /// Columns a piece is shared between (2 × 2, bilinear weights).
 pub(super) const SPLAT: usize = 4;
 
@@ -290,11 +294,18 @@ impl LightMap {
             .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
 
         // Slot tables: per column, the last filled cell at or before each slice of its span.
+        // A sparse column (span over SLOT_SPAN_PER_CELL slices per filled cell) gets none and is
+        // read by binary search, so the tables never hold more than that many slots per cell.
         self.slots.clear();
         for c in 0..cols {
             self.slot_start[c] = self.slots.len() as u32;
             let (a, b) = (self.col_start[c] as usize, self.col_start[c + 1] as usize);
             if a == b {
+                continue;
+            }
+            let live = self.cells[a..b].partition_point(|x| x.slice != u32::MAX);
+            let span = (self.cells[a + live - 1].slice - self.cells[a].slice) as usize + 1;
+            if span > SLOT_SPAN_PER_CELL * live {
                 continue;
             }
             let base = self.cells[a].slice;

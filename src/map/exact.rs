@@ -63,8 +63,8 @@ pub struct ExactInput<'a> {
     /// (unused when `fibers_per_strand` is 1).
     pub bundle_radius_m: f32,
     /// Share of each strand's fibres present at each point (`StrandGeometry::fibre_share`), or
-    /// empty for all. Fibre f of F ends where the share falls below (f + ½)/F, so the fibres
-    /// end one by one as the share falls.
+    /// empty for all. Fibre f of F covers a segment where the mean share of its two ends is at
+    /// least (f + ½)/F, so the fibres end one by one as the share falls.
     pub fibre_share: &'a [f32],
     /// Direction the light travels (need not be normalised).
     pub light_dir: Vec3,
@@ -142,6 +142,8 @@ pub struct ExactReference<'a> {
     /// Light-frame points of every placed fibre: fibre f of strand s, point k at
     /// [(s·F + f)·P + k].
     fibre_points: Vec<Vec3>,
+    /// Share of each strand's fibres present at each point (empty: all).
+    fibre_share: Vec<f32>,
     segments: Vec<Segment>,
     /// Bin grid across the light.
     origin: Vec2,
@@ -234,14 +236,16 @@ impl<'a> ExactReference<'a> {
                 let (strand, f) = (fi / f_count, fi % f_count);
                 let threshold = (f as f32 + 0.5) / f_count as f32;
                 let share = input.fibre_share;
+                // Segment k holds the fibres whose threshold is under the mean share of its two
+                // ends: the expected count is then F × that mean, as the map fills (each point
+                // carries its share over half of each adjacent segment).
                 let present = move |k: usize| {
-                    share
-                        .get(strand * ppl + k)
-                        .is_none_or(|sh| *sh >= threshold)
+                    let at = |i: usize| share.get(strand * ppl + i).copied().unwrap_or(1.0);
+                    0.5 * (at(k) + at(k + 1)) >= threshold
                 };
                 pts.windows(2)
                     .enumerate()
-                    .filter(move |(k, _)| finite && present(k + 1))
+                    .filter(move |(k, _)| finite && present(*k))
                     .filter_map(move |(k, w)| {
                         let (a, b) = (w[0], w[1]);
                         let d = Vec2::new(b.y - a.y, b.z - a.z);
@@ -337,6 +341,7 @@ impl<'a> ExactReference<'a> {
             points_per_strand: ppl,
             fibres_per_strand: f_count,
             fibre_points,
+            fibre_share: input.fibre_share.to_vec(),
             segments,
             origin,
             inv_bin,
@@ -349,6 +354,16 @@ impl<'a> ExactReference<'a> {
     /// Fibre segments placed (all strands, all fibres).
     pub fn segment_count(&self) -> usize {
         self.segments.len()
+    }
+
+    /// Whether fibre `f` of the strand reaches point `vertex` (fibres end one by one where the
+    /// strand's fibre share falls: fibre f ends below (f + ½)/F).
+    #[inline]
+    fn fibre_present(&self, vertex: usize, f: usize) -> bool {
+        let threshold = (f as f32 + 0.5) / self.fibres_per_strand as f32;
+        self.fibre_share
+            .get(vertex)
+            .is_none_or(|sh| *sh >= threshold)
     }
 
     /// The light reaching render-strand point `vertex` (index into the positions it was built
@@ -391,8 +406,11 @@ impl<'a> ExactReference<'a> {
             }
             Footprint::Fibres { rays } => {
                 let f_count = self.fibres_per_strand;
-                let per_fibre = (rays.max(1) as usize).div_ceil(f_count);
-                for f in 0..f_count {
+                let present = (0..f_count)
+                    .filter(|&f| self.fibre_present(vertex, f))
+                    .count();
+                let per_fibre = (rays.max(1) as usize).div_ceil(present.max(1));
+                for f in (0..f_count).filter(|&f| self.fibre_present(vertex, f)) {
                     let base = (strand * f_count + f) * ppl;
                     let pts = &self.fibre_points[base..base + ppl];
                     let own = Exclude {
@@ -523,9 +541,12 @@ impl<'a> ExactReference<'a> {
         if (strand + 1) * f_count * ppl > self.fibre_points.len() {
             return (0.0, 0.0);
         }
-        let per_fibre = (rays.max(1) as usize).div_ceil(f_count);
+        let present = (0..f_count)
+            .filter(|&f| self.fibre_present(vertex, f))
+            .count();
+        let per_fibre = (rays.max(1) as usize).div_ceil(present.max(1));
         let (mut n, mut seen, mut both) = (0u32, 0u32, 0u32);
-        for f in 0..f_count {
+        for f in (0..f_count).filter(|&f| self.fibre_present(vertex, f)) {
             let base = (strand * f_count + f) * ppl;
             let pts = &self.fibre_points[base..base + ppl];
             let own = Exclude {

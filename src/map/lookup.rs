@@ -148,14 +148,10 @@ impl LightMap {
     }
 
     /// Expected crossings of a ray through the whole of column `col` (0 for an empty column):
-    /// the running sum of its last filled cell, found through the column's slot table.
+    /// the running sum of its last filled cell.
     #[inline]
     fn column_total(&self, col: usize) -> f32 {
-        let end = self.slot_start[col + 1] as usize;
-        if end == self.slot_start[col] as usize {
-            return 0.0;
-        }
-        self.cells[self.slots[end - 1] as usize].n_sum
+        self.last_cell(col).map_or(0.0, |k| self.cells[k].n_sum)
     }
 
     /// What column `col` has crossed up to depth `lambda` (cell units) inside the cell at

@@ -236,8 +236,9 @@ pub struct LightMap {
     /// Per column, offsets into `slots` (N² + 1 entries).
     slot_start: Vec<u32>,
     /// For each column, one slot per slice from its first to its last filled slice: the index
-    /// in `cells` of the last filled cell at or before that slice. Makes a lookup O(1); its
-    /// size is the sum of the filled columns' spans, never N³.
+    /// in `cells` of the last filled cell at or before that slice. Makes a lookup O(1). Sparse
+    /// columns (span over 4 slices per filled cell) have none and are read by binary search,
+    /// so the slots never exceed 4 per filled cell, whatever N is.
     slots: Vec<u32>,
     scratch: build::Scratch,
     stats: MapStats,
@@ -313,16 +314,37 @@ impl LightMap {
     /// `rel`, or `None` when the column has no cell that early.
     #[inline]
     fn last_at_or_before(&self, c: usize, rel: u32) -> Option<usize> {
-        let (s0, s1) = (self.slot_start[c] as usize, self.slot_start[c + 1] as usize);
-        if s0 == s1 {
+        let (a, b) = (self.col_start[c] as usize, self.col_start[c + 1] as usize);
+        if a == b {
             return None;
         }
-        let base = self.cells[self.col_start[c] as usize].slice;
+        let base = self.cells[a].slice;
         if rel < base {
             return None;
         }
+        let (s0, s1) = (self.slot_start[c] as usize, self.slot_start[c + 1] as usize);
+        if s0 == s1 {
+            // A sparse column without a slot table: binary search (merged-away entries, with
+            // slice u32::MAX, sort last and are never at or before `rel`).
+            let k = self.cells[a..b].partition_point(|x| x.slice <= rel);
+            return Some(a + k - 1);
+        }
         let off = (rel - base) as usize;
         Some(self.slots[(s0 + off).min(s1 - 1)] as usize)
+    }
+
+    /// Index in `cells` of the last filled cell of column `c`, or `None` when it is empty.
+    #[inline]
+    fn last_cell(&self, c: usize) -> Option<usize> {
+        let (a, b) = (self.col_start[c] as usize, self.col_start[c + 1] as usize);
+        if a == b {
+            return None;
+        }
+        let (s0, s1) = (self.slot_start[c] as usize, self.slot_start[c + 1] as usize);
+        if s0 < s1 {
+            return Some(self.slots[s1 - 1] as usize);
+        }
+        Some(a + self.cells[a..b].partition_point(|x| x.slice != u32::MAX) - 1)
     }
 }
 
