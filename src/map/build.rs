@@ -153,6 +153,9 @@ impl LightMap {
         let pieces = ((max_len / ds).ceil() as usize).clamp(1, MAX_PIECES);
         let entries = &mut self.scratch.entries;
         let per_sample = pieces * SPLAT;
+        // Exact reservations: a vector that grows by `resize` may double its capacity, which
+        // the memory budget would have to count twice.
+        entries.reserve_exact((count * per_sample).saturating_sub(entries.len()));
         entries.resize(count * per_sample, Entry::default());
         // Per sample: the fibre's per-crossing statistics once, then its pieces. The extent of
         // the filled cells (first slice, overflow check) comes from an exact min/max reduce,
@@ -269,6 +272,8 @@ impl LightMap {
             *count = *start; // becomes the write cursor
         }
         self.col_start[cols] = acc;
+        self.cells
+            .reserve_exact(filled_entries.saturating_sub(self.cells.len()));
         self.cells.resize(filled_entries, Cell::default());
         let first = self.first_slice;
         for e in entries.iter().filter(|e| e.col != u32::MAX) {
