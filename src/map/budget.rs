@@ -30,7 +30,7 @@ impl MapGeometry {
     ///   at most that many per entry. `slots` grows by `push`, so its capacity may reach twice
     ///   its length.
     pub fn estimated_bytes(&self, samples: u64, pieces: u64) -> u64 {
-        let n = self.n as u64;
+        let n = self.columns_per_axis() as u64;
         let columns = n * n;
         let u32_bytes = size_of::<u32>() as u64;
         let entries = samples.saturating_mul(pieces).saturating_mul(SPLAT as u64);

@@ -125,18 +125,21 @@ impl LightMap {
     pub fn build(&mut self, input: &MapBuildInput) {
         self.frame = LightFrame::new(input.light_dir);
         let n = self.geom.n as i64;
+        let ncol = self.geom.columns_per_axis() as i64;
         let ds = self.geom.ds_m;
+        let dc = self.geom.column_m();
         let r = input.fiber.params().radius_m;
-        // n = F·ℓ·2r·sinψ / ds² crossings; volume fraction = F·ℓ·πr² / ds³.
-        let crossing_scale = input.fibers_per_strand * 2.0 * r / (ds * ds);
-        let volume_scale = input.fibers_per_strand * std::f32::consts::PI * r * r / (ds * ds * ds);
+        // n = F·ℓ·2r·sinψ / dc² crossings over a column of cross-section dc²; volume fraction
+        // = F·ℓ·πr² / (ds·dc²).
+        let crossing_scale = input.fibers_per_strand * 2.0 * r / (dc * dc);
+        let volume_scale = input.fibers_per_strand * std::f32::consts::PI * r * r / (ds * dc * dc);
         let count = input
             .positions
             .len()
             .min(input.tangents.len())
             .min(input.lengths_m.len());
         let frame = self.frame;
-        let inv_ds = self.inv_ds;
+        let inv_cell = self.inv_cell;
         let model = self.model;
         let fiber = input.fiber;
         let to_light = -frame.x;
@@ -167,7 +170,7 @@ impl LightMap {
             .map(|(s, out)| {
                 let u = input.tangents[s];
                 let len_total = input.lengths_m[s];
-                let p0 = frame.to_map(input.positions[s]) * inv_ds;
+                let p0 = frame.to_map(input.positions[s]) * inv_cell;
                 if !(p0.abs().max_element() < MAX_CELL_COORD
                     && u.is_finite()
                     && len_total.is_finite()
@@ -193,7 +196,7 @@ impl LightMap {
                     volume_fraction: volume_scale * len,
                     ..Cell::default()
                 };
-                let u_cells = frame.to_map(u) * inv_ds;
+                let u_cells = frame.to_map(u) * inv_cell;
                 // Half the depth a piece spans along the light, in cells.
                 let half_depth = 0.5 * (u_cells.x * len).abs();
                 let mut ext = Extent::EMPTY;
@@ -229,7 +232,7 @@ impl LightMap {
                         let (j, k) = (j0 + dj, k0 + dk);
                         // A share of exactly 0 (a piece on a column centre line) makes no cell.
                         e.col = if wt > 0.0 {
-                            (j.rem_euclid(n) * n + k.rem_euclid(n)) as u32
+                            (j.rem_euclid(ncol) * ncol + k.rem_euclid(ncol)) as u32
                         } else {
                             u32::MAX
                         };
@@ -254,11 +257,13 @@ impl LightMap {
         let (extent, skipped) = extent;
         let filled_entries = entries.len() - entries.iter().filter(|e| e.col == u32::MAX).count();
         self.first_slice = if filled_entries > 0 { extent.lo[0] } else { 0 };
-        let overflow = filled_entries > 0 && (0..3).any(|a| extent.hi[a] - extent.lo[a] >= n);
+        let overflow = filled_entries > 0
+            && (extent.hi[0] - extent.lo[0] >= n
+                || (1..3).any(|a| extent.hi[a] - extent.lo[a] >= ncol));
         let samples = count - skipped;
 
         // 2. Counting sort by column.
-        let cols = (n * n) as usize;
+        let cols = (ncol * ncol) as usize;
         let col_count = &mut self.scratch.col_count;
         col_count.clear();
         col_count.resize(cols, 0);
@@ -339,7 +344,7 @@ impl LightMap {
             filled_cells: filled,
             columns: ncols,
             peak_volume_fraction: peak,
-            hair_volume_m3: filled as f32 * ds * ds * ds,
+            hair_volume_m3: filled as f32 * ds * dc * dc,
             overflow,
         };
     }

@@ -100,7 +100,7 @@ impl LightMap {
     #[inline]
     fn light_with_taps(&self, p: Vec3, taps: &[(f32, f32)]) -> LightAtPoint {
         let m = self.frame.to_map(p);
-        let c = m * self.inv_ds;
+        let c = m * self.inv_cell;
         if !c.is_finite() || c.abs().max_element() >= 1.0e12 {
             return LightAtPoint::UNSHADOWED;
         }
@@ -200,7 +200,7 @@ impl LightMap {
         let rel = d.rem_euclid(self.geom.n as i64) as u32;
         let k = self.last_at_or_before(self.column(f.y as i64, f.z as i64), rel)?;
         let cell = Some(&self.cells[k]).filter(|c| c.slice == rel)?;
-        let centre = self.frame.to_world((f + Vec3::splat(0.5)) * self.geom.ds_m);
+        let centre = self.frame.to_world((f + Vec3::splat(0.5)) / self.inv_cell);
         Some((cell.volume_fraction, centre))
     }
 }
