@@ -175,8 +175,20 @@ pub struct Engine {
 impl Engine {
     /// Builds the hair, settles it on the first pose of the motion and frames the camera.
     pub fn new(style: Hairstyle, motion: Motion, config: EngineConfig) -> Self {
-        let fiber = Fiber::new(&style.fiber);
         let (guides, layout) = generate(&style);
+        Self::with_hair(style, guides, layout, motion, config)
+    }
+
+    /// [`Engine::new`] with hair made elsewhere (an imported groom, `crate::groom`): `style`
+    /// gives the head, fibre, dynamics and sizes; `guides` and `layout` the hair.
+    pub fn with_hair(
+        style: Hairstyle,
+        guides: GuideSet,
+        layout: StrandLayout,
+        motion: Motion,
+        config: EngineConfig,
+    ) -> Self {
+        let fiber = Fiber::new(&style.fiber);
         let radii = Vec3::from(style.head.radii_m);
         let pose = motion.sample(0.0);
         let sim = Simulator::new(&style.dynamics, &guides, radii);

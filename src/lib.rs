@@ -6,6 +6,7 @@
 //! motion   glTF clip -> head (and body-sphere) transforms at time t
 //! sim      rigid-link guide strands: roots on the moving scalp, gravity, damping, bending,
 //!          head/body collisions, repulsion out of over-dense map cells (Bertails 2005 §4.1)
+//! groom    captured strands (.tfx, .hair) -> placed on the head, wisps, guides, rest offsets
 //! interp   render strands from their wisp's 3 guides, Catmull-Rom smoothing, curls
 //! map      light-oriented, modulo-indexed grid: fill, column sweep -> Tf, σ̄f², direct fraction
 //! shade    per render-strand vertex: filtered map lookup -> fibre shader
@@ -29,6 +30,7 @@ pub mod budget;
 pub mod export;
 pub mod fiber;
 pub mod frame;
+pub mod groom;
 pub mod hairstyle;
 pub mod input;
 pub mod interp;

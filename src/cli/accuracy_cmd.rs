@@ -9,7 +9,6 @@
 
 use super::{AppError, SceneArgs};
 use wisp::accuracy::{markdown, measure_map, single_fibre_variant, sweep_geometries};
-use wisp::frame::Engine;
 use wisp::map::exact::Footprint;
 
 #[derive(clap::Args, Debug)]
@@ -71,12 +70,12 @@ fn parse_footprint(s: &str, rays: u32) -> Result<Footprint, AppError> {
 }
 
 pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
-    let (mut style, motion, config) = args.scene.resolve()?;
+    let (mut style, hair, motion, config) = args.scene.resolve()?;
     if let Some(k) = args.single_fibre_strands {
         style = single_fibre_variant(&style, k);
     }
     let footprint = parse_footprint(&args.footprint, args.rays)?;
-    let mut engine = Engine::new(style.clone(), motion, config);
+    let mut engine = super::engine(style.clone(), hair, motion, config);
     engine.run_up_to(args.at_s as f64);
     engine.frame(args.at_s as f64);
     let geometries = sweep_geometries(&engine, &args.map_res_list);

@@ -16,7 +16,7 @@
 
 use super::{AppError, SceneArgs};
 use std::path::PathBuf;
-use wisp::frame::{Engine, StageTimings};
+use wisp::frame::StageTimings;
 use wisp::map::exact::Footprint;
 
 #[derive(clap::Args, Debug)]
@@ -49,7 +49,7 @@ fn median(v: &mut [f64]) -> f64 {
 }
 
 pub fn run(args: BenchArgs) -> Result<(), AppError> {
-    let (style, motion, config) = args.scene.resolve()?;
+    let (style, hair, motion, config) = args.scene.resolve()?;
     if let Some(path) = &args.json {
         super::check_output_file("--json", path)?;
     }
@@ -113,7 +113,8 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
             .build()
             .map_err(AppError::other)?;
         let per_frame: Vec<StageTimings> = pool.install(|| {
-            let mut engine = Engine::new(style.clone(), motion.clone(), config.clone());
+            let mut engine =
+                super::engine(style.clone(), hair.clone(), motion.clone(), config.clone());
             (0..args.frames)
                 .map(|i| {
                     engine.frame(i as f64 / 30.0);
@@ -166,7 +167,7 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
     for (k, on) in [false, true].into_iter().enumerate() {
         let mut cfg = config.clone();
         cfg.self_collision = on;
-        let mut engine = Engine::new(style.clone(), motion.clone(), cfg);
+        let mut engine = super::engine(style.clone(), hair.clone(), motion.clone(), cfg);
         let (mut peak, mut volume, mut sims, mut totals) = (0.0f64, 0.0f64, Vec::new(), Vec::new());
         for i in 0..args.frames {
             engine.frame(i as f64 / 30.0);
@@ -197,7 +198,7 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
     json.insert("self_collision_share".into(), share.into());
 
     // 3. Speed against error over map resolutions, against the exact reference.
-    let mut engine = Engine::new(style.clone(), motion.clone(), config.clone());
+    let mut engine = super::engine(style.clone(), hair.clone(), motion.clone(), config.clone());
     engine.run_up_to(at_s);
     engine.frame(at_s);
     let default_n = engine.map_geometry().n;

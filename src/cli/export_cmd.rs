@@ -8,7 +8,6 @@ use super::{AppError, SceneArgs};
 use anyhow::Context;
 use glam::Vec3;
 use std::path::PathBuf;
-use wisp::frame::Engine;
 
 #[derive(clap::Args, Debug)]
 pub struct ExportArgs {
@@ -26,13 +25,13 @@ pub struct ExportArgs {
 }
 
 pub fn run(args: ExportArgs) -> Result<(), AppError> {
-    let (style, motion, mut config) = args.scene.resolve()?;
+    let (style, hair, motion, mut config) = args.scene.resolve()?;
     config.background = Vec3::ZERO;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("{}: cannot create the output directory", args.out.display()))
         .map_err(AppError::input)?;
     let started = std::time::Instant::now();
-    let mut engine = Engine::new(style, motion, config);
+    let mut engine = super::engine(style, hair, motion, config);
     let t = f64::from(args.time_s.max(0.0));
     engine.run_up_to(t);
     // Twice: the second frame is identical (same time, same state) and its timings are those

@@ -17,7 +17,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use wisp::budget::{Budget, RunPlan};
 use wisp::fiber::ShadingMode;
-use wisp::frame::EngineConfig;
+use wisp::frame::{Engine, EngineConfig};
 use wisp::hairstyle::{Hairstyle, HairstyleError};
 use wisp::motion::{JointRef, Motion, MotionError, MotionOptions};
 
@@ -102,9 +102,19 @@ impl From<ShadingArg> for ShadingMode {
 /// What is rendered: hairstyle, motion, light, image and map settings.
 #[derive(clap::Args, Debug, Clone)]
 pub struct SceneArgs {
-    /// Hairstyle: a JSON file, or the name of an embedded preset (`smooth`, `curly`).
-    #[arg(long, default_value = "smooth")]
-    pub hairstyle: String,
+    /// Hairstyle: a JSON file, or the name of an embedded preset (`smooth`, `curly`); or a
+    /// captured groom: one or more TressFX `.tfx` / cyHair `.hair` files forming one groom
+    /// (comma-separated or the flag repeated), optionally with one preset or JSON file whose
+    /// head, fibre and dynamics it takes (default `smooth`).
+    #[arg(long, default_value = "smooth", value_delimiter = ',')]
+    pub hairstyle: Vec<String>,
+    /// Wisps of an imported groom (default: one per 25 strands, at most 400).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub groom_wisps: Option<u32>,
+    /// Turn of an imported groom about the vertical axis, degrees (default: 0 or 180, whichever
+    /// puts most of the hair behind the head).
+    #[arg(long, value_parser = parse_finite_f32, allow_hyphen_values = true)]
+    pub groom_turn_deg: Option<f32>,
     /// Dance motion: a glTF 2.0 file (.glb or .gltf). Default: the embedded dance.
     #[arg(long)]
     pub animation: Option<PathBuf>,
@@ -154,9 +164,10 @@ pub struct SceneArgs {
 }
 
 impl SceneArgs {
-    /// Loads the hairstyle and motion and builds the engine configuration.
-    pub fn resolve(&self) -> Result<(Hairstyle, Motion, EngineConfig), AppError> {
-        let style = load_hairstyle(&self.hairstyle)?;
+    /// Loads the hairstyle (and an imported groom's hair) and motion and builds the engine
+    /// configuration.
+    pub fn resolve(&self) -> Result<(Hairstyle, ImportedHair, Motion, EngineConfig), AppError> {
+        let (style, hair) = self.load_hair()?;
         let motion = if self.still {
             Motion::still(glam::Affine3A::IDENTITY)
         } else {
@@ -197,7 +208,59 @@ impl SceneArgs {
         config.self_collision = !self.no_self_collision;
         config.simulate = !self.no_sim;
         self.view.apply(&mut config)?;
-        Ok((style, motion, config))
+        Ok((style, hair, motion, config))
+    }
+
+    /// The hairstyle, and the hair of an imported groom when `--hairstyle` names strand files
+    /// (the import's figures go to stderr).
+    fn load_hair(&self) -> Result<(Hairstyle, ImportedHair), AppError> {
+        let (files, styles): (Vec<&String>, Vec<&String>) = self
+            .hairstyle
+            .iter()
+            .partition(|a| wisp::input::strands::is_strand_file_name(a));
+        if styles.len() > 1 || (styles.is_empty() && files.is_empty()) {
+            return Err(AppError::input(anyhow::anyhow!(
+                "--hairstyle {}: give one preset or JSON hairstyle, plus any number of .tfx/.hair strand files",
+                self.hairstyle.join(",")
+            )));
+        }
+        let base = load_hairstyle(styles.first().map_or("smooth", |s| s.as_str()))?;
+        if files.is_empty() {
+            return Ok((base, None));
+        }
+        let opts = wisp::groom::GroomOptions {
+            wisps: self.groom_wisps.map(|w| w as usize),
+            yaw_rad: self.groom_turn_deg.map(f32::to_radians),
+        };
+        let paths: Vec<&std::path::Path> = files
+            .iter()
+            .map(|f| std::path::Path::new(f.as_str()))
+            .collect();
+        let started = std::time::Instant::now();
+        let groom = wisp::groom::load_groom(&paths, &base, &opts).map_err(AppError::input)?;
+        let r = &groom.report;
+        let p = r.placement.unwrap_or(wisp::groom::Placement {
+            scale: 1.0,
+            yaw_rad: 0.0,
+            offset_m: Vec3::ZERO,
+        });
+        eprintln!(
+            "wisp: groom {}: {} strands ({} dropped: zero length) in {} wisps, imported in {:.2} s; \
+             placed on the head at scale {:.5}, turn {:.0}°, roots {:.1} mm from the scalp (mean, max {:.1}); \
+             rest pose vs file: mean {:.3} mm, max {:.3} mm",
+            printable(&groom.style.name),
+            r.strands_read - r.strands_dropped,
+            r.strands_dropped,
+            r.wisps,
+            started.elapsed().as_secs_f64(),
+            p.scale,
+            p.yaw_rad.to_degrees(),
+            r.root_distance_mean_m * 1e3,
+            r.root_distance_max_m * 1e3,
+            r.rest_distance_mean_m * 1e3,
+            r.rest_distance_max_m * 1e3,
+        );
+        Ok((groom.style, Some((groom.guides, groom.layout))))
     }
 
     /// A motion error, with the flag that fixes it when there is one.
@@ -254,6 +317,23 @@ impl SceneArgs {
                     "{e}. Lower it, or raise the budget with {flag}"
                 ))
             })
+    }
+}
+
+/// Hair built elsewhere than from a hairstyle's parameters: an imported groom's guides and
+/// layout (`None`: generate from the hairstyle).
+pub type ImportedHair = Option<(wisp::hairstyle::GuideSet, wisp::hairstyle::StrandLayout)>;
+
+/// The engine for a resolved scene: generated hair, or the imported groom's.
+pub fn engine(
+    style: Hairstyle,
+    hair: ImportedHair,
+    motion: Motion,
+    config: EngineConfig,
+) -> Engine {
+    match hair {
+        Some((guides, layout)) => Engine::with_hair(style, guides, layout, motion, config),
+        None => Engine::new(style, motion, config),
     }
 }
 

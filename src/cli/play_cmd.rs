@@ -11,7 +11,7 @@ use minifb::{Key, KeyRepeat, Window, WindowOptions};
 use std::path::PathBuf;
 use std::time::Instant;
 use wisp::fiber::ShadingMode;
-use wisp::frame::{Engine, StageTimings};
+use wisp::frame::StageTimings;
 use wisp::output::write_png_rgb8;
 
 #[derive(clap::Args, Debug)]
@@ -27,7 +27,7 @@ pub struct PlayArgs {
 }
 
 pub fn run(args: PlayArgs) -> Result<(), AppError> {
-    let (style, motion, mut config) = args.scene.resolve()?;
+    let (style, hair, motion, mut config) = args.scene.resolve()?;
     if let Some(path) = &args.screenshot {
         super::check_output_file("--screenshot", path)?;
     }
@@ -45,7 +45,7 @@ pub fn run(args: PlayArgs) -> Result<(), AppError> {
         ))
     })?;
     window.set_target_fps(60);
-    let mut engine = Engine::new(style, motion, config);
+    let mut engine = super::engine(style, hair, motion, config);
     let mut argb = Vec::new();
     let mut clock = Instant::now();
     let mut t_s = 0.0f64;

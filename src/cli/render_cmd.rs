@@ -66,7 +66,7 @@ pub fn wrapped_start_s(start_s: f64, duration_s: f32, speed: f32) -> (f64, bool)
 }
 
 pub fn run(args: RenderArgs) -> Result<(), AppError> {
-    let (style, motion, mut config) = args.scene.resolve()?;
+    let (style, hair, motion, mut config) = args.scene.resolve()?;
     let still = args.scene.still;
     let frames = args.frames.unwrap_or_else(|| {
         if still {
@@ -97,7 +97,7 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
     prepare_output_dir(&args.out, frames, args.quiet)?;
     let name = style.name.clone();
     let started = std::time::Instant::now();
-    let mut engine = Engine::new(style, motion, config);
+    let mut engine = super::engine(style, hair, motion, config);
     engine.run_up_to(start_s);
     let setup_s = started.elapsed().as_secs_f64();
     if !args.quiet {

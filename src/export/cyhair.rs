@@ -9,8 +9,9 @@
 //! points; a file without the segments array uses `d_segments` for every strand.
 //!
 //! wisp writes segments, points (metres, root first) and thickness (the fibre diameter in
-//! metres: cyHair's thickness is a diameter); it reads any file of this layout, so the
-//! exporter's output can be checked and real `.hair` models loaded.
+//! metres: cyHair's thickness is a diameter). Reading is the groom reader's
+//! (`crate::input::cyhair`, which owns the layout constants); [`read_hair`] wraps it so the
+//! exporter's output can be checked.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -19,15 +20,8 @@ use glam::Vec3;
 
 use crate::output::{OutputError, write_atomically};
 
-const HEADER_BYTES: usize = 128;
-const INFO_BYTES: usize = 88;
-const HAS_SEGMENTS: u32 = 1;
-const HAS_POINTS: u32 = 2;
-const HAS_THICKNESS: u32 = 4;
-const HAS_TRANSPARENCY: u32 = 8;
-const HAS_COLORS: u32 = 16;
-/// Most points a file may declare: refuses a hostile header before anything is allocated.
-pub const MAX_POINTS: u32 = 100_000_000;
+pub use crate::input::cyhair::MAX_POINTS;
+use crate::input::cyhair::{HAS_POINTS, HAS_SEGMENTS, HAS_THICKNESS, HEADER_BYTES, INFO_BYTES};
 
 /// Strands read from or written to a `.hair` file.
 #[derive(Clone, Debug, PartialEq)]
@@ -134,100 +128,33 @@ pub fn write_hair(
     Ok(())
 }
 
-/// Reads a `.hair` file; missing arrays take the header's defaults (`d_segments`,
-/// `d_thickness`). A file without points, with counts that do not add up, or shorter than
-/// its header says, is refused with the rule it breaks.
+/// Reads a `.hair` file with the groom reader ([`crate::input::cyhair::parse_cyhair`]):
+/// missing arrays take the header's defaults; a file without points, with counts that do not
+/// add up, or shorter than its header says, is refused with the offset and rule it breaks.
 pub fn read_hair(path: &Path) -> Result<CyHair, CyHairError> {
-    let bytes = std::fs::read(path).map_err(|source| CyHairError::Read {
+    let file = path.display().to_string();
+    let bytes = crate::input::read_capped(
+        path,
+        crate::input::strands::MAX_STRAND_FILE_BYTES,
+        "a cyHair file",
+    )
+    .map_err(|e| CyHairError::Invalid {
         path: path.into(),
-        source,
+        rule: e.to_string(),
     })?;
-    let invalid = |rule: String| CyHairError::Invalid {
-        path: path.into(),
-        rule,
-    };
-    if bytes.len() < HEADER_BYTES || &bytes[..4] != b"HAIR" {
-        return Err(invalid(
-            "not a cyHair file (no 128-byte header starting with \"HAIR\")".into(),
-        ));
-    }
-    let u32_at =
-        |o: usize| u32::from_le_bytes([bytes[o], bytes[o + 1], bytes[o + 2], bytes[o + 3]]);
-    let f32_at = |o: usize| f32::from_bits(u32_at(o));
-    let (hair_count, point_count, arrays, d_segments) =
-        (u32_at(4), u32_at(8), u32_at(12), u32_at(16));
-    let d_thickness = f32_at(20);
-    if arrays & HAS_POINTS == 0 {
-        return Err(invalid("the file has no points array".into()));
-    }
-    if point_count > MAX_POINTS || hair_count > point_count {
-        return Err(invalid(format!(
-            "{hair_count} strands and {point_count} points: at most {MAX_POINTS} points and \
-             no more strands than points"
-        )));
-    }
-    let (hairs, pts) = (hair_count as usize, point_count as usize);
-    let mut need = HEADER_BYTES + 12 * pts;
-    for (bit, per_item) in [
-        (HAS_SEGMENTS, 2 * hairs),
-        (HAS_THICKNESS, 4 * pts),
-        (HAS_TRANSPARENCY, 4 * pts),
-        (HAS_COLORS, 12 * pts),
-    ] {
-        if arrays & bit != 0 {
-            need += per_item;
-        }
-    }
-    if bytes.len() < need {
-        return Err(invalid(format!(
-            "{} bytes, but the header announces {need}",
-            bytes.len()
-        )));
-    }
-    let mut at = HEADER_BYTES;
-    let segments: Vec<u16> = if arrays & HAS_SEGMENTS != 0 {
-        let s = bytes[at..at + 2 * hairs]
-            .chunks_exact(2)
-            .map(|b| u16::from_le_bytes([b[0], b[1]]))
-            .collect();
-        at += 2 * hairs;
-        s
-    } else {
-        let d = u16::try_from(d_segments)
-            .map_err(|_| invalid(format!("d_segments {d_segments} exceeds 65535")))?;
-        vec![d; hairs]
-    };
-    let total: usize = segments.iter().map(|s| usize::from(*s) + 1).sum();
-    if total != pts {
-        return Err(invalid(format!(
-            "the strands' segments + 1 add up to {total} points, the header says {pts}"
-        )));
-    }
-    let points: Vec<Vec3> = bytes[at..at + 12 * pts]
-        .chunks_exact(12)
-        .map(|b| {
-            let f = |k: usize| f32::from_le_bytes([b[k], b[k + 1], b[k + 2], b[k + 3]]);
-            Vec3::new(f(0), f(4), f(8))
-        })
-        .collect();
-    at += 12 * pts;
-    let thickness = if arrays & HAS_THICKNESS != 0 {
-        bytes[at..at + 4 * pts]
-            .chunks_exact(4)
-            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-            .collect()
-    } else {
-        vec![d_thickness; pts]
-    };
-    let info_bytes = &bytes[40..HEADER_BYTES];
-    let end = info_bytes
-        .iter()
-        .position(|b| *b == 0)
-        .unwrap_or(INFO_BYTES);
+    let strands =
+        crate::input::cyhair::parse_cyhair(&bytes, &file).map_err(|e| CyHairError::Invalid {
+            path: path.into(),
+            rule: e.to_string(),
+        })?;
     Ok(CyHair {
-        segments,
-        points,
-        thickness,
-        info: String::from_utf8_lossy(&info_bytes[..end]).into_owned(),
+        segments: strands
+            .strand_points
+            .iter()
+            .map(|&p| (p - 1) as u16)
+            .collect(),
+        thickness: strands.thickness.unwrap_or_default(),
+        points: strands.points,
+        info: crate::input::cyhair::info_of(&bytes),
     })
 }

@@ -169,6 +169,7 @@ pub fn generate(style: &Hairstyle) -> (GuideSet, StrandLayout) {
             strand_length,
             tip_taper: style.strands.tip_taper,
             points_per_strand: style.strands.points as usize,
+            rest_offset: Vec::new(),
         },
     )
 }

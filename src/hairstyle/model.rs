@@ -44,6 +44,10 @@ pub struct StrandLayout {
     pub tip_taper: f32,
     /// Smoothed points per render strand (Catmull-Rom output, drawn and filled), >= 2.
     pub points_per_strand: usize,
+    /// Imported grooms only (empty for generated hair): each render strand's own departure
+    /// from its wisp's interpolation, `points_per_strand` local offsets per strand, metres, in
+    /// the frame of `crate::interp::apply_rest_offsets` (it turns with the guides).
+    pub rest_offset: Vec<Vec3>,
 }
 
 impl StrandLayout {

@@ -8,9 +8,13 @@
 //! bytes. The read itself is bounded too (`take(cap + 1)`), so a file that grows between the
 //! check and the read is still caught.
 //!
-//! [`json`] holds the strict JSON reading shared by the JSON formats.
+//! [`json`] holds the strict JSON reading shared by the JSON formats; [`tfx`] and [`cyhair`]
+//! read captured strands ([`strands`]) for groom import.
 
+pub mod cyhair;
 pub mod json;
+pub mod strands;
+pub mod tfx;
 
 use std::io::Read;
 use std::path::Path;

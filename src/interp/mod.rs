@@ -11,12 +11,18 @@
 //! projection onto each new normal plane: a discrete parallel transport that costs two dot
 //! products per point and never flips.
 //!
+//! An imported groom adds each strand's own rest offset from its wisp's blend ([`offset`]),
+//! in a frame carried by the guides, before any curl.
+//!
 //! Output buffers are reused between frames; strands are independent, so the work is split
 //! over rayon in fixed chunks and the result does not depend on the thread count.
 
 use crate::hairstyle::{CurlSpec, GuideSet, StrandLayout};
 use glam::Vec3;
 use rayon::prelude::*;
+
+mod offset;
+pub use offset::{apply_rest_offsets, rest_offsets_of};
 
 /// Maximum particles per guide (matches `hairstyle::MAX_GUIDE_LINKS + 1`), so control points
 /// fit in a stack buffer.
@@ -83,6 +89,9 @@ pub fn interpolate(
             let length = layout.strand_length.get(s).copied().unwrap_or(1.0);
             catmull_rom_resample_to(&ctrl[..ppg], length, pos);
             let reference = g[1][0] - g[0][0];
+            if let Some(offsets) = layout.rest_offset.get(s * n..(s + 1) * n) {
+                apply_rest_offsets(pos, reference, offsets);
+            }
             if curl.radius_m > 0.0 {
                 add_curl(pos, reference, curl, layout.strand_phase[s]);
             }

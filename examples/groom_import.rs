@@ -1,0 +1,137 @@
+//! Import figures for NOTES-groom-import.md: import and clustering time of the TressFX
+//! ponytail and of a generated 50,000-strand groom, the rest-pose distance to the file, and how
+//! far the settled hair (2 s under gravity, head still) moves from the file's pose.
+//!
+//! `cargo run --release --example groom_import [-- PONYTAIL_DIR]`
+
+use glam::{Affine3A, Vec3};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use wisp::frame::{Engine, EngineConfig};
+use wisp::groom::{GroomOptions, build_groom, load_groom};
+use wisp::hairstyle::Hairstyle;
+use wisp::input::strands::StrandFile;
+use wisp::motion::Motion;
+
+/// A synthetic groom in centimetres: `count` strands of `points` vertices rooted on a cap of a
+/// 9 cm sphere, falling with a wave.
+fn synthetic(count: usize, points: usize) -> StrandFile {
+    let mut f = StrandFile::default();
+    let golden = std::f32::consts::PI * (3.0 - 5f32.sqrt());
+    for i in 0..count {
+        let y = 1.0 - 1.2 * (i as f32 + 0.5) / count as f32;
+        let r = (1.0 - y * y).max(0.0).sqrt();
+        let a = golden * i as f32;
+        let d = Vec3::new(r * a.sin(), y, r * a.cos());
+        let mut p = d * 9.0;
+        let mut dir = d;
+        for k in 0..points {
+            f.points.push(p);
+            dir = (dir + Vec3::new(0.0, -0.35, -0.1)).normalize();
+            let wave = Vec3::new((k as f32 * 0.9 + a).sin() * 0.2, 0.0, 0.0);
+            p += dir * 1.5 + wave;
+            if (p / 9.2).length() < 1.0 {
+                p = p.normalize() * 9.2;
+            }
+        }
+        f.strand_points.push(points as u32);
+    }
+    f
+}
+
+fn settled_distance_mm(groom: &wisp::groom::Groom, self_collision: bool) -> (f32, f32) {
+    let config = EngineConfig {
+        width: 64,
+        height: 64,
+        self_collision,
+        ..Default::default()
+    };
+    let engine = Engine::with_hair(
+        groom.style.clone(),
+        groom.guides.clone(),
+        groom.layout.clone(),
+        Motion::still(Affine3A::IDENTITY),
+        config,
+    );
+    let mut rest = wisp::interp::StrandGeometry::default();
+    wisp::interp::interpolate(
+        &groom.guides,
+        &groom.layout,
+        &groom.style.curl,
+        &groom.guides.rest,
+        &mut rest,
+    );
+    let d: Vec<f32> = rest
+        .positions
+        .iter()
+        .zip(&engine.strands.positions)
+        .map(|(a, b)| (*a - *b).length() * 1e3)
+        .collect();
+    (
+        d.iter().sum::<f32>() / d.len() as f32,
+        d.iter().copied().fold(0.0, f32::max),
+    )
+}
+
+fn main() {
+    let dir = std::env::args()
+        .nth(1)
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from("../shared/data/hair/tressfx-ponytail"));
+    let base = Hairstyle::default_smooth();
+    let parts = ["front_top", "side", "back", "tail"].map(|p| dir.join(format!("{p}.tfx")));
+    if parts.iter().all(|p| p.exists()) {
+        let paths: Vec<&Path> = parts.iter().map(|p| p.as_path()).collect();
+        for wisps in [None, Some(1600)] {
+            let t = Instant::now();
+            let groom = load_groom(
+                &paths,
+                &base,
+                &GroomOptions {
+                    wisps,
+                    ..Default::default()
+                },
+            )
+            .expect("ponytail loads");
+            let total = t.elapsed().as_secs_f64();
+            let r = &groom.report;
+            println!(
+                "ponytail: {} strands, {} wisps: import {:.1} ms (clustering {:.1} ms); rest vs file mean {:.4} mm max {:.3} mm",
+                r.strands_read,
+                r.wisps,
+                total * 1e3,
+                r.cluster_s * 1e3,
+                r.rest_distance_mean_m * 1e3,
+                r.rest_distance_max_m * 1e3
+            );
+            for sc in [false, true] {
+                let (mean, max) = settled_distance_mm(&groom, sc);
+                println!(
+                    "  settled 2 s (self-collision {sc}): render points from the file's pose mean {mean:.1} mm, max {max:.1} mm"
+                );
+            }
+        }
+    } else {
+        println!("skipped: ponytail not found in {}", dir.display());
+    }
+    for count in [5_000, 50_000] {
+        let file = synthetic(count, 24);
+        let t = Instant::now();
+        let groom = build_groom(
+            &[("synthetic".into(), file)],
+            &base,
+            &GroomOptions::default(),
+        )
+        .expect("synthetic groom builds");
+        let total = t.elapsed().as_secs_f64();
+        let r = &groom.report;
+        println!(
+            "synthetic: {count} strands x 24 points, {} wisps: build {:.1} ms (clustering {:.1} ms); rest vs file mean {:.4} mm max {:.3} mm",
+            r.wisps,
+            total * 1e3,
+            r.cluster_s * 1e3,
+            r.rest_distance_mean_m * 1e3,
+            r.rest_distance_max_m * 1e3
+        );
+    }
+}

@@ -1,0 +1,206 @@
+//! From placed, clustered strands to the engine's hair model: guides (3 strands per wisp,
+//! resampled to equal links), barycentric weights, length fractions and rest offsets.
+
+use super::cluster::{FEATURE_DIM, Feature, SHAPE_WEIGHT};
+use crate::hairstyle::{GuideSet, StrandLayout};
+use crate::interp::{catmull_rom_resample_to, rest_offsets_of};
+use glam::Vec3;
+use rayon::prelude::*;
+
+/// Polyline length.
+pub fn arc_length(p: &[Vec3]) -> f32 {
+    p.windows(2).map(|w| (w[1] - w[0]).length()).sum()
+}
+
+/// Resamples the polyline `p` (>= 2 points, length > 0) at `out.len()` points evenly spaced
+/// in arc length, first and last on its ends.
+pub fn resample_by_arc_length(p: &[Vec3], out: &mut [Vec3]) {
+    let n = out.len();
+    let total = arc_length(p);
+    if n == 0 {
+        return;
+    }
+    if n == 1 || p.len() < 2 || !(total > 0.0) {
+        out.fill(p.first().copied().unwrap_or(Vec3::ZERO));
+        return;
+    }
+    let mut seg = 0usize;
+    let mut seg_start = 0.0f32;
+    let mut seg_len = (p[1] - p[0]).length();
+    for (k, o) in out.iter_mut().enumerate() {
+        let s = total * k as f32 / (n - 1) as f32;
+        while seg + 2 < p.len() && s > seg_start + seg_len {
+            seg_start += seg_len;
+            seg += 1;
+            seg_len = (p[seg + 1] - p[seg]).length();
+        }
+        let t = if seg_len > 0.0 {
+            ((s - seg_start) / seg_len).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        *o = p[seg].lerp(p[seg + 1], t);
+    }
+    out[n - 1] = p[p.len() - 1];
+}
+
+/// The clustering feature of a strand resampled to `pts` (root, middle, tip).
+pub fn feature_of(pts: &[Vec3]) -> Feature {
+    let root = pts[0];
+    let mid = (pts[pts.len() / 2] - root) * SHAPE_WEIGHT;
+    let tip = (pts[pts.len() - 1] - root) * SHAPE_WEIGHT;
+    let mut f = [0.0; FEATURE_DIM];
+    f[..3].copy_from_slice(&root.to_array());
+    f[3..6].copy_from_slice(&mid.to_array());
+    f[6..].copy_from_slice(&tip.to_array());
+    f
+}
+
+/// Picks a wisp's 3 guides among its strands (`members`, >= 1; repeated when fewer than 3):
+/// the strand whose root is nearest the wisp's mean root, the one farthest from it, and the
+/// one farthest from the line through those two, so the guides' roots span the wisp.
+pub fn pick_guides(members: &[u32], roots: &[Vec3]) -> [u32; 3] {
+    let root = |s: u32| roots[s as usize];
+    let mean = members.iter().map(|&s| root(s)).sum::<Vec3>() / members.len() as f32;
+    let by = |f: &dyn Fn(u32) -> f32| -> u32 {
+        // Largest score, ties to the lowest strand index (deterministic).
+        let mut best = (f32::NEG_INFINITY, u32::MAX);
+        for &s in members {
+            let v = f(s);
+            if v > best.0 || (v == best.0 && s < best.1) {
+                best = (v, s);
+            }
+        }
+        best.1
+    };
+    let a = by(&|s| -(root(s) - mean).length_squared());
+    let b = by(&|s| {
+        if s == a {
+            -1.0
+        } else {
+            (root(s) - root(a)).length_squared()
+        }
+    });
+    let axis = (root(b) - root(a)).normalize_or_zero();
+    let c = by(&|s| {
+        if s == a || s == b {
+            -1.0
+        } else {
+            let d = root(s) - root(a);
+            (d - d.dot(axis) * axis).length_squared()
+        }
+    });
+    [a, b, c]
+}
+
+/// Barycentric weights (>= 0, sum 1) of the point of triangle `t` nearest to `p`'s projection
+/// on its plane, clamped into the triangle; thirds for a degenerate triangle.
+pub fn barycentric_clamped(p: Vec3, t: [Vec3; 3]) -> [f32; 3] {
+    let (e0, e1, d) = (t[1] - t[0], t[2] - t[0], p - t[0]);
+    let (d00, d01, d11) = (e0.dot(e0), e0.dot(e1), e1.dot(e1));
+    let (d20, d21) = (d.dot(e0), d.dot(e1));
+    let den = d00 * d11 - d01 * d01;
+    if !(den > 1e-12 * (d00 * d11).max(f32::MIN_POSITIVE)) {
+        return [1.0 / 3.0; 3];
+    }
+    let v = (d11 * d20 - d01 * d21) / den;
+    let w = (d00 * d21 - d01 * d20) / den;
+    let mut b = [(1.0 - v - w).max(0.0), v.max(0.0), w.max(0.0)];
+    let sum: f32 = b.iter().sum();
+    if !(sum > 0.0) {
+        return [1.0 / 3.0; 3];
+    }
+    b.iter_mut().for_each(|x| *x /= sum);
+    b
+}
+
+/// Guides and layout from strands resampled for guides (`guide_pts`, `ppg` per strand) and for
+/// render strands (`render_pts`, `n` per strand), wisp of each strand in `wisp_of` (0..wisps).
+pub fn build_model(
+    guide_pts: &[Vec3],
+    ppg: usize,
+    render_pts: &[Vec3],
+    n: usize,
+    wisp_of: &[u32],
+    root_normal_of: impl Fn(Vec3) -> Vec3,
+    tip_taper: f32,
+) -> (GuideSet, StrandLayout) {
+    let strands = wisp_of.len();
+    let wisps = wisp_of.iter().map(|w| *w as usize + 1).max().unwrap_or(0);
+    let roots: Vec<Vec3> = (0..strands).map(|s| render_pts[s * n]).collect();
+    // Members of each wisp in strand order (counting sort, no per-wisp allocation).
+    let mut start = vec![0usize; wisps + 1];
+    for &w in wisp_of {
+        start[w as usize + 1] += 1;
+    }
+    for w in 0..wisps {
+        start[w + 1] += start[w];
+    }
+    let mut fill = start.clone();
+    let mut members = vec![0u32; strands];
+    for (s, &w) in wisp_of.iter().enumerate() {
+        members[fill[w as usize]] = s as u32;
+        fill[w as usize] += 1;
+    }
+    let mut rest = Vec::with_capacity(wisps * 3 * ppg);
+    let mut link_length_m = Vec::with_capacity(wisps * 3);
+    let mut root_normal = Vec::with_capacity(wisps * 3);
+    let mut wisp_guides = Vec::with_capacity(wisps);
+    for w in 0..wisps {
+        let picked = pick_guides(&members[start[w]..start[w + 1]], &roots);
+        let g0 = link_length_m.len() as u32;
+        for s in picked {
+            let pts = &guide_pts[s as usize * ppg..(s as usize + 1) * ppg];
+            rest.extend_from_slice(pts);
+            link_length_m.push(arc_length(pts) / (ppg - 1) as f32);
+            root_normal.push(root_normal_of(pts[0]));
+        }
+        wisp_guides.push([g0, g0 + 1, g0 + 2]);
+    }
+    let guides = GuideSet {
+        points_per_guide: ppg,
+        rest,
+        link_length_m,
+        root_normal,
+    };
+    // Per strand: weights, length fraction and offsets, independent of each other.
+    let mut strand_weights = vec![[0.0f32; 3]; strands];
+    let mut strand_length = vec![1.0f32; strands];
+    let mut rest_offset = vec![Vec3::ZERO; strands * n];
+    strand_weights
+        .par_iter_mut()
+        .zip(strand_length.par_iter_mut())
+        .zip(rest_offset.par_chunks_mut(n))
+        .enumerate()
+        .for_each(|(s, ((weights, length), offsets))| {
+            let gi = wisp_guides[wisp_of[s] as usize];
+            let g = gi.map(|g| guides.guide(g as usize));
+            let w = barycentric_clamped(roots[s], [g[0][0], g[1][0], g[2][0]]);
+            let ctrl: Vec<Vec3> = (0..ppg)
+                .map(|i| g[0][i] * w[0] + g[1][i] * w[1] + g[2][i] * w[2])
+                .collect();
+            let target = &render_pts[s * n..(s + 1) * n];
+            let fraction = (arc_length(target) / arc_length(&ctrl)).min(1.0);
+            let fraction = if fraction.is_finite() && fraction > 0.0 {
+                fraction
+            } else {
+                1.0
+            };
+            let mut centre = vec![Vec3::ZERO; n];
+            catmull_rom_resample_to(&ctrl, fraction, &mut centre);
+            rest_offsets_of(&centre, g[1][0] - g[0][0], target, offsets);
+            *weights = w;
+            *length = fraction;
+        });
+    let layout = StrandLayout {
+        wisp_guides,
+        strand_wisp: wisp_of.to_vec(),
+        strand_weights,
+        strand_phase: vec![0.0; strands],
+        strand_length,
+        tip_taper,
+        points_per_strand: n,
+        rest_offset,
+    };
+    (guides, layout)
+}

@@ -1,0 +1,212 @@
+//! Placing a captured groom on wisp's head: a scale, a turn about +Y and an offset that put
+//! the groom's roots on the head ellipsoid.
+//!
+//! The head is wisp's own ellipsoid (semi-axes `r`, centred at the head frame's origin).
+//! Unknowns: one uniform scale `s` (the file's units and head size are unknown) and an offset
+//! `o`, so that each root `p` maps to `q = (s·p + o) / r` with `|q| = 1`. They are found by
+//! Levenberg-Marquardt on the residuals `|q| − 1` with Huber weights (δ = 5 mm), so a few roots
+//! that do not sit on a scalp (a ponytail's tie, a beard) do not pull the fit; 4 unknowns, O(N)
+//! per iteration. The start: the roots' x-extent across the head width, their top at the top
+//! of the head, centred in x and z.
+//!
+//! The groom is assumed Y-up (TressFX and most DCC exports). Which way it faces is either
+//! given or guessed: hair mostly hangs behind the head, so when the mean of all points lies in
+//! front of the roots' centre (+Z is the face in wisp), the groom is turned by 180°.
+//!
+//! After the fit every root's distance to the surface is measured along its ray from the head
+//! centre (`|s·p + o| · |1 − 1/|q||`); the caller refuses grooms whose roots are far from it.
+
+use glam::{DVec3, Quat, Vec3};
+
+/// Huber threshold of the fit's robust weights, metres.
+const HUBER_M: f64 = 0.005;
+
+/// The placement of a groom in the head frame: `p_head = scale · (turn · p_file) + offset_m`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Placement {
+    pub scale: f32,
+    /// Turn about +Y applied before scaling, radians.
+    pub yaw_rad: f32,
+    pub offset_m: Vec3,
+}
+
+impl Placement {
+    pub fn apply(&self, p: Vec3) -> Vec3 {
+        self.scale * (Quat::from_rotation_y(self.yaw_rad) * p) + self.offset_m
+    }
+}
+
+/// The turn that puts the hair mass behind the head (0 or π), from roots and all points.
+pub fn guess_yaw_rad(roots: &[Vec3], all_points_mean: Vec3) -> f32 {
+    let n = roots.len().max(1) as f32;
+    let root_mean = roots.iter().copied().sum::<Vec3>() / n;
+    if all_points_mean.z > root_mean.z {
+        std::f32::consts::PI
+    } else {
+        0.0
+    }
+}
+
+/// Fits scale and offset so the turned `roots` lie on the ellipsoid with semi-axes `radii_m`.
+/// `None` when the roots give no extent (all in one point) or the fit diverges.
+pub fn fit_to_head(roots: &[Vec3], yaw_rad: f32, radii_m: Vec3) -> Option<Placement> {
+    let turn = Quat::from_rotation_y(yaw_rad);
+    let pts: Vec<DVec3> = roots.iter().map(|p| (turn * *p).as_dvec3()).collect();
+    let r = radii_m.as_dvec3();
+    let (lo, hi) = pts.iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    let extent = (hi - lo).max_element();
+    if pts.is_empty() || !(extent > 0.0 && extent.is_finite()) {
+        return None;
+    }
+    let wide = (hi.x - lo.x).max(0.25 * extent);
+    let mut s = 2.0 * r.x / wide;
+    let mut o = DVec3::new(
+        -s * 0.5 * (lo.x + hi.x),
+        r.y - s * hi.y,
+        -s * 0.5 * (lo.z + hi.z),
+    );
+    let mean_r = (r.x + r.y + r.z) / 3.0;
+    // Residual (metres, approximately) and its gradient in (s, o) for one root.
+    let residual = |s: f64, o: DVec3, p: DVec3| -> (f64, [f64; 4]) {
+        let q = (s * p + o) / r;
+        let len = q.length().max(1e-12);
+        let dq = q / len / r; // d|q| / d(world point)
+        let e = (len - 1.0) * mean_r;
+        (
+            e,
+            [
+                dq.dot(p) * mean_r,
+                dq.x * mean_r,
+                dq.y * mean_r,
+                dq.z * mean_r,
+            ],
+        )
+    };
+    let cost = |s: f64, o: DVec3| -> f64 {
+        pts.iter()
+            .map(|p| {
+                let e = residual(s, o, *p).0.abs();
+                if e <= HUBER_M {
+                    0.5 * e * e
+                } else {
+                    HUBER_M * (e - 0.5 * HUBER_M)
+                }
+            })
+            .sum()
+    };
+    let mut lambda = 1e-3;
+    let mut current = cost(s, o);
+    for _ in 0..100 {
+        let mut a = [[0.0f64; 4]; 4];
+        let mut b = [0.0f64; 4];
+        for p in &pts {
+            let (e, j) = residual(s, o, *p);
+            let w = if e.abs() <= HUBER_M {
+                1.0
+            } else {
+                HUBER_M / e.abs()
+            };
+            for u in 0..4 {
+                b[u] -= w * j[u] * e;
+                for v in 0..4 {
+                    a[u][v] += w * j[u] * j[v];
+                }
+            }
+        }
+        let mut improved = false;
+        for _ in 0..10 {
+            let mut m = a;
+            for (u, row) in m.iter_mut().enumerate() {
+                row[u] *= 1.0 + lambda;
+                row[u] += 1e-18;
+            }
+            let Some(d) = solve4(m, b) else { break };
+            let (s2, o2) = (s + d[0], o + DVec3::new(d[1], d[2], d[3]));
+            let c2 = cost(s2, o2);
+            if c2.is_finite() && c2 < current && s2 > 0.0 {
+                let step = d.iter().map(|x| x.abs()).fold(0.0, f64::max);
+                s = s2;
+                o = o2;
+                current = c2;
+                lambda = (lambda * 0.3).max(1e-9);
+                improved = step > 1e-12;
+                break;
+            }
+            lambda *= 10.0;
+        }
+        if !improved {
+            break;
+        }
+    }
+    let placement = Placement {
+        scale: s as f32,
+        yaw_rad,
+        offset_m: o.as_vec3(),
+    };
+    (s.is_finite() && s > 0.0 && o.is_finite()).then_some(placement)
+}
+
+/// Distance in metres from a head-frame point to the ellipsoid surface, measured along the ray
+/// from the centre.
+pub fn surface_distance_m(p: Vec3, radii_m: Vec3) -> f32 {
+    let q = (p / radii_m).length();
+    if q > 0.0 {
+        p.length() * (1.0 - 1.0 / q).abs()
+    } else {
+        radii_m.min_element()
+    }
+}
+
+/// Gaussian elimination with partial pivoting on a 4×4 system.
+fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> Option<[f64; 4]> {
+    for c in 0..4 {
+        let piv = (c..4).max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))?;
+        if a[piv][c].abs() < 1e-300 {
+            return None;
+        }
+        a.swap(c, piv);
+        b.swap(c, piv);
+        for i in c + 1..4 {
+            let f = a[i][c] / a[c][c];
+            for k in c..4 {
+                a[i][k] -= f * a[c][k];
+            }
+            b[i] -= f * b[c];
+        }
+    }
+    let mut x = [0.0; 4];
+    for c in (0..4).rev() {
+        let s: f64 = (c + 1..4).map(|k| a[c][k] * x[k]).sum();
+        x[c] = (b[c] - s) / a[c][c];
+    }
+    x.iter().all(|v| v.is_finite()).then_some(x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn recovers_a_known_scale_and_offset() {
+        // Roots on a cap of the ellipsoid, expressed in centimetres around another centre:
+        // the fit must find scale 0.01 and the centre back.
+        let r = Vec3::new(0.076, 0.098, 0.094);
+        let (scale, offset) = (0.01f32, Vec3::new(0.5, -170.0, 3.0));
+        let mut roots = Vec::new();
+        for i in 0..400 {
+            let polar = 1.3 * (i as f32 / 400.0).sqrt();
+            let az = i as f32 * 2.399;
+            let d = Vec3::new(polar.sin() * az.sin(), polar.cos(), polar.sin() * az.cos());
+            let on = d / (d / r).length(); // exactly on the surface
+            roots.push((on - offset * scale) / scale);
+        }
+        let p = fit_to_head(&roots, 0.0, r).unwrap();
+        assert!((p.scale / scale - 1.0).abs() < 1e-3, "{p:?}");
+        for q in &roots {
+            assert!(surface_distance_m(p.apply(*q), r) < 1e-4);
+        }
+    }
+}
