@@ -20,7 +20,7 @@ pub fn resample_by_arc_length(p: &[Vec3], out: &mut [Vec3]) {
     if n == 0 {
         return;
     }
-    if n == 1 || p.len() < 2 || !(total > 0.0) {
+    if n == 1 || p.len() < 2 || total.is_nan() || total <= 0.0 {
         out.fill(p.first().copied().unwrap_or(Vec3::ZERO));
         return;
     }
@@ -100,14 +100,15 @@ pub fn barycentric_clamped(p: Vec3, t: [Vec3; 3]) -> [f32; 3] {
     let (d00, d01, d11) = (e0.dot(e0), e0.dot(e1), e1.dot(e1));
     let (d20, d21) = (d.dot(e0), d.dot(e1));
     let den = d00 * d11 - d01 * d01;
-    if !(den > 1e-12 * (d00 * d11).max(f32::MIN_POSITIVE)) {
+    let tiny = 1e-12 * (d00 * d11).max(f32::MIN_POSITIVE);
+    if den.is_nan() || den <= tiny {
         return [1.0 / 3.0; 3];
     }
     let v = (d11 * d20 - d01 * d21) / den;
     let w = (d00 * d21 - d01 * d20) / den;
     let mut b = [(1.0 - v - w).max(0.0), v.max(0.0), w.max(0.0)];
     let sum: f32 = b.iter().sum();
-    if !(sum > 0.0) {
+    if sum.is_nan() || sum <= 0.0 {
         return [1.0 / 3.0; 3];
     }
     b.iter_mut().for_each(|x| *x /= sum);

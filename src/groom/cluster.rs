@@ -150,7 +150,7 @@ pub fn cluster(features: &[Feature], k: usize) -> Vec<u32> {
     // About one wisp's spacing: the roots cover roughly half the bounding box's surface.
     let area = ext[0] * ext[1] + ext[1] * ext[2] + ext[0] * ext[2];
     let mut cell = (area / k as f32).sqrt();
-    if !(cell > max_ext / 256.0) {
+    if cell.is_nan() || cell <= max_ext / 256.0 {
         cell = max_ext / 256.0;
     }
     if !(cell > 0.0 && cell.is_finite()) {

@@ -169,12 +169,13 @@ fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> Option<[f64; 4]> {
         }
         a.swap(c, piv);
         b.swap(c, piv);
+        let (pivot_row, pivot_b) = (a[c], b[c]);
         for i in c + 1..4 {
-            let f = a[i][c] / a[c][c];
-            for k in c..4 {
-                a[i][k] -= f * a[c][k];
+            let f = a[i][c] / pivot_row[c];
+            for (x, p) in a[i][c..].iter_mut().zip(&pivot_row[c..]) {
+                *x -= f * p;
             }
-            b[i] -= f * b[c];
+            b[i] -= f * pivot_b;
         }
     }
     let mut x = [0.0; 4];
