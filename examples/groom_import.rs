@@ -61,6 +61,38 @@ fn settled_distance_mm(groom: &wisp::groom::Groom, self_collision: bool) -> (f32
         &groom.guides.rest,
         &mut rest,
     );
+    // The same without the offsets: how far the wisps' blended centre lines moved.
+    let mut bare = groom.layout.clone();
+    bare.rest_offset.clear();
+    let (mut c_rest, mut c_now) = (
+        wisp::interp::StrandGeometry::default(),
+        wisp::interp::StrandGeometry::default(),
+    );
+    wisp::interp::interpolate(
+        &groom.guides,
+        &bare,
+        &groom.style.curl,
+        &groom.guides.rest,
+        &mut c_rest,
+    );
+    wisp::interp::interpolate(
+        &groom.guides,
+        &bare,
+        &groom.style.curl,
+        &engine.state.positions,
+        &mut c_now,
+    );
+    let dc: Vec<f32> = c_rest
+        .positions
+        .iter()
+        .zip(&c_now.positions)
+        .map(|(a, b)| (*a - *b).length() * 1e3)
+        .collect();
+    println!(
+        "  centre lines (no offsets) moved: mean {:.1} mm, max {:.1} mm",
+        dc.iter().sum::<f32>() / dc.len() as f32,
+        dc.iter().copied().fold(0.0, f32::max)
+    );
     let d: Vec<f32> = rest
         .positions
         .iter()
@@ -104,6 +136,11 @@ fn main() {
                 r.rest_distance_mean_m * 1e3,
                 r.rest_distance_max_m * 1e3
             );
+            let (share, deepest) = inside_head(&groom);
+            println!(
+                "  guide particles inside the head at rest: {:.1}%, deepest {deepest:.1} mm",
+                share * 100.0
+            );
             for sc in [false, true] {
                 let (mean, max) = settled_distance_mm(&groom, sc);
                 println!(
@@ -134,4 +171,23 @@ fn main() {
             r.rest_distance_max_m * 1e3
         );
     }
+}
+
+/// Share of guide particles (past the pinned root link) inside the head ellipsoid, and the
+/// deepest, millimetres: the collision pushes them out as the hair settles.
+pub fn inside_head(groom: &wisp::groom::Groom) -> (f32, f32) {
+    let r = Vec3::from(groom.style.head.radii_m);
+    let ppg = groom.guides.points_per_guide;
+    let (mut inside, mut total, mut deepest) = (0usize, 0usize, 0.0f32);
+    for (i, p) in groom.guides.rest.iter().enumerate() {
+        if i % ppg < 2 {
+            continue;
+        }
+        total += 1;
+        if (*p / r).length() < 1.0 {
+            inside += 1;
+            deepest = deepest.max(wisp::groom::fit::surface_distance_m(*p, r) * 1e3);
+        }
+    }
+    (inside as f32 / total as f32, deepest)
 }

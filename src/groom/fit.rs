@@ -3,10 +3,12 @@
 //!
 //! The head is wisp's own ellipsoid (semi-axes `r`, centred at the head frame's origin).
 //! Unknowns: one uniform scale `s` (the file's units and head size are unknown) and an offset
-//! `o`, so that each root `p` maps to `q = (s·p + o) / r` with `|q| = 1`. They are found by
-//! Levenberg-Marquardt on the residuals `|q| − 1` with Huber weights (δ = 5 mm), so a few roots
-//! that do not sit on a scalp (a ponytail's tie, a beard) do not pull the fit; 4 unknowns, O(N)
-//! per iteration. The start: the roots' x-extent across the head width, their top at the top
+//! `o`, so that each root `p` maps to `q = (s·p + o) / r` with `|q| = 1`, and the rest of the
+//! hair stays outside the head (`|q| ≥ 1`: a one-sided residual for sample points along the
+//! strands; without it the shared ponytail had 13% of its guide particles inside the head, up
+//! to 28 mm deep, and the collision pushed them out as the hair settled). They are found by
+//! Levenberg-Marquardt with Huber weights (δ = 5 mm), so a few roots that do not sit on a
+//! scalp (a ponytail's tie, a beard) do not pull the fit; 4 unknowns, O(N) per iteration. The start: the roots' x-extent across the head width, their top at the top
 //! of the head, centred in x and z.
 //!
 //! The groom is assumed Y-up (TressFX and most DCC exports). Which way it faces is either
@@ -47,11 +49,18 @@ pub fn guess_yaw_rad(roots: &[Vec3], all_points_mean: Vec3) -> f32 {
     }
 }
 
-/// Fits scale and offset so the turned `roots` lie on the ellipsoid with semi-axes `radii_m`.
+/// Fits scale and offset so the turned `roots` lie on the ellipsoid with semi-axes `radii_m`
+/// and the points `hair` (samples along the strands, away from the roots) lie outside it.
 /// `None` when the roots give no extent (all in one point) or the fit diverges.
-pub fn fit_to_head(roots: &[Vec3], yaw_rad: f32, radii_m: Vec3) -> Option<Placement> {
+pub fn fit_to_head(
+    roots: &[Vec3],
+    hair: &[Vec3],
+    yaw_rad: f32,
+    radii_m: Vec3,
+) -> Option<Placement> {
     let turn = Quat::from_rotation_y(yaw_rad);
     let pts: Vec<DVec3> = roots.iter().map(|p| (turn * *p).as_dvec3()).collect();
+    let outside: Vec<DVec3> = hair.iter().map(|p| (turn * *p).as_dvec3()).collect();
     let r = radii_m.as_dvec3();
     let (lo, hi) = pts.iter().fold(
         (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
@@ -85,10 +94,19 @@ pub fn fit_to_head(roots: &[Vec3], yaw_rad: f32, radii_m: Vec3) -> Option<Placem
             ],
         )
     };
+    // Roots: two-sided; hair samples: only when inside the head.
+    let terms = |s: f64, o: DVec3| {
+        let roots = pts.iter().map(move |p| residual(s, o, *p));
+        let hair = outside.iter().map(move |p| {
+            let (e, j) = residual(s, o, *p);
+            if e < 0.0 { (e, j) } else { (0.0, [0.0; 4]) }
+        });
+        roots.chain(hair)
+    };
     let cost = |s: f64, o: DVec3| -> f64 {
-        pts.iter()
-            .map(|p| {
-                let e = residual(s, o, *p).0.abs();
+        terms(s, o)
+            .map(|(e, _)| {
+                let e = e.abs();
                 if e <= HUBER_M {
                     0.5 * e * e
                 } else {
@@ -102,8 +120,7 @@ pub fn fit_to_head(roots: &[Vec3], yaw_rad: f32, radii_m: Vec3) -> Option<Placem
     for _ in 0..100 {
         let mut a = [[0.0f64; 4]; 4];
         let mut b = [0.0f64; 4];
-        for p in &pts {
-            let (e, j) = residual(s, o, *p);
+        for (e, j) in terms(s, o) {
             let w = if e.abs() <= HUBER_M {
                 1.0
             } else {
@@ -204,7 +221,7 @@ mod tests {
             let on = d / (d / r).length(); // exactly on the surface
             roots.push((on - offset * scale) / scale);
         }
-        let p = fit_to_head(&roots, 0.0, r).unwrap();
+        let p = fit_to_head(&roots, &[], 0.0, r).unwrap();
         assert!((p.scale / scale - 1.0).abs() < 1e-3, "{p:?}");
         for q in &roots {
             assert!(surface_distance_m(p.apply(*q), r) < 1e-4);

@@ -4,7 +4,7 @@
 //! ```text
 //! read      input::{tfx, cyhair}           strands in the file's units (several files: one groom)
 //! drop      zero-length strands            (counted in the report)
-//! place     fit::fit_to_head               scale, 0°/180° turn and offset onto the head ellipsoid
+//! place     fit::fit_to_head               scale, 0°/180° turn and offset: roots on the head, hair outside
 //! resample  build::resample_by_arc_length  links + 1 guide points, `strands.points` render points
 //! cluster   cluster::cluster               k-means on root + shape, grid-accelerated (no O(N²))
 //! guides    build::pick_guides             3 strands of each wisp, spanning its roots
@@ -165,7 +165,15 @@ pub fn build_groom(
         });
         fit::guess_yaw_rad(&roots, sum / n as f32)
     });
-    let placement = fit::fit_to_head(&roots, yaw, radii).ok_or_else(|| {
+    // Samples along the strands for the fit's "hair outside the head" term: every vertex past
+    // the root's link, at most about 50,000 in all (a strided subset of the strands).
+    let stride = (kept.iter().map(|k| k.2.len()).sum::<usize>() / 50_000).max(1);
+    let hair: Vec<Vec3> = kept
+        .iter()
+        .step_by(stride)
+        .flat_map(|k| k.2.iter().skip(2).copied())
+        .collect();
+    let placement = fit::fit_to_head(&roots, &hair, yaw, radii).ok_or_else(|| {
         invalid("the roots cannot be fitted onto the head (all roots in one point?)".into())
     })?;
     let dist: Vec<f32> = roots
