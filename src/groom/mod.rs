@@ -25,9 +25,11 @@
 mod build;
 pub mod cluster;
 pub mod fit;
+mod synthetic;
 
 pub use build::{arc_length, resample_by_arc_length};
 pub use fit::Placement;
+pub use synthetic::synthetic_strands;
 
 use crate::hairstyle::{CurlSpec, GuideSet, Hairstyle, MAX_STRANDS, StrandLayout};
 use crate::input::strands::{StrandFile, StrandFileError, load_strand_file};
