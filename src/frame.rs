@@ -2,8 +2,8 @@
 //!
 //! ```text
 //! animation   motion.sample(t)                -> head and body-sphere transforms
-//! simulation  sim.advance(t, colliders, map)  -> guide particles (self-collision reads the
-//!                                                map of the previous frame, Bertails §4.1)
+//! simulation  sim.advance(t, colliders)       -> guide particles (self-collision from the
+//!                                                simulator's own density grid, Bertails §4.1)
 //! interp      interpolate(guides)             -> render strands (positions, tangents)
 //! map         map.build(strands, light)       -> Tf, σ̄f², direct fraction per cell
 //! shading     shade_vertices(map, fiber)      -> vertex colours
@@ -23,9 +23,7 @@ use crate::raster::{
     Camera, Framebuffer, LineScratch, LineStyle, Polylines, draw_ellipsoid, draw_polylines,
 };
 use crate::shade::{Lighting, shade_skin, shade_vertices};
-use crate::sim::{
-    Colliders, DensityField, NoDensity, SimState, Simulator, SphereCollider, StepStats,
-};
+use crate::sim::{Colliders, SimState, Simulator, SphereCollider, StepStats};
 use glam::{Affine3A, Vec3};
 use std::time::Instant;
 
@@ -144,7 +142,6 @@ pub struct Engine {
     sim: Simulator,
     pub state: SimState,
     map: LightMap,
-    map_valid: bool,
     pub strands: StrandGeometry,
     colors: Vec<Vec3>,
     camera: Camera,
@@ -167,7 +164,8 @@ impl Engine {
         let (guides, layout) = generate(&style);
         let radii = Vec3::from(style.head.radii_m);
         let pose = motion.sample(0.0);
-        let sim = Simulator::new(&style.dynamics, &guides, radii);
+        let mut sim = Simulator::from_hairstyle(&style, &guides);
+        sim.set_self_collision(config.self_collision);
         let state = SimState::at_rest(&guides, &colliders_of(&pose, radii), -config.settle_s);
         let geom = match config.map_res {
             Some(n) => MapGeometry::with_resolution(
@@ -193,7 +191,6 @@ impl Engine {
             sim,
             state,
             map: LightMap::new(geom, CountModel::Poisson),
-            map_valid: false,
             strands: StrandGeometry::default(),
             colors: Vec::new(),
             camera,
@@ -259,13 +256,8 @@ impl Engine {
                 motion.sample_into(t.max(0.0) as f32, scratch_pose);
                 write_colliders(scratch_pose, radii, c);
             };
-            self.step_stats = if self.config.self_collision && self.map_valid {
-                self.sim
-                    .advance(&mut self.state, t_s, colliders_at, &self.map)
-            } else {
-                self.sim
-                    .advance(&mut self.state, t_s, colliders_at, &NoDensity)
-            };
+            self.sim.set_self_collision(self.config.self_collision);
+            self.step_stats = self.sim.advance(&mut self.state, t_s, colliders_at);
         } else {
             let head = self.pose.head;
             for (p, r) in self.state.positions.iter_mut().zip(&self.guides.rest) {
@@ -355,7 +347,6 @@ impl Engine {
             light_dir: self.config.lighting.light_dir,
             fiber: &self.fiber,
         });
-        self.map_valid = true;
     }
 
     /// Frames the settled hair from three-quarters front of the first pose. The camera then
@@ -445,12 +436,4 @@ fn write_colliders(pose: &Pose, radii: Vec3, c: &mut Colliders) {
             center: s.center,
             radius_m: s.radius_m,
         }));
-}
-
-/// The map answers the simulation's density queries (Bertails §4.1).
-impl DensityField for LightMap {
-    #[inline]
-    fn cell_density(&self, p: Vec3) -> Option<(f32, Vec3)> {
-        LightMap::cell_density(self, p)
-    }
 }

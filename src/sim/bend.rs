@@ -3,33 +3,89 @@
 //!
 //! What: `step.rs` pulls each link toward its rest bend relative to its parent link, expressed
 //! in a frame parallel-transported down the strand with [`rotation_arc`], then damps the
-//! links' relative rotation with [`damp_bending`]. This file holds those pieces and the maps
+//! links' relative rotation with [`damp_bending`]. This file holds those pieces and the map
 //! from the JSON parameters to per-step factors.
 //!
-//! Why per-step factors derived here: the parameters must mean the same at any `step_s`.
-//! - Pull: `k = 1 − (1 − bending_stiffness)^(dt / (1/240 s))`, so `bending_stiffness` is the
-//!   fraction of the deviation removed per 1/240 s whatever the step.
-//! - The pulled link is an oscillator: from the per-step map `e ← (1 − k)(e + v dt)`,
-//!   `v dt ← e' − e`, the eigenvalues solve `λ² − 2(1 − k)λ + (1 − k) = 0`, i.e. for small k
-//!   `λ ≈ 1 ± i√k`: angular frequency `ω = √k / dt` (120 rad/s at k = 0.25, dt = 1/240 s).
-//! - Damping: a rate `c = 2ζω` (critical for ζ = 1) is the per-step factor
-//!   `κ = 1 − exp(−c dt) = 1 − exp(−2ζ√k)`, independent of dt for a given k.
+//! # The bending of one link is a damped oscillator, the same at any step
+//! Seen from its parent, a link's deviation `e` from its rest bend follows, per step of `dt`
+//! (pull by `k` in `step.rs`, then damping of the relative velocity by `κ` here):
+//!
+//! `e' = (1 − k)(e + u)`,  `u' = (1 − κ)(e' − e)`   (`u` = relative velocity × dt)
+//!
+//! a linear map with trace `(1 − k)(2 − κ)` and determinant `(1 − k)(1 − κ)`. The continuous
+//! oscillator `ë + 2ζω ė + ω² e = 0` advanced exactly over `dt` has the eigenvalues
+//! `exp((−ζ ± √(ζ² − 1)) ω dt)`, i.e. trace `T` and determinant `D = exp(−2ζω dt)`.
+//! Matching both gives the per-step factors
+//!
+//! `k = 1 − T + D`,  `κ = 1 − D / (T − D)`
+//!
+//! so every step size advances the isolated link exactly as the same continuous oscillator
+//! would: the bending frequency ω and damping ratio ζ are properties of the hair, not of the
+//! step. For ζ = 1 (critical, the default) this is `k = (1 − e^{−ωdt})²`,
+//! `1 − κ = e^{−ωdt} / (2 − e^{−ωdt})`; for small `ω dt`, `k → (ω dt)²` (a spring of
+//! angular frequency ω) and `κ → 2ζω dt` (a damping rate 2ζω).
+//!
+//! The stiffness in the JSON, `s ∈ [0, 1]`, keeps its old meaning at the reference step
+//! 1/240 s, where the pull was `k = s` per step: ω is chosen so that the critically damped
+//! oscillator's pull over 1/240 s is `s`, `ω = −ln(1 − √s) / (1/240 s)` (s = 0.25: 166 rad/s;
+//! 0.6: 357 rad/s; 0 limp, 1 rigid). At 1/240 s the factors are therefore what they were, and
+//! other steps now give the same oscillator instead of a stiffer one at smaller steps (the old
+//! `k = 1 − (1 − s)^(dt/(1/240 s))` made ω grow as 1/√dt: the hair was twice as stiff at
+//! 1/960 s as at 1/240 s, which was the largest step dependence measured, see
+//! `NOTES-sim-quality.md`).
+//!
+//! Why the bending needs damping at all: the pull acts on the child only, so link i is an
+//! oscillator driven by link i−1 with no reaction back; with only air damping its resonance
+//! gain is ω/c ≈ 100 per link, cascading over 13 links (measured before: tips whirled at
+//! 17 m/s under a still head). Damping the relative rotation bounds the gain near 1 and leaves
+//! a rigid swing of the whole strand (equal angular velocities) untouched.
 
 use glam::{Quat, Vec3, Vec3A};
 
 /// Reference step that `bending_stiffness` is defined at, seconds.
 pub const BENDING_REFERENCE_STEP_S: f32 = 1.0 / 240.0;
 
-/// Fraction `k` of the deviation from the rest bend removed per step of `dt` seconds, for
-/// `stiffness` in [0, 1] defined per [`BENDING_REFERENCE_STEP_S`].
-pub(crate) fn pull_per_step(stiffness: f32, dt: f32) -> f32 {
-    1.0 - (1.0 - stiffness).powf(dt / BENDING_REFERENCE_STEP_S)
+/// Angular frequency ω (rad/s) of the bending oscillator for a stiffness `s` in [0, 1]
+/// (see the module doc); infinite for `s >= 1`.
+pub fn bending_frequency_rad_s(stiffness: f32) -> f64 {
+    let s = f64::from(stiffness).clamp(0.0, 1.0);
+    if s >= 1.0 {
+        return f64::INFINITY;
+    }
+    -(1.0 - s.sqrt()).ln() / f64::from(BENDING_REFERENCE_STEP_S)
 }
 
-/// Fraction `κ` of the relative angular velocity of adjacent links removed per step, for a
-/// damping ratio `zeta` and the per-step pull `k` (see the module doc).
-pub(crate) fn damping_per_step(zeta: f32, k: f32) -> f32 {
-    1.0 - (-2.0 * zeta * k.sqrt()).exp()
+/// Per-step pull `k` and relative-velocity damping `κ`, both in [0, 1], of the bending
+/// oscillator of frequency `omega_rad_s` and damping ratio `zeta` advanced over `dt_s`
+/// (see the module doc for the derivation).
+pub(crate) fn step_factors(omega_rad_s: f64, zeta: f64, dt_s: f64) -> (f32, f32) {
+    let x = omega_rad_s * dt_s;
+    if !x.is_finite() {
+        return (1.0, 1.0);
+    }
+    if x.is_nan() || x <= 0.0 {
+        return (0.0, 0.0);
+    }
+    let zeta = zeta.max(0.0);
+    // Trace of the exact step map: the sum of its two eigenvalues, written so that no
+    // exponential overflows (both terms decay for ζ >= 1).
+    let trace = if zeta < 1.0 {
+        2.0 * (-zeta * x).exp() * (x * (1.0 - zeta * zeta).sqrt()).cos()
+    } else {
+        let r = (zeta * zeta - 1.0).sqrt();
+        (-(zeta - r) * x).exp() + (-(zeta + r) * x).exp()
+    };
+    let det = (-2.0 * zeta * x).exp();
+    let k = (1.0 - trace + det).clamp(0.0, 1.0);
+    // T − D <= 0 (an under-damped oscillator not resolved by the step): no pull survives
+    // a step, so the relative velocity is removed entirely. κ < 0 (anti-damping, at ζ near 0)
+    // is clamped to 0: the step is then slightly more damped than the oscillator.
+    let kappa = if trace - det > 0.0 {
+        (1.0 - det / (trace - det)).clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
+    (k as f32, kappa as f32)
 }
 
 /// The minimal rotation taking unit `a` to unit `b`: the quaternion (a × b, 1 + a·b),
@@ -135,16 +191,84 @@ mod tests {
     }
 
     #[test]
-    fn per_step_factors_do_not_depend_on_the_step() {
-        // Two steps of 1/480 s remove the same fraction as one of 1/240 s.
-        let k240 = pull_per_step(0.25, 1.0 / 240.0);
-        let k480 = pull_per_step(0.25, 1.0 / 480.0);
-        assert!((k240 - 0.25).abs() < 1e-6);
-        assert!(((1.0 - k480) * (1.0 - k480) - (1.0 - k240)).abs() < 1e-6);
-        assert_eq!(pull_per_step(0.0, 0.01), 0.0);
-        assert_eq!(pull_per_step(1.0, 0.001), 1.0);
-        // Critical damping of the k = 0.25 spring: κ = 1 − e⁻¹.
-        assert!((damping_per_step(1.0, 0.25) - (1.0 - (-1.0f32).exp())).abs() < 1e-6);
-        assert_eq!(damping_per_step(1.0, 0.0), 0.0);
+    fn the_stiffness_keeps_its_meaning_at_the_reference_step() {
+        // At 1/240 s and ζ = 1, the pull is the stiffness itself (the old definition).
+        for s in [0.05f32, 0.25, 0.6, 0.9] {
+            let w = bending_frequency_rad_s(s);
+            let (k, _) = step_factors(w, 1.0, f64::from(BENDING_REFERENCE_STEP_S));
+            assert!((k - s).abs() < 1e-6, "{s}: {k}");
+        }
+        assert_eq!(bending_frequency_rad_s(0.0), 0.0);
+        assert_eq!(step_factors(0.0, 1.0, 0.01), (0.0, 0.0));
+        assert_eq!(
+            step_factors(bending_frequency_rad_s(1.0), 1.0, 0.001),
+            (1.0, 1.0)
+        );
+        // ω for the smooth preset: −ln(1 − 0.5) · 240 = 166.4 rad/s.
+        // (1/240 s is rounded to f32, hence the tolerance.)
+        assert!((bending_frequency_rad_s(0.25) - 240.0 * 2f64.ln()).abs() < 1e-4);
+    }
+
+    /// Seconds until the isolated link's deviation stays below `tol` for good, at step `dt`.
+    fn settle_time_s(w: f64, zeta: f64, dt: f64, tol: f64) -> f64 {
+        let (k, kappa) = step_factors(w, zeta, dt);
+        let (k, kappa) = (f64::from(k), f64::from(kappa));
+        let (mut e, mut u) = (1.0f64, 0.0f64);
+        let mut last_above = 0usize;
+        for n in 1..100_000 {
+            let e_new = (1.0 - k) * (e + u);
+            u = (1.0 - kappa) * (e_new - e);
+            e = e_new;
+            if e.abs() > tol {
+                last_above = n;
+            }
+        }
+        last_above as f64 * dt
+    }
+
+    #[test]
+    fn the_link_settles_in_the_same_time_at_any_step() {
+        // The continuous critically damped link, e(t) = (1 + ωt) e^{−ωt} from e = 1 at rest,
+        // is below 1e-4 after t with (1 + ωt) e^{−ωt} = 1e-4: ωt = 11.76 (solved below), i.e.
+        // 70.7 ms at ω = 166.4 rad/s. The discrete map has the same eigenvalues at every step
+        // (it starts from a slightly different velocity, since u = 0 means "at rest" over the
+        // previous step), so it settles at the same time to within about two steps (measured:
+        // 50, 67, 70 and 70 ms at 1/60, 1/240, 1/960 and 1/3840 s). The old per-step scaling,
+        // k = 1 − (1 − s)^(dt·240) and κ = 1 − exp(−2√k), took 100, 46, 36 and 21 ms.
+        let w = bending_frequency_rad_s(0.25);
+        let mut wt = 10.0f64;
+        for _ in 0..50 {
+            let f = (1.0 + wt) * (-wt).exp() - 1e-4;
+            let df = -wt * (-wt).exp();
+            wt -= f / df;
+        }
+        let exact_s = wt / w;
+        assert!((exact_s - 0.0707).abs() < 5e-4, "{exact_s}");
+        for dt in [1.0 / 60.0, 1.0 / 240.0, 1.0 / 960.0, 1.0 / 3840.0] {
+            let t = settle_time_s(w, 1.0, dt, 1e-4);
+            assert!(
+                (t - exact_s).abs() <= 2.0 * dt,
+                "dt {dt}: {t} s vs {exact_s} s"
+            );
+        }
+        // Under- and over-damped links (ζ = 0.5, 2): the same time at 1/240 and 1/3840 s.
+        for zeta in [0.5f64, 2.0] {
+            let a = settle_time_s(w, zeta, 1.0 / 240.0, 1e-4);
+            let b = settle_time_s(w, zeta, 1.0 / 3840.0, 1e-4);
+            assert!((a - b).abs() <= 2.0 / 240.0, "ζ {zeta}: {a} vs {b}");
+        }
+    }
+
+    #[test]
+    fn factors_stay_in_range_for_extreme_inputs() {
+        for w in [0.0, 1e-3, 10.0, 166.0, 1e4, 1e9, f64::INFINITY] {
+            for zeta in [0.0, 0.3, 1.0, 3.0, 10.0] {
+                for dt in [1e-5, 1.0 / 240.0, 0.05] {
+                    let (k, kappa) = step_factors(w, zeta, dt);
+                    assert!((0.0..=1.0).contains(&k), "{w} {zeta} {dt}: k {k}");
+                    assert!((0.0..=1.0).contains(&kappa), "{w} {zeta} {dt}: κ {kappa}");
+                }
+            }
+        }
     }
 }

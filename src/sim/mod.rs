@@ -3,8 +3,9 @@
 //!
 //! What: every guide strand is a chain of inextensible links whose root segment is carried by
 //! the moving head; the rest of the chain feels gravity, air damping, bending stiffness toward
-//! its rest shape, collisions with the head ellipsoid and body spheres, and repulsion out of
-//! over-dense cells of the density map (self-collision, Bertails §4.1).
+//! its rest shape, collisions with the head ellipsoid and body spheres, and self-collision:
+//! repulsion down the gradient of the hair's excess density and hair-hair friction, from a
+//! density grid the simulator builds from the guides at every step (Bertails §4.1).
 //!
 //! How: [`Simulator::advance`] runs fixed steps of [`SimParams::step_s`] (default 1/240 s) up
 //! to the requested time, whatever the output frame rate (a slow display never makes the
@@ -13,7 +14,12 @@
 //! particle at exactly one link length from its predecessor (follow the leader), resolve
 //! collisions, then derive velocities with Müller's correction. See `step.rs` for the
 //! equations, `bend.rs` for the bending constants and damping, `collide.rs` for collisions and
-//! their order, `density.rs` for §4.1.
+//! their order, `density.rs` for self-collision (§4.1).
+//!
+//! Every parameter is a rate or a frequency per unit time, converted to per-step factors with
+//! exact solutions over the step (`bend.rs`, `density.rs`), so the model is the same at any
+//! step and a smaller step only reduces the discretisation error (measured: first order, see
+//! `NOTES-sim-quality.md` and `examples/sim_steps.rs`).
 //!
 //! Why: rigid links by construction (no iteration count to tune, lengths exact to rounding),
 //! unconditionally stable position projections, and guides independent within a step, so they
@@ -30,8 +36,9 @@ pub mod state;
 pub mod step;
 
 pub use bend::BENDING_REFERENCE_STEP_S;
+pub use bend::bending_frequency_rad_s;
 pub use collide::{COLLISION_MARGIN_M, Colliders, SphereCollider};
-pub use density::{DensityField, NoDensity};
+pub use density::MAX_NODES as DENSITY_GRID_MAX_NODES;
 pub use state::SimState;
 pub use step::{Simulator, StepStats};
 
@@ -47,17 +54,25 @@ pub struct SimParams {
     pub gravity_m_s2: f32,
     /// Air damping rate in 1/s: velocity decays as exp(−rate·t) (default 1.5).
     pub damping_per_s: f32,
-    /// Bending stiffness toward the rest shape, in [0, 1] (0 limp, 1 rigid; default 0.3): the
-    /// fraction of a link's deviation from its rest bend removed per 1/240 s (`step.rs`).
+    /// Bending stiffness toward the rest shape, in [0, 1] (0 limp, 1 rigid; default 0.3). It
+    /// sets the bending oscillator's angular frequency ω = −ln(1 − √s) / (1/240 s), whose
+    /// critically damped pull removes the fraction s of a link's deviation from its rest bend
+    /// over 1/240 s; the same ω is used at any step (`bend.rs`).
     pub bending_stiffness: f32,
-    /// Hair volume fraction above which a map cell repels hair (Bertails §4.1; default 0.25).
+    /// Hair volume fraction (of the simulator's density grid, smoothed over about one link
+    /// length) above which hair repels hair (Bertails §4.1), >= 0 (default 0.04; `density.rs`).
     pub density_threshold: f32,
-    /// Repulsion strength in m/s² per unit of excess volume fraction (default 20).
-    pub repulsion_m_s2: f32,
-    /// Damping ratio ζ of the bending spring, >= 0 (default 1, critical): each link's angular
-    /// velocity relative to its parent link is damped at the rate 2ζω, with ω = √k / step the
-    /// bending spring's angular frequency (see `step.rs`). Without it the one-sided bending pull
-    /// makes a chain of lightly damped oscillators that amplify motion toward the tip.
+    /// Self-collision repulsion K in m²/s², >= 0 (0: off; default 60): hair accelerates down the
+    /// gradient of the excess volume fraction, a = −K ∇(φ − threshold)₊ (`density.rs`).
+    pub repulsion_m2_s2: f32,
+    /// Hair-hair friction in 1/s, >= 0 (0: off; default 20): where the hair is at the
+    /// threshold density or denser, a particle's velocity relative to the hair around it
+    /// decays at this rate (less in sparser hair; `density.rs`).
+    pub hair_friction_per_s: f32,
+    /// Damping ratio ζ of the bending oscillator, in [0, 10] (default 1, critical): each link's
+    /// angular velocity relative to its parent link is damped at the rate 2ζω (`bend.rs`).
+    /// Without it the one-sided bending pull makes a chain of lightly damped oscillators that
+    /// amplify motion toward the tip.
     pub bending_damping_ratio: f32,
     /// Follow-the-leader velocity correction factor (the s_damping of Müller, Kim & Chentanez
     /// 2012's dynamic FTL), in [0, 1] (0: plain FTL; 1: full reaction on the parent; default
@@ -75,8 +90,9 @@ impl Default for SimParams {
             gravity_m_s2: 9.81,
             damping_per_s: 1.5,
             bending_stiffness: 0.3,
-            density_threshold: 0.25,
-            repulsion_m_s2: 20.0,
+            density_threshold: 0.04,
+            repulsion_m2_s2: 60.0,
+            hair_friction_per_s: 20.0,
             bending_damping_ratio: 1.0,
             ftl_correction: 0.5,
             max_catch_up_s: 0.25,
@@ -97,7 +113,8 @@ impl SimParams {
             ("gravity_m_s2", self.gravity_m_s2),
             ("damping_per_s", self.damping_per_s),
             ("density_threshold", self.density_threshold),
-            ("repulsion_m_s2", self.repulsion_m_s2),
+            ("repulsion_m2_s2", self.repulsion_m2_s2),
+            ("hair_friction_per_s", self.hair_friction_per_s),
         ] {
             if !(v.is_finite() && v >= 0.0) {
                 return Err(format!("{name} must be finite and >= 0 (got {v})"));
@@ -148,7 +165,13 @@ impl SimParams {
             damping_per_s: pick(self.damping_per_s, d.damping_per_s, 0.0, f32::MAX),
             bending_stiffness: pick(self.bending_stiffness, d.bending_stiffness, 0.0, 1.0),
             density_threshold: pick(self.density_threshold, d.density_threshold, 0.0, f32::MAX),
-            repulsion_m_s2: pick(self.repulsion_m_s2, d.repulsion_m_s2, 0.0, f32::MAX),
+            repulsion_m2_s2: pick(self.repulsion_m2_s2, d.repulsion_m2_s2, 0.0, f32::MAX),
+            hair_friction_per_s: pick(
+                self.hair_friction_per_s,
+                d.hair_friction_per_s,
+                0.0,
+                f32::MAX,
+            ),
             bending_damping_ratio: pick(
                 self.bending_damping_ratio,
                 d.bending_damping_ratio,

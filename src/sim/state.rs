@@ -104,6 +104,20 @@ impl SimState {
             .sum()
     }
 
+    /// Largest speed of any particle over the last step, m/s: its displacement divided by the
+    /// step's duration (as in [`SimState::kinetic_energy`]); 0 before the first step.
+    pub fn max_speed_m_s(&self) -> f64 {
+        if self.last_step_s <= 0.0 {
+            return 0.0;
+        }
+        let inv_dt = 1.0 / f64::from(self.last_step_s);
+        self.positions
+            .iter()
+            .zip(&self.prev_positions)
+            .map(|(p, q)| f64::from((*p - *q).length()) * inv_dt)
+            .fold(0.0, f64::max)
+    }
+
     /// The integrator's velocities in m/s (guide-major).
     pub fn velocities(&self) -> &[Vec3] {
         &self.velocities
