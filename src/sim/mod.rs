@@ -81,7 +81,16 @@ pub struct SimParams {
     /// Largest gap of simulated time one `advance` call catches up, seconds in (0, 10]
     /// (default 0.25): beyond it the hair is carried rigidly with the head.
     pub max_catch_up_s: f32,
+    /// Rest tolerance in metres, in [0, 1e-3] (default 1e-5; 0: off). A guide whose roots have
+    /// not moved and whose particles have all stayed within this distance of where they were
+    /// for [`REST_WINDOW_S`] is held exactly still until its roots move or a particle would
+    /// leave that distance (`step.rs`): what is left then is f32 rounding, a flicker of a few
+    /// µm that would change a few pixels of every frame.
+    pub rest_tolerance_m: f32,
 }
+
+/// How long a guide must stay within `rest_tolerance_m` before it is held still, seconds.
+pub const REST_WINDOW_S: f64 = 0.25;
 
 impl Default for SimParams {
     fn default() -> Self {
@@ -96,6 +105,7 @@ impl Default for SimParams {
             bending_damping_ratio: 1.0,
             ftl_correction: 0.5,
             max_catch_up_s: 0.25,
+            rest_tolerance_m: 1.0e-5,
         }
     }
 }
@@ -149,6 +159,12 @@ impl SimParams {
                 self.max_catch_up_s
             ));
         }
+        if !(self.rest_tolerance_m.is_finite() && (0.0..=1e-3).contains(&self.rest_tolerance_m)) {
+            return Err(format!(
+                "rest_tolerance_m must be in [0, 1e-3] metres (got {})",
+                self.rest_tolerance_m
+            ));
+        }
         Ok(())
     }
 
@@ -180,6 +196,7 @@ impl SimParams {
             ),
             ftl_correction: pick(self.ftl_correction, d.ftl_correction, 0.0, 1.0),
             max_catch_up_s: pick(self.max_catch_up_s, d.max_catch_up_s, 1e-3, 10.0),
+            rest_tolerance_m: pick(self.rest_tolerance_m, d.rest_tolerance_m, 0.0, 1e-3),
         }
     }
 }

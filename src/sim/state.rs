@@ -33,6 +33,11 @@ pub struct SimState {
     pub(crate) steps: u64,
     /// Duration of the last step in seconds (0 before the first step).
     pub(crate) last_step_s: f32,
+    /// Where each particle was when its guide's current rest window began (`step.rs`, rest).
+    pub(crate) anchor: Vec<Vec3>,
+    /// Per guide: consecutive steps its roots stayed bitwise put and its particles within the
+    /// rest tolerance of `anchor`.
+    pub(crate) still_steps: Vec<u32>,
 }
 
 impl SimState {
@@ -77,6 +82,8 @@ impl SimState {
         let t_s = if t_s.is_finite() { t_s } else { 0.0 };
         SimState {
             prev_positions: positions.clone(),
+            anchor: positions.clone(),
+            still_steps: vec![0; count],
             velocities: vec![Vec3::ZERO; n],
             positions,
             time_s: t_s,

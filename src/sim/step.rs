@@ -49,6 +49,18 @@
 //!    same exactly advanced oscillator as `k` (see `bend.rs`, also for why it is needed). Rigid
 //!    swinging of the whole strand (equal angular velocities) is untouched, so air damping alone
 //!    still sets how long hair swings.
+//! 6. **Rest.** A guide whose root segment has not moved (bit for bit) and whose particles
+//!    have all stayed within `rest_tolerance_m` (default 10 µm) of where they were for
+//!    [`super::REST_WINDOW_S`] (0.25 s) is held exactly there: its computed positions are
+//!    replaced by those. It wakes the step its roots move or a computed particle leaves the
+//!    tolerance. Why: settled hair is an equilibrium of the dynamics only up to f32 rounding,
+//!    which leaves a flicker of a few ulps (measured up to 6 µm over 10 s, at 1.6 m from the
+//!    origin, with self-collision at twice the preset density); a flicker that small still
+//!    changes a few pixels of every 800×800 frame (measured: 6 to 20 pixels by 1 to 3 levels),
+//!    because some pixel always sits on a rounding boundary. Cost: motion slower than
+//!    10 µm / 0.25 s = 40 µm/s (a pixel at 800×800 in 20 s) does not move resting hair, and
+//!    a response to a disturbance smaller than the tolerance may stop part-way. The hair's own
+//!    settling does not rely on it: the tests check the dynamics settle with it off.
 //!
 //! What remains step-dependent is the discretisation itself, first order: measured on the
 //! dance, the coarser step lags the converged motion by about 6 steps, accumulated along the
@@ -90,6 +102,8 @@ pub struct StepStats {
     pub max_penetration_m: f32,
     /// Guides reset to their rest shape because a value became non-finite (0 in normal use).
     pub reset_guides: u32,
+    /// Guides held exactly still at the last step (see the module doc, rest).
+    pub resting_guides: u32,
     /// Simulated time skipped by the catch-up cap, seconds (the hair was carried rigidly with
     /// the head over it).
     pub dropped_s: f64,
@@ -102,6 +116,7 @@ struct GuideStats {
     max_penetration_m: f32,
     reset: u32,
     grid_skipped: u32,
+    resting: u32,
 }
 
 impl GuideStats {
@@ -111,6 +126,7 @@ impl GuideStats {
             max_penetration_m: a.max_penetration_m.max(b.max_penetration_m),
             reset: a.reset + b.reset,
             grid_skipped: a.grid_skipped + b.grid_skipped,
+            resting: a.resting + b.resting,
         }
     }
 }
@@ -159,6 +175,9 @@ struct Consts {
     density_threshold: f32,
     repulsion_m2_s2: f32,
     friction_per_s: f32,
+    rest_tolerance_m: f32,
+    /// Steps of [`super::REST_WINDOW_S`], at least 1.
+    rest_steps: u32,
 }
 
 /// Advances guide strands in fixed steps (see the module doc).
@@ -293,6 +312,8 @@ impl Simulator {
             density_threshold: params.density_threshold,
             repulsion_m2_s2: params.repulsion_m2_s2,
             friction_per_s: params.hair_friction_per_s,
+            rest_tolerance_m: params.rest_tolerance_m,
+            rest_steps: (super::REST_WINDOW_S / f64::from(dt)).ceil().max(1.0) as u32,
         };
         let self_collision =
             section > 0.0 && (params.repulsion_m2_s2 > 0.0 || params.hair_friction_per_s > 0.0);
@@ -382,6 +403,8 @@ impl Simulator {
             || state.positions.len() != n
             || state.velocities.len() != n
             || state.prev_positions.len() != n
+            || state.anchor.len() != n
+            || state.still_steps.len() != n / self.shape.points_per_guide.max(1)
         {
             return stats;
         }
@@ -409,6 +432,7 @@ impl Simulator {
             stats.self_collision_skipped_steps += s.grid_skipped;
             stats.max_penetration_m = stats.max_penetration_m.max(s.max_penetration_m);
             stats.reset_guides = stats.reset_guides.saturating_add(s.reset);
+            stats.resting_guides = s.resting;
             state.steps += 1;
             state.time_s = t;
             state.head = self.colliders.head;
@@ -468,10 +492,13 @@ impl Simulator {
             .zip(state.prev_positions.par_chunks_mut(ppg))
             .zip(state.velocities.par_chunks_mut(ppg))
             .zip(self.correction.par_chunks_mut(ppg))
+            .zip(state.anchor.par_chunks_mut(ppg))
+            .zip(state.still_steps.par_iter_mut())
             .enumerate()
             .with_min_len(8)
-            .map(|(g, (((pos, prev), vel), corr))| {
-                step_guide(g, pos, prev, vel, corr, shape, &c, &frame, grid)
+            .map(|(g, (((((pos, prev), vel), corr), anchor), still))| {
+                let rest = Rest { anchor, still };
+                step_guide(g, pos, prev, vel, corr, rest, shape, &c, &frame, grid)
             })
             .reduce(GuideStats::default, GuideStats::merge);
         GuideStats {
@@ -495,7 +522,15 @@ fn carry_rigidly(state: &mut SimState, new_head: Affine3A) {
     for v in &mut state.velocities {
         *v = delta.transform_vector3(*v);
     }
+    state.anchor.copy_from_slice(&state.positions);
+    state.still_steps.iter_mut().for_each(|s| *s = 0);
     state.head = new_head;
+}
+
+/// One guide's rest bookkeeping (see the module doc, rest).
+struct Rest<'a> {
+    anchor: &'a mut [Vec3],
+    still: &'a mut u32,
 }
 
 /// The head pose of one step.
@@ -513,6 +548,7 @@ fn step_guide(
     prev: &mut [Vec3],
     vel: &mut [Vec3],
     corr: &mut [Vec3A],
+    rest_state: Rest,
     shape: &Shape,
     c: &Consts,
     frame: &Frame,
@@ -592,6 +628,27 @@ fn step_guide(
     if c.bend_damp > 0.0 && ppg >= 3 {
         bend::damp_bending(pos, vel, c.bend_damp);
     }
+    // 6. Rest: held exactly still once it has stayed within the tolerance for the window.
+    let Rest { anchor, still } = rest_state;
+    if c.rest_tolerance_m > 0.0 {
+        let roots = 2.min(ppg);
+        let roots_still = pos[..roots] == anchor[..roots];
+        let tol2 = c.rest_tolerance_m * c.rest_tolerance_m;
+        let near = pos[roots..]
+            .iter()
+            .zip(&anchor[roots..])
+            .all(|(p, a)| (*p - *a).length_squared() <= tol2);
+        if roots_still && near {
+            *still = still.saturating_add(1);
+            if *still >= c.rest_steps {
+                pos.copy_from_slice(anchor);
+                stats.resting = 1;
+            }
+        } else {
+            anchor.copy_from_slice(pos);
+            *still = 0;
+        }
+    }
     // NaN guard: a guide that went non-finite restarts from its rest shape, at rest.
     if !pos.iter().chain(vel.iter()).all(|p| p.is_finite()) {
         for i in 0..ppg {
@@ -599,7 +656,10 @@ fn step_guide(
             prev[i] = pos[i];
             vel[i] = Vec3::ZERO;
         }
+        anchor.copy_from_slice(pos);
+        *still = 0;
         stats.reset = 1;
+        stats.resting = 0;
         stats.max_penetration_m = 0.0;
     }
     stats
@@ -637,6 +697,67 @@ mod tests {
         assert_eq!(stats.steps, 60, "capped at max_catch_up_s = 0.25 s");
         for (p, q) in state.positions.iter().zip(&start) {
             assert!((*p - *q).length() < 1e-5, "moved from {q} to {p}");
+        }
+    }
+
+    #[test]
+    fn a_resting_guide_is_held_exactly_and_wakes_when_its_head_moves() {
+        // A guide sticking out sideways settles under gravity, is held bit-for-bit still, and
+        // follows the head the very step the head moves by a micrometre.
+        let radii = Vec3::splat(0.05);
+        let rest: Vec<Vec3> = (0..10)
+            .map(|i| Vec3::new(0.05 + i as f32 * 0.02, 0.0, 0.0))
+            .collect();
+        let guides = GuideSet {
+            root_normal: vec![Vec3::X],
+            ..one_guide(rest, 0.02)
+        };
+        let params = SimParams::default();
+        let mut sim = Simulator::new(&params, &guides, radii, 0.0);
+        let still = Colliders::head_only(Affine3A::from_translation(Vec3::Y), radii);
+        let mut state = SimState::at_rest(&guides, &still, 0.0);
+        let dt = f64::from(params.step_s);
+        let mut t = 0.0;
+        let mut held_from = None;
+        while t < 3.0 {
+            t += dt;
+            let stats = sim.advance(&mut state, t, |_, c: &mut Colliders| *c = still.clone());
+            if stats.resting_guides == 1 && held_from.is_none() {
+                held_from = Some(t);
+            }
+        }
+        let held_from = held_from.expect("the guide came to rest");
+        assert!(held_from < 2.0, "held only from {held_from} s");
+        let before = state.positions.clone();
+        let stats = sim.advance(&mut state, t + dt, |_, c: &mut Colliders| {
+            *c = still.clone()
+        });
+        assert_eq!(stats.resting_guides, 1);
+        assert_eq!(state.positions, before, "held exactly");
+        assert_eq!(state.max_speed_m_s(), 0.0);
+        // The head moves 1 µm along z: the guide wakes at once (its roots move with the head).
+        let nudged =
+            Colliders::head_only(Affine3A::from_translation(Vec3::new(0.0, 1.0, 1e-6)), radii);
+        let stats = sim.advance(&mut state, t + 2.0 * dt, |_, c: &mut Colliders| {
+            *c = nudged.clone()
+        });
+        assert_eq!(stats.resting_guides, 0);
+        for (p, q) in state.positions[..2].iter().zip(&before) {
+            assert!((p.z - q.z - 1e-6).abs() < 1e-8, "root {p} from {q}");
+        }
+        // Moved by 1 mm, the guide follows to within the tolerance (a response smaller than
+        // the tolerance may be held part-way: that is the documented dead band).
+        let moved =
+            Colliders::head_only(Affine3A::from_translation(Vec3::new(0.0, 1.0, 1e-3)), radii);
+        sim.advance(&mut state, t + 1.0, |_, c: &mut Colliders| {
+            *c = moved.clone()
+        });
+        let tol = params.rest_tolerance_m;
+        for (p, q) in state.positions.iter().zip(&before) {
+            assert!(
+                (p.z - q.z - 1e-3).abs() < 2.0 * tol,
+                "{p} did not follow the head from {q}"
+            );
         }
     }
 
