@@ -35,7 +35,6 @@ pub mod density;
 pub mod state;
 pub mod step;
 
-pub use bend::BENDING_REFERENCE_STEP_S;
 pub use bend::bending_frequency_rad_s;
 pub use collide::{COLLISION_MARGIN_M, Colliders, SphereCollider};
 pub use density::MAX_NODES as DENSITY_GRID_MAX_NODES;
@@ -43,6 +42,11 @@ pub use state::SimState;
 pub use step::{Simulator, StepStats};
 
 use serde::{Deserialize, Serialize};
+
+/// The step at which the per-step parameters `bending_stiffness` and `ftl_correction` are
+/// defined, seconds (1/240 s, the step they were tuned at). Other steps convert them to the
+/// same behaviour per unit time (`bend.rs`, `step.rs`).
+pub const REFERENCE_STEP_S: f32 = 1.0 / 240.0;
 
 /// Dynamics parameters of a hairstyle (`"dynamics"` in JSON). Units in the names.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -76,7 +80,8 @@ pub struct SimParams {
     pub bending_damping_ratio: f32,
     /// Follow-the-leader velocity correction factor (the s_damping of Müller, Kim & Chentanez
     /// 2012's dynamic FTL), in [0, 1] (0: plain FTL; 1: full reaction on the parent; default
-    /// 0.5, see `step.rs` for the measured trade-off).
+    /// 0.5), defined per 1/240 s: a step of dt uses 1 − (1 − s)^(dt / (1/240 s)), because the
+    /// correction acts as a per-step damping (see `step.rs` for the measurement).
     pub ftl_correction: f32,
     /// Largest gap of simulated time one `advance` call catches up, seconds in (0, 10]
     /// (default 0.25): beyond it the hair is carried rigidly with the head.

@@ -160,6 +160,8 @@ struct Shape {
     link_m: Vec<f32>,
     /// Hair volume each particle of a guide stands for, m³ (`density.rs`).
     particle_volume_m3: Vec<f32>,
+    /// Weights of the exact bending damping over one step (`bend::damping_weights`).
+    damping_weights: Vec<f32>,
 }
 
 /// Step constants derived from [`SimParams`].
@@ -308,7 +310,7 @@ impl Simulator {
             damping_factor: (-params.damping_per_s * dt).exp(),
             bend_k,
             bend_damp,
-            ftl_correction: params.ftl_correction,
+            ftl_correction: 1.0 - (1.0 - params.ftl_correction).powf(dt / super::REFERENCE_STEP_S),
             density_threshold: params.density_threshold,
             repulsion_m2_s2: params.repulsion_m2_s2,
             friction_per_s: params.hair_friction_per_s,
@@ -326,6 +328,7 @@ impl Simulator {
                 rest_dir,
                 link_m,
                 particle_volume_m3,
+                damping_weights: bend::damping_weights(bend_damp, ppg),
             },
             correction: vec![Vec3A::ZERO; n],
             colliders: Colliders::head_only(Affine3A::IDENTITY, head_radii_m),
@@ -626,7 +629,7 @@ fn step_guide(
     }
     // 5. Bending damping, root to tip (after the velocities it damps).
     if c.bend_damp > 0.0 && ppg >= 3 {
-        bend::damp_bending(pos, vel, c.bend_damp);
+        bend::damp_bending(pos, vel, &shape.damping_weights);
     }
     // 6. Rest: held exactly still once it has stayed within the tolerance for the window.
     let Rest { anchor, still } = rest_state;
