@@ -3,6 +3,7 @@
 //!
 //! ```text
 //! cargo run --release --example frame_diff -- DIR [--from N] [--diff A B OUT.png]
+//! cargo run --release --example frame_diff -- DIR --against OTHER_DIR --frames 15,45,89
 //! ```
 //!
 //! For every pair of consecutive frames `frame_{k-1}`, `frame_k` with k > N (default 0) it
@@ -10,6 +11,11 @@
 //! over all channels (grey levels), and a summary over all pairs. `--diff A B OUT.png` writes
 //! |frame_A − frame_B| per channel, amplified 16× (clamped to 255), so a one-level change is
 //! visible as a dark grey pixel and an unchanged image is pure black.
+//!
+//! `--against OTHER_DIR --frames LIST` instead compares the same frames of two exports (mean
+//! absolute difference over all channels, grey levels), e.g. a run at a coarse simulation step
+//! against one at a fine step; it also prints the mean difference between each listed frame
+//! and the next one of OTHER_DIR (one frame of motion) for scale.
 //!
 //! Used to check that hair at rest stays at rest (issue 11): after the settle, a still-head
 //! export must show no changed pixel.
@@ -114,6 +120,8 @@ fn run() -> Result<(), String> {
             .ok_or("usage: frame_diff DIR [--from N] [--diff A B OUT.png]")?,
     );
     let mut from = 0usize;
+    let mut against: Option<PathBuf> = None;
+    let mut frames: Vec<usize> = Vec::new();
     let mut i = 1;
     while i < args.len() {
         match args[i].as_str() {
@@ -137,8 +145,40 @@ fn run() -> Result<(), String> {
                 write_diff(&frame_path(&dir, a), &frame_path(&dir, b), &out)?;
                 i += 4;
             }
+            "--against" => {
+                against = Some(PathBuf::from(
+                    args.get(i + 1).ok_or("--against needs a folder")?,
+                ));
+                i += 2;
+            }
+            "--frames" => {
+                frames = args
+                    .get(i + 1)
+                    .ok_or("--frames needs a list")?
+                    .split(',')
+                    .map(|f| f.parse().map_err(|_| format!("bad frame {f}")))
+                    .collect::<Result<_, _>>()?;
+                i += 2;
+            }
             other => return Err(format!("unknown argument {other}")),
         }
+    }
+    if let Some(other) = against {
+        for f in frames {
+            let a = read_rgb(&frame_path(&dir, f))?.2;
+            let b = read_rgb(&frame_path(&other, f))?.2;
+            let next = read_rgb(&frame_path(&other, f + 1)).map(|n| compare(&b, &n.2).mean_level);
+            let d = compare(&a, &b);
+            println!(
+                "frame {f}: mean abs difference {:.3} levels ({:.2}% pixels changed); frame {f} to {} of {}: {}",
+                d.mean_level,
+                d.changed_fraction * 100.0,
+                f + 1,
+                other.display(),
+                next.map_or("—".to_string(), |m| format!("{m:.3}"))
+            );
+        }
+        return Ok(());
     }
     let mut prev = read_rgb(&frame_path(&dir, from))?.2;
     let (mut pairs, mut changed_pairs) = (0usize, 0usize);

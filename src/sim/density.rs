@@ -13,7 +13,8 @@
 //!    one link: `V = (strands per wisp × fibres per strand × π r_fibre² / 3) × link length ×
 //!    curl length factor`. It is spread over the nodes of a lattice of spacing `h` (the mean
 //!    link length) in the head frame with the quadratic B-spline `N` (27 nodes, C¹): node
-//!    volume fraction `φ_n = Σ_i V_i N_n(x_i) / h³`, node velocity `v_n = Σ V_i N_n v_i / Σ V_i N_n`.
+//!    volume fraction `φ_n = Σ_i V_i N_n(x_i) / h³` and `φ_n v_n = Σ_i V_i N_n(x_i) v_i / h³`
+//!    (the volume-weighted node velocity v_n).
 //! 2. **Repulsion** (Bertails §4.1; the paper gives no formula). The excess
 //!    `e_n = max(φ_n − φ₀, 0)` over the threshold φ₀ = `density_threshold` is interpolated with
 //!    the same B-spline, `ẽ(x) = Σ_n e_n N_n(x)`, and each particle is accelerated down its
@@ -24,7 +25,7 @@
 //! 3. **Friction** (viscous, after Petrovic, Henne & Anderson 2005, "Volumetric Methods for
 //!    Simulation and Rendering of Hair", §3: hair-hair friction as a smoothing of the velocity
 //!    field; not in `shared/papers`). Each particle's velocity relaxes toward the hair's
-//!    local mean velocity `v̄(x) = Σ N_n v_n`, at the rate `c = hair_friction_per_s ·
+//!    local mean velocity `v̄(x) = Σ N_n φ_n v_n / Σ N_n φ_n`, at the rate `c = hair_friction_per_s ·
 //!    min(φ(x)/φ₀, 1)`: `v ← v̄ + (v − v̄) e^{−c dt}` (exact for the rate over the step, so the
 //!    same at any step). A strand alone (φ ≪ φ₀) is not slowed, a wisp moving as a whole
 //!    keeps its motion (v = v̄), and strands pressed together stop sliding against each other.
@@ -49,6 +50,7 @@
 //! head unless the link is shorter than 1/60 of the hair's length.
 
 use glam::{Affine3A, IVec3, Mat3A, Vec3, Vec3A, Vec4};
+use rayon::prelude::*;
 
 /// Largest lattice, nodes (16 bytes each: 32 MB).
 pub const MAX_NODES: usize = 1 << 21;
@@ -91,9 +93,14 @@ pub(crate) struct DensityGrid {
     /// Lowest node of the current box, and the box size in nodes.
     lo: IVec3,
     dims: IVec3,
-    /// Per node: (volume fraction, mean velocity) once built; (volume, momentum) while
-    /// splatting.
+    /// Per node: (φ, φ v) — the volume fraction and the volume-fraction-weighted velocity
+    /// (m/s), so that interpolating them gives φ(x) and the hair's mean velocity
+    /// Σ N φ v / Σ N φ with one multiply-add per node and no branch.
     nodes: Vec<Vec4>,
+    /// Per node: the excess max(φ − threshold, 0).
+    excess: Vec<f32>,
+    /// Scratch: each particle's grid coordinates (NaN when skipped) this step.
+    grid_pos: Vec<Vec3A>,
     /// False when the last build found nothing to splat or a box over [`MAX_NODES`].
     active: bool,
 }
@@ -116,6 +123,8 @@ impl DensityGrid {
             lo: IVec3::ZERO,
             dims: IVec3::ZERO,
             nodes: Vec::with_capacity(reserve),
+            excess: Vec::with_capacity(reserve),
+            grid_pos: Vec::new(),
             active: false,
         }
     }
@@ -135,15 +144,19 @@ impl DensityGrid {
         if self.active { self.nodes.len() } else { 0 }
     }
 
+    /// Index of the first of the 27 nodes around a particle whose B-spline bases are `base`,
+    /// or `None` when they are not all inside the box.
     #[inline]
-    fn index(&self, x: i32, y: i32, z: i32) -> usize {
-        let d = self.dims;
-        ((z * d.y + y) * d.x + x) as usize
+    fn first_node(&self, base: IVec3) -> Option<usize> {
+        let o = base - self.lo;
+        let inside = o.cmpge(IVec3::ZERO).all() && (o + IVec3::splat(2)).cmplt(self.dims).all();
+        inside.then(|| ((o.z * self.dims.y + o.y) * self.dims.x + o.x) as usize)
     }
 
     /// Splats every particle (world positions and velocities, guide-major with `ppg` particles
     /// per guide; particle volume `volume_m3[guide]`) into the lattice of the head frame
-    /// `head`. Non-finite particles are skipped. Returns whether the field is usable.
+    /// `head`, then takes the excess over `threshold`. Non-finite particles are skipped.
+    /// Returns whether the field is usable.
     pub(crate) fn build(
         &mut self,
         head: Affine3A,
@@ -151,21 +164,39 @@ impl DensityGrid {
         velocities: &[Vec3],
         ppg: usize,
         volume_m3: &[f32],
+        threshold: f32,
     ) -> bool {
         self.active = false;
         if ppg == 0 || !head.is_finite() {
             return false;
         }
         self.rotation = head.matrix3;
-        self.to_grid = Affine3A::from_scale(Vec3::splat(1.0 / self.cell_m)) * head.inverse();
-        let (mut lo, mut hi) = (Vec3A::splat(f32::MAX), Vec3A::splat(f32::MIN));
-        for p in positions {
-            let g = self.to_grid.transform_point3a(Vec3A::from(*p));
-            if g.is_finite() {
-                lo = lo.min(g);
-                hi = hi.max(g);
-            }
-        }
+        let to_grid = Affine3A::from_scale(Vec3::splat(1.0 / self.cell_m)) * head.inverse();
+        self.to_grid = to_grid;
+        // Grid coordinates of every particle that carries hair (NaN for the others), and
+        // their bounding box: min and max do not depend on the order of the reduction.
+        self.grid_pos.resize(positions.len(), Vec3A::NAN);
+        let (lo, hi) = self
+            .grid_pos
+            .par_iter_mut()
+            .zip(positions.par_iter().zip(velocities.par_iter()))
+            .enumerate()
+            .with_min_len(256)
+            .map(|(k, (g, (p, v)))| {
+                let volume = volume_m3.get(k / ppg).copied().unwrap_or(0.0);
+                let q = to_grid.transform_point3a(Vec3A::from(*p));
+                if q.is_finite() && v.is_finite() && volume > 0.0 {
+                    *g = q;
+                    (q, q)
+                } else {
+                    *g = Vec3A::NAN;
+                    (Vec3A::splat(f32::MAX), Vec3A::splat(f32::MIN))
+                }
+            })
+            .reduce(
+                || (Vec3A::splat(f32::MAX), Vec3A::splat(f32::MIN)),
+                |a, b| (a.0.min(b.0), a.1.max(b.1)),
+            );
         if lo.x > hi.x || lo.abs().max_element() > 1e6 || hi.abs().max_element() > 1e6 {
             return false;
         }
@@ -180,67 +211,67 @@ impl DensityGrid {
         self.dims = dims;
         self.nodes.clear();
         self.nodes.resize(count, Vec4::ZERO);
-        for (k, (p, v)) in positions.iter().zip(velocities).enumerate() {
-            let volume = volume_m3.get(k / ppg).copied().unwrap_or(0.0);
-            let g = self.to_grid.transform_point3a(Vec3A::from(*p));
-            if !(g.is_finite() && v.is_finite() && volume > 0.0) {
-                continue;
-            }
-            let (bx, wx, _) = weights(g.x);
-            let (by, wy, _) = weights(g.y);
-            let (bz, wz, _) = weights(g.z);
-            let (ox, oy, oz) = (bx - self.lo.x, by - self.lo.y, bz - self.lo.z);
-            let carried = Vec4::new(volume, volume * v.x, volume * v.y, volume * v.z);
-            for (c, wzc) in wz.iter().enumerate() {
-                for (b, wyb) in wy.iter().enumerate() {
-                    let row = self.index(ox, oy + b as i32, oz + c as i32);
-                    let wyz = wyb * wzc;
-                    for (a, wxa) in wx.iter().enumerate() {
-                        self.nodes[row + a] += carried * (wxa * wyz);
+        // Splat in parallel over slabs of z-layers: each slab adds, in particle order, what
+        // every particle gives to the nodes of its own layers, so each node's sum has one
+        // order whatever the number of threads.
+        let row_y = dims.x as usize;
+        let layer = row_y * dims.y as usize;
+        let slab_layers = (dims.z as usize).div_ceil(8).max(3);
+        // Splatted already divided by h³: node = Σ N (V/h³)(1, v) = (φ, φ v).
+        let inv_cell_volume = 1.0 / (self.cell_m * self.cell_m * self.cell_m);
+        let grid_pos = &self.grid_pos;
+        self.nodes
+            .par_chunks_mut(slab_layers * layer)
+            .enumerate()
+            .for_each(|(slab, nodes)| {
+                let z0 = (slab * slab_layers) as i32;
+                let z1 = z0 + (nodes.len() / layer) as i32; // exclusive
+                for (k, (g, v)) in grid_pos.iter().zip(velocities).enumerate() {
+                    if g.x.is_nan() {
+                        continue;
+                    }
+                    // The particle's z layers first: most particles miss most slabs.
+                    let oz = (g.z - 0.5).floor() as i32 - lo_node.z;
+                    if oz + 2 < z0 || oz >= z1 {
+                        continue;
+                    }
+                    let (bx, wx, _) = weights(g.x);
+                    let (by, wy, _) = weights(g.y);
+                    let (_, wz, _) = weights(g.z);
+                    let (ox, oy) = ((bx - lo_node.x) as usize, (by - lo_node.y) as usize);
+                    let phi = volume_m3.get(k / ppg).copied().unwrap_or(0.0) * inv_cell_volume;
+                    let carried = Vec4::new(phi, phi * v.x, phi * v.y, phi * v.z);
+                    for (c, wzc) in wz.iter().enumerate() {
+                        let z = oz + c as i32;
+                        if z < z0 || z >= z1 {
+                            continue;
+                        }
+                        let zl = (z - z0) as usize * layer;
+                        for (b, wyb) in wy.iter().enumerate() {
+                            let start = zl + (oy + b) * row_y + ox;
+                            let row = &mut nodes[start..start + 3];
+                            let cw = carried * (wyb * wzc);
+                            for (node, wxa) in row.iter_mut().zip(&wx) {
+                                *node += cw * *wxa;
+                            }
+                        }
                     }
                 }
-            }
-        }
-        let inv_cell_volume = 1.0 / (self.cell_m * self.cell_m * self.cell_m);
-        for n in &mut self.nodes {
-            if n.x > 0.0 {
-                let inv_volume = 1.0 / n.x;
-                *n = Vec4::new(
-                    n.x * inv_cell_volume,
-                    n.y * inv_volume,
-                    n.z * inv_volume,
-                    n.w * inv_volume,
-                );
-            }
-        }
+            });
+        self.excess.resize(count, 0.0);
+        self.excess
+            .par_iter_mut()
+            .zip(self.nodes.par_iter())
+            .with_min_len(1024)
+            .for_each(|(e, n)| *e = (n.x - threshold).max(0.0));
         self.active = true;
-        if false {
-            let mut phis: Vec<f32> = self
-                .nodes
-                .iter()
-                .map(|n| n.x)
-                .filter(|x| *x > 0.0)
-                .collect();
-            phis.sort_by(f32::total_cmp);
-            let q = |f: f64| phis[((phis.len() - 1) as f64 * f) as usize];
-            eprintln!(
-                "grid {:?} nodes {} filled {} phi p50 {:.4} p90 {:.4} p99 {:.4} max {:.4}",
-                self.dims,
-                self.nodes.len(),
-                phis.len(),
-                q(0.5),
-                q(0.9),
-                q(0.99),
-                q(1.0)
-            );
-        }
         true
     }
 
-    /// The hair around world point `x` (see [`HairAround`]), for a threshold `threshold` of
-    /// volume fraction. All zero outside the box or when the grid is inactive.
+    /// The hair around world point `x` (see [`HairAround`]). All zero outside the box or when
+    /// the grid is inactive.
     #[inline]
-    pub(crate) fn around(&self, x: Vec3A, threshold: f32) -> HairAround {
+    pub(crate) fn around(&self, x: Vec3A) -> HairAround {
         let mut out = HairAround::default();
         if !self.active {
             return out;
@@ -252,42 +283,40 @@ impl DensityGrid {
         let (bx, wx, dx) = weights(g.x);
         let (by, wy, dy) = weights(g.y);
         let (bz, wz, dz) = weights(g.z);
-        let (ox, oy, oz) = (bx - self.lo.x, by - self.lo.y, bz - self.lo.z);
-        if ox < 0
-            || oy < 0
-            || oz < 0
-            || ox + 2 >= self.dims.x
-            || oy + 2 >= self.dims.y
-            || oz + 2 >= self.dims.z
-        {
+        let Some(first) = self.first_node(IVec3::new(bx, by, bz)) else {
             return out;
-        }
-        let (mut phi, mut grad, mut vel, mut wsum) = (0.0f32, Vec3A::ZERO, Vec3A::ZERO, 0.0f32);
+        };
+        let (row_y, row_z) = (self.dims.x as usize, (self.dims.x * self.dims.y) as usize);
+        // Contract each row of three nodes along x first (the weights are separable), then
+        // weight the nine rows by their y and z weights.
+        let (wx3, dx3) = (Vec3A::from(wx), Vec3A::from(dx));
+        let mut acc = Vec4::ZERO;
+        let (mut gx, mut gy, mut gz) = (0.0f32, 0.0f32, 0.0f32);
         for c in 0..3 {
             for b in 0..3 {
-                let row = self.index(ox, oy + b as i32, oz + c as i32);
-                let (wyz, dyz_y, dyz_z) = (wy[b] * wz[c], dy[b] * wz[c], wy[b] * dz[c]);
-                for a in 0..3 {
-                    let n = self.nodes[row + a];
-                    if n.x <= 0.0 {
-                        continue;
-                    }
-                    let w = wx[a] * wyz;
-                    phi += w * n.x;
-                    vel += Vec3A::new(n.y, n.z, n.w) * w;
-                    wsum += w;
-                    let e = n.x - threshold;
-                    if e > 0.0 {
-                        grad += Vec3A::new(dx[a] * wyz, wx[a] * dyz_y, wx[a] * dyz_z) * e;
-                    }
-                }
+                let start = first + b * row_y + c * row_z;
+                let nodes = &self.nodes[start..start + 3];
+                let e = &self.excess[start..start + 3];
+                let e3 = Vec3A::new(e[0], e[1], e[2]);
+                let row = nodes[0] * wx[0] + nodes[1] * wx[1] + nodes[2] * wx[2];
+                let wyz = wy[b] * wz[c];
+                acc += row * wyz;
+                let (e_w, e_d) = (e3.dot(wx3), e3.dot(dx3));
+                gx += e_d * wyz;
+                gy += e_w * (dy[b] * wz[c]);
+                gz += e_w * (wy[b] * dz[c]);
             }
         }
-        out.volume_fraction = phi;
+        let grad = Vec3A::new(gx, gy, gz);
+        out.volume_fraction = acc.x;
         // ∇ in world metres: grid units are head-frame metres / h, and the head frame is
         // rotated by `rotation`.
         out.excess_gradient_per_m = self.rotation * grad * (1.0 / self.cell_m);
-        out.mean_velocity_m_s = if wsum > 0.0 { vel / wsum } else { Vec3A::ZERO };
+        out.mean_velocity_m_s = if acc.x > 0.0 {
+            Vec3A::new(acc.y, acc.z, acc.w) / acc.x
+        } else {
+            Vec3A::ZERO
+        };
         out
     }
 }
@@ -315,12 +344,12 @@ mod tests {
         assert!((d0[1] - d1[0]).abs() < 1e-3 && (d0[2] - d1[1]).abs() < 1e-3);
     }
 
-    fn grid_of(points: &[Vec3], head: Affine3A) -> DensityGrid {
+    fn grid_of(points: &[Vec3], head: Affine3A, threshold: f32) -> DensityGrid {
         let mut g = DensityGrid::new(0.02, 0.1);
         let v = vec![Vec3::ZERO; points.len()];
         // One "guide" per point; each stands for 1e-6 m³ (1/8 of a cell).
         let vol = vec![1e-6; points.len()];
-        assert!(g.build(head, points, &v, 1, &vol));
+        assert!(g.build(head, points, &v, 1, &vol, threshold));
         g
     }
 
@@ -333,7 +362,7 @@ mod tests {
         let pts: Vec<Vec3> = (0..50)
             .map(|i| head.transform_point3(Vec3::new(0.003 * i as f32, 0.01, -0.004 * i as f32)))
             .collect();
-        let g = grid_of(&pts, head);
+        let g = grid_of(&pts, head, 0.05);
         let total: f32 = g.nodes.iter().map(|n| n.x).sum::<f32>() * 0.02f32.powi(3);
         assert!((total - 50e-6).abs() < 1e-9, "{total}");
         // Along a line through the hair, φ and ∇ẽ change by little between close points: no
@@ -341,7 +370,7 @@ mod tests {
         let mut prev: Option<HairAround> = None;
         for k in 0..400 {
             let x = head.transform_point3a(Vec3A::new(-0.02 + k as f32 * 0.0005, 0.01, -0.05));
-            let h = g.around(x, 0.05);
+            let h = g.around(x);
             if let Some(p) = prev {
                 assert!((h.volume_fraction - p.volume_fraction).abs() < 0.01, "{k}");
                 assert!(
@@ -370,14 +399,11 @@ mod tests {
                 centre + Vec3::new(r * a.cos(), 0.004 * (a * 3.0).sin(), r * a.sin())
             })
             .collect();
-        let g = grid_of(&pts, head);
         let threshold = 0.0;
-        let excess = |x: Vec3A| {
-            let h = g.around(x, threshold);
-            h.volume_fraction - threshold
-        };
+        let g = grid_of(&pts, head, threshold);
+        let excess = |x: Vec3A| g.around(x).volume_fraction - threshold;
         let x = Vec3A::from(centre) + Vec3A::new(0.011, 0.003, -0.006);
-        let h = g.around(x, threshold);
+        let h = g.around(x);
         let eps = 1e-4;
         let fd = Vec3A::new(
             excess(x + Vec3A::X * eps) - excess(x - Vec3A::X * eps),
@@ -399,20 +425,20 @@ mod tests {
         let pts = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.004, 0.0, 0.0)];
         let vel = [Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0)];
         let mut g = DensityGrid::new(0.02, 0.1);
-        assert!(g.build(head, &pts, &vel, 1, &[1e-6, 1e-6]));
-        let h = g.around(Vec3A::new(0.002, 0.0, 0.0), 0.5);
+        assert!(g.build(head, &pts, &vel, 1, &[1e-6, 1e-6], 0.5));
+        let h = g.around(Vec3A::new(0.002, 0.0, 0.0));
         assert!((h.mean_velocity_m_s - Vec3A::new(0.5, 0.5, 0.0)).length() < 0.1);
         assert_eq!(h.excess_gradient_per_m, Vec3A::ZERO, "below the threshold");
-        let far = g.around(Vec3A::new(5.0, 0.0, 0.0), 0.5);
+        let far = g.around(Vec3A::new(5.0, 0.0, 0.0));
         assert_eq!(far, HairAround::default());
     }
 
     #[test]
     fn degenerate_input_gives_an_inactive_grid() {
         let mut g = DensityGrid::new(0.02, 0.1);
-        assert!(!g.build(Affine3A::IDENTITY, &[], &[], 1, &[]));
+        assert!(!g.build(Affine3A::IDENTITY, &[], &[], 1, &[], 0.1));
         let nan = [Vec3::NAN];
-        assert!(!g.build(Affine3A::IDENTITY, &nan, &[Vec3::ZERO], 1, &[1e-6]));
+        assert!(!g.build(Affine3A::IDENTITY, &nan, &[Vec3::ZERO], 1, &[1e-6], 0.1));
         // Hair spread over 100 m at 2 cm spacing: far beyond MAX_NODES.
         let spread = [Vec3::ZERO, Vec3::splat(100.0)];
         assert!(!g.build(
@@ -420,8 +446,9 @@ mod tests {
             &spread,
             &[Vec3::ZERO; 2],
             1,
-            &[1e-6, 1e-6]
+            &[1e-6, 1e-6],
+            0.1
         ));
-        assert_eq!(g.around(Vec3A::ZERO, 0.1), HairAround::default());
+        assert_eq!(g.around(Vec3A::ZERO), HairAround::default());
     }
 }

@@ -469,6 +469,7 @@ impl Simulator {
                 &state.velocities,
                 ppg,
                 &self.shape.particle_volume_m3,
+                self.consts.density_threshold,
             );
             u32::from(!ok)
         } else {
@@ -577,7 +578,7 @@ fn step_guide(
         let mut v = Vec3A::from(vel[i]);
         let mut a = c.gravity;
         if let Some(grid) = grid {
-            let hair = grid.around(x, c.density_threshold);
+            let hair = grid.around(x);
             if c.friction_per_s > 0.0 && hair.volume_fraction > 0.0 {
                 let fullness = if c.density_threshold > 0.0 {
                     (hair.volume_fraction / c.density_threshold).min(1.0)
