@@ -29,10 +29,11 @@
 //! sphere's cap facing it), so a particle can only end on the wrong side if its predecessor is
 //! already inside. Predecessors are resolved first and the root segment is outside the head by
 //! construction, so what remains is a collider moving so far in one step that it jumps past
-//! a whole link, i.e. by more than the smallest collider dimension: at `step_s = 1/240 s` that
-//! is 0.076 m · 240 ≈ 18 m/s relative speed for the head and `radius · 240` for a sphere
-//! (neck sphere of the dance, 0.045 m: 10.8 m/s). The dance's fastest scalp points move at
-//! about 0.8 m/s from the 8 rad/s yaw and 1.26 m/s from the bob; 3x speed stays under 4 m/s.
+//! a whole link, i.e. by more than the smallest collider dimension per step: 0.076 m / step_s
+//! relative speed for the head and `radius / step_s` for a sphere: at 1/240 s, 18 m/s for the
+//! head and 10.8 m/s for the dance's 0.045 m neck sphere; twice that at the default 1/480 s. The dance's fastest scalp points
+//! move at about 0.8 m/s from the 8 rad/s yaw and 1.26 m/s from the bob; 3x speed stays under
+//! 4 m/s.
 
 use glam::{Affine3A, Vec3, Vec3A};
 

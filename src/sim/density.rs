@@ -50,7 +50,6 @@
 //! head unless the link is shorter than 1/60 of the hair's length.
 
 use glam::{Affine3A, IVec3, Mat3A, Vec3, Vec3A, Vec4};
-use rayon::prelude::*;
 
 /// Largest lattice, nodes (16 bytes each: 32 MB).
 pub const MAX_NODES: usize = 1 << 21;
@@ -99,8 +98,6 @@ pub(crate) struct DensityGrid {
     nodes: Vec<Vec4>,
     /// Per node: the excess max(φ − threshold, 0).
     excess: Vec<f32>,
-    /// Scratch: each particle's grid coordinates (NaN when skipped) this step.
-    grid_pos: Vec<Vec3A>,
     /// False when the last build found nothing to splat or a box over [`MAX_NODES`].
     active: bool,
 }
@@ -124,7 +121,6 @@ impl DensityGrid {
             dims: IVec3::ZERO,
             nodes: Vec::with_capacity(reserve),
             excess: Vec::with_capacity(reserve),
-            grid_pos: Vec::new(),
             active: false,
         }
     }
@@ -171,32 +167,15 @@ impl DensityGrid {
             return false;
         }
         self.rotation = head.matrix3;
-        let to_grid = Affine3A::from_scale(Vec3::splat(1.0 / self.cell_m)) * head.inverse();
-        self.to_grid = to_grid;
-        // Grid coordinates of every particle that carries hair (NaN for the others), and
-        // their bounding box: min and max do not depend on the order of the reduction.
-        self.grid_pos.resize(positions.len(), Vec3A::NAN);
-        let (lo, hi) = self
-            .grid_pos
-            .par_iter_mut()
-            .zip(positions.par_iter().zip(velocities.par_iter()))
-            .enumerate()
-            .with_min_len(256)
-            .map(|(k, (g, (p, v)))| {
-                let volume = volume_m3.get(k / ppg).copied().unwrap_or(0.0);
-                let q = to_grid.transform_point3a(Vec3A::from(*p));
-                if q.is_finite() && v.is_finite() && volume > 0.0 {
-                    *g = q;
-                    (q, q)
-                } else {
-                    *g = Vec3A::NAN;
-                    (Vec3A::splat(f32::MAX), Vec3A::splat(f32::MIN))
-                }
-            })
-            .reduce(
-                || (Vec3A::splat(f32::MAX), Vec3A::splat(f32::MIN)),
-                |a, b| (a.0.min(b.0), a.1.max(b.1)),
-            );
+        self.to_grid = Affine3A::from_scale(Vec3::splat(1.0 / self.cell_m)) * head.inverse();
+        let (mut lo, mut hi) = (Vec3A::splat(f32::MAX), Vec3A::splat(f32::MIN));
+        for p in positions {
+            let g = self.to_grid.transform_point3a(Vec3A::from(*p));
+            if g.is_finite() {
+                lo = lo.min(g);
+                hi = hi.max(g);
+            }
+        }
         if lo.x > hi.x || lo.abs().max_element() > 1e6 || hi.abs().max_element() > 1e6 {
             return false;
         }
@@ -211,59 +190,45 @@ impl DensityGrid {
         self.dims = dims;
         self.nodes.clear();
         self.nodes.resize(count, Vec4::ZERO);
-        // Splat in parallel over slabs of z-layers: each slab adds, in particle order, what
-        // every particle gives to the nodes of its own layers, so each node's sum has one
-        // order whatever the number of threads.
-        let row_y = dims.x as usize;
-        let layer = row_y * dims.y as usize;
-        let slab_layers = (dims.z as usize).div_ceil(8).max(3);
+        let (row_y, row_z) = (dims.x as usize, dims.x as usize * dims.y as usize);
         // Splatted already divided by h³: node = Σ N (V/h³)(1, v) = (φ, φ v).
         let inv_cell_volume = 1.0 / (self.cell_m * self.cell_m * self.cell_m);
-        let grid_pos = &self.grid_pos;
-        self.nodes
-            .par_chunks_mut(slab_layers * layer)
+        for (guide, (ps, vs)) in positions
+            .chunks(ppg)
+            .zip(velocities.chunks(ppg))
             .enumerate()
-            .for_each(|(slab, nodes)| {
-                let z0 = (slab * slab_layers) as i32;
-                let z1 = z0 + (nodes.len() / layer) as i32; // exclusive
-                for (k, (g, v)) in grid_pos.iter().zip(velocities).enumerate() {
-                    if g.x.is_nan() {
-                        continue;
-                    }
-                    // The particle's z layers first: most particles miss most slabs.
-                    let oz = (g.z - 0.5).floor() as i32 - lo_node.z;
-                    if oz + 2 < z0 || oz >= z1 {
-                        continue;
-                    }
-                    let (bx, wx, _) = weights(g.x);
-                    let (by, wy, _) = weights(g.y);
-                    let (_, wz, _) = weights(g.z);
-                    let (ox, oy) = ((bx - lo_node.x) as usize, (by - lo_node.y) as usize);
-                    let phi = volume_m3.get(k / ppg).copied().unwrap_or(0.0) * inv_cell_volume;
-                    let carried = Vec4::new(phi, phi * v.x, phi * v.y, phi * v.z);
-                    for (c, wzc) in wz.iter().enumerate() {
-                        let z = oz + c as i32;
-                        if z < z0 || z >= z1 {
-                            continue;
-                        }
-                        let zl = (z - z0) as usize * layer;
-                        for (b, wyb) in wy.iter().enumerate() {
-                            let start = zl + (oy + b) * row_y + ox;
-                            let row = &mut nodes[start..start + 3];
-                            let cw = carried * (wyb * wzc);
-                            for (node, wxa) in row.iter_mut().zip(&wx) {
-                                *node += cw * *wxa;
-                            }
+        {
+            let phi = volume_m3.get(guide).copied().unwrap_or(0.0) * inv_cell_volume;
+            if !(phi > 0.0) {
+                continue;
+            }
+            for (p, v) in ps.iter().zip(vs) {
+                let g = self.to_grid.transform_point3a(Vec3A::from(*p));
+                if !(g.is_finite() && v.is_finite()) {
+                    continue;
+                }
+                let (bx, wx, _) = weights(g.x);
+                let (by, wy, _) = weights(g.y);
+                let (bz, wz, _) = weights(g.z);
+                let Some(first) = self.first_node(IVec3::new(bx, by, bz)) else {
+                    continue;
+                };
+                let carried = Vec4::new(phi, phi * v.x, phi * v.y, phi * v.z);
+                for (c, wzc) in wz.iter().enumerate() {
+                    for (b, wyb) in wy.iter().enumerate() {
+                        let start = first + b * row_y + c * row_z;
+                        let row = &mut self.nodes[start..start + 3];
+                        let cw = carried * (wyb * wzc);
+                        for (node, wxa) in row.iter_mut().zip(&wx) {
+                            *node += cw * *wxa;
                         }
                     }
                 }
-            });
-        self.excess.resize(count, 0.0);
+            }
+        }
+        self.excess.clear();
         self.excess
-            .par_iter_mut()
-            .zip(self.nodes.par_iter())
-            .with_min_len(1024)
-            .for_each(|(e, n)| *e = (n.x - threshold).max(0.0));
+            .extend(self.nodes.iter().map(|n| (n.x - threshold).max(0.0)));
         self.active = true;
         true
     }

@@ -1,7 +1,7 @@
 //! The rigid-link integrator: fixed steps, follow-the-leader links, bending toward the rest
 //! shape, collisions, self-collision, parallel over guides.
 //!
-//! One step of `step_s` (default 1/240 s) for one guide, particles `0..n` root to tip:
+//! One step of `step_s` (default 1/480 s) for one guide, particles `0..n` root to tip:
 //!
 //! 1. **Kinematic root segment.** Particles 0 and 1 are the rest positions carried by the head
 //!    transform: the root sits on the scalp and the first link keeps its rest direction relative
@@ -50,17 +50,18 @@
 //!    swinging of the whole strand (equal angular velocities) is untouched, so air damping alone
 //!    still sets how long hair swings.
 //! 6. **Rest.** A guide whose root segment has not moved (bit for bit) and whose particles
-//!    have all stayed within `rest_tolerance_m` (default 10 µm) of where they were for
-//!    [`super::REST_WINDOW_S`] (0.25 s) is held exactly there: its computed positions are
+//!    have all stayed within `rest_tolerance_m` (default 20 µm) of where they were for
+//!    [`super::REST_WINDOW_S`] (0.5 s) is held exactly there: its computed positions are
 //!    replaced by those. It wakes the step its roots move or a computed particle leaves the
 //!    tolerance. Why: settled hair is an equilibrium of the dynamics only up to f32 rounding,
-//!    which leaves a flicker of a few ulps (measured up to 6 µm over 10 s, at 1.6 m from the
-//!    origin, with self-collision at twice the preset density); a flicker that small still
-//!    changes a few pixels of every 800×800 frame (measured: 6 to 20 pixels by 1 to 3 levels),
-//!    because some pixel always sits on a rounding boundary. Cost: motion slower than
-//!    10 µm / 0.25 s = 40 µm/s (a pixel at 800×800 in 20 s) does not move resting hair, and
-//!    a response to a disturbance smaller than the tolerance may stop part-way. The hair's own
-//!    settling does not rely on it: the tests check the dynamics settle with it off.
+//!    which leaves a flicker of a few ulps per step (measured over 10 s, 1.6 m from the origin
+//!    where the ulp is 1.2e-7 m: up to 7 µm for the presets and 15 µm for twice their density,
+//!    at 1/480 s); a flicker that small still changes a few pixels of every 800×800 frame
+//!    (measured: 6 to 20 pixels by 1 to 3 levels), because some pixel always sits on a
+//!    rounding boundary. Cost: motion slower than 20 µm / 0.5 s = 40 µm/s (a pixel at 800×800
+//!    in 20 s) does not move resting hair, and a response to a disturbance smaller than the
+//!    tolerance may stop part-way. The hair's own settling does not rely on it: the tests check
+//!    the dynamics settle with it off.
 //!
 //! What remains step-dependent is the discretisation itself, first order: measured on the
 //! dance, the coarser step lags the converged motion by about 6 steps, accumulated along the
@@ -698,7 +699,12 @@ mod tests {
         let stats = sim.advance(&mut state, 2.0, |_, c: &mut Colliders| {
             *c = colliders.clone()
         });
-        assert_eq!(stats.steps, 60, "capped at max_catch_up_s = 0.25 s");
+        let dt = SimParams::default().step_s;
+        assert_eq!(
+            stats.steps,
+            (0.25 / dt).round() as u32,
+            "capped at max_catch_up_s = 0.25 s"
+        );
         for (p, q) in state.positions.iter().zip(&start) {
             assert!((*p - *q).length() < 1e-5, "moved from {q} to {p}");
         }
@@ -804,7 +810,7 @@ mod tests {
 
     #[test]
     fn a_fast_sphere_sweeping_through_hanging_hair_pushes_it_without_tunnelling() {
-        // A 45 mm sphere crosses a hanging guide sideways at 5 m/s (under the 10.8 m/s limit
+        // A 45 mm sphere crosses a hanging guide sideways at 5 m/s (under the 21.6 m/s limit
         // derived in collide.rs): every particle it meets is pushed ahead of it, none is
         // left inside or passed through.
         let radii = Vec3::splat(0.05);
@@ -830,8 +836,8 @@ mod tests {
         let dt = f64::from(sim.params().step_s);
         let mut c = c0.clone();
         let mut furthest_push_m = 0.0f32;
-        for k in 1..=24 {
-            // 0.1 s: the sphere travels 0.5 m, from x = -0.2 to 0.3, through the guide.
+        // 0.1 s: the sphere travels 0.5 m, from x = -0.2 to 0.3, through the guide.
+        for k in 1..=(0.1 / dt).round() as u32 {
             let stats = sim.advance(&mut state, f64::from(k) * dt, colliders_at);
             assert!(
                 stats.max_penetration_m < 1e-4,
