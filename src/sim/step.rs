@@ -282,14 +282,6 @@ impl Simulator {
             0.0
         };
         let particle_volume_m3 = link_m.iter().map(|l| section * l * share).collect();
-        // Grid spacing: the mean link length, so that one sample per particle gives a density
-        // that is smooth along the strand (the B-spline's partition of unity).
-        let mean_link_m = if count > 0 {
-            link_m.iter().map(|l| f64::from(*l)).sum::<f64>() / count as f64
-        } else {
-            0.02
-        };
-        let cell_m = (mean_link_m as f32).clamp(1e-3, 1.0);
         // How far from the head centre any particle can be: root distance plus guide length.
         let reach_m = (0..count)
             .map(|g| {
@@ -297,6 +289,16 @@ impl Simulator {
                 root + link_m[g] * (ppg.saturating_sub(1)) as f32
             })
             .fold(0.0f32, f32::max);
+        // Grid spacing: the mean link length, so that one sample per particle gives a density
+        // that is smooth along the strand (the B-spline's partition of unity), but at least
+        // 1/60 of the reach, so that the whole reachable cube, 2·reach/h + 4 ≤ 124 nodes a
+        // side, fits in the grid's node budget.
+        let mean_link_m = if count > 0 {
+            link_m.iter().map(|l| f64::from(*l)).sum::<f64>() / count as f64
+        } else {
+            0.02
+        };
+        let cell_m = (mean_link_m as f32).max(reach_m / 60.0).clamp(1e-3, 1.0);
         let dt = params.step_s;
         let omega = bend::bending_frequency_rad_s(params.bending_stiffness);
         let (bend_k, bend_damp) = bend::step_factors(
@@ -769,6 +771,36 @@ mod tests {
                 "{p} did not follow the head from {q}"
             );
         }
+    }
+
+    #[test]
+    fn a_long_many_link_guide_keeps_its_density_grid_within_budget() {
+        // 256 links of 4 mm: the mean link would give a 2 m/4 mm = 500-node-wide lattice
+        // (1.25e8 nodes); the spacing floor of reach/60 keeps the reachable cube within
+        // DENSITY_GRID_MAX_NODES, so self-collision is never skipped, even with the hair
+        // straight out sideways.
+        let radii = Vec3::splat(0.05);
+        let link = 0.004;
+        let rest: Vec<Vec3> = (0..257)
+            .map(|i| Vec3::new(0.05 + i as f32 * link, 0.0, 0.0))
+            .collect();
+        let guides = GuideSet {
+            root_normal: vec![Vec3::X],
+            ..one_guide(rest, link)
+        };
+        let mut sim = Simulator::new(&SimParams::default(), &guides, radii, 1e-6);
+        assert!(sim.self_collision());
+        let reach = 0.05 + 256.0 * link;
+        assert!(sim.density_cell_m() >= reach / 60.0 * 0.999);
+        let colliders = Colliders::head_only(Affine3A::IDENTITY, radii);
+        let mut state = SimState::at_rest(&guides, &colliders, 0.0);
+        let stats = sim.advance(&mut state, 0.05, |_, c: &mut Colliders| {
+            *c = colliders.clone()
+        });
+        assert!(stats.steps > 0);
+        assert_eq!(stats.self_collision_skipped_steps, 0);
+        assert!(sim.density_grid_nodes() > 0);
+        assert!(sim.density_grid_nodes() <= crate::sim::DENSITY_GRID_MAX_NODES);
     }
 
     #[test]
