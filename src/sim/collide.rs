@@ -223,7 +223,8 @@ fn circle_exit(
 ) -> Option<Vec3A> {
     let to_c = c - prev;
     let d = to_c.length();
-    if !(d > 0.0) {
+    // d is NaN or 0: no axis.
+    if d.is_nan() || d <= 0.0 {
         return None;
     }
     let a = to_c / d;

@@ -206,7 +206,7 @@ impl DensityGrid {
             .enumerate()
         {
             let phi = volume_m3.get(guide).copied().unwrap_or(0.0) * inv_cell_volume;
-            if !(phi > 0.0) {
+            if phi.is_nan() || phi <= 0.0 {
                 continue;
             }
             for (p, v) in ps.iter().zip(vs) {
