@@ -2,8 +2,8 @@
 //!
 //! ```text
 //! animation   motion.sample(t)                -> head and body-sphere transforms
-//! simulation  sim.advance(t, colliders, map)  -> guide particles (self-collision reads the
-//!                                                map of the previous frame, Bertails §4.1)
+//! simulation  sim.advance(t, colliders)       -> guide particles (self-collision from the
+//!                                                simulator's own density grid, Bertails §4.1)
 //! interp      interpolate(guides)             -> render strands (positions, tangents)
 //! map         map.build(strands, light)       -> Tf, σ̄f², direct fraction per cell
 //! shading     shade_vertices(map, fiber)      -> vertex colours
@@ -24,9 +24,7 @@ use crate::raster::{
 };
 use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};
 use crate::shade::{Lighting, shade_skin, shade_vertices};
-use crate::sim::{
-    Colliders, DensityField, NoDensity, SimState, Simulator, SphereCollider, StepStats,
-};
+use crate::sim::{Colliders, SimState, Simulator, SphereCollider, StepStats};
 use glam::{Affine3A, Vec3};
 use std::time::Instant;
 
@@ -154,7 +152,6 @@ pub struct Engine {
     sim: Simulator,
     pub state: SimState,
     map: LightMap,
-    map_valid: bool,
     pub strands: StrandGeometry,
     colors: Vec<Vec3>,
     /// Physical width of each render-strand point in metres (fibres per strand × diameter).
@@ -179,7 +176,8 @@ impl Engine {
         let (guides, layout) = generate(&style);
         let radii = Vec3::from(style.head.radii_m);
         let pose = motion.sample(0.0);
-        let sim = Simulator::new(&style.dynamics, &guides, radii);
+        let mut sim = Simulator::from_hairstyle(&style, &guides);
+        sim.set_self_collision(config.self_collision);
         let state = SimState::at_rest(&guides, &colliders_of(&pose, radii), -config.settle_s);
         let geom = map_geometry(&style, &config);
         // Replaced once the settled hair is framed (`place_camera`), before any render.
@@ -203,7 +201,6 @@ impl Engine {
             sim,
             state,
             map: LightMap::new(geom, CountModel::Poisson),
-            map_valid: false,
             strands: StrandGeometry::default(),
             colors: Vec::new(),
             widths_m: Vec::new(),
@@ -276,13 +273,8 @@ impl Engine {
                 motion.sample_into(t.max(0.0) as f32, scratch_pose);
                 write_colliders(scratch_pose, radii, c);
             };
-            self.step_stats = if self.config.self_collision && self.map_valid {
-                self.sim
-                    .advance(&mut self.state, t_s, colliders_at, &self.map)
-            } else {
-                self.sim
-                    .advance(&mut self.state, t_s, colliders_at, &NoDensity)
-            };
+            self.sim.set_self_collision(self.config.self_collision);
+            self.step_stats = self.sim.advance(&mut self.state, t_s, colliders_at);
         } else {
             let head = self.pose.head;
             for (p, r) in self.state.positions.iter_mut().zip(&self.guides.rest) {
@@ -393,7 +385,6 @@ impl Engine {
                 .extend(solids_of(&self.pose, Vec3::from(self.style.head.radii_m)));
         }
         self.map.set_occluders(&self.solids);
-        self.map_valid = true;
     }
 
     /// Places the camera once the hair has settled: the fixed camera, or the head-following
@@ -479,12 +470,4 @@ fn write_colliders(pose: &Pose, radii: Vec3, c: &mut Colliders) {
             center: s.center,
             radius_m: s.radius_m,
         }));
-}
-
-/// The map answers the simulation's density queries (Bertails §4.1).
-impl DensityField for LightMap {
-    #[inline]
-    fn cell_density(&self, p: Vec3) -> Option<(f32, Vec3)> {
-        LightMap::cell_density(self, p)
-    }
 }

@@ -5,7 +5,8 @@
 //! ```text
 //! motion   glTF clip -> head (and body-sphere) transforms at time t
 //! sim      rigid-link guide strands: roots on the moving scalp, gravity, damping, bending,
-//!          head/body collisions, repulsion out of over-dense map cells (Bertails 2005 §4.1)
+//!          head/body collisions, self-collision from the guides' own density grid (Bertails
+//!          2005 §4.1)
 //! interp   render strands from their wisp's 3 guides, Catmull-Rom smoothing, curls
 //! map      light-oriented, modulo-indexed grid: fill, column sweep -> Tf, σ̄f², direct fraction
 //! shade    per render-strand vertex: filtered map lookup -> fibre shader
