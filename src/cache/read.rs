@@ -195,15 +195,13 @@ impl CacheReader {
         motion.sample_into(want_time_s as f32, &mut self.pose);
         let head = Vec3::from(self.pose.head.translation);
         let limit = self.max_distance_m;
-        if let Some((i, d)) = self
-            .positions
-            .iter()
-            .map(|p| p.distance(head))
-            .enumerate()
-            .find(|(_, d)| d.is_nan() || *d > limit)
-        {
+        if let Some((i, p)) = self.positions.iter().enumerate().find(|(_, p)| {
+            let d = p.distance(head);
+            d.is_nan() || d > limit
+        }) {
             return Err(bad(format!(
-                "particle {i} is {d:.3} m from the head centre, farther than hair can reach ({limit:.3} m)"
+                "particle {i} is at {p}, {:.3} m from the head centre, farther than hair can reach ({limit:.3} m)",
+                p.distance(head)
             )));
         }
         Ok(&self.positions)
