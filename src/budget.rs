@@ -508,6 +508,36 @@ mod tests {
     }
 
     #[test]
+    fn a_cache_adds_its_record_buffer_and_reading_one_skips_the_settle() {
+        let style = Hairstyle::default_smooth();
+        let motion = Motion::still(glam::Affine3A::IDENTITY);
+        let config = EngineConfig::default();
+        let plan = |cache| RunPlan {
+            warm_up_s: 3.0,
+            cache,
+            ..RunPlan::default()
+        };
+        let none = estimate(&style, &motion, &config, &plan(CacheUse::None));
+        let read = estimate(&style, &motion, &config, &plan(CacheUse::Read));
+        let write = estimate(&style, &motion, &config, &plan(CacheUse::Write));
+        let part = |e: &Estimate| {
+            e.memory
+                .iter()
+                .find(|p| p.what == "simulation cache")
+                .map(|p| p.bytes)
+        };
+        assert_eq!(part(&none), None);
+        // 6,432 particles: a record of 8 + 12·6,432 + 4 bytes, and the positions (12 B each).
+        assert_eq!(part(&read), Some(77_196 + 77_184));
+        assert_eq!(part(&write), Some(77_196 + 8_192));
+        // Reading a cache simulates nothing: no settle, no warm-up.
+        assert_eq!(read.work[0].cpu_s, 0.0);
+        assert_eq!(read.work[1].cpu_s, 0.0);
+        assert!(none.work[0].cpu_s > 0.0 && none.work[1].cpu_s > 0.0);
+        assert_eq!(write.work[0].cpu_s, none.work[0].cpu_s);
+    }
+
+    #[test]
     fn over_budget_names_the_largest_part() {
         let est = estimate(
             &Hairstyle::default_smooth(),
