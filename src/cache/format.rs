@@ -71,6 +71,7 @@ pub mod offset {
     pub const FLAGS: usize = 128;
     pub const NAME_LEN: usize = 129;
     pub const LABEL_LEN: usize = 130;
+    pub const RESERVED: usize = 131;
 }
 
 /// What a cache says about the run that made it.
@@ -237,9 +238,16 @@ impl CacheHeader {
                 "map resolution is {map_res}, outside 4..=1024"
             )));
         }
-        if flags & !(FLAG_SIMULATED | FLAG_SELF_COLLISION | FLAG_SOLIDS) != 0 || bytes[131] != 0 {
+        if flags & !(FLAG_SIMULATED | FLAG_SELF_COLLISION | FLAG_SOLIDS) != 0 {
             return Err(bad(format!(
                 "flags byte is {flags:#04x}, with unknown bits set"
+            )));
+        }
+        if bytes[offset::RESERVED] != 0 {
+            return Err(bad(format!(
+                "reserved byte {} is {}, not 0",
+                offset::RESERVED,
+                bytes[offset::RESERVED]
             )));
         }
         let (name_len, label_len) = (

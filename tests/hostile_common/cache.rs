@@ -223,7 +223,12 @@ pub fn mutate(rng: &mut Rng, b: &mut Vec<u8>) -> String {
             format!("header {name} = {v}")
         }
         2 => {
-            let at = *rng.pick(&[offset::FLAGS, offset::NAME_LEN, offset::LABEL_LEN, 131]);
+            let at = *rng.pick(&[
+                offset::FLAGS,
+                offset::NAME_LEN,
+                offset::LABEL_LEN,
+                offset::RESERVED,
+            ]);
             let v = rng.below(256) as u8;
             put(b, at, &[v]);
             format!("header byte {at} = {v}")
