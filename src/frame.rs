@@ -311,18 +311,7 @@ impl Engine {
             }
             self.state.time_s = t_s;
         }
-        let t2 = Instant::now();
-        interpolate(
-            &self.guides,
-            &self.layout,
-            &self.style.curl,
-            &self.state.positions,
-            &mut self.strands,
-        );
-        let t3 = Instant::now();
-        self.timings.animation_s = (t1 - t0).as_secs_f64();
-        self.timings.simulation_s = (t2 - t1).as_secs_f64();
-        self.timings.interpolation_s = (t3 - t2).as_secs_f64();
+        self.interpolate_strands([t0, t1, Instant::now()]);
     }
 
     /// Animation and interpolation at time `t_s` with the guide particles set to `positions`
@@ -339,7 +328,12 @@ impl Engine {
         for (p, q) in self.state.positions.iter_mut().zip(positions) {
             *p = *q;
         }
-        let t2 = Instant::now();
+        self.interpolate_strands([t0, t1, Instant::now()]);
+    }
+
+    /// Interpolation of the render strands from the guides; `marks` are the instants the
+    /// animation and simulation stages started and the simulation ended, for the timings.
+    fn interpolate_strands(&mut self, marks: [Instant; 3]) {
         interpolate(
             &self.guides,
             &self.layout,
@@ -347,6 +341,7 @@ impl Engine {
             &self.state.positions,
             &mut self.strands,
         );
+        let [t0, t1, t2] = marks;
         let t3 = Instant::now();
         self.timings.animation_s = (t1 - t0).as_secs_f64();
         self.timings.simulation_s = (t2 - t1).as_secs_f64();

@@ -3,6 +3,7 @@
 //! checksum valid (`reseal`), so that the checks behind the checksums are reached too.
 
 use super::Rng;
+use super::mutate::FLOATS;
 use std::sync::OnceLock;
 use wisp::cache::format::{
     CHECKSUM_BYTES, FIXED_HEADER_BYTES, POSITION_BYTES, TIME_BYTES, offset, record_bytes,
@@ -179,17 +180,6 @@ pub fn mutate(rng: &mut Rng, b: &mut Vec<u8>) -> String {
         u32::MAX,
         u32::MAX / 12,
         1 << 31,
-    ];
-    const FLOATS: [f32; 9] = [
-        f32::NAN,
-        f32::INFINITY,
-        f32::NEG_INFINITY,
-        1e30,
-        -1e30,
-        0.0,
-        -1.0,
-        1e-40,
-        3.4e38,
     ];
     let records = (SEED_FRAMES + 1) as usize;
     let what = match rng.below(9) {
