@@ -172,6 +172,31 @@ pub struct Engine {
 impl Engine {
     /// Builds the hair, settles it on the first pose of the motion and frames the camera.
     pub fn new(style: Hairstyle, motion: Motion, config: EngineConfig) -> Self {
+        let mut engine = Self::unsettled(style, motion, config);
+        // Settle with the head held at the first pose (the simulation starts at −settle_s).
+        engine.run_up_to(0.0);
+        engine.place_camera();
+        engine
+    }
+
+    /// Builds the hair without simulating: the guide particles are `settled_positions` at time
+    /// 0 (what [`Engine::new`]'s settle left, read back from a simulation cache), and the
+    /// camera is framed on them as `new` frames it. Later frames come from
+    /// [`Engine::set_guide_state`]; rendered frames are then the bytes `new` + `frame` make.
+    pub fn from_settled(
+        style: Hairstyle,
+        motion: Motion,
+        config: EngineConfig,
+        settled_positions: &[Vec3],
+    ) -> Self {
+        let mut engine = Self::unsettled(style, motion, config);
+        engine.set_guide_state(0.0, settled_positions);
+        engine.place_camera();
+        engine
+    }
+
+    /// The engine with its guides at rest at −settle_s; the camera is not placed yet.
+    fn unsettled(style: Hairstyle, motion: Motion, config: EngineConfig) -> Self {
         let fiber = Fiber::new(&style.fiber);
         let (guides, layout) = generate(&style);
         let radii = Vec3::from(style.head.radii_m);
@@ -190,7 +215,7 @@ impl Engine {
             config.height,
         );
         let fb = Framebuffer::new(config.width, config.height, config.background);
-        let mut engine = Self {
+        Self {
             style,
             fiber,
             guides,
@@ -212,11 +237,7 @@ impl Engine {
             timings: StageTimings::default(),
             step_stats: StepStats::default(),
             config,
-        };
-        // Settle with the head held at the first pose (the simulation starts at −settle_s).
-        engine.run_up_to(0.0);
-        engine.place_camera();
-        engine
+        }
     }
 
     /// Map geometry in use.
@@ -282,7 +303,29 @@ impl Engine {
             }
             self.state.time_s = t_s;
         }
-        let t2 = Instant::now();
+        self.interpolate_strands([t0, t1, Instant::now()]);
+    }
+
+    /// Animation and interpolation at time `t_s` with the guide particles set to `positions`
+    /// instead of simulated (a frame of a simulation cache): the stages after the simulation
+    /// see exactly what [`Engine::advance`] leaves when it simulated those positions. The
+    /// caller checks that `positions` has one entry per guide particle
+    /// (`state.positions.len()`); extra entries are ignored, missing ones keep their value.
+    /// For rendering only: the simulation's velocities and step clock are not set, so an
+    /// [`Engine::advance`] after this does not continue the cached motion.
+    pub fn set_guide_state(&mut self, t_s: f64, positions: &[Vec3]) {
+        let t0 = Instant::now();
+        self.motion.sample_into(t_s as f32, &mut self.pose);
+        let t1 = Instant::now();
+        for (p, q) in self.state.positions.iter_mut().zip(positions) {
+            *p = *q;
+        }
+        self.interpolate_strands([t0, t1, Instant::now()]);
+    }
+
+    /// Interpolation of the render strands from the guides; `marks` are the instants the
+    /// animation and simulation stages started and the simulation ended, for the timings.
+    fn interpolate_strands(&mut self, marks: [Instant; 3]) {
         interpolate(
             &self.guides,
             &self.layout,
@@ -290,6 +333,7 @@ impl Engine {
             &self.state.positions,
             &mut self.strands,
         );
+        let [t0, t1, t2] = marks;
         let t3 = Instant::now();
         self.timings.animation_s = (t1 - t0).as_secs_f64();
         self.timings.simulation_s = (t2 - t1).as_secs_f64();

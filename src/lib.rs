@@ -13,6 +13,7 @@
 //! raster   camera, depth-tested anti-aliased lines, the head -> framebuffer (+ coverage)
 //! scene    where the camera is: fixed, or following the head
 //! output   PNG frames or linear RGBA EXR (temporary name + rename), or a window
+//! cache    the guide state of every frame of a run, written once and rendered anywhere
 //! ```
 //!
 //! ## Conventions (stated once)
@@ -27,6 +28,7 @@
 
 pub mod accuracy;
 pub mod budget;
+pub mod cache;
 pub mod export;
 pub mod fiber;
 pub mod frame;
