@@ -50,19 +50,23 @@ fn small_config() -> EngineConfig {
     }
 }
 
-/// The core promise. A single run (2 threads) renders 4 frames from 1.0 s of the dance; a
-/// cache of the same run is simulated with 1 thread and rendered with 2. Every frame must be
-/// the same bits: colour, coverage, depth and the 8-bit sRGB written to PNG.
-#[test]
-fn frames_from_a_cache_are_the_bytes_of_a_single_run() {
-    let dir = scratch_dir("cache-identity");
+/// The core promise. A single run (2 threads, `render_config`) renders 4 frames from 1.0 s of
+/// the dance; a cache of the run is simulated with 1 thread and `simulate_config`, and
+/// rendered with 2 threads and `render_config`. Every frame must be the same bits: colour,
+/// coverage, depth and the 8-bit sRGB written to PNG.
+fn check_cached_frames_match_a_single_run(
+    simulate_config: EngineConfig,
+    render_config: EngineConfig,
+    name: &str,
+) {
+    let dir = scratch_dir(name);
     let path = dir.join("run.wcache");
     let (frames, start_s, fps) = (4u32, 1.0, 30.0f32);
     let single: Vec<Vec<u32>> = pool(2).install(|| {
         let mut e = Engine::new(
             Hairstyle::default_smooth(),
             Motion::default_dance(),
-            small_config(),
+            render_config.clone(),
         );
         e.run_up_to(start_s);
         (0..frames)
@@ -78,7 +82,7 @@ fn frames_from_a_cache_are_the_bytes_of_a_single_run() {
             Hairstyle::default_smooth(),
             Motion::default_dance(),
             "the dance",
-            small_config(),
+            simulate_config,
             frames,
             start_s,
         )
@@ -89,12 +93,8 @@ fn frames_from_a_cache_are_the_bytes_of_a_single_run() {
         let mut reader = CacheReader::open(&path, &e).expect("open");
         assert_eq!(reader.header().frames, frames);
         let settled = reader.read_settled(&motion).expect("settled").to_vec();
-        let mut engine = Engine::from_settled(
-            Hairstyle::default_smooth(),
-            motion,
-            small_config(),
-            &settled,
-        );
+        let mut engine =
+            Engine::from_settled(Hairstyle::default_smooth(), motion, render_config, &settled);
         (0..frames)
             .map(|i| {
                 let t = reader.header().frame_time_s(i);
@@ -107,10 +107,26 @@ fn frames_from_a_cache_are_the_bytes_of_a_single_run() {
     });
     for (i, (a, b)) in single.iter().zip(&cached).enumerate() {
         let differ = a.iter().zip(b).filter(|(x, y)| x != y).count();
-        assert_eq!(differ, 0, "frame {i}: {differ} values differ");
+        assert_eq!(differ, 0, "{name}: frame {i}: {differ} values differ");
     }
     // The frames are not all alike (the hair moves), so the comparison means something.
     assert_ne!(single[0], single[3]);
+}
+
+#[test]
+fn frames_from_a_cache_are_the_bytes_of_a_single_run() {
+    check_cached_frames_match_a_single_run(small_config(), small_config(), "cache-identity");
+}
+
+/// The motion does not depend on the light or the map (self-collision reads the simulator's
+/// own density grid): a cache simulated in the default light, rendered in another light at
+/// another map resolution, is the bytes of a single run in that light.
+#[test]
+fn a_cache_relit_is_the_bytes_of_a_single_run_in_the_new_light() {
+    let mut relit = small_config();
+    relit.lighting.light_dir = glam::Vec3::new(1.0, -0.5, -0.3).normalize();
+    relit.map_res = Some(48);
+    check_cached_frames_match_a_single_run(small_config(), relit, "cache-relit");
 }
 
 /// The cache stores what a frame needs and no more: 8 B of time, 12 B per guide particle and

@@ -93,15 +93,15 @@ pub struct CacheHeader {
     pub hairstyle_digest: Digest,
     /// Digest of the motion ([`super::motion_digest`]).
     pub motion_digest: Digest,
-    /// Direction the light travelled in the light map self-collision read (unit).
+    /// Light direction of the `simulate` run (unit; informational: the motion does not depend on it).
     pub light_dir: Vec3,
-    /// Cells per axis of that map.
+    /// Map cells per axis of the `simulate` run (informational).
     pub map_res: u32,
     /// The guides were simulated (false: carried rigidly in their rest pose).
     pub simulated: bool,
     /// Density-based self-collision was on.
     pub self_collision: bool,
-    /// The head and body spheres were in the map (as occluders).
+    /// The `simulate` run drew the head and body (informational).
     pub draw_solids: bool,
     /// The hairstyle's name, for messages.
     pub hairstyle_name: String,

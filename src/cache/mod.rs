@@ -20,10 +20,11 @@
 //!
 //! What the simulation itself depended on is recorded in the header: the hairstyle and motion
 //! (as digests, so a cache is refused for another hairstyle or motion with a message saying
-//! which), the frame times, and the light direction and map resolution of the light map that
-//! self-collision read (Bertails §4.1 repulsion reads the previous frame's map, whose cells lie
-//! along the light). Rendering with another light, camera, shader or image size re-lights the
-//! same hair motion; only a run with the recorded settings matches a single run byte for byte.
+//! which) and the frame times. The motion does not depend on the light, the map or the image:
+//! self-collision reads the simulator's own density grid (`sim::density`), so rendering with
+//! another light, camera, shader, map size or image size gives the bytes a single run with
+//! those flags gives. The header also records the light direction, map resolution and solids
+//! of the `simulate` run, for the record (format version 1 keeps them).
 //!
 //! # Format (version 1, little-endian)
 //! A header ([`format::CacheHeader`], its own CRC-32 last), then `frames + 1` records of the

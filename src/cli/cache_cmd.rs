@@ -3,9 +3,11 @@
 //! for the format and why a cached frame is the same bytes as a frame of a single run.
 //!
 //! `simulate` makes exactly the calls `render` makes, minus shading and raster: the engine is
-//! built and settled, advanced to the first frame, then advanced frame by frame; when
-//! self-collision is on, each frame's light map is built as `render` builds it, because the
-//! next frame's repulsion reads it. Each frame's guide state is written as soon as it exists.
+//! built and settled, advanced to the first frame, then advanced frame by frame. The motion
+//! depends on nothing the render chooses (self-collision reads the simulator's own density
+//! grid, not the light map), so a cache renders in any light, map size or image size and
+//! gives the frames a single run with those flags would. Each frame's guide state is written
+//! as soon as it exists.
 
 use super::render_cmd::{MAX_FRAMES, RenderArgs, Tidy, export_frames, prepare_output_dir};
 use super::{AppError, SceneArgs, printable};
@@ -157,7 +159,6 @@ pub fn simulate(args: SimulateArgs) -> Result<(), AppError> {
     let started = Instant::now();
     let name = style.name.clone();
     let mut engine = Engine::new(style, motion, config);
-    let build_map = engine.config.simulate && engine.config.self_collision;
     let write_err = cache_error;
     if engine.state.positions.len() != header.particles as usize {
         return Err(AppError::other(anyhow::anyhow!(
@@ -186,10 +187,6 @@ pub fn simulate(args: SimulateArgs) -> Result<(), AppError> {
         let t = header.frame_time_s(i);
         let t0 = Instant::now();
         engine.advance(t);
-        if build_map {
-            // The next frame's self-collision reads this frame's map, as in `render`.
-            engine.build_map();
-        }
         let t1 = Instant::now();
         writer
             .write_sim_state(t, &engine.state)
@@ -274,9 +271,6 @@ pub fn render_from_cache(args: RenderArgs) -> Result<(), AppError> {
     };
     args.scene
         .check_budget(&style, &motion, &mut config, &plan)?;
-    if !args.quiet {
-        note_differences(&header, &style, &config, &path);
-    }
     // Shards share the folder: each removes only its own frames' temporary files, and frames
     // beyond the cache when it renders a block of the whole cache.
     let whole = args.first_frame.is_none() && args.frames.is_none();
@@ -333,49 +327,6 @@ pub fn render_from_cache(args: RenderArgs) -> Result<(), AppError> {
             Ok(t)
         },
     )
-}
-
-/// Says when the render's light, map or solids differ from what the simulation's light map
-/// had: the frames then show the cached motion in another light, which a single run with
-/// these flags would not reproduce exactly (its self-collision would read another map).
-fn note_differences(
-    header: &CacheHeader,
-    style: &wisp::hairstyle::Hairstyle,
-    config: &wisp::frame::EngineConfig,
-    path: &std::path::Path,
-) {
-    if !(header.simulated && header.self_collision) {
-        return;
-    }
-    let light = config.lighting.light_dir.normalize_or(glam::Vec3::NEG_Y);
-    let map_res = wisp::frame::map_geometry(style, config).n;
-    let mut differ = Vec::new();
-    if (light - header.light_dir).length() > 1e-6 {
-        differ.push(format!(
-            "light direction {:.3},{:.3},{:.3} (simulated with {:.3},{:.3},{:.3})",
-            light.x, light.y, light.z, header.light_dir.x, header.light_dir.y, header.light_dir.z
-        ));
-    }
-    if map_res != header.map_res {
-        differ.push(format!(
-            "map {map_res}^3 (simulated with {}^3)",
-            header.map_res
-        ));
-    }
-    if config.draw_solids != header.draw_solids {
-        differ.push(if config.draw_solids {
-            "head and body drawn (simulated with --no-solids)".to_string()
-        } else {
-            "--no-solids (simulated with the head and body)".to_string()
-        });
-    }
-    if !differ.is_empty() {
-        eprintln!(
-            "wisp: note: this render uses {}; the hair moves as simulated in {} (whose self-collision read that light map), so a single run with these flags would differ slightly in motion",
-            differ.join(", "),
-            path.display()
-        );
-    }
 }
 
 #[cfg(test)]
