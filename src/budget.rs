@@ -13,7 +13,7 @@
 //!   `Framebuffer::estimated_bytes`, `LineScratch::estimated_bytes`);
 //! - **work before the first frame**: the settle and warm-up simulation and the first frame,
 //!   in CPU-seconds from per-item costs measured on the development machine (one core of a
-//!   shared 2-core VM; `NOTES-hostile-inputs.md`). A frame costs less than this set-up, so the
+//!   shared 2-core VM; `docs/notes/hostile-inputs.md`). A frame costs less than this set-up, so the
 //!   bound also holds for every later frame: no run sits for long without output.
 //!
 //! [`Estimate::check`] refuses an estimate over a [`Budget`], naming the largest part, the
@@ -36,7 +36,7 @@ pub const DEFAULT_MEMORY_BYTES: u64 = 4_000_000_000;
 pub const DEFAULT_WORK_CPU_S: f64 = 1200.0;
 
 /// Measured single-core costs (release build, shared 2-core VM, `wisp --threads 1 render`
-/// stage timings of the presets; see `NOTES-hostile-inputs.md`). Estimates, good to about 2×.
+/// stage timings of the presets; see `docs/notes/hostile-inputs.md`). Estimates, good to about 2×.
 mod cost_ns {
     /// One simulation step of one guide particle, self-collision on (smooth: 8.6 ms for 8
     /// steps of 6,432 particles).

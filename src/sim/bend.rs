@@ -32,7 +32,7 @@
 //! other steps now give the same oscillator instead of a stiffer one at smaller steps (the old
 //! `k = 1 − (1 − s)^(dt/(1/240 s))` made ω grow as 1/√dt: the hair was twice as stiff at
 //! 1/960 s as at 1/240 s, which was the largest step dependence measured, see
-//! `NOTES-sim-quality.md`).
+//! `docs/notes/sim-quality.md`).
 //!
 //! Why the bending needs damping at all: the pull acts on the child only, so link i is an
 //! oscillator driven by link i−1 with no reaction back; with only air damping its resonance

@@ -19,7 +19,7 @@
 //! Every parameter is a rate or a frequency per unit time, converted to per-step factors with
 //! exact solutions over the step (`bend.rs`, `density.rs`), so the model is the same at any
 //! step and a smaller step only reduces the discretisation error (measured: first order, see
-//! `NOTES-sim-quality.md` and `examples/sim_steps.rs`).
+//! `docs/notes/sim-quality.md` and `examples/sim_steps.rs`).
 //!
 //! Why: rigid links by construction (no iteration count to tune, lengths exact to rounding),
 //! unconditionally stable position projections, and guides independent within a step, so they
