@@ -2,8 +2,8 @@
 //!
 //! ```text
 //! animation   motion.sample(t)                -> head and body-sphere transforms
-//! simulation  sim.advance(t, colliders, map)  -> guide particles (self-collision reads the
-//!                                                map of the previous frame, Bertails §4.1)
+//! simulation  sim.advance(t, colliders)       -> guide particles (self-collision from the
+//!                                                simulator's own density grid, Bertails §4.1)
 //! interp      interpolate(guides)             -> render strands (positions, tangents)
 //! map         map.build(strands, light)       -> Tf, σ̄f², direct fraction per cell
 //! shading     shade_vertices(map, fiber)      -> vertex colours
@@ -24,9 +24,7 @@ use crate::raster::{
 };
 use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};
 use crate::shade::{Lighting, shade_skin, shade_vertices};
-use crate::sim::{
-    Colliders, DensityField, NoDensity, SimState, Simulator, SphereCollider, StepStats,
-};
+use crate::sim::{Colliders, SimState, Simulator, SphereCollider, StepStats};
 use glam::{Affine3A, Vec3};
 use std::time::Instant;
 
@@ -154,7 +152,6 @@ pub struct Engine {
     sim: Simulator,
     pub state: SimState,
     map: LightMap,
-    map_valid: bool,
     pub strands: StrandGeometry,
     colors: Vec<Vec3>,
     /// Physical width of each render-strand point in metres (fibres per strand × diameter).
@@ -188,10 +185,43 @@ impl Engine {
         motion: Motion,
         config: EngineConfig,
     ) -> Self {
+        let mut engine = Self::unsettled(style, guides, layout, motion, config);
+        // Settle with the head held at the first pose (the simulation starts at −settle_s).
+        engine.run_up_to(0.0);
+        engine.place_camera();
+        engine
+    }
+
+    /// Builds the hair without simulating: the guide particles are `settled_positions` at time
+    /// 0 (what [`Engine::new`]'s settle left, read back from a simulation cache), and the
+    /// camera is framed on them as `new` frames it. Later frames come from
+    /// [`Engine::set_guide_state`]; rendered frames are then the bytes `new` + `frame` make.
+    pub fn from_settled(
+        style: Hairstyle,
+        motion: Motion,
+        config: EngineConfig,
+        settled_positions: &[Vec3],
+    ) -> Self {
+        let (guides, layout) = generate(&style);
+        let mut engine = Self::unsettled(style, guides, layout, motion, config);
+        engine.set_guide_state(0.0, settled_positions);
+        engine.place_camera();
+        engine
+    }
+
+    /// The engine with its guides at rest at −settle_s; the camera is not placed yet.
+    fn unsettled(
+        style: Hairstyle,
+        guides: GuideSet,
+        layout: StrandLayout,
+        motion: Motion,
+        config: EngineConfig,
+    ) -> Self {
         let fiber = Fiber::new(&style.fiber);
         let radii = Vec3::from(style.head.radii_m);
         let pose = motion.sample(0.0);
-        let sim = Simulator::new(&style.dynamics, &guides, radii);
+        let mut sim = Simulator::from_hairstyle(&style, &guides);
+        sim.set_self_collision(config.self_collision);
         let state = SimState::at_rest(&guides, &colliders_of(&pose, radii), -config.settle_s);
         let geom = map_geometry(&style, &config);
         // Replaced once the settled hair is framed (`place_camera`), before any render.
@@ -204,7 +234,7 @@ impl Engine {
             config.height,
         );
         let fb = Framebuffer::new(config.width, config.height, config.background);
-        let mut engine = Self {
+        Self {
             style,
             fiber,
             guides,
@@ -215,7 +245,6 @@ impl Engine {
             sim,
             state,
             map: LightMap::new(geom, CountModel::Poisson),
-            map_valid: false,
             strands: StrandGeometry::default(),
             colors: Vec::new(),
             widths_m: Vec::new(),
@@ -227,11 +256,7 @@ impl Engine {
             timings: StageTimings::default(),
             step_stats: StepStats::default(),
             config,
-        };
-        // Settle with the head held at the first pose (the simulation starts at −settle_s).
-        engine.run_up_to(0.0);
-        engine.place_camera();
-        engine
+        }
     }
 
     /// Map geometry in use.
@@ -288,13 +313,8 @@ impl Engine {
                 motion.sample_into(t.max(0.0) as f32, scratch_pose);
                 write_colliders(scratch_pose, radii, c);
             };
-            self.step_stats = if self.config.self_collision && self.map_valid {
-                self.sim
-                    .advance(&mut self.state, t_s, colliders_at, &self.map)
-            } else {
-                self.sim
-                    .advance(&mut self.state, t_s, colliders_at, &NoDensity)
-            };
+            self.sim.set_self_collision(self.config.self_collision);
+            self.step_stats = self.sim.advance(&mut self.state, t_s, colliders_at);
         } else {
             let head = self.pose.head;
             for (p, r) in self.state.positions.iter_mut().zip(&self.guides.rest) {
@@ -302,7 +322,29 @@ impl Engine {
             }
             self.state.time_s = t_s;
         }
-        let t2 = Instant::now();
+        self.interpolate_strands([t0, t1, Instant::now()]);
+    }
+
+    /// Animation and interpolation at time `t_s` with the guide particles set to `positions`
+    /// instead of simulated (a frame of a simulation cache): the stages after the simulation
+    /// see exactly what [`Engine::advance`] leaves when it simulated those positions. The
+    /// caller checks that `positions` has one entry per guide particle
+    /// (`state.positions.len()`); extra entries are ignored, missing ones keep their value.
+    /// For rendering only: the simulation's velocities and step clock are not set, so an
+    /// [`Engine::advance`] after this does not continue the cached motion.
+    pub fn set_guide_state(&mut self, t_s: f64, positions: &[Vec3]) {
+        let t0 = Instant::now();
+        self.motion.sample_into(t_s as f32, &mut self.pose);
+        let t1 = Instant::now();
+        for (p, q) in self.state.positions.iter_mut().zip(positions) {
+            *p = *q;
+        }
+        self.interpolate_strands([t0, t1, Instant::now()]);
+    }
+
+    /// Interpolation of the render strands from the guides; `marks` are the instants the
+    /// animation and simulation stages started and the simulation ended, for the timings.
+    fn interpolate_strands(&mut self, marks: [Instant; 3]) {
         interpolate(
             &self.guides,
             &self.layout,
@@ -310,6 +352,7 @@ impl Engine {
             &self.state.positions,
             &mut self.strands,
         );
+        let [t0, t1, t2] = marks;
         let t3 = Instant::now();
         self.timings.animation_s = (t1 - t0).as_secs_f64();
         self.timings.simulation_s = (t2 - t1).as_secs_f64();
@@ -405,7 +448,6 @@ impl Engine {
                 .extend(solids_of(&self.pose, Vec3::from(self.style.head.radii_m)));
         }
         self.map.set_occluders(&self.solids);
-        self.map_valid = true;
     }
 
     /// Places the camera once the hair has settled: the fixed camera, or the head-following
@@ -491,12 +533,4 @@ fn write_colliders(pose: &Pose, radii: Vec3, c: &mut Colliders) {
             center: s.center,
             radius_m: s.radius_m,
         }));
-}
-
-/// The map answers the simulation's density queries (Bertails §4.1).
-impl DensityField for LightMap {
-    #[inline]
-    fn cell_density(&self, p: Vec3) -> Option<(f32, Vec3)> {
-        LightMap::cell_density(self, p)
-    }
 }

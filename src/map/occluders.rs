@@ -72,7 +72,7 @@ impl OccluderGrid {
             })
             .collect();
         self.depth.clear();
-        if solids.is_empty() || !(texel_m > 0.0) || !texel_m.is_finite() {
+        if solids.is_empty() || !texel_m.is_finite() || texel_m <= 0.0 {
             self.dims = [0, 0];
             return;
         }
