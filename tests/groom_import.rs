@@ -560,3 +560,34 @@ fn an_imported_groom_moves_with_the_head() {
     // blend, spline and frame transport along a strand: 10 µm.
     assert!(worst < 1e-5, "{worst} m");
 }
+
+/// Regression (found by the hostile-loaders suite): a strand whose coordinates are finite but
+/// near f32::MAX made every feature distance infinite, the grid search found no centroid and
+/// the clustering indexed wisp u32::MAX (a panic). Now every strand gets a wisp, and a groom
+/// whose coordinates overflow once placed is refused with the strand.
+#[test]
+fn infinite_feature_distances_still_give_every_strand_a_wisp() {
+    let mut features: Vec<Feature> = (0..30)
+        .map(|i| [i as f32 * 0.01, 0.0, 0.0, 0.0, -0.1, 0.0, 0.0, -0.2, 0.0])
+        .collect();
+    features[7] = [3e38, -3e38, 3e38, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    features[9][4] = f32::INFINITY;
+    let wisp = cluster(&features, 5);
+    assert_eq!(wisp.len(), 30);
+    let wisps = *wisp.iter().max().unwrap() as usize + 1;
+    assert!(wisps <= 5);
+
+    let mut strands = arcs(60);
+    strands[5] = (0..VERTICES)
+        .map(|k| Vec3::new(3e38, -3e38 + k as f32 * 1e32, 0.0))
+        .collect();
+    let f = parse_strand_file(&encode_tfx3(&strands), "huge.tfx").unwrap();
+    match build_groom(
+        &[("huge.tfx".into(), f)],
+        &Hairstyle::default_smooth(),
+        &GroomOptions::default(),
+    ) {
+        Ok(g) => assert!(g.guides.rest.iter().all(|p| p.is_finite())),
+        Err(e) => assert!(e.to_string().contains("huge.tfx"), "{e}"),
+    }
+}

@@ -71,13 +71,38 @@ impl Grid {
         g.entries.sort_unstable();
         g
     }
-    /// The nearest live centroid found by the shell search (see the module doc).
+    /// Every live centroid, nearest first by index on ties: the search's fallback.
+    fn scan(&self, f: &Feature, centroids: &[Feature]) -> u32 {
+        let mut best = (f32::INFINITY, u32::MAX);
+        for &(_, idx) in &self.entries {
+            let d = dist2(f, &centroids[idx as usize]);
+            if best.1 == u32::MAX || d < best.0 || (d == best.0 && idx < best.1) {
+                best = (d, idx);
+            }
+        }
+        best.1
+    }
+
+    /// The nearest live centroid found by the shell search (see the module doc). A shell with
+    /// more cells than there are centroids costs more than comparing with all of them (a strand
+    /// far from every wisp, in a grid stretched by an outlier: 257³ cells were searched for
+    /// each strand, minutes for 60 strands), so the search then scans the centroids instead.
     fn nearest(&self, f: &Feature, centroids: &[Feature]) -> u32 {
         let c = self.cell_of(f);
         let max_ring = self.dims.iter().copied().max().unwrap_or(1);
         let mut best = (f32::INFINITY, u32::MAX);
         let mut first_hit: Option<i64> = None;
+        let mut visited = 0usize;
         for ring in 0..=max_ring {
+            let shell = if ring == 0 {
+                1
+            } else {
+                ((2 * ring + 1).pow(3) - (2 * ring - 1).pow(3)) as usize
+            };
+            visited += shell;
+            if first_hit.is_none() && visited > 4 * self.entries.len() + 64 {
+                return self.scan(f, centroids);
+            }
             if let Some(h) = first_hit {
                 let bound = (ring - 1).max(0) as f32 * self.cell;
                 if ring > h + 1 || bound * bound >= best.0 {
@@ -101,7 +126,9 @@ impl Grid {
                                 break;
                             }
                             let d = dist2(f, &centroids[idx as usize]);
-                            if d < best.0 || (d == best.0 && idx < best.1) {
+                            // The first candidate is always taken: a distance that overflows
+                            // to infinity (or NaN) must still give the strand a wisp.
+                            if best.1 == u32::MAX || d < best.0 || (d == best.0 && idx < best.1) {
                                 best = (d, idx);
                             }
                         }

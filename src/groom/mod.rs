@@ -64,7 +64,7 @@ pub struct GroomOptions {
 pub struct GroomReport {
     /// Strands in the files.
     pub strands_read: usize,
-    /// Strands dropped: fewer than 2 points or zero length.
+    /// Strands dropped: fewer than 2 points, or shorter than a millionth of the longest.
     pub strands_dropped: usize,
     pub wisps: usize,
     pub placement: Option<Placement>,
@@ -137,13 +137,30 @@ pub fn build_groom(
         files: names.clone(),
         rule,
     };
-    // Keep strands with at least 2 points and a positive length; remember their origin.
+    // Keep strands with at least 2 points and a length above a millionth of the longest
+    // (shorter ones are points at any scale: they vanish or underflow once placed); remember
+    // their origin. A length that overflows means coordinates near the float limit.
+    let mut longest_file = 0.0f32;
+    for (name, file) in files {
+        for (s, pts) in file.strands().enumerate() {
+            let len = arc_length(pts);
+            if !len.is_finite() {
+                return Err(GroomError::Invalid {
+                    files: name.clone(),
+                    rule: format!(
+                        "strand {s}: its length overflows (coordinates near the largest 32-bit float)"
+                    ),
+                });
+            }
+            longest_file = longest_file.max(len);
+        }
+    }
     let mut kept: Vec<(usize, usize, &[Vec3])> = Vec::new();
     let mut read = 0usize;
     for (f, (_, file)) in files.iter().enumerate() {
         for (s, pts) in file.strands().enumerate() {
             read += 1;
-            if pts.len() >= 2 && arc_length(pts) > 0.0 {
+            if pts.len() >= 2 && arc_length(pts) > 1e-6 * longest_file {
                 kept.push((f, s, pts));
             }
         }
@@ -215,6 +232,13 @@ pub fn build_groom(
             build::resample_by_arc_length(&placed, g);
             build::resample_by_arc_length(&placed, r);
         });
+    if let Some(i) = render_pts.iter().position(|p| !p.is_finite()) {
+        let (f, s, _) = kept[i / n];
+        return Err(invalid(format!(
+            "{}: strand {s}: its coordinates overflow once scaled onto the head (scale {})",
+            files[f].0, placement.scale
+        )));
+    }
     let longest_m = render_pts.chunks(n).map(arc_length).fold(0.0f32, f32::max);
     if !(longest_m > 0.0 && longest_m <= 2.0) {
         return Err(invalid(format!(
@@ -241,6 +265,17 @@ pub fn build_groom(
         base.strands.tip_taper,
     );
     let wisps = layout.wisp_guides.len();
+    let overflow = |v: &Vec3| !v.is_finite();
+    let bad_link = |l: &f32| !(l.is_finite() && *l > 0.0);
+    if guides.rest.iter().any(overflow)
+        || layout.rest_offset.iter().any(overflow)
+        || guides.link_length_m.iter().any(bad_link)
+    {
+        return Err(invalid(format!(
+            "the strands' coordinates overflow once scaled onto the head (scale {}): some coordinates are near the largest 32-bit float",
+            placement.scale
+        )));
+    }
 
     // The style: base head, fibre and dynamics; counts and lengths of the groom.
     let mut style = base.clone();

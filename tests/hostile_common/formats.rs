@@ -2,7 +2,7 @@
 //! structured (for structural mutations), and a loader that says accepted or refused and
 //! checks what an accepted input promises.
 //!
-//! To add a format (TressFX `.tfx`, cyHair `.hair`), add one entry to
+//! To add a format, add one entry to
 //! [`all`]: its seeds (valid files, the entry first) and a loader calling the library. The
 //! mutators and the runner in `tests/hostile_loaders.rs` then cover it with no further code.
 
@@ -294,6 +294,49 @@ fn load_cache(case: &Case, dir: &Path) -> Result<Verdict, String> {
     }
 }
 
+/// What an accepted strand file promises: it imports as a groom (or is refused by the import
+/// with a message naming it), and an imported groom has finite guides and offsets.
+fn load_strands(case: &Case, _dir: &Path) -> Result<Verdict, String> {
+    let name = case.files[0].0.clone();
+    let strands = match wisp::input::strands::parse_strand_file(&case.files[0].1, &name) {
+        Ok(s) => s,
+        Err(e) => return refused(e.to_string(), &name),
+    };
+    let base = Hairstyle::default_smooth();
+    let opts = wisp::groom::GroomOptions::default();
+    match wisp::groom::build_groom(&[(name.clone(), strands)], &base, &opts) {
+        Ok(g) => {
+            let finite = g.guides.rest.iter().all(|p| p.is_finite())
+                && g.layout.rest_offset.iter().all(|p| p.is_finite())
+                && g.guides
+                    .link_length_m
+                    .iter()
+                    .all(|l| l.is_finite() && *l > 0.0);
+            if !finite {
+                return Err("accepted, but the groom has non-finite guides or offsets".into());
+            }
+            if g.layout.rest_offset.len() != g.layout.count() * g.layout.points_per_strand {
+                return Err("accepted, but the offsets do not match the strands".into());
+            }
+            Ok(Verdict::Accepted)
+        }
+        Err(e) => refused(e.to_string(), &name),
+    }
+}
+
+/// A cyHair seed: the exporter's own output for a synthetic groom.
+fn cyhair_seed() -> Vec<u8> {
+    let f = wisp::groom::synthetic_strands(60, 8);
+    let dir = std::env::temp_dir().join(format!("wisp-hostile-seed-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join("seed.hair");
+    wisp::export::cyhair::write_hair(&path, &f.points, 8, 0.01, "hostile seed")
+        .expect("seed written");
+    let bytes = std::fs::read(&path).expect("seed read");
+    let _ = std::fs::remove_dir_all(&dir);
+    bytes
+}
+
 /// A hairstyle with only the required fields.
 const MINIMAL_HAIRSTYLE: &str = r#"{"name": "min", "head": {"radii_m": [0.08, 0.1, 0.09]},
  "scalp": {"max_polar_deg": 100, "front_polar_deg": 50},
@@ -350,6 +393,25 @@ pub fn all() -> Vec<Format> {
             layout: Layout::Cache,
             seeds: vec![file("hostile.wcache", super::cache::seed())],
             load: load_cache,
+        },
+        Format {
+            name: "TressFX strands (.tfx 3.x and 4.x)",
+            layout: Layout::Binary,
+            seeds: {
+                let f = wisp::groom::synthetic_strands(60, 8);
+                let strands: Vec<Vec<glam::Vec3>> = f.strands().map(|s| s.to_vec()).collect();
+                vec![
+                    file("hostile.tfx", wisp::input::tfx::encode_tfx3(&strands)),
+                    file("hostile.tfx", wisp::input::tfx::encode_tfx4(&strands)),
+                ]
+            },
+            load: load_strands,
+        },
+        Format {
+            name: "cyHair strands (.hair)",
+            layout: Layout::Binary,
+            seeds: vec![file("hostile.hair", cyhair_seed())],
+            load: load_strands,
         },
     ]
 }
