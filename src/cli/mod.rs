@@ -222,7 +222,7 @@ impl SceneArgs {
         let (files, styles): (Vec<&String>, Vec<&String>) = self
             .hairstyle
             .iter()
-            .partition(|a| wisp::input::strands::is_strand_file_name(a));
+            .partition(|a| wisp::input::strand_file::is_strand_file_name(a));
         if styles.len() > 1 || (styles.is_empty() && files.is_empty()) {
             return Err(AppError::input(anyhow::anyhow!(
                 "--hairstyle {}: give one preset or JSON hairstyle, plus any number of .tfx/.hair strand files",

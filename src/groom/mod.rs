@@ -32,7 +32,8 @@ pub use fit::Placement;
 pub use synthetic::synthetic_strands;
 
 use crate::hairstyle::{CurlSpec, GuideSet, Hairstyle, MAX_STRANDS, StrandLayout};
-use crate::input::strands::{StrandFile, StrandFileError, load_strand_file};
+use crate::input::strand_file::load_strand_file;
+use crate::input::strands::{StrandFile, StrandFileError};
 use crate::interp::{StrandGeometry, interpolate};
 use glam::Vec3;
 use rayon::prelude::*;

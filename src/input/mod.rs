@@ -9,10 +9,11 @@
 //! check and the read is still caught.
 //!
 //! [`json`] holds the strict JSON reading shared by the JSON formats; [`tfx`] and [`cyhair`]
-//! read captured strands ([`strands`]) for groom import.
+//! read captured strands ([`strands`]) for groom import; [`strand_file`] picks the reader.
 
 pub mod cyhair;
 pub mod json;
+pub mod strand_file;
 pub mod strands;
 pub mod tfx;
 

@@ -298,7 +298,7 @@ fn load_cache(case: &Case, dir: &Path) -> Result<Verdict, String> {
 /// with a message naming it), and an imported groom has finite guides and offsets.
 fn load_strands(case: &Case, _dir: &Path) -> Result<Verdict, String> {
     let name = case.files[0].0.clone();
-    let strands = match wisp::input::strands::parse_strand_file(&case.files[0].1, &name) {
+    let strands = match wisp::input::strand_file::parse_strand_file(&case.files[0].1, &name) {
         Ok(s) => s,
         Err(e) => return refused(e.to_string(), &name),
     };
