@@ -10,6 +10,7 @@ pub mod export_cmd;
 pub mod fiber_cmd;
 pub mod play_cmd;
 pub mod render_cmd;
+pub mod shard;
 pub mod view_args;
 
 use clap::{Parser, Subcommand, ValueEnum};
@@ -455,6 +456,7 @@ pub fn main() -> ExitCode {
         }
     }
     let result = match cli.command {
+        Command::Render(args) if args.cache.is_some() => cache_cmd::render_from_cache(args),
         Command::Render(args) => render_cmd::run(args),
         Command::Simulate(args) => cache_cmd::simulate(args),
         Command::Play(args) => play_cmd::run(args),
