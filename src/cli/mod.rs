@@ -244,7 +244,7 @@ impl SceneArgs {
             wisp::budget::fit_map_resolution(style, motion, config, plan, &self.budget())
         {
             eprintln!(
-                "wisp: warning: the automatic map resolution {auto} (cells of twice the strand spacing at the scalp) could need more memory than --max-memory-gb {}; using {n}",
+                "wisp: warning: the automatic map resolution {auto} (cells of 1.5 strand spacings at the scalp) could need more memory than --max-memory-gb {}; using {n}",
                 self.max_memory_gb
             );
             config.map_res = Some(n);
