@@ -22,12 +22,12 @@ mod budget;
 pub mod camera;
 pub mod framebuffer;
 pub mod lines;
+pub mod polyline;
 mod segment;
 pub mod solid;
 
 pub use camera::{Camera, DEFAULT_NEAR_M, View};
 pub use framebuffer::Framebuffer;
-pub use lines::{
-    LineScratch, LineStyle, LineWidth, MAX_SEGMENTS, MAX_WIDTH_PX, Polylines, draw_polylines,
-};
+pub use lines::{LineScratch, MAX_SEGMENTS, draw_polylines};
+pub use polyline::{LineStyle, LineWidth, MAX_WIDTH_PX, Polylines};
 pub use solid::draw_ellipsoid;
