@@ -327,7 +327,10 @@ fn load_strands(case: &Case, _dir: &Path) -> Result<Verdict, String> {
 /// A cyHair seed: the exporter's own output for a synthetic groom.
 fn cyhair_seed() -> Vec<u8> {
     let f = wisp::groom::synthetic_strands(60, 8);
-    let dir = std::env::temp_dir().join(format!("wisp-hostile-seed-{}", std::process::id()));
+    // One directory per call: the tests of a binary build their formats in parallel.
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("wisp-hostile-seed-{}-{call}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let path = dir.join("seed.hair");
     wisp::export::cyhair::write_hair(&path, &f.points, 8, 0.01, "hostile seed")
