@@ -38,6 +38,7 @@ fn main() {
     let exact = ExactReference::build(
         &ExactInput {
             positions: &engine.strands.positions,
+            fibre_share: &engine.strands.fibre_share,
             points_per_strand: ppl,
             fibers_per_strand: fibers.round() as u32,
             bundle_radius_m: 0.5 * s,
