@@ -1,13 +1,15 @@
 //! One frame of the pipeline, stage by stage, with per-stage timings.
 //!
 //! ```text
-//! animation   motion.sample(t)                -> head and body-sphere transforms
+//! animation   motion.sample(t)                -> head and body-collider transforms, and the
+//!                                                character's skinned mesh
 //! simulation  sim.advance(t, colliders, map)  -> guide particles (self-collision reads the
 //!                                                map of the previous frame, Bertails §4.1)
 //! interp      interpolate(guides)             -> render strands (positions, tangents)
 //! map         map.build(strands, light)       -> Tf, σ̄f², direct fraction per cell
 //! shading     shade_vertices(map, fiber)      -> vertex colours
-//! raster      head, body spheres, hair lines  -> framebuffer
+//! raster      character mesh (or the head and   -> framebuffer
+//!             body spheres), hair lines
 //! ```
 //!
 //! [`Engine`] owns every buffer, so after the first frame no stage allocates. Each stage is a
@@ -17,15 +19,17 @@
 use crate::fiber::Fiber;
 use crate::hairstyle::{GuideSet, Hairstyle, StrandLayout, generate};
 use crate::interp::{StrandGeometry, interpolate};
-use crate::map::{CountModel, LightMap, MapGeometry, MapStats, Solid};
-use crate::motion::{Motion, Pose};
+use crate::map::{CountModel, LightMap, MapGeometry, MapStats, OccluderMesh, Solid};
+use crate::motion::{CharacterPose, Motion, Pose};
 use crate::raster::{
-    Camera, Framebuffer, LineScratch, LineStyle, Polylines, draw_ellipsoid, draw_polylines,
+    Camera, Framebuffer, LineScratch, LineStyle, Mesh, MeshScratch, Polylines, Surface, Texture,
+    draw_ellipsoid, draw_mesh, draw_polylines,
 };
 use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};
 use crate::shade::{Lighting, shade_skin, shade_vertices};
 use crate::sim::{
-    Colliders, DensityField, NoDensity, SimState, Simulator, SphereCollider, StepStats,
+    CapsuleCollider, Colliders, DensityField, NoDensity, SimState, Simulator, SphereCollider,
+    StepStats,
 };
 use glam::{Affine3A, Vec3};
 use std::time::Instant;
@@ -164,8 +168,17 @@ pub struct Engine {
     follow: Option<HeadFollowing>,
     fb: Framebuffer,
     scratch: LineScratch,
-    /// The head and body solids of the current pose (reused buffer).
+    /// The head and body solids of the current pose (reused buffer), and their albedos.
     solids: Vec<Solid>,
+    solid_albedo: Vec<Vec3>,
+    /// The character's mesh posed at the current time (empty without a character).
+    character: CharacterPose,
+    /// How the character's triangles look (from its materials) and its textures.
+    surfaces: Vec<Surface>,
+    textures: Vec<Texture>,
+    /// The character's mesh includes its head (else the head ellipsoid is drawn too).
+    character_has_head: bool,
+    mesh_scratch: MeshScratch,
     /// Timings of the last frame.
     pub timings: StageTimings,
     /// Figures of the last simulation advance.
@@ -180,6 +193,28 @@ impl Engine {
         let radii = Vec3::from(style.head.radii_m);
         let pose = motion.sample(0.0);
         let sim = Simulator::new(&style.dynamics, &guides, radii);
+        let (surfaces, textures, character_has_head) = match motion.character() {
+            Some(ch) => (
+                ch.materials
+                    .iter()
+                    .map(|m| Surface {
+                        albedo: m.base_color,
+                        texture: m.texture.map(|t| t as u32),
+                        double_sided: m.double_sided,
+                    })
+                    .collect(),
+                ch.textures
+                    .iter()
+                    .map(|t| Texture {
+                        width: t.width,
+                        height: t.height,
+                        texels: t.texels.clone(),
+                    })
+                    .collect(),
+                ch.has_head(),
+            ),
+            None => (Vec::new(), Vec::new(), false),
+        };
         let state = SimState::at_rest(&guides, &colliders_of(&pose, radii), -config.settle_s);
         let geom = map_geometry(&style, &config);
         // Replaced once the settled hair is framed (`place_camera`), before any render.
@@ -212,6 +247,12 @@ impl Engine {
             fb,
             scratch: LineScratch::default(),
             solids: Vec::new(),
+            solid_albedo: Vec::new(),
+            character: CharacterPose::default(),
+            surfaces,
+            textures,
+            character_has_head,
+            mesh_scratch: MeshScratch::default(),
             timings: StageTimings::default(),
             step_stats: StepStats::default(),
             config,
@@ -242,6 +283,10 @@ impl Engine {
     pub fn pose(&self) -> &Pose {
         &self.pose
     }
+    /// The character's mesh at the current time (pose world; empty without a character).
+    pub fn character_pose(&self) -> &CharacterPose {
+        &self.character
+    }
     /// Vertex colours of the last render (linear RGB), indexed like `strands.positions`.
     pub fn colors(&self) -> &[Vec3] {
         &self.colors
@@ -267,6 +312,7 @@ impl Engine {
     pub fn advance(&mut self, t_s: f64) {
         let t0 = Instant::now();
         self.motion.sample_into(t_s as f32, &mut self.pose);
+        self.motion.pose_character(t_s as f32, &mut self.character);
         let radii = Vec3::from(self.style.head.radii_m);
         let t1 = Instant::now();
         if self.config.simulate {
@@ -354,17 +400,34 @@ impl Engine {
         &self.fb
     }
 
-    /// The head and the body spheres, opaque, lit through the hair's shadow.
+    /// The character's mesh (or the head and the body spheres), opaque, lit through the hair's
+    /// shadow.
     fn draw_solids(&mut self) {
         let (map, lighting) = (&self.map, &self.config.lighting);
-        // The head first (skin), then the body spheres (cloth): the solids of the map.
-        for (k, s) in self.solids.iter().enumerate() {
-            let albedo = if k == 0 { SKIN } else { CLOTH };
+        for (s, albedo) in self.solids.iter().zip(&self.solid_albedo) {
             draw_ellipsoid(
                 &mut self.fb,
                 &self.camera,
                 s.unit_sphere_to_world,
-                |p, n| shade_skin(map, lighting, albedo, p, n),
+                |p, n| shade_skin(map, lighting, *albedo, p, n),
+            );
+        }
+        if let Some(ch) = self.motion.character() {
+            let mesh = Mesh {
+                positions: &self.character.positions,
+                normals: &self.character.normals,
+                uv: &ch.uv,
+                triangles: &ch.triangles,
+                triangle_surface: &ch.triangle_material,
+                surfaces: &self.surfaces,
+                textures: &self.textures,
+            };
+            draw_mesh(
+                &mut self.fb,
+                &self.camera,
+                &mesh,
+                |p, n, albedo| shade_skin(map, lighting, albedo, p, n),
+                &mut self.mesh_scratch,
             );
         }
     }
@@ -388,11 +451,25 @@ impl Engine {
             fiber: &self.fiber,
         });
         self.solids.clear();
+        self.solid_albedo.clear();
+        let character = self.motion.character().filter(|_| self.config.draw_solids);
         if self.config.draw_solids {
-            self.solids
-                .extend(solids_of(&self.pose, Vec3::from(self.style.head.radii_m)));
+            // The head ellipsoid unless the character's mesh has a head, then body spheres.
+            let radii = Vec3::from(self.style.head.radii_m);
+            let skip_head = usize::from(character.is_some() && self.character_has_head);
+            for (k, s) in solids_of(&self.pose, radii).enumerate().skip(skip_head) {
+                self.solids.push(s);
+                self.solid_albedo.push(if k == 0 { SKIN } else { CLOTH });
+            }
         }
-        self.map.set_occluders(&self.solids);
+        let mesh = match character {
+            Some(ch) => OccluderMesh {
+                positions: &self.character.positions,
+                triangles: &ch.triangles,
+            },
+            None => OccluderMesh::EMPTY,
+        };
+        self.map.set_occluders_with_mesh(&self.solids, mesh);
         self.map_valid = true;
     }
 
@@ -461,11 +538,7 @@ fn solids_of(pose: &Pose, head_radii_m: Vec3) -> impl Iterator<Item = Solid> + '
 }
 
 fn colliders_of(pose: &Pose, radii: Vec3) -> Colliders {
-    let mut c = Colliders {
-        head: pose.head,
-        head_radii_m: radii,
-        spheres: Vec::new(),
-    };
+    let mut c = Colliders::head_only(pose.head, radii);
     write_colliders(pose, radii, &mut c);
     c
 }
@@ -478,6 +551,13 @@ fn write_colliders(pose: &Pose, radii: Vec3, c: &mut Colliders) {
         .extend(pose.spheres.iter().map(|s| SphereCollider {
             center: s.center,
             radius_m: s.radius_m,
+        }));
+    c.capsules.clear();
+    c.capsules
+        .extend(pose.capsules.iter().map(|k| CapsuleCollider {
+            a: k.a,
+            b: k.b,
+            radius_m: k.radius_m,
         }));
 }
 

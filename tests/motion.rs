@@ -299,7 +299,8 @@ fn still_is_still() {
         m.sample(0.0),
         Pose {
             head,
-            spheres: vec![]
+            spheres: vec![],
+            capsules: vec![]
         }
     );
     assert_eq!(m.sample(12.3).head, head);

@@ -35,8 +35,8 @@ impl MapGeometry {
         let u32_bytes = size_of::<u32>() as u64;
         let entries = samples.saturating_mul(pieces).saturating_mul(SPLAT as u64);
         let entry_bytes = size_of::<Entry>() as u64;
-        let occluders = (MAX_TEXELS * MAX_TEXELS * size_of::<f32>()) as u64
-            + size_of::<OccluderGrid>() as u64;
+        let occluders =
+            (MAX_TEXELS * MAX_TEXELS * size_of::<f32>()) as u64 + size_of::<OccluderGrid>() as u64;
         let cell_bytes = size_of::<Cell>() as u64;
         let offsets = (3 * columns + 2) * u32_bytes;
         let slots = 2 * entries.min(columns).saturating_mul(n) * u32_bytes;

@@ -40,6 +40,11 @@ impl LightMap {
     /// before the hair read as unshadowed. `crossings_behind` is each column's total crossings
     /// minus those in front of the point, blended the same way: the hair further along the
     /// light that can scatter light back to the point (Zinke's local back-scatter).
+    ///
+    /// Only the hair's own extent is read: a column outside it holds no hair (whatever the
+    /// modulo indexing would alias there), and a point beyond the hair's last slice receives
+    /// its column's whole sums. Inside a map whose span holds the hair (no overflow) this is
+    /// exactly the unaliased answer, also for points far from the hair (a character's feet).
     pub fn light_at(&self, p: Vec3) -> LightAtPoint {
         let m = self.frame.to_map(p);
         let c = m * self.inv_ds;
@@ -48,8 +53,12 @@ impl LightMap {
         }
         let visible = self.occluders.visibility(m);
         let i = c.x.floor();
-        let lambda = c.x - i;
-        let d = i as i64 - self.first_slice;
+        let mut lambda = c.x - i;
+        let mut d = i as i64 - self.first_slice;
+        let last = self.hair_hi[0] - self.first_slice;
+        if d > last {
+            (d, lambda) = (last, 1.0);
+        }
         let (yj, zk) = (c.y - 0.5, c.z - 0.5);
         let (j0, k0) = (yj.floor(), zk.floor());
         let (wy, wz) = (yj - j0, zk - k0);
@@ -61,7 +70,15 @@ impl LightMap {
                 if w == 0.0 {
                     continue;
                 }
-                let col = self.column(j0 + dj, k0 + dk);
+                let (j, k) = (j0 + dj, k0 + dk);
+                let in_hair = (self.hair_lo[1]..=self.hair_hi[1]).contains(&j)
+                    && (self.hair_lo[2]..=self.hair_hi[2]).contains(&k);
+                if !in_hair {
+                    direct += w;
+                    tf += Vec3::splat(w);
+                    continue;
+                }
+                let col = self.column(j, k);
                 let s = self.sums_at(col, d, lambda);
                 direct += w * (-s.n).exp();
                 tf += w * (-s.loss).exp();

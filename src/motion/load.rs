@@ -7,10 +7,12 @@ use std::path::Path;
 use glam::{Affine3A, Mat4, Quat, Vec3, Vec4};
 use gltf::animation::{Interpolation as GltfInterpolation, Property};
 
+use super::capsules;
 use super::fit::{self, FitMethod};
 use super::gltf_io::{Loaded, invalid, parse, read_accessor, short_list};
 use super::sampler::{Interpolation, Track};
-use super::{ChainNode, JointChain, JointRef, Motion, MotionError, MotionOptions};
+use super::skin::load_character;
+use super::{CapsuleSpec, ChainNode, JointChain, JointRef, Motion, MotionError, MotionOptions};
 
 /// Node hierarchy of the file at rest (node default transforms). Acyclic (checked when built),
 /// and every per-node quantity is computed once in O(nodes): a file may have a million nodes
@@ -392,6 +394,68 @@ pub(crate) fn from_bytes(
     };
     let (mut tracks, start_s, end_s) = read_clip(&anim, &loaded, file, &clip_name)?;
 
+    // Evaluated nodes: the union of the chains, each node once, parents first.
+    let mut nodes: Vec<ChainNode> = Vec::new();
+    let mut slot_of: Vec<Option<usize>> = vec![None; skel.names.len()];
+    let mut make_chain = |joint: usize| -> JointChain {
+        let chain = skel.chain(joint);
+        let mut idx: Vec<usize> = Vec::with_capacity(chain.len());
+        for &n in &chain {
+            let parent = idx.last().copied();
+            let slot = *slot_of[n].get_or_insert_with(|| {
+                let [t, r, s] = tracks.remove(&n).unwrap_or_default();
+                let nd = doc.nodes().nth(n);
+                let (rt, rr, rs, m) = nd.as_ref().map_or(
+                    (Vec3::ZERO, Quat::IDENTITY, Vec3::ONE, Affine3A::IDENTITY),
+                    rest_trs,
+                );
+                let is_matrix = nd.is_some_and(|nd| {
+                    matches!(nd.transform(), gltf::scene::Transform::Matrix { .. })
+                });
+                let animated = t.is_some() || r.is_some() || s.is_some();
+                nodes.push(ChainNode {
+                    parent,
+                    rest_matrix: (is_matrix && !animated).then_some(m),
+                    rest_t: rt,
+                    rest_r: rr,
+                    rest_s: rs,
+                    translation: t,
+                    rotation: r,
+                    scale: s,
+                });
+                nodes.len() - 1
+            });
+            idx.push(slot);
+        }
+        JointChain {
+            chain: idx,
+            rest_align: super::rigid_rotation(&skel.rest_world(joint)).inverse(),
+        }
+    };
+
+    let in_head = skel.subtree(head);
+    let character = if opts.meshes {
+        let mut bone_slot = |node: usize| make_chain(node).chain.last().copied().unwrap_or(0);
+        load_character(&loaded, &skel, &in_head, file, &mut bone_slot)?
+    } else {
+        None
+    };
+    // The head mesh's box at rest (model metres, rest world axes): the character's vertices
+    // whose strongest bone is in the head's subtree.
+    let head_box = character.as_ref().and_then(|ch| {
+        let (mut lo, mut hi, mut n) = (
+            Vec3::splat(f32::INFINITY),
+            Vec3::splat(f32::NEG_INFINITY),
+            0,
+        );
+        for v in (0..ch.vertex_count()).filter(|&v| ch.is_head_vertex(v)) {
+            lo = lo.min(ch.rest_model[v]);
+            hi = hi.max(ch.rest_model[v]);
+            n += 1;
+        }
+        (n >= 4).then_some((lo, hi, n))
+    });
+
     let (fit, fit_method) = match opts.fit {
         Some(f) => {
             if !(f.scale.is_finite() && f.scale > 0.0 && f.offset_m.is_finite()) {
@@ -401,10 +465,17 @@ pub(crate) fn from_bytes(
             }
             (f, FitMethod::Given)
         }
-        None => fit::estimate(&loaded, &skel, head),
+        None => match head_box {
+            Some((lo, hi, n)) => fit::from_box(lo, hi, n, &skel, head),
+            // Meshes read above had no head: the fit must not decode them again.
+            None if character.is_some() => fit::estimate_without_mesh(&skel, head),
+            None => fit::estimate(&loaded, &skel, head),
+        },
     };
+    let head_half_extents_m = head_box.map(|(lo, hi, _)| (hi - lo) * 0.5 / fit.scale);
 
     let sphere_specs: Vec<(usize, Vec3, f32)> = match &opts.body_spheres {
+        None if character.is_some() && opts.body_capsules => Vec::new(),
         None => fit::default_spheres(&skel, head, &fit),
         Some(specs) => {
             let mut out = Vec::with_capacity(specs.len());
@@ -424,47 +495,48 @@ pub(crate) fn from_bytes(
         }
     };
 
-    // Evaluated nodes: the union of the chains, each node once.
-    let mut nodes: Vec<ChainNode> = Vec::new();
-    let mut slot_of: Vec<Option<usize>> = vec![None; skel.names.len()];
-    let mut make_chain = |joint: usize| -> JointChain {
-        let chain = skel.chain(joint);
-        let mut idx = Vec::with_capacity(chain.len());
-        for &n in &chain {
-            let slot = *slot_of[n].get_or_insert_with(|| {
-                let [t, r, s] = tracks.remove(&n).unwrap_or_default();
-                let nd = doc.nodes().nth(n);
-                let (rt, rr, rs, m) = nd.as_ref().map_or(
-                    (Vec3::ZERO, Quat::IDENTITY, Vec3::ONE, Affine3A::IDENTITY),
-                    rest_trs,
-                );
-                let is_matrix = nd.is_some_and(|nd| {
-                    matches!(nd.transform(), gltf::scene::Transform::Matrix { .. })
-                });
-                let animated = t.is_some() || r.is_some() || s.is_some();
-                nodes.push(ChainNode {
-                    rest_matrix: (is_matrix && !animated).then_some(m),
-                    rest_t: rt,
-                    rest_r: rr,
-                    rest_s: rs,
-                    translation: t,
-                    rotation: r,
-                    scale: s,
-                });
-                nodes.len() - 1
-            });
-            idx.push(slot);
-        }
-        JointChain {
-            chain: idx,
-            rest_align: super::rigid_rotation(&skel.rest_world(joint)).inverse(),
-        }
-    };
     let head_chain = make_chain(head);
     let spheres: Vec<(JointChain, Vec3, f32)> = sphere_specs
         .into_iter()
         .map(|(j, off, r)| (make_chain(j), off, r))
         .collect();
+    let capsules: Vec<CapsuleSpec> = match &character {
+        Some(ch) if opts.body_capsules => {
+            // The head ellipsoid at rest in model space: the mesh's box, or the fitted
+            // 0.09 m head.
+            let centre = Vec3::from(skel.rest_world(head).translation) + fit.offset_m;
+            let radii = head_half_extents_m
+                .map_or(Vec3::splat(super::HAIRSTYLE_HEAD_RADIUS_M), |h| h)
+                * fit.scale;
+            let head_ellipsoid =
+                Affine3A::from_scale_rotation_translation(radii, Quat::IDENTITY, centre);
+            let bone_of: Vec<usize> = (0..ch.vertex_count())
+                .map(|v| ch.joints[v][super::skin::dominant(&ch.weights[v])] as usize)
+                .collect();
+            capsules::fit(
+                &ch.rest_model,
+                &bone_of,
+                &ch.bone_in_head,
+                head_ellipsoid,
+                capsules::HEAD_CLEARANCE_M * fit.scale,
+                capsules::MIN_RADIUS_M * fit.scale,
+            )
+            .into_iter()
+            .map(|c| {
+                let bone = &ch.bones[c.bone];
+                let to_bind = (skel.rest_world(bone.node) * bone.bind).inverse();
+                CapsuleSpec {
+                    chain: make_chain(bone.node),
+                    bind: bone.bind,
+                    a: to_bind.transform_point3(c.a),
+                    b: to_bind.transform_point3(c.b),
+                    radius_m: c.radius / fit.scale,
+                }
+            })
+            .collect()
+        }
+        _ => Vec::new(),
+    };
 
     let motion = Motion {
         clip_name,
@@ -476,6 +548,9 @@ pub(crate) fn from_bytes(
         nodes,
         head: head_chain,
         spheres,
+        capsules,
+        character,
+        head_half_extents_m,
         head_joint_name: skel.names[head].clone(),
         head_joint_index: head,
     };

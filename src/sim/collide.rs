@@ -36,6 +36,8 @@
 
 use glam::{Affine3A, Vec3, Vec3A};
 
+use super::capsule::CapsuleCollider;
+
 /// Extra clearance in metres that collisions push particles to, beyond the true surface: it
 /// absorbs the residual penetration left by the final length projection. 1 mm is below the
 /// visible scale of a wisp (≈ 9 mm radius) and above the residuals measured in the tests.
@@ -62,6 +64,8 @@ pub struct Colliders {
     pub head_radii_m: Vec3,
     /// Body spheres (neck, shoulders, ...), world.
     pub spheres: Vec<SphereCollider>,
+    /// Body capsules (a character's limbs and torso), world; see `capsule.rs`.
+    pub capsules: Vec<CapsuleCollider>,
 }
 
 impl Colliders {
@@ -71,6 +75,7 @@ impl Colliders {
             head,
             head_radii_m,
             spheres: Vec::new(),
+            capsules: Vec::new(),
         }
     }
 
@@ -85,6 +90,9 @@ impl Colliders {
         let mut depth = ((1.0 - s) * r.max_element()).max(0.0);
         for sp in &self.spheres {
             depth = depth.max(sp.radius_m - (p - sp.center).length());
+        }
+        for c in &self.capsules {
+            depth = depth.max(c.penetration_m(Vec3A::from(p)));
         }
         depth.max(0.0)
     }
@@ -105,6 +113,7 @@ pub(crate) struct CollisionScene<'a> {
     /// Largest true semi-axis (for the conservative penetration estimate).
     radius_max: f32,
     spheres: &'a [SphereCollider],
+    capsules: &'a [CapsuleCollider],
 }
 
 impl<'a> CollisionScene<'a> {
@@ -118,6 +127,7 @@ impl<'a> CollisionScene<'a> {
             inv_radii_out: (radii + Vec3A::splat(COLLISION_MARGIN_M)).recip(),
             radius_max: radii.max_element(),
             spheres: &c.spheres,
+            capsules: &c.capsules,
         }
     }
 
@@ -169,6 +179,12 @@ impl<'a> CollisionScene<'a> {
                     moved = true;
                 }
             }
+            for c in self.capsules {
+                if let Some(q) = c.push_out(prev, p, link_m, fallback_dir) {
+                    p = q;
+                    moved = true;
+                }
+            }
             if !moved {
                 break;
             }
@@ -194,6 +210,9 @@ impl<'a> CollisionScene<'a> {
                 depth = depth.max(r - d2.sqrt());
             }
         }
+        for c in self.capsules {
+            depth = depth.max(c.penetration_m(p));
+        }
         depth
     }
 }
@@ -206,7 +225,7 @@ impl<'a> CollisionScene<'a> {
 /// collider) is nearest to the circle point of the same azimuth about `a`. `None` when `prev`
 /// is inside the sphere or the link cannot reach it.
 #[inline]
-fn circle_exit(
+pub(crate) fn circle_exit(
     prev: Vec3A,
     p: Vec3A,
     link: f32,
@@ -249,6 +268,7 @@ mod tests {
                 center: Vec3::new(0.1, 1.3, -0.2),
                 radius_m: 0.12,
             }],
+            capsules: Vec::new(),
         }
     }
 

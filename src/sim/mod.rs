@@ -24,6 +24,7 @@
 
 mod bend;
 mod budget;
+pub mod capsule;
 pub mod collide;
 pub mod dance;
 pub mod density;
@@ -31,6 +32,7 @@ pub mod state;
 pub mod step;
 
 pub use bend::BENDING_REFERENCE_STEP_S;
+pub use capsule::CapsuleCollider;
 pub use collide::{COLLISION_MARGIN_M, Colliders, SphereCollider};
 pub use density::{DensityField, NoDensity};
 pub use state::SimState;
