@@ -243,6 +243,8 @@ pub fn fit_map_resolution(
     if config.map_res.is_some() {
         return None;
     }
+    let fitted = crate::frame::fit_style_to_character(style, motion);
+    let style = &fitted;
     let fits = |n: u32| {
         let c = EngineConfig {
             map_res: Some(n),
@@ -275,6 +277,8 @@ pub fn estimate(
     config: &EngineConfig,
     plan: &RunPlan,
 ) -> Estimate {
+    let fitted = crate::frame::fit_style_to_character(style, motion);
+    let style = &fitted;
     let wisps = style.wisps.count as u64;
     let guides = 3 * wisps;
     let points_per_guide = style.guides.links as u64 + 1;

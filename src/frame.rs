@@ -186,8 +186,11 @@ pub struct Engine {
 }
 
 impl Engine {
-    /// Builds the hair, settles it on the first pose of the motion and frames the camera.
+    /// Builds the hair, settles it on the first pose of the motion and frames the camera. A
+    /// character with a head mesh gets the hairstyle's head fitted to it first
+    /// ([`fit_style_to_character`]).
     pub fn new(style: Hairstyle, motion: Motion, config: EngineConfig) -> Self {
+        let style = fit_style_to_character(&style, &motion);
         let fiber = Fiber::new(&style.fiber);
         let (guides, layout) = generate(&style);
         let radii = Vec3::from(style.head.radii_m);
@@ -506,6 +509,23 @@ impl Engine {
             );
         }
     }
+}
+
+/// The hairstyle an [`Engine`] grows on `motion`'s character: when the character has a head
+/// mesh, the head ellipsoid takes the half extents of that mesh's box (pose metres, clamped to
+/// the valid range), so generated roots lie on the drawn head instead of floating above a
+/// flat one or hiding under a wide one (RobotExpressive's head is 0.10 × 0.07 × 0.10 m after
+/// the fit against the presets' 0.076 × 0.098 × 0.094 m). Otherwise the style is unchanged.
+pub fn fit_style_to_character(style: &Hairstyle, motion: &Motion) -> Hairstyle {
+    let mut style = style.clone();
+    if let Some(half) = motion.head_half_extents_m() {
+        let lo = crate::hairstyle::MIN_HEAD_RADIUS_M;
+        let r = half.clamp(Vec3::splat(lo), Vec3::ONE);
+        if r.is_finite() {
+            style.head.radii_m = r.to_array();
+        }
+    }
+    style
 }
 
 /// The map geometry an engine uses for `style` under `config`: `config.map_res` cells per axis

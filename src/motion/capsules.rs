@@ -1,34 +1,47 @@
-//! Body colliders fitted to a character's mesh: one capsule per bone, around the rest-pose
+//! Body colliders fitted to a character's mesh: capsules per bone, around the rest-pose
 //! vertices that bone dominates.
 //!
 //! # How
 //! For every bone outside the head (the head is the hairstyle's ellipsoid), the vertices whose
-//! largest skin weight is on it are gathered at the rest pose. Their principal axis (the
-//! covariance's largest eigenvector, by power iteration) carries the capsule's segment; the
-//! radius is the largest distance of a vertex from that axis, and each end of the segment is
-//! then moved out just far enough that every vertex lies within the radius of the segment
-//! (for a vertex at axial position t and distance d from the axis, the end must reach
-//! t ∓ √(r² − d²)). The capsule therefore contains every vertex it was fitted to: hair kept
-//! outside the capsules is outside those vertices' hull. On round limbs (the mannequin of the
-//! embedded dance) it hugs the surface; on boxy parts it bulges past the faces (a box's
-//! capsule reaches its corners), so hair rests a little above them.
+//! largest skin weight is on it are gathered at the rest pose, less those inside the head
+//! ellipsoid inflated by [`HEAD_CLEARANCE_M`] (a neck tube reaching up into the skull, hidden
+//! there, must not put a collider under the scalp's roots). Their covariance gives three
+//! principal axes with extents E₁ ≥ E₂ ≥ E₃ (eigenvectors by power iteration and deflation).
 //!
-//! Bones with fewer than [`MIN_VERTICES`] vertices are skipped (fingers, a stray vertex). A
-//! capsule is also shrunk so that, at rest, it keeps [`HEAD_CLEARANCE_M`] from the head
-//! ellipsoid: hair roots sit on the ellipsoid and must never start inside a body collider
-//! (a neck capsule fitted to a collar would otherwise swallow the nape's roots).
+//! - The capsules' direction is the principal axis nearest the bone's own direction (from the
+//!   joint to its children, when it has any: an arm along the arm, a chest upward toward the
+//!   neck and shoulders), else the first.
+//! - Across it, the bone's vertices are cut into n slabs along the wider of the two other
+//!   axes, n = round(2·E_wide / E_thin) clamped to [1, [`MAX_PER_BONE`]]: one capsule for a
+//!   round limb, several side by side for a chest or a pelvis, whose cross-section is twice as
+//!   wide as deep. A single capsule around a chest would be as thick as the chest is wide (the
+//!   back 6 cm behind the real one); side by side, each is about as thick as the chest is deep.
+//! - Each slab's capsule runs along the direction through the slab's centroid; its radius is
+//!   the largest distance of a slab vertex from that line, and each end of the segment then
+//!   moves out just far enough that every slab vertex lies within the radius of the segment
+//!   (for a vertex at axial position t and distance d from the line, the end must reach
+//!   t ∓ √(r² − d²)).
+//!
+//! Every capsule therefore contains every vertex it was fitted to: hair kept outside the
+//! capsules is outside those vertices (up to the facets between them). The price is a bulge
+//! where a slab's round capsule covers a flatter surface: on the mannequin's back about 1 cm
+//! at the middle of a slab; on boxy parts more (a box's capsule reaches its corners).
+//! Bones with fewer than [`MIN_VERTICES`] vertices are skipped (fingers, a stray vertex).
 //!
 //! Why capsules: a sphere per bone leaves gaps along limbs or bulges around them, and a capsule
 //! costs one segment projection more than a sphere in the simulation's inner loop.
 
-use glam::{Affine3A, Vec3};
+use glam::{Affine3A, Mat3, Vec3};
 
-/// Fewest vertices a bone needs to get a capsule.
+/// Fewest vertices a bone (or a slab of one) needs to get a capsule.
 pub const MIN_VERTICES: usize = 8;
-/// Distance a capsule keeps from the fitted head ellipsoid at rest, in pose metres.
+/// Most capsules side by side for one bone.
+pub const MAX_PER_BONE: usize = 6;
+/// Vertices closer than this to the head ellipsoid (or inside it) are left out of the fit,
+/// pose metres.
 pub const HEAD_CLEARANCE_M: f32 = 0.005;
 /// Thinnest capsule kept, pose metres.
-pub const MIN_RADIUS_M: f32 = 0.01;
+pub const MIN_RADIUS_M: f32 = 0.005;
 
 /// A fitted capsule in model rest space: the bone it follows, segment ends, radius.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -39,87 +52,151 @@ pub(crate) struct FittedCapsule {
     pub(crate) radius: f32,
 }
 
-/// Capsules around the rest-pose `points` grouped by `bone_of_point`, skipping bones marked in
-/// `skip`. `head` maps the unit sphere to the head ellipsoid at rest (model space); capsules
-/// are shrunk to keep `clearance` (model units) from it.
+/// Capsules around the rest-pose `points` grouped by `bone_of_point` (see the module doc),
+/// skipping bones marked in `skip`. `bone_dir[b]` is bone b's direction at rest (zero when it
+/// has none); `head` maps the unit sphere to the head ellipsoid at rest (model space), and
+/// points within `clearance` of it (model units, measured along its shortest axis) are left
+/// out. Capsules thinner than `min_radius` are dropped.
 pub(crate) fn fit(
     points: &[Vec3],
     bone_of_point: &[usize],
     skip: &[bool],
+    bone_dir: &[Vec3],
     head: Affine3A,
     clearance: f32,
     min_radius: f32,
 ) -> Vec<FittedCapsule> {
     let bones = skip.len();
+    let to_head = head.inverse();
+    let shortest = head
+        .matrix3
+        .x_axis
+        .length()
+        .min(head.matrix3.y_axis.length())
+        .min(head.matrix3.z_axis.length());
+    let inflate = if shortest > 0.0 {
+        1.0 + clearance / shortest
+    } else {
+        1.0
+    };
     let mut groups: Vec<Vec<Vec3>> = vec![Vec::new(); bones];
     for (p, &b) in points.iter().zip(bone_of_point) {
-        if b < bones && !skip[b] {
+        let near_head = to_head.transform_point3(*p).length() < inflate;
+        if b < bones && !skip[b] && !near_head {
             groups[b].push(*p);
         }
     }
-    let to_head = head.inverse();
     let mut out = Vec::new();
     for (bone, pts) in groups.iter().enumerate() {
         if pts.len() < MIN_VERTICES {
             continue;
         }
-        let Some(mut c) = enclosing_capsule(pts) else {
+        let Some(axes) = principal_axes(pts) else {
             continue;
         };
-        c.bone = bone;
-        // Keep clear of the head: the end nearer the head is pulled back along the segment
-        // until the capsule leaves `clearance` (the distance is measured in the ellipsoid's
-        // unit-sphere space and scaled by its shortest axis, which never over-states it);
-        // if even the far end alone is too close, the radius shrinks instead.
-        let unit = min_axis(&head);
-        let gap_of = |a: Vec3, b: Vec3, r: f32| {
-            let (a_u, b_u) = (to_head.transform_point3(a), to_head.transform_point3(b));
-            (closest_on_segment(Vec3::ZERO, a_u, b_u).length() - 1.0) * unit - r
+        // Direction: the principal axis nearest the bone's own.
+        let d = bone_dir.get(bone).copied().unwrap_or(Vec3::ZERO);
+        let along = if d.length_squared() > 0.0 {
+            (0..3)
+                .max_by(|&i, &j| axes[i].0.dot(d).abs().total_cmp(&axes[j].0.dot(d).abs()))
+                .unwrap_or(0)
+        } else {
+            0
         };
-        if gap_of(c.a, c.b, c.radius) < clearance {
-            let (near, far) = if to_head.transform_point3(c.a).length()
-                < to_head.transform_point3(c.b).length()
-            {
-                (c.a, c.b)
+        let (axis, _) = axes[along];
+        let mut others = [0usize, 1, 2].into_iter().filter(|&i| i != along);
+        let (i, j) = (others.next().unwrap_or(1), others.next().unwrap_or(2));
+        let ((wide, e_wide), (_, e_thin)) = if axes[i].1 >= axes[j].1 {
+            (axes[i], axes[j])
+        } else {
+            (axes[j], axes[i])
+        };
+        let n = if e_thin > 0.0 {
+            ((2.0 * e_wide / e_thin).round() as usize).clamp(1, MAX_PER_BONE)
+        } else {
+            1
+        };
+        let (lo, hi) = pts
+            .iter()
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p.dot(wide)), hi.max(p.dot(wide)))
+            });
+        let width = (hi - lo) / n as f32;
+        let mut slabs: Vec<Vec<Vec3>> = vec![Vec::new(); n];
+        for p in pts {
+            let k = if width > 0.0 {
+                (((p.dot(wide) - lo) / width) as usize).min(n - 1)
             } else {
-                (c.b, c.a)
+                0
             };
-            let far_gap = gap_of(far, far, c.radius);
-            let kept = if far_gap < clearance {
-                c.radius += far_gap - clearance;
-                0.0
-            } else {
-                let (mut lo, mut hi) = (0.0f32, 1.0f32);
-                for _ in 0..30 {
-                    let mid = 0.5 * (lo + hi);
-                    if gap_of(far, far + (near - far) * mid, c.radius) >= clearance {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                }
-                lo
-            };
-            c.a = far;
-            c.b = far + (near - far) * kept;
+            slabs[k].push(*p);
         }
-        if c.radius >= min_radius && c.radius.is_finite() && c.a.is_finite() && c.b.is_finite() {
-            out.push(c);
+        for slab in &slabs {
+            if slab.len() < MIN_VERTICES.min(pts.len()) {
+                continue;
+            }
+            if let Some(mut c) = capsule_along(slab, axis)
+                && c.radius >= min_radius
+                && c.a.is_finite()
+                && c.b.is_finite()
+            {
+                c.bone = bone;
+                out.push(c);
+            }
         }
     }
     out
 }
 
-fn min_axis(m: &Affine3A) -> f32 {
-    m.matrix3
-        .x_axis
-        .length()
-        .min(m.matrix3.y_axis.length())
-        .min(m.matrix3.z_axis.length())
+/// The principal axes of a point set (unit directions) with the points' extents along them,
+/// largest variance first.
+fn principal_axes(pts: &[Vec3]) -> Option<[(Vec3, f32); 3]> {
+    let n = pts.len() as f32;
+    let mean = pts.iter().copied().sum::<Vec3>() / n;
+    let mut cov = Mat3::ZERO;
+    for p in pts {
+        let d = *p - mean;
+        cov += Mat3::from_cols(d * d.x, d * d.y, d * d.z);
+    }
+    let mut axes = [Vec3::ZERO; 3];
+    let mut m = cov;
+    for k in 0..3 {
+        // Power iteration on the deflated covariance from the column of largest norm (never
+        // perpendicular to the top eigenvector unless the matrix is zero there).
+        let mut v = [m.x_axis, m.y_axis, m.z_axis]
+            .into_iter()
+            .max_by(|a, b| a.length_squared().total_cmp(&b.length_squared()))?
+            .normalize_or(Vec3::X);
+        for _ in 0..64 {
+            v = (m * v).normalize_or(v);
+        }
+        // Keep the axes orthonormal against rounding.
+        for a in &axes[..k] {
+            v = (v - *a * v.dot(*a)).normalize_or(a.any_orthonormal_vector());
+        }
+        if k == 2 {
+            v = axes[0].cross(axes[1]).normalize_or(v);
+        }
+        let lambda = v.dot(m * v);
+        m -= Mat3::from_cols(v * v.x, v * v.y, v * v.z) * lambda;
+        axes[k] = v;
+    }
+    let extent = |a: Vec3| {
+        let (lo, hi) = pts
+            .iter()
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p.dot(a)), hi.max(p.dot(a)))
+            });
+        hi - lo
+    };
+    axes.iter()
+        .all(|a| a.is_finite())
+        .then(|| axes.map(|a| (a, extent(a))))
 }
 
 /// The point of segment `a`–`b` closest to `p`.
-pub(crate) fn closest_on_segment(p: Vec3, a: Vec3, b: Vec3) -> Vec3 {
+#[cfg(test)]
+fn closest_on_segment(p: Vec3, a: Vec3, b: Vec3) -> Vec3 {
     let ab = b - a;
     let len2 = ab.length_squared();
     if !(len2 > 0.0) {
@@ -128,33 +205,9 @@ pub(crate) fn closest_on_segment(p: Vec3, a: Vec3, b: Vec3) -> Vec3 {
     a + ab * ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
 }
 
-/// The capsule along the points' principal axis that contains them all (module doc).
-fn enclosing_capsule(pts: &[Vec3]) -> Option<FittedCapsule> {
-    let n = pts.len() as f32;
-    let mean = pts.iter().copied().sum::<Vec3>() / n;
-    let (mut xx, mut xy, mut xz, mut yy, mut yz, mut zz) = (0.0f32, 0.0, 0.0, 0.0, 0.0, 0.0);
-    for p in pts {
-        let d = *p - mean;
-        xx += d.x * d.x;
-        xy += d.x * d.y;
-        xz += d.x * d.z;
-        yy += d.y * d.y;
-        yz += d.y * d.z;
-        zz += d.z * d.z;
-    }
-    let cov = glam::Mat3::from_cols(
-        Vec3::new(xx, xy, xz),
-        Vec3::new(xy, yy, yz),
-        Vec3::new(xz, yz, zz),
-    );
-    // Power iteration from the extent's longest axis (converges for any start not
-    // perpendicular to the principal axis; 64 rounds reach f32 precision for ratios ≥ 1.3).
-    let mut axis = [Vec3::X, Vec3::Y, Vec3::Z]
-        .into_iter()
-        .max_by(|a, b| (cov * *a).length().total_cmp(&(cov * *b).length()))?;
-    for _ in 0..64 {
-        axis = (cov * axis).normalize_or(axis);
-    }
+/// The capsule along `axis` through the points' centroid that contains them all (module doc).
+fn capsule_along(pts: &[Vec3], axis: Vec3) -> Option<FittedCapsule> {
+    let mean = pts.iter().copied().sum::<Vec3>() / pts.len() as f32;
     let (mut t_lo, mut t_hi, mut r) = (f32::INFINITY, f32::NEG_INFINITY, 0.0f32);
     for p in pts {
         let d = *p - mean;
@@ -193,10 +246,18 @@ fn enclosing_capsule(pts: &[Vec3]) -> Option<FittedCapsule> {
 mod tests {
     use super::*;
 
-    /// Points on a cylinder of radius 3 along Y from y = −10 to 10, plus its two end discs: the
-    /// capsule runs along Y, has radius 3, and contains every point (to rounding).
+    fn contained(pts: &[Vec3], caps: &[FittedCapsule]) -> bool {
+        pts.iter().all(|p| {
+            caps.iter().any(|c| {
+                (*p - closest_on_segment(*p, c.a, c.b)).length() <= c.radius * (1.0 + 1e-5)
+            })
+        })
+    }
+
+    /// Points on a cylinder of radius 3 along Y from y = −10 to 10: one capsule along Y, of
+    /// radius 3, reaching the end rims, containing every point.
     #[test]
-    fn capsule_contains_its_points_and_follows_the_long_axis() {
+    fn a_limb_gets_one_capsule_along_it() {
         let mut pts = Vec::new();
         for i in 0..40 {
             let a = i as f32 * std::f32::consts::TAU / 40.0;
@@ -204,51 +265,97 @@ mod tests {
                 pts.push(Vec3::new(3.0 * a.cos(), y, 3.0 * a.sin()));
             }
         }
-        let c = enclosing_capsule(&pts).unwrap();
+        let bones = vec![0usize; pts.len()];
+        let far_head = Affine3A::from_translation(Vec3::splat(100.0));
+        let caps = fit(&pts, &bones, &[false], &[Vec3::Y], far_head, 0.0, 0.0);
+        assert_eq!(caps.len(), 1);
+        let c = caps[0];
         assert!((c.radius - 3.0).abs() < 0.05, "{}", c.radius);
         assert!((c.a - c.b).normalize().dot(Vec3::Y).abs() > 0.999);
-        for p in &pts {
-            let d = (*p - closest_on_segment(*p, c.a, c.b)).length();
-            assert!(d <= c.radius * (1.0 + 1e-5), "{p} at {d} > {}", c.radius);
-        }
-        // The ends reach the discs' rims: the segment spans y = ±10 (the rim points at
-        // distance r from the axis need the ends at their own height).
         assert!((c.a.y.abs() - 10.0).abs() < 0.05 && (c.b.y.abs() - 10.0).abs() < 0.05);
+        assert!(contained(&pts, &caps));
+    }
+
+    /// An elliptic trunk twice as wide (x) as deep (z), along Y: several capsules side by side,
+    /// each about as thick as the trunk is deep, together containing every point; the back
+    /// (z = −depth) bulges out by much less than a single enclosing capsule would.
+    #[test]
+    fn a_wide_trunk_gets_capsules_side_by_side() {
+        let (wx, wz) = (0.17f32, 0.11f32);
+        let mut pts = Vec::new();
+        for i in 0..48 {
+            let a = i as f32 * std::f32::consts::TAU / 48.0;
+            for k in 0..6 {
+                pts.push(Vec3::new(wx * a.cos(), 1.2 + 0.05 * k as f32, wz * a.sin()));
+            }
+        }
+        let bones = vec![0usize; pts.len()];
+        let far_head = Affine3A::from_translation(Vec3::splat(100.0));
+        let caps = fit(&pts, &bones, &[false], &[Vec3::Y], far_head, 0.0, 0.0);
+        assert!(caps.len() >= 3, "{} capsules", caps.len());
+        assert!(contained(&pts, &caps));
+        for c in &caps {
+            assert!((c.a - c.b).normalize().dot(Vec3::Y).abs() > 0.99);
+        }
+        // How far the colliders reach behind the back at its middle (x = 0, z = −wz).
+        let reach = caps
+            .iter()
+            .map(|c| {
+                let p = Vec3::new(0.0, 1.3, -1.0);
+                let q = closest_on_segment(p, c.a, c.b);
+                // Farthest point of this capsule along −z at x = 0 (if it spans x = 0).
+                let dx = q.x.abs();
+                if dx < c.radius {
+                    -q.z + (c.radius * c.radius - dx * dx).sqrt()
+                } else {
+                    0.0
+                }
+            })
+            .fold(0.0f32, f32::max);
+        assert!(reach - wz < 0.015, "the back bulges {} m", reach - wz);
     }
 
     #[test]
-    fn capsules_keep_clear_of_the_head_and_small_groups_are_skipped() {
+    fn head_points_and_small_groups_are_left_out() {
         // A bone whose points reach into a unit head sphere at the origin.
-        let pts: Vec<Vec3> = (0..20)
+        let pts: Vec<Vec3> = (0..40)
             .map(|i| {
-                Vec3::new(
-                    0.3 * (i as f32).cos(),
-                    -0.9 - 0.1 * i as f32,
-                    0.3 * (i as f32).sin(),
-                )
+                let a = i as f32 * 0.7;
+                Vec3::new(0.3 * a.cos(), -0.5 - 0.05 * i as f32, 0.3 * a.sin())
             })
             .collect();
         let bones = vec![0usize; pts.len()];
-        let caps = fit(&pts, &bones, &[false], Affine3A::IDENTITY, 0.05, 0.01);
-        assert_eq!(caps.len(), 1);
-        let c = caps[0];
-        let closest = closest_on_segment(Vec3::ZERO, c.a, c.b).length() - c.radius;
-        assert!(
-            closest >= 1.0 + 0.05 - 1e-4,
-            "capsule reaches {closest} from the centre"
+        let caps = fit(
+            &pts,
+            &bones,
+            &[false],
+            &[Vec3::Y],
+            Affine3A::IDENTITY,
+            0.05,
+            0.0,
         );
-        // It was shortened, not thinned: the radius still holds the points' spread.
-        assert!(c.radius > 0.25, "radius {}", c.radius);
+        assert!(!caps.is_empty());
+        let kept: Vec<Vec3> = pts.iter().copied().filter(|p| p.length() >= 1.05).collect();
+        assert!(contained(&kept, &caps));
         let few = fit(
             &pts[..5],
             &bones[..5],
             &[false],
+            &[Vec3::Y],
             Affine3A::IDENTITY,
             0.0,
             0.0,
         );
         assert!(few.is_empty());
-        let skipped = fit(&pts, &bones, &[true], Affine3A::IDENTITY, 0.0, 0.0);
+        let skipped = fit(
+            &pts,
+            &bones,
+            &[true],
+            &[Vec3::Y],
+            Affine3A::IDENTITY,
+            0.0,
+            0.0,
+        );
         assert!(skipped.is_empty());
     }
 }

@@ -513,10 +513,36 @@ pub(crate) fn from_bytes(
             let bone_of: Vec<usize> = (0..ch.vertex_count())
                 .map(|v| ch.joints[v][super::skin::dominant(&ch.weights[v])] as usize)
                 .collect();
+            // Each bone's direction at rest: from its node to the mean of its children.
+            let mut child_sum = vec![(Vec3::ZERO, 0u32); skel.names.len()];
+            for (i, p) in skel.parents.iter().enumerate() {
+                if let Some(p) = *p {
+                    child_sum[p].0 += Vec3::from(skel.rest_world(i).translation);
+                    child_sum[p].1 += 1;
+                }
+            }
+            let bone_dir: Vec<Vec3> = ch
+                .bones
+                .iter()
+                .map(|b| {
+                    let (sum, n) = child_sum[b.node];
+                    if n == 0 {
+                        return Vec3::ZERO;
+                    }
+                    let d = sum / n as f32 - Vec3::from(skel.rest_world(b.node).translation);
+                    // Shorter than a millimetre at the fitted scale: no direction.
+                    if d.length() > 1e-3 * fit.scale {
+                        d
+                    } else {
+                        Vec3::ZERO
+                    }
+                })
+                .collect();
             capsules::fit(
                 &ch.rest_model,
                 &bone_of,
                 &ch.bone_in_head,
+                &bone_dir,
                 head_ellipsoid,
                 capsules::HEAD_CLEARANCE_M * fit.scale,
                 capsules::MIN_RADIUS_M * fit.scale,

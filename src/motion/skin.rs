@@ -238,6 +238,8 @@ pub(crate) fn load_character(
     let mut material_of: Vec<Option<u16>> = vec![None; doc.materials().len()];
     let mut default_material: Option<u16> = None;
     let mut textures = texture::Cache::new(doc.textures().len());
+    let mut vertex_sets: std::collections::BTreeMap<VertexKey, (u32, usize)> =
+        std::collections::BTreeMap::new();
     let mut new_bone =
         |ch: &mut Character, node: usize, bind: Affine3A| -> Result<u16, MotionError> {
             if ch.bones.len() >= u16::MAX as usize {
@@ -310,17 +312,35 @@ pub(crate) fn load_character(
             let uv_set = ch.materials[material as usize]
                 .texture
                 .and_then(|t| textures.tex_coord(t));
-            read_primitive(
+            // Primitives that share their vertex accessors (one per material, as exporters
+            // split a mesh) and their bones share their vertices too.
+            let acc = |s: Semantic| prim.get(&s).map(|a| a.index());
+            let key = VertexKey {
+                bones: node
+                    .skin()
+                    .map_or((false, node.index()), |k| (true, k.index())),
+                accessors: [
+                    acc(Semantic::Positions),
+                    acc(Semantic::Normals),
+                    acc(Semantic::Joints(0)),
+                    acc(Semantic::Weights(0)),
+                    uv_set.and_then(|u| acc(Semantic::TexCoords(u))),
+                ],
+            };
+            let shared = vertex_sets.get(&key).copied();
+            let base = read_primitive(
                 &mut ch,
                 &prim,
                 &bones,
                 node.skin().is_some(),
                 material,
                 uv_set,
+                shared,
                 loaded,
                 file,
                 &at,
             )?;
+            vertex_sets.entry(key).or_insert(base);
         }
     }
     if ch.triangles.is_empty() {
@@ -345,6 +365,14 @@ pub(crate) fn load_character(
         ));
     }
     Ok(Some(ch))
+}
+
+/// What makes two primitives' vertices the same: the bones they follow (a skin, or a rigid
+/// node) and their attribute accessors.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+struct VertexKey {
+    bones: (bool, usize),
+    accessors: [Option<usize>; 5],
 }
 
 /// One finite inverse bind matrix per joint (identity when the skin has none).
@@ -410,7 +438,9 @@ fn read_material(
     Ok((ch.materials.len() - 1) as u16)
 }
 
-/// Appends one triangle primitive (see the module doc for the rules).
+/// Appends one triangle primitive (see the module doc for the rules); its vertices are
+/// appended too unless `shared` gives those of an earlier primitive (first index, count).
+/// Returns where its vertices are.
 #[allow(clippy::too_many_arguments)]
 fn read_primitive(
     ch: &mut Character,
@@ -419,11 +449,25 @@ fn read_primitive(
     skinned: bool,
     material: u16,
     uv_set: Option<u32>,
+    shared: Option<(u32, usize)>,
     loaded: &Loaded,
     file: &str,
     at: &str,
-) -> Result<(), MotionError> {
+) -> Result<(u32, usize), MotionError> {
     let fail = |rule: String| invalid(file, format!("{at}: {rule}"));
+    if let Some((base, n)) = shared {
+        let tris = read_triangles(prim, n, loaded, &fail)?;
+        if ch.triangles.len() + tris.len() > MAX_TRIANGLES {
+            return Err(fail(format!(
+                "the meshes have more than {MAX_TRIANGLES} triangles"
+            )));
+        }
+        ch.triangles
+            .extend(tris.iter().map(|t| t.map(|i| i + base)));
+        ch.triangle_material
+            .extend(std::iter::repeat_n(material, tris.len()));
+        return Ok((base, n));
+    }
     let read = |s: Semantic| -> Result<Option<(Vec<f32>, usize)>, MotionError> {
         match prim.get(&s) {
             None => Ok(None),
@@ -446,24 +490,7 @@ fn read_primitive(
     if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
         return Err(fail(format!("POSITION: vertex {v} is not finite")));
     }
-    let tris: Vec<[u32; 3]> = match prim.indices() {
-        Some(acc) => {
-            let (idx, _) =
-                read_accessor(&acc, loaded).map_err(|e| fail(format!("indices: {e}")))?;
-            if let Some(k) = idx.iter().position(|&i| !(i >= 0.0 && (i as usize) < n)) {
-                return Err(fail(format!(
-                    "indices: index {k} is {}, the primitive has {n} vertices",
-                    idx[k]
-                )));
-            }
-            idx.chunks_exact(3)
-                .map(|t| [t[0] as u32, t[1] as u32, t[2] as u32])
-                .collect()
-        }
-        None => (0..n as u32 / 3)
-            .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
-            .collect(),
-    };
+    let tris = read_triangles(prim, n, loaded, &fail)?;
     if ch.triangles.len() + tris.len() > MAX_TRIANGLES {
         return Err(fail(format!(
             "the meshes have more than {MAX_TRIANGLES} triangles"
@@ -538,7 +565,35 @@ fn read_primitive(
         .extend(tris.iter().map(|t| t.map(|i| i + base as u32)));
     ch.triangle_material
         .extend(std::iter::repeat_n(material, tris.len()));
-    Ok(())
+    Ok((base as u32, n))
+}
+
+/// A primitive's triangles (its indices, or consecutive vertices without them), every index
+/// below the vertex count `n`.
+fn read_triangles(
+    prim: &gltf::Primitive,
+    n: usize,
+    loaded: &Loaded,
+    fail: &dyn Fn(String) -> MotionError,
+) -> Result<Vec<[u32; 3]>, MotionError> {
+    Ok(match prim.indices() {
+        Some(acc) => {
+            let (idx, _) =
+                read_accessor(&acc, loaded).map_err(|e| fail(format!("indices: {e}")))?;
+            if let Some(k) = idx.iter().position(|&i| !(i >= 0.0 && (i as usize) < n)) {
+                return Err(fail(format!(
+                    "indices: index {k} is {}, the primitive has {n} vertices",
+                    idx[k]
+                )));
+            }
+            idx.chunks_exact(3)
+                .map(|t| [t[0] as u32, t[1] as u32, t[2] as u32])
+                .collect()
+        }
+        None => (0..n as u32 / 3)
+            .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+            .collect(),
+    })
 }
 
 /// Area-weighted vertex normals of a triangle list (for primitives without NORMAL).
