@@ -463,7 +463,9 @@ mod tests {
             &RunPlan::default(),
         );
         est.check(&Budget::default()).unwrap();
-        assert!(est.memory_bytes() < DEFAULT_MEMORY_BYTES / 20, "{est:#?}");
+        // About 270 MB, most of it the light map's per-frame entries (each sample piece is
+        // splatted to 4 columns): a tenth of the default budget.
+        assert!(est.memory_bytes() < DEFAULT_MEMORY_BYTES / 10, "{est:#?}");
         assert!(est.work_cpu_s() < DEFAULT_WORK_CPU_S / 100.0, "{est:#?}");
     }
 

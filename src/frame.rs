@@ -5,7 +5,8 @@
 //!                                                character's skinned mesh
 //! simulation  sim.advance(t, colliders, map)  -> guide particles (self-collision reads the
 //!                                                map of the previous frame, Bertails §4.1)
-//! interp      interpolate(guides)             -> render strands (positions, tangents)
+//! interp      interpolate(guides, colliders)  -> render strands (positions, tangents), kept
+//!                                                out of the head and body
 //! map         map.build(strands, light)       -> Tf, σ̄f², direct fraction per cell
 //! shading     shade_vertices(map, fiber)      -> vertex colours
 //! raster      character mesh (or the head and   -> framebuffer
@@ -18,9 +19,9 @@
 
 use crate::fiber::Fiber;
 use crate::hairstyle::{GuideSet, Hairstyle, StrandLayout, generate};
-use crate::interp::{StrandGeometry, interpolate};
+use crate::interp::{StrandGeometry, interpolate_among};
 use crate::map::{CountModel, LightMap, MapGeometry, MapStats, OccluderMesh, Solid};
-use crate::motion::{CharacterPose, Motion, Pose};
+use crate::motion::{CharacterPose, Motion, Pose, RootsOnHead};
 use crate::raster::{
     Camera, Framebuffer, LineScratch, LineStyle, Mesh, MeshScratch, Polylines, Surface, Texture,
     draw_ellipsoid, draw_mesh, draw_polylines,
@@ -155,6 +156,8 @@ pub struct Engine {
     pose: Pose,
     /// Scratch pose for the simulation's sub-step collider queries (reused, no allocation).
     sim_pose: Pose,
+    /// The colliders of `pose`, which render strands are kept out of (reused).
+    frame_colliders: Colliders,
     sim: Simulator,
     pub state: SimState,
     map: LightMap,
@@ -237,6 +240,7 @@ impl Engine {
             layout,
             motion,
             sim_pose: pose.clone(),
+            frame_colliders: colliders_of(&pose, radii),
             pose,
             sim,
             state,
@@ -340,11 +344,13 @@ impl Engine {
             self.state.time_s = t_s;
         }
         let t2 = Instant::now();
-        interpolate(
+        write_colliders(&self.pose, radii, &mut self.frame_colliders);
+        interpolate_among(
             &self.guides,
             &self.layout,
             &self.style.curl,
             &self.state.positions,
+            Some(&self.frame_colliders),
             &mut self.strands,
         );
         let t3 = Instant::now();
@@ -526,6 +532,18 @@ pub fn fit_style_to_character(style: &Hairstyle, motion: &Motion) -> Hairstyle {
         }
     }
     style
+}
+
+/// How far the roots of `style`'s guides, grown on `motion`'s character as an [`Engine`] grows
+/// them ([`fit_style_to_character`]), lie from the drawn head at t = 0
+/// ([`Motion::roots_on_head`], for the fitted head's mean radius); `None` without a head mesh.
+pub fn roots_on_head(style: &Hairstyle, motion: &Motion) -> Option<RootsOnHead> {
+    motion.character()?;
+    let style = fit_style_to_character(style, motion);
+    let (guides, _) = generate(&style);
+    let roots: Vec<Vec3> = (0..guides.count()).map(|g| guides.guide(g)[0]).collect();
+    let [x, y, z] = style.head.radii_m;
+    motion.roots_on_head(&roots, (x * y * z).cbrt())
 }
 
 /// The map geometry an engine uses for `style` under `config`: `config.map_res` cells per axis

@@ -11,12 +11,19 @@
 //! projection onto each new normal plane: a discrete parallel transport that costs two dot
 //! products per point and never flips.
 //!
+//! Given the frame's colliders, render points that the blend puts inside the head or body are
+//! moved to their surface ([`solids`]).
+//!
 //! Output buffers are reused between frames; strands are independent, so the work is split
 //! over rayon in fixed chunks and the result does not depend on the thread count.
 
+pub mod solids;
+
 use crate::hairstyle::{CurlSpec, GuideSet, StrandLayout};
+use crate::sim::Colliders;
 use glam::Vec3;
 use rayon::prelude::*;
+use solids::SolidsView;
 
 /// Maximum particles per guide (matches `hairstyle::MAX_GUIDE_LINKS + 1`), so control points
 /// fit in a stack buffer.
@@ -57,6 +64,19 @@ pub fn interpolate(
     guide_pos: &[Vec3],
     out: &mut StrandGeometry,
 ) {
+    interpolate_among(guides, layout, curl, guide_pos, None, out);
+}
+
+/// [`interpolate`], keeping render points out of `colliders` when given (see [`solids`]).
+pub fn interpolate_among(
+    guides: &GuideSet,
+    layout: &StrandLayout,
+    curl: &CurlSpec,
+    guide_pos: &[Vec3],
+    colliders: Option<&Colliders>,
+    out: &mut StrandGeometry,
+) {
+    let view = colliders.map(SolidsView::new);
     let n = layout.points_per_strand;
     let total = layout.count() * n;
     out.points_per_strand = n;
@@ -85,6 +105,9 @@ pub fn interpolate(
             let reference = g[1][0] - g[0][0];
             if curl.radius_m > 0.0 {
                 add_curl(pos, reference, curl, layout.strand_phase[s]);
+            }
+            if let Some(v) = &view {
+                v.push_out(pos);
             }
             tangents_and_lengths(pos, tan, len);
             tip_taper(layout.tip_taper, pos, share, len);

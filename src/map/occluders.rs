@@ -122,7 +122,11 @@ impl OccluderGrid {
             }
             any_triangle = true;
         }
-        if (solids.is_empty() && !any_triangle) || !(texel_m > 0.0) || !texel_m.is_finite() {
+        if (solids.is_empty() && !any_triangle)
+            || texel_m.is_nan()
+            || texel_m <= 0.0
+            || !texel_m.is_finite()
+        {
             self.dims = [0, 0];
             return;
         }
@@ -174,7 +178,7 @@ impl OccluderGrid {
         let q = c.map(|p| (Vec2::new(p.y, p.z) - self.origin) / self.texel_m - 0.5);
         let area2 = (q[1] - q[0]).perp_dot(q[2] - q[0]);
         // Edge-on to the light: no area to cover (its neighbours cover the silhouette).
-        if !(area2.abs() > 1e-9) {
+        if area2.is_nan() || area2.abs() <= 1e-9 {
             return;
         }
         let inv = 1.0 / area2;

@@ -3,18 +3,21 @@
 //!
 //! # How
 //! For every bone outside the head (the head is the hairstyle's ellipsoid), the vertices whose
-//! largest skin weight is on it are gathered at the rest pose, less those inside the head
-//! ellipsoid inflated by [`HEAD_CLEARANCE_M`] (a neck tube reaching up into the skull, hidden
-//! there, must not put a collider under the scalp's roots). Their covariance gives three
+//! largest skin weight is on it are gathered at the rest pose, less those more than
+//! [`HEAD_DEPTH_M`] inside the head ellipsoid (a collar or neck tube reaching up into the
+//! skull, hidden there, must not put a collider under the scalp's roots; the part of a neck
+//! just under the skull stays, or hair at the nape would sink into it). Their covariance gives three
 //! principal axes with extents E₁ ≥ E₂ ≥ E₃ (eigenvectors by power iteration and deflation).
 //!
 //! - The capsules' direction is the principal axis nearest the bone's own direction (from the
 //!   joint to its children, when it has any: an arm along the arm, a chest upward toward the
 //!   neck and shoulders), else the first.
 //! - Across it, the bone's vertices are cut into n slabs along the wider of the two other
-//!   axes, n = round(2·E_wide / E_thin) clamped to [1, [`MAX_PER_BONE`]]: one capsule for a
-//!   round limb, several side by side for a chest or a pelvis, whose cross-section is twice as
-//!   wide as deep. A single capsule around a chest would be as thick as the chest is wide (the
+//!   axes, n = round(2·E_wide / E_thin) clamped to [1, [`MAX_PER_BONE`]], or 1 when
+//!   E_wide / E_thin < [`ROUND_ASPECT`]: one capsule for a round limb (two half-disc slabs
+//!   would each bulge 8% past it), several side by side for a chest or a pelvis, whose
+//!   cross-section is twice as wide as deep (each slab about half as wide as it is deep, so
+//!   its capsule reaches the slab's corners with little to spare). A single capsule around a chest would be as thick as the chest is wide (the
 //!   back 6 cm behind the real one); side by side, each is about as thick as the chest is deep.
 //! - Each slab's capsule runs along the direction through the slab's centroid; its radius is
 //!   the largest distance of a slab vertex from that line, and each end of the segment then
@@ -37,9 +40,11 @@ use glam::{Affine3A, Mat3, Vec3};
 pub const MIN_VERTICES: usize = 8;
 /// Most capsules side by side for one bone.
 pub const MAX_PER_BONE: usize = 6;
-/// Vertices closer than this to the head ellipsoid (or inside it) are left out of the fit,
-/// pose metres.
-pub const HEAD_CLEARANCE_M: f32 = 0.005;
+/// Cross-sections less elongated than this (wide over thin extent) are round: one capsule,
+/// which bulges by at most an eighth of the thin extent on either side.
+pub const ROUND_ASPECT: f32 = 1.25;
+/// Vertices deeper than this inside the head ellipsoid are left out of the fit, pose metres.
+pub const HEAD_DEPTH_M: f32 = 0.01;
 /// Thinnest capsule kept, pose metres.
 pub const MIN_RADIUS_M: f32 = 0.005;
 
@@ -55,15 +60,15 @@ pub(crate) struct FittedCapsule {
 /// Capsules around the rest-pose `points` grouped by `bone_of_point` (see the module doc),
 /// skipping bones marked in `skip`. `bone_dir[b]` is bone b's direction at rest (zero when it
 /// has none); `head` maps the unit sphere to the head ellipsoid at rest (model space), and
-/// points within `clearance` of it (model units, measured along its shortest axis) are left
-/// out. Capsules thinner than `min_radius` are dropped.
+/// points deeper than `depth` inside it (model units, measured along its shortest axis) are
+/// left out. Capsules thinner than `min_radius` are dropped.
 pub(crate) fn fit(
     points: &[Vec3],
     bone_of_point: &[usize],
     skip: &[bool],
     bone_dir: &[Vec3],
     head: Affine3A,
-    clearance: f32,
+    depth: f32,
     min_radius: f32,
 ) -> Vec<FittedCapsule> {
     let bones = skip.len();
@@ -74,14 +79,14 @@ pub(crate) fn fit(
         .length()
         .min(head.matrix3.y_axis.length())
         .min(head.matrix3.z_axis.length());
-    let inflate = if shortest > 0.0 {
-        1.0 + clearance / shortest
+    let inside = if shortest > 0.0 {
+        1.0 - depth / shortest
     } else {
         1.0
     };
     let mut groups: Vec<Vec<Vec3>> = vec![Vec::new(); bones];
     for (p, &b) in points.iter().zip(bone_of_point) {
-        let near_head = to_head.transform_point3(*p).length() < inflate;
+        let near_head = to_head.transform_point3(*p).length() < inside;
         if b < bones && !skip[b] && !near_head {
             groups[b].push(*p);
         }
@@ -111,8 +116,9 @@ pub(crate) fn fit(
         } else {
             (axes[j], axes[i])
         };
-        let n = if e_thin > 0.0 {
-            ((2.0 * e_wide / e_thin).round() as usize).clamp(1, MAX_PER_BONE)
+        let aspect = if e_thin > 0.0 { e_wide / e_thin } else { 0.0 };
+        let n = if aspect >= ROUND_ASPECT {
+            ((2.0 * aspect).round() as usize).clamp(1, MAX_PER_BONE)
         } else {
             1
         };
@@ -199,7 +205,7 @@ fn principal_axes(pts: &[Vec3]) -> Option<[(Vec3, f32); 3]> {
 fn closest_on_segment(p: Vec3, a: Vec3, b: Vec3) -> Vec3 {
     let ab = b - a;
     let len2 = ab.length_squared();
-    if !(len2 > 0.0) {
+    if len2.is_nan() || len2 <= 0.0 {
         return a;
     }
     a + ab * ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
@@ -216,7 +222,7 @@ fn capsule_along(pts: &[Vec3], axis: Vec3) -> Option<FittedCapsule> {
         t_hi = t_hi.max(t);
         r = r.max((d - axis * t).length());
     }
-    if !(r > 0.0) || !r.is_finite() {
+    if !r.is_finite() || r <= 0.0 {
         return None;
     }
     // Ends start a radius inside the extremes (or both at the middle) and move out as needed.
@@ -335,7 +341,7 @@ mod tests {
             0.0,
         );
         assert!(!caps.is_empty());
-        let kept: Vec<Vec3> = pts.iter().copied().filter(|p| p.length() >= 1.05).collect();
+        let kept: Vec<Vec3> = pts.iter().copied().filter(|p| p.length() >= 0.95).collect();
         assert!(contained(&kept, &caps));
         let few = fit(
             &pts[..5],

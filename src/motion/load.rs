@@ -544,7 +544,7 @@ pub(crate) fn from_bytes(
                 &ch.bone_in_head,
                 &bone_dir,
                 head_ellipsoid,
-                capsules::HEAD_CLEARANCE_M * fit.scale,
+                capsules::HEAD_DEPTH_M * fit.scale,
                 capsules::MIN_RADIUS_M * fit.scale,
             )
             .into_iter()

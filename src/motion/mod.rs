@@ -42,10 +42,12 @@ pub mod fit;
 mod gltf_io;
 mod load;
 pub mod sampler;
+pub mod scalp;
 pub mod skin;
 pub mod texture;
 
 pub use gltf_io::{MAX_BUFFER_BYTES, MAX_DECODED_VALUES, MAX_FILE_BYTES, MAX_JSON_CONTAINERS};
+pub use scalp::RootsOnHead;
 pub use skin::{Character, CharacterPose, Material};
 pub use texture::Texture;
 

@@ -29,7 +29,7 @@ impl CapsuleCollider {
         let (a, b) = (Vec3A::from(self.a), Vec3A::from(self.b));
         let ab = b - a;
         let len2 = ab.length_squared();
-        if !(len2 > 0.0) {
+        if len2.is_nan() || len2 <= 0.0 {
             return a;
         }
         a + ab * ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
