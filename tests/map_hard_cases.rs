@@ -13,7 +13,14 @@ fn build(
     light: Vec3,
     fibers: f32,
 ) -> LightMap {
-    let mut map = LightMap::new(MapGeometry { n: 64, ds_m: 0.01 }, CountModel::Poisson);
+    let mut map = LightMap::new(
+        MapGeometry {
+            n: 64,
+            ds_m: 0.01,
+            lateral: 1,
+        },
+        CountModel::Poisson,
+    );
     map.build(&MapBuildInput {
         positions: pos,
         tangents: tan,

@@ -54,6 +54,7 @@ fn whole_cell_translations_give_identical_light_also_across_the_wrap() {
     let geom = MapGeometry {
         n: 64,
         ds_m: 1.0 / 64.0,
+        lateral: 1,
     };
     let base = lookups(&geo, Vec3::ZERO, light, geom);
     let n = geom.n as f32;

@@ -55,7 +55,14 @@ fn poisson_average_matches_ray_shooting_and_mean_count_does_not() {
     }
     let a_f = fiber.forward_scatter(0.0).a_f;
     let build = |model| {
-        let mut map = LightMap::new(MapGeometry { n: 64, ds_m: ds }, model);
+        let mut map = LightMap::new(
+            MapGeometry {
+                n: 64,
+                ds_m: ds,
+                lateral: 1,
+            },
+            model,
+        );
         map.build(&MapBuildInput {
             positions: &geo.positions,
             tangents: &geo.tangents,

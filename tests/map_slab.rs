@@ -47,7 +47,11 @@ fn slab_reads_one_in_front_and_the_analytic_attenuation_behind() {
     let map = build_map(
         &slab(&frame),
         &fiber,
-        MapGeometry { n: 128, ds_m: DS },
+        MapGeometry {
+            n: 128,
+            ds_m: DS,
+            lateral: 1,
+        },
         light,
         FIBERS,
     );

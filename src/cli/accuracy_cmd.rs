@@ -8,7 +8,7 @@
 //! vertex of the hair (the map's whole per-frame cost), median of `--repeats` runs.
 
 use super::{AppError, SceneArgs};
-use wisp::accuracy::{markdown, measure_map, single_fibre_variant};
+use wisp::accuracy::{markdown, measure_map, single_fibre_variant, sweep_geometries};
 use wisp::frame::Engine;
 use wisp::map::exact::Footprint;
 
@@ -79,15 +79,10 @@ pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
     let mut engine = Engine::new(style.clone(), motion, config);
     engine.run_up_to(args.at_s as f64);
     engine.frame(args.at_s as f64);
-    let default_n = engine.map_geometry().n;
-    let mut ns = args.map_res_list.clone();
-    if !ns.contains(&default_n) {
-        ns.push(default_n);
-    }
-    ns.sort_unstable();
+    let geometries = sweep_geometries(&engine, &args.map_res_list);
     let (rows, reference_ms) = measure_map(
         &engine,
-        &ns,
+        &geometries,
         args.vertices as usize,
         &footprint,
         args.repeats,
@@ -105,6 +100,6 @@ pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
         reference_ms
     );
     println!();
-    print!("{}", markdown(&rows, default_n));
+    print!("{}", markdown(&rows));
     Ok(())
 }

@@ -201,14 +201,10 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
     engine.run_up_to(at_s);
     engine.frame(at_s);
     let default_n = engine.map_geometry().n;
-    let mut ns = args.map_res_list.clone();
-    if !ns.contains(&default_n) {
-        ns.push(default_n);
-    }
-    ns.sort_unstable();
+    let geometries = wisp::accuracy::sweep_geometries(&engine, &args.map_res_list);
     let footprint = Footprint::Fibres { rays: 128 };
     let (rows, reference_ms) =
-        wisp::accuracy::measure_map(&engine, &ns, 2000, &footprint, args.repeats);
+        wisp::accuracy::measure_map(&engine, &geometries, 2000, &footprint, args.repeats);
     println!(
         "\nspeed against error at t = {} s: map build + a lookup at all {} vertices, against the \
          exact reference (ray shooting through the placed fibres, 2,000 vertices, 128 rays each, \
@@ -217,12 +213,12 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         engine.strands.positions.len(),
         reference_ms,
     );
-    print!("{}", wisp::accuracy::markdown(&rows, default_n));
+    print!("{}", wisp::accuracy::markdown(&rows));
     let rows: Vec<serde_json::Value> = rows
         .iter()
         .map(|r| {
             serde_json::json!({
-                "map_res": r.n, "ds_mm": r.ds_mm, "ms": r.ms,
+                "map_res": r.n, "lateral": r.lateral, "default": r.is_default, "ds_mm": r.ds_mm, "ms": r.ms,
                 "tf_mae": r.comparison.mae, "tf_overall_bias": r.comparison.overall_bias,
                 "tf_bias_by_true_bin": r.comparison.by_truth.iter().map(|b| b.bias).collect::<Vec<_>>(),
                 "tf_bias_by_map_bin": r.comparison.by_estimate.iter().map(|b| b.bias).collect::<Vec<_>>(),

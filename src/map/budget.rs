@@ -4,7 +4,7 @@
 //! `tests/hostile_budget.rs` measures a real build against it.
 
 use super::MapGeometry;
-use super::build::{Entry, MAX_PIECES, SPLAT};
+use super::build::{Entry, MAX_PIECES, SLOT_SPAN_PER_CELL, SPLAT};
 use super::{Cell, OccluderGrid, occluders::MAX_TEXELS};
 
 impl MapGeometry {
@@ -26,11 +26,11 @@ impl MapGeometry {
     /// - the scratch `entries` (one per piece and column it is splatted to, `SPLAT` = 4);
     /// - `cells` (one per entry at most);
     /// - the occluder grid (at most `MAX_TEXELS`² depths);
-    /// - `slots`: per filled column, one `u32` per slice of its span, at most N; filled columns
-    ///   are at most min(pieces, N²). `slots` grows by `push`, so its capacity may reach twice
+    /// - `slots`: at most `SLOT_SPAN_PER_CELL` per filled cell (sparser columns have none), so
+    ///   at most that many per entry. `slots` grows by `push`, so its capacity may reach twice
     ///   its length.
     pub fn estimated_bytes(&self, samples: u64, pieces: u64) -> u64 {
-        let n = self.n as u64;
+        let n = self.columns_per_axis() as u64;
         let columns = n * n;
         let u32_bytes = size_of::<u32>() as u64;
         let entries = samples.saturating_mul(pieces).saturating_mul(SPLAT as u64);
@@ -39,7 +39,7 @@ impl MapGeometry {
             (MAX_TEXELS * MAX_TEXELS * size_of::<f32>()) as u64 + size_of::<OccluderGrid>() as u64;
         let cell_bytes = size_of::<Cell>() as u64;
         let offsets = (3 * columns + 2) * u32_bytes;
-        let slots = 2 * entries.min(columns).saturating_mul(n) * u32_bytes;
+        let slots = 2 * entries.saturating_mul(SLOT_SPAN_PER_CELL as u64) * u32_bytes;
         offsets
             .saturating_add(entries.saturating_mul(entry_bytes + cell_bytes))
             .saturating_add(slots)

@@ -107,6 +107,10 @@ pub(super) struct Scratch {
     col_count: Vec<u32>,
 }
 
+/// Most slots a column's slot table may hold per filled cell (a sparser column is read by binary
+/// search): bounds the tables by the cells, whatever the span of a column.
+pub(super) const SLOT_SPAN_PER_CELL: usize = 4;
+
 /// Columns a piece is shared between (2 × 2, bilinear weights).
 pub(super) const SPLAT: usize = 4;
 
@@ -121,18 +125,21 @@ impl LightMap {
     pub fn build(&mut self, input: &MapBuildInput) {
         self.frame = LightFrame::new(input.light_dir);
         let n = self.geom.n as i64;
+        let ncol = self.geom.columns_per_axis() as i64;
         let ds = self.geom.ds_m;
+        let dc = self.geom.column_m();
         let r = input.fiber.params().radius_m;
-        // n = F·ℓ·2r·sinψ / ds² crossings; volume fraction = F·ℓ·πr² / ds³.
-        let crossing_scale = input.fibers_per_strand * 2.0 * r / (ds * ds);
-        let volume_scale = input.fibers_per_strand * std::f32::consts::PI * r * r / (ds * ds * ds);
+        // n = F·ℓ·2r·sinψ / dc² crossings over a column of cross-section dc²; volume fraction
+        // = F·ℓ·πr² / (ds·dc²).
+        let crossing_scale = input.fibers_per_strand * 2.0 * r / (dc * dc);
+        let volume_scale = input.fibers_per_strand * std::f32::consts::PI * r * r / (ds * dc * dc);
         let count = input
             .positions
             .len()
             .min(input.tangents.len())
             .min(input.lengths_m.len());
         let frame = self.frame;
-        let inv_ds = self.inv_ds;
+        let inv_cell = self.inv_cell;
         let model = self.model;
         let fiber = input.fiber;
         let to_light = -frame.x;
@@ -149,6 +156,9 @@ impl LightMap {
         let pieces = ((max_len / ds).ceil() as usize).clamp(1, MAX_PIECES);
         let entries = &mut self.scratch.entries;
         let per_sample = pieces * SPLAT;
+        // Exact reservations: a vector that grows by `resize` may double its capacity, which
+        // the memory budget would have to count twice.
+        entries.reserve_exact((count * per_sample).saturating_sub(entries.len()));
         entries.resize(count * per_sample, Entry::default());
         // Per sample: the fibre's per-crossing statistics once, then its pieces. The extent of
         // the filled cells (first slice, overflow check) comes from an exact min/max reduce,
@@ -160,7 +170,7 @@ impl LightMap {
             .map(|(s, out)| {
                 let u = input.tangents[s];
                 let len_total = input.lengths_m[s];
-                let p0 = frame.to_map(input.positions[s]) * inv_ds;
+                let p0 = frame.to_map(input.positions[s]) * inv_cell;
                 if !(p0.abs().max_element() < MAX_CELL_COORD
                     && u.is_finite()
                     && len_total.is_finite()
@@ -186,7 +196,7 @@ impl LightMap {
                     volume_fraction: volume_scale * len,
                     ..Cell::default()
                 };
-                let u_cells = frame.to_map(u) * inv_ds;
+                let u_cells = frame.to_map(u) * inv_cell;
                 // Half the depth a piece spans along the light, in cells.
                 let half_depth = 0.5 * (u_cells.x * len).abs();
                 let mut ext = Extent::EMPTY;
@@ -222,7 +232,7 @@ impl LightMap {
                         let (j, k) = (j0 + dj, k0 + dk);
                         // A share of exactly 0 (a piece on a column centre line) makes no cell.
                         e.col = if wt > 0.0 {
-                            (j.rem_euclid(n) * n + k.rem_euclid(n)) as u32
+                            (j.rem_euclid(ncol) * ncol + k.rem_euclid(ncol)) as u32
                         } else {
                             u32::MAX
                         };
@@ -259,11 +269,13 @@ impl LightMap {
         } else {
             [i64::MIN; 3]
         };
-        let overflow = filled_entries > 0 && (0..3).any(|a| extent.hi[a] - extent.lo[a] >= n);
+        let overflow = filled_entries > 0
+            && (extent.hi[0] - extent.lo[0] >= n
+                || (1..3).any(|a| extent.hi[a] - extent.lo[a] >= ncol));
         let samples = count - skipped;
 
         // 2. Counting sort by column.
-        let cols = (n * n) as usize;
+        let cols = (ncol * ncol) as usize;
         let col_count = &mut self.scratch.col_count;
         col_count.clear();
         col_count.resize(cols, 0);
@@ -277,6 +289,8 @@ impl LightMap {
             *count = *start; // becomes the write cursor
         }
         self.col_start[cols] = acc;
+        self.cells
+            .reserve_exact(filled_entries.saturating_sub(self.cells.len()));
         self.cells.resize(filled_entries, Cell::default());
         let first = self.first_slice;
         for e in entries.iter().filter(|e| e.col != u32::MAX) {
@@ -302,11 +316,18 @@ impl LightMap {
             .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
 
         // Slot tables: per column, the last filled cell at or before each slice of its span.
+        // A sparse column (span over SLOT_SPAN_PER_CELL slices per filled cell) gets none and is
+        // read by binary search, so the tables never hold more than that many slots per cell.
         self.slots.clear();
         for c in 0..cols {
             self.slot_start[c] = self.slots.len() as u32;
             let (a, b) = (self.col_start[c] as usize, self.col_start[c + 1] as usize);
             if a == b {
+                continue;
+            }
+            let live = self.cells[a..b].partition_point(|x| x.slice != u32::MAX);
+            let span = (self.cells[a + live - 1].slice - self.cells[a].slice) as usize + 1;
+            if span > SLOT_SPAN_PER_CELL * live {
                 continue;
             }
             let base = self.cells[a].slice;
@@ -335,7 +356,7 @@ impl LightMap {
             filled_cells: filled,
             columns: ncols,
             peak_volume_fraction: peak,
-            hair_volume_m3: filled as f32 * ds * ds * ds,
+            hair_volume_m3: filled as f32 * ds * dc * dc,
             overflow,
         };
     }

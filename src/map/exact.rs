@@ -63,8 +63,8 @@ pub struct ExactInput<'a> {
     /// (unused when `fibers_per_strand` is 1).
     pub bundle_radius_m: f32,
     /// Share of each strand's fibres present at each point (`StrandGeometry::fibre_share`), or
-    /// empty for all. Fibre f of F ends where the share falls below (f + ½)/F, so the fibres
-    /// end one by one as the share falls.
+    /// empty for all. Fibre f of F covers a segment where the mean share of its two ends is at
+    /// least (f + ½)/F, so the fibres end one by one as the share falls.
     pub fibre_share: &'a [f32],
     /// Direction the light travels (need not be normalised).
     pub light_dir: Vec3,
@@ -142,6 +142,8 @@ pub struct ExactReference<'a> {
     /// Light-frame points of every placed fibre: fibre f of strand s, point k at
     /// [(s·F + f)·P + k].
     fibre_points: Vec<Vec3>,
+    /// Share of each strand's fibres present at each point (empty: all).
+    fibre_share: Vec<f32>,
     segments: Vec<Segment>,
     /// Bin grid across the light.
     origin: Vec2,
@@ -234,14 +236,16 @@ impl<'a> ExactReference<'a> {
                 let (strand, f) = (fi / f_count, fi % f_count);
                 let threshold = (f as f32 + 0.5) / f_count as f32;
                 let share = input.fibre_share;
+                // Segment k holds the fibres whose threshold is under the mean share of its two
+                // ends: the expected count is then F × that mean, as the map fills (each point
+                // carries its share over half of each adjacent segment).
                 let present = move |k: usize| {
-                    share
-                        .get(strand * ppl + k)
-                        .is_none_or(|sh| *sh >= threshold)
+                    let at = |i: usize| share.get(strand * ppl + i).copied().unwrap_or(1.0);
+                    0.5 * (at(k) + at(k + 1)) >= threshold
                 };
                 pts.windows(2)
                     .enumerate()
-                    .filter(move |(k, _)| finite && present(k + 1))
+                    .filter(move |(k, _)| finite && present(*k))
                     .filter_map(move |(k, w)| {
                         let (a, b) = (w[0], w[1]);
                         let d = Vec2::new(b.y - a.y, b.z - a.z);
@@ -337,6 +341,7 @@ impl<'a> ExactReference<'a> {
             points_per_strand: ppl,
             fibres_per_strand: f_count,
             fibre_points,
+            fibre_share: input.fibre_share.to_vec(),
             segments,
             origin,
             inv_bin,
@@ -349,6 +354,16 @@ impl<'a> ExactReference<'a> {
     /// Fibre segments placed (all strands, all fibres).
     pub fn segment_count(&self) -> usize {
         self.segments.len()
+    }
+
+    /// Whether fibre `f` of the strand reaches point `vertex` (fibres end one by one where the
+    /// strand's fibre share falls: fibre f ends below (f + ½)/F).
+    #[inline]
+    fn fibre_present(&self, vertex: usize, f: usize) -> bool {
+        let threshold = (f as f32 + 0.5) / self.fibres_per_strand as f32;
+        self.fibre_share
+            .get(vertex)
+            .is_none_or(|sh| *sh >= threshold)
     }
 
     /// The light reaching render-strand point `vertex` (index into the positions it was built
@@ -391,8 +406,11 @@ impl<'a> ExactReference<'a> {
             }
             Footprint::Fibres { rays } => {
                 let f_count = self.fibres_per_strand;
-                let per_fibre = (rays.max(1) as usize).div_ceil(f_count);
-                for f in 0..f_count {
+                let present = (0..f_count)
+                    .filter(|&f| self.fibre_present(vertex, f))
+                    .count();
+                let per_fibre = (rays.max(1) as usize).div_ceil(present.max(1));
+                for f in (0..f_count).filter(|&f| self.fibre_present(vertex, f)) {
                     let base = (strand * f_count + f) * ppl;
                     let pts = &self.fibre_points[base..base + ppl];
                     let own = Exclude {
@@ -507,6 +525,54 @@ impl<'a> ExactReference<'a> {
             };
             acc.add(self.trace(o, Some(own)));
         }
+    }
+
+    /// For the fibres render-strand point `vertex` stands for (as [`Footprint::Fibres`]): the
+    /// share of ray origins the camera sees, and the share both seen and lit by direct light.
+    /// `view` must hold the same fibres with its "light" travelling from the camera into the
+    /// scene (built from the same input with `light_dir` = the view direction): a ray from an
+    /// origin toward its light is then the ray toward the eye. Their ratio is the direct
+    /// fraction *given* that the fibre is seen, which a picture shows; it measures the
+    /// opposition effect the map models in `LightMap::light_at_seen`.
+    pub fn seen_and_lit(&self, view: &ExactReference, vertex: usize, rays: u32) -> (f32, f32) {
+        let ppl = self.points_per_strand;
+        let (strand, k) = (vertex / ppl, vertex % ppl);
+        let f_count = self.fibres_per_strand;
+        if (strand + 1) * f_count * ppl > self.fibre_points.len() {
+            return (0.0, 0.0);
+        }
+        let present = (0..f_count)
+            .filter(|&f| self.fibre_present(vertex, f))
+            .count();
+        let per_fibre = (rays.max(1) as usize).div_ceil(present.max(1));
+        let (mut n, mut seen, mut both) = (0u32, 0u32, 0u32);
+        for f in (0..f_count).filter(|&f| self.fibre_present(vertex, f)) {
+            let base = (strand * f_count + f) * ppl;
+            let pts = &self.fibre_points[base..base + ppl];
+            let own = Exclude {
+                strand: strand as u32,
+                fibre: Some(f as u32),
+                segs: (k as i64 - 2, k as i64 + 1),
+            };
+            for j in 0..per_fibre {
+                let t = (j as f32 + 0.5) / per_fibre as f32 - 0.5;
+                let o = if t < 0.0 && k > 0 {
+                    pts[k].lerp(pts[k - 1], -t)
+                } else if t >= 0.0 && k + 1 < ppl {
+                    pts[k].lerp(pts[k + 1], t)
+                } else {
+                    pts[k]
+                };
+                let o_view = view.frame.to_map(self.frame.to_world(o));
+                let is_seen = view.trace(o_view, Some(own)).0 == 0;
+                let is_lit = self.trace(o, Some(own)).0 == 0;
+                n += 1;
+                seen += is_seen as u32;
+                both += (is_seen && is_lit) as u32;
+            }
+        }
+        let inv = 1.0 / n.max(1) as f32;
+        (seen as f32 * inv, both as f32 * inv)
     }
 
     /// The light reaching world point `p` over a disc across the light of `radius_m` with

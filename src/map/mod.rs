@@ -77,23 +77,40 @@ pub use occluders::{OccluderGrid, OccluderMesh, Solid};
 
 use glam::Vec3;
 
-/// Size of the map: N cells per axis, each `ds_m` metres wide.
+/// Size of the map: N slices of `ds_m` along the light, and `lateral` × N columns across it
+/// per axis (each `ds_m / lateral` wide).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MapGeometry {
-    /// Cells per axis.
+    /// Cells per axis along the light (slices).
     pub n: u32,
-    /// Cell size in metres.
+    /// Cell size along the light in metres.
     pub ds_m: f32,
+    /// Columns per cell width across the light (1: cubic cells). Along the light each cell
+    /// already knows where its hair lies (8 sub-slices); across it, what a column averages is
+    /// all it knows, so finer columns than slices resolve slanted hair surfaces at no cost in
+    /// pieces (a piece is no longer than a slice).
+    pub lateral: u32,
 }
 
 impl MapGeometry {
-    /// A map that spans `span_m` with `n` cells per axis.
+    /// A map that spans `span_m` with `n` cubic cells per axis.
     pub fn with_resolution(span_m: f32, n: u32) -> Self {
         let n = n.max(1);
         Self {
             n,
             ds_m: span_m / n as f32,
+            lateral: 1,
         }
+    }
+
+    /// Columns per lateral axis (N × `lateral`).
+    pub fn columns_per_axis(&self) -> u32 {
+        self.n.saturating_mul(self.lateral.max(1))
+    }
+
+    /// Column width across the light, metres.
+    pub fn column_m(&self) -> f32 {
+        self.ds_m / self.lateral.max(1) as f32
     }
 
     /// A map sized from the scene (Bertails §2.2): span 2·lmax + hmax, and a cell of
@@ -103,6 +120,15 @@ impl MapGeometry {
     /// - the error falls as cells shrink towards the strand spacing (smooth, 30 fibres per strand:
     ///   T_f MAE 0.020 at 2 spacings, 0.016 at 1.5, 0.014 at 1), and the cost grows with the
     ///   filled cells; 1.5 spacings (N = 172 for the presets) meets MAE ≤ 0.02 with margin;
+    /// - across the light, columns about ¾ of a strand spacing wide (at most
+    ///   [`MAX_LATERAL_COLUMNS`] per cell width; 2 for the presets): the pictures of a path
+    ///   tracer (tools/reference, ACCURACY.md) show the hair the camera sees, which lies at the
+    ///   hair's surface, where a column averages hair beside the point at other depths. One
+    ///   fibre per strand, single scattering against Mitsuba: back-lit 1.25 → 1.00 and
+    ///   front-lit 0.79 → 0.91 with 4 columns per cell, curly back-lit 1.88 → 1.19 with 3;
+    ///   narrower columns than ¾ spacing resolve single strands and the per-vertex error rises
+    ///   (smooth: MAE 0.0132 at 2.5 mm columns, 0.0154 at 1.8, 0.0207 at 1.2). The pieces do
+    ///   not change (a piece is no longer than a slice); the filled cells grow;
     /// - with one fibre per render strand, a cell a few strands wide no longer averages enough
     ///   fibres, and finer cells stop paying: against the hair within 3.7 mm, smooth with 12
     ///   one-fibre strands per preset strand has MAE 0.031 at 8.8 mm cells, 0.026 at 7.4,
@@ -120,7 +146,11 @@ impl MapGeometry {
         let widen = (30.0 / fibers_per_strand.max(1e-3)).sqrt().max(1.0);
         let cell = 1.5 * strand_spacing_m.max(1e-6) * widen;
         let n = (span / cell).ceil().clamp(8.0, 1024.0) as u32;
-        Self::with_resolution(span, n)
+        let geom = Self::with_resolution(span, n);
+        let lateral = (geom.ds_m / (0.75 * strand_spacing_m.max(1e-6)))
+            .round()
+            .clamp(1.0, MAX_LATERAL_COLUMNS as f32) as u32;
+        Self { lateral, ..geom }
     }
 
     /// The smallest span that always holds the hair: 2·lmax + hmax (Bertails §2.2), plus 2%
@@ -129,6 +159,9 @@ impl MapGeometry {
         1.02 * (2.0 * max_length_m + head_size_m)
     }
 }
+
+/// Most columns per cell width across the light that [`MapGeometry::for_scene`] chooses.
+pub const MAX_LATERAL_COLUMNS: u32 = 4;
 
 /// Occluder texel size in cells.
 const OCCLUDER_TEXEL_CELLS: f32 = 0.25;
@@ -227,6 +260,8 @@ pub struct LightMap {
     geom: MapGeometry,
     frame: LightFrame,
     inv_ds: f32,
+    /// Map metres to cells along X and to columns along Y, Z.
+    inv_cell: Vec3,
     model: CountModel,
     /// Unwrapped index ⌊x/ds⌋ of the first slice in light order.
     first_slice: i64,
@@ -241,8 +276,9 @@ pub struct LightMap {
     /// Per column, offsets into `slots` (N² + 1 entries).
     slot_start: Vec<u32>,
     /// For each column, one slot per slice from its first to its last filled slice: the index
-    /// in `cells` of the last filled cell at or before that slice. Makes a lookup O(1); its
-    /// size is the sum of the filled columns' spans, never N³.
+    /// in `cells` of the last filled cell at or before that slice. Makes a lookup O(1). Sparse
+    /// columns (span over 4 slices per filled cell) have none and are read by binary search,
+    /// so the slots never exceed 4 per filled cell, whatever N is.
     slots: Vec<u32>,
     scratch: build::Scratch,
     stats: MapStats,
@@ -253,11 +289,16 @@ pub struct LightMap {
 impl LightMap {
     /// An empty map of the given geometry (allocates N² + 1 column offsets).
     pub fn new(geom: MapGeometry, model: CountModel) -> Self {
-        let cols = geom.n as usize * geom.n as usize;
+        let cols = geom.columns_per_axis() as usize * geom.columns_per_axis() as usize;
         Self {
             geom,
             frame: LightFrame::new(Vec3::NEG_Y),
             inv_ds: 1.0 / geom.ds_m,
+            inv_cell: Vec3::new(
+                1.0 / geom.ds_m,
+                1.0 / geom.column_m(),
+                1.0 / geom.column_m(),
+            ),
             model,
             first_slice: 0,
             hair_lo: [i64::MAX; 3],
@@ -302,16 +343,17 @@ impl LightMap {
         1.5 * OCCLUDER_TEXEL_CELLS * self.geom.ds_m
     }
 
-    /// Cell-space coordinates (unwrapped, in cells) of a world point.
+    /// Cell-space coordinates (unwrapped: slices along X, columns along Y and Z) of a world
+    /// point.
     #[inline]
     fn cell_coords(&self, p: Vec3) -> Vec3 {
-        self.frame.to_map(p) * self.inv_ds
+        self.frame.to_map(p) * self.inv_cell
     }
 
     /// Column index of unwrapped (j, k).
     #[inline]
     fn column(&self, j: i64, k: i64) -> usize {
-        let n = self.geom.n as i64;
+        let n = self.geom.columns_per_axis() as i64;
         (j.rem_euclid(n) * n + k.rem_euclid(n)) as usize
     }
 
@@ -326,16 +368,37 @@ impl LightMap {
     /// `rel`, or `None` when the column has no cell that early.
     #[inline]
     fn last_at_or_before(&self, c: usize, rel: u32) -> Option<usize> {
-        let (s0, s1) = (self.slot_start[c] as usize, self.slot_start[c + 1] as usize);
-        if s0 == s1 {
+        let (a, b) = (self.col_start[c] as usize, self.col_start[c + 1] as usize);
+        if a == b {
             return None;
         }
-        let base = self.cells[self.col_start[c] as usize].slice;
+        let base = self.cells[a].slice;
         if rel < base {
             return None;
         }
+        let (s0, s1) = (self.slot_start[c] as usize, self.slot_start[c + 1] as usize);
+        if s0 == s1 {
+            // A sparse column without a slot table: binary search (merged-away entries, with
+            // slice u32::MAX, sort last and are never at or before `rel`).
+            let k = self.cells[a..b].partition_point(|x| x.slice <= rel);
+            return Some(a + k - 1);
+        }
         let off = (rel - base) as usize;
         Some(self.slots[(s0 + off).min(s1 - 1)] as usize)
+    }
+
+    /// Index in `cells` of the last filled cell of column `c`, or `None` when it is empty.
+    #[inline]
+    fn last_cell(&self, c: usize) -> Option<usize> {
+        let (a, b) = (self.col_start[c] as usize, self.col_start[c + 1] as usize);
+        if a == b {
+            return None;
+        }
+        let (s0, s1) = (self.slot_start[c] as usize, self.slot_start[c + 1] as usize);
+        if s0 < s1 {
+            return Some(self.slots[s1 - 1] as usize);
+        }
+        Some(a + self.cells[a..b].partition_point(|x| x.slice != u32::MAX) - 1)
     }
 }
 

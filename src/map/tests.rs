@@ -10,7 +10,14 @@ fn fiber() -> Fiber {
 /// One sample per point, all fibres perpendicular to the light (which travels along +X).
 fn build(points: &[Vec3], len: f32, n: u32, ds: f32) -> LightMap {
     let f = fiber();
-    let mut map = LightMap::new(MapGeometry { n, ds_m: ds }, CountModel::Poisson);
+    let mut map = LightMap::new(
+        MapGeometry {
+            n,
+            ds_m: ds,
+            lateral: 1,
+        },
+        CountModel::Poisson,
+    );
     let tangents = vec![Vec3::Y; points.len()];
     let lengths = vec![len; points.len()];
     map.build(&MapBuildInput {
@@ -119,6 +126,7 @@ fn every_column_is_monotonic_exactly() {
         MapGeometry {
             n: 128,
             ds_m: 0.007,
+            lateral: 1,
         },
         CountModel::Poisson,
     );

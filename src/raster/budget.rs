@@ -11,10 +11,10 @@ const BAND_ROWS: u64 = 16;
 const SETUP_CHUNK: u64 = 4096;
 
 impl Framebuffer {
-    /// Bytes of a `width` × `height` framebuffer: linear RGB (`Vec3`) and depth (`f32`) per
-    /// pixel.
+    /// Bytes of a `width` × `height` framebuffer: linear RGB (`Vec3`), depth and coverage
+    /// (`f32` each) per pixel.
     pub fn estimated_bytes(width: u32, height: u32) -> u64 {
-        width as u64 * height as u64 * (size_of::<Vec3>() + size_of::<f32>()) as u64
+        width as u64 * height as u64 * (size_of::<Vec3>() + 2 * size_of::<f32>()) as u64
     }
 }
 

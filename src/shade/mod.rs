@@ -45,8 +45,11 @@ pub fn fibre_tint(fiber: &Fiber) -> Vec3 {
 }
 
 /// Shades every vertex: `colors[i]` is the linear RGB radiance of vertex `i` seen from `eye`.
-/// Non-finite results (which the fibre model must never produce) are replaced by black, so
-/// nothing invalid can reach a pixel.
+/// The light a vertex receives is the map's, given that the camera sees it
+/// ([`LightMap::light_at_seen`]: with the light near the camera the view and light rays cross
+/// the same fibres, so a fibre that is seen is lit more often than the average). Non-finite
+/// results (which the fibre model must never produce) are replaced by black, so nothing invalid
+/// can reach a pixel.
 pub fn shade_vertices(
     fiber: &Fiber,
     map: &LightMap,
@@ -62,7 +65,7 @@ pub fn shade_vertices(
         eye,
         positions,
         tangents,
-        |_, p| map.light_at(p),
+        |i, p| map.light_at_seen(p, eye - p, tangents[i], fiber.params().radius_m),
         colors,
     );
 }
