@@ -141,7 +141,7 @@ pub fn generate(style: &Hairstyle) -> (GuideSet, StrandLayout) {
     let mut strand_length = Vec::with_capacity(wisps * spw);
     // Strand lengths come from their own stream, so the other placements do not change with
     // `length_variation`.
-    let mut lengths = SplitMix64::new(style.seed ^ 0x5EED_1E57_0F_5742);
+    let mut lengths = SplitMix64::new(style.seed ^ 0x005E_ED1E_570F_5742);
     for w in 0..wisps {
         for _ in 0..spw {
             // Uniform point in a triangle: (1 - √r1, √r1 (1 - r2), √r1 r2).

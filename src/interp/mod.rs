@@ -107,7 +107,7 @@ pub fn interpolate_among(
                 add_curl(pos, reference, curl, layout.strand_phase[s]);
             }
             if let Some(v) = &view {
-                v.push_out(pos);
+                v.push_out(pos, len);
             }
             tangents_and_lengths(pos, tan, len);
             tip_taper(layout.tip_taper, pos, share, len);
@@ -203,7 +203,7 @@ fn add_curl(pos: &mut [Vec3], reference: Vec3, curl: &CurlSpec, phase: f32) {
 /// linearly from 1 to 0 over it, reaching 0 at the tip. Scales each point's fibre length `len`.
 fn tip_taper(taper: f32, pos: &[Vec3], share: &mut [f32], len: &mut [f32]) {
     let n = share.len().min(pos.len());
-    if !(taper > 0.0) || n < 2 {
+    if taper.is_nan() || taper <= 0.0 || n < 2 {
         share.fill(1.0);
         return;
     }

@@ -404,9 +404,9 @@ fn sweep_column(col: &mut [Cell]) -> usize {
         for ch in 0..3 {
             loss[ch] += c.loss[ch];
             var[ch] += c.sigma2[ch];
-            c.loss[ch] = loss[ch];
-            c.sigma2[ch] = var[ch];
         }
+        c.loss = loss;
+        c.sigma2 = var;
     }
     w
 }

@@ -503,7 +503,7 @@ impl<'a> ExactReference<'a> {
             })
             .collect();
         let total: f32 = lengths.iter().sum();
-        if !(total > 0.0) {
+        if total.is_nan() || total <= 0.0 {
             return;
         }
         // Stratified by arc length over the concatenated pieces.

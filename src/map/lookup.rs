@@ -91,7 +91,7 @@ impl LightMap {
             0.0
         };
         let min_shift = 0.05 * self.geom.ds_m / crate::map::DEPTH_BINS as f32;
-        if !(s_c > min_shift) {
+        if s_c.is_nan() || s_c <= min_shift {
             return self.light_at(p);
         }
         // Gauss–Legendre nodes on [0, s_c]: s_c (1/2 ∓ 1/(2√3)), in cells.
