@@ -13,20 +13,20 @@
 //!   `Framebuffer::estimated_bytes`, `LineScratch::estimated_bytes`);
 //! - **work before the first frame**: the settle and warm-up simulation and the first frame,
 //!   in CPU-seconds from per-item costs measured on the development machine (one core of a
-//!   shared 2-core VM; `NOTES-hostile-inputs.md`). A frame costs less than this set-up, so the
+//!   shared 2-core VM; `docs/notes/hostile-inputs.md`). A frame costs less than this set-up, so the
 //!   bound also holds for every later frame: no run sits for long without output.
 //!
 //! [`Estimate::check`] refuses an estimate over a [`Budget`], naming the largest part, the
-//! product it comes from and the inputs that set it. To extend it (a groom, a cache, a
-//! scene), add one [`MemoryPart`] or [`WorkPart`] per new buffer or stage in [`estimate`], with
-//! its count times a `size_of`.
+//! product it comes from and the inputs that set it. To extend it (a groom, a scene), add one
+//! [`MemoryPart`] or [`WorkPart`] per new buffer or stage in [`estimate`], with its count
+//! times a `size_of`, as the simulation cache's record buffer ([`CacheUse`]) does.
 
 use crate::frame::EngineConfig;
 use crate::hairstyle::Hairstyle;
 use crate::input::human_bytes;
 use crate::map::MapGeometry;
 use crate::motion::Motion;
-use crate::raster::{Framebuffer, LineScratch};
+use crate::raster::{Framebuffer, LineScratch, MeshScratch};
 use crate::sim::Simulator;
 use glam::Vec3;
 
@@ -36,7 +36,7 @@ pub const DEFAULT_MEMORY_BYTES: u64 = 4_000_000_000;
 pub const DEFAULT_WORK_CPU_S: f64 = 1200.0;
 
 /// Measured single-core costs (release build, shared 2-core VM, `wisp --threads 1 render`
-/// stage timings of the presets; see `NOTES-hostile-inputs.md`). Estimates, good to about 2×.
+/// stage timings of the presets; see `docs/notes/hostile-inputs.md`). Estimates, good to about 2×.
 mod cost_ns {
     /// One simulation step of one guide particle, self-collision on (smooth: 8.6 ms for 8
     /// steps of 6,432 particles).
@@ -77,6 +77,21 @@ pub struct RunPlan {
     pub warm_up_s: f64,
     /// The frames are exported as PNG (sRGB buffers in flight and the encoder).
     pub export_png: bool,
+    /// How the run uses a simulation cache.
+    pub cache: CacheUse,
+}
+
+/// How a run uses a simulation cache (`wisp::cache`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum CacheUse {
+    /// No cache.
+    #[default]
+    None,
+    /// `wisp simulate`: the guides are simulated and each frame's record written.
+    Write,
+    /// `wisp render --cache`: each frame's record is read; nothing is simulated, so there is
+    /// no settle or warm-up.
+    Read,
 }
 
 impl Default for RunPlan {
@@ -85,6 +100,7 @@ impl Default for RunPlan {
             frame_interval_s: 1.0 / 30.0,
             warm_up_s: 0.0,
             export_png: true,
+            cache: CacheUse::None,
         }
     }
 }
@@ -383,6 +399,24 @@ pub fn estimate(
             set_by: "the glTF clip",
         },
     ];
+    if let Some(ch) = motion.character() {
+        // The posed mesh is held by the motion's part; drawing it needs the raster's samples
+        // and binned triangles, and the occluder grid its vertices in the light frame.
+        let triangles = ch.triangles.len() as u64;
+        memory.push(MemoryPart {
+            what: "character raster",
+            product: format!(
+                "{}×{} pixels × 4 samples, {} triangles, {} vertices",
+                config.width,
+                config.height,
+                grouped(triangles),
+                grouped(ch.vertex_count() as u64)
+            ),
+            bytes: MeshScratch::estimated_bytes(config.width, config.height, triangles)
+                + b(ch.vertex_count() * size_of::<Vec3>()),
+            set_by: "--width × --height, and the glTF's meshes",
+        });
+    }
     if plan.export_png {
         // Three sRGB buffers in flight between the renderer and the writer, and the PNG
         // encoder's filtered copy of the one being written.
@@ -394,12 +428,40 @@ pub fn estimate(
         });
     }
 
+    if plan.cache != CacheUse::None {
+        // One record's bytes and, reading, its decoded positions; writing, the file buffer.
+        let record = crate::cache::format::record_bytes(particles);
+        let (second, what_else) = match plan.cache {
+            CacheUse::Read => (particles * b(size_of::<Vec3>()), "its positions"),
+            _ => (b(8 * 1024), "an 8 KiB file buffer"),
+        };
+        memory.push(MemoryPart {
+            what: "simulation cache",
+            product: format!(
+                "one record of {} guide particles × {} B, and {what_else}",
+                grouped(particles),
+                crate::cache::format::POSITION_BYTES
+            ),
+            bytes: record + second,
+            set_by: "wisps.count × guides.links",
+        });
+    }
+
     let step_s = style.dynamics.step_s.max(1e-5) as f64;
-    let before_first_s = (config.settle_s.max(0.0) + plan.warm_up_s.max(0.0)).min(1e15);
+    let before_first_s = if plan.cache == CacheUse::Read {
+        0.0
+    } else {
+        (config.settle_s.max(0.0) + plan.warm_up_s.max(0.0)).min(1e15)
+    };
     let frame_s = plan.frame_interval_s.clamp(0.0, 1e15);
     // The engine advances in 0.2 s slices before the first frame, interpolating each time.
     let slices = (before_first_s / 0.2).ceil();
-    let (sim_product, sim_cpu_s) = if config.simulate {
+    let (sim_product, sim_cpu_s) = if plan.cache == CacheUse::Read {
+        (
+            format!("{} guide particles read from the cache", grouped(particles)),
+            0.0,
+        )
+    } else if config.simulate {
         let steps = ((before_first_s + frame_s) / step_s).ceil();
         (
             format!(
@@ -476,6 +538,36 @@ mod tests {
         // splatted to 4 columns): a tenth of the default budget.
         assert!(est.memory_bytes() < DEFAULT_MEMORY_BYTES / 10, "{est:#?}");
         assert!(est.work_cpu_s() < DEFAULT_WORK_CPU_S / 100.0, "{est:#?}");
+    }
+
+    #[test]
+    fn a_cache_adds_its_record_buffer_and_reading_one_skips_the_settle() {
+        let style = Hairstyle::default_smooth();
+        let motion = Motion::still(glam::Affine3A::IDENTITY);
+        let config = EngineConfig::default();
+        let plan = |cache| RunPlan {
+            warm_up_s: 3.0,
+            cache,
+            ..RunPlan::default()
+        };
+        let none = estimate(&style, &motion, &config, &plan(CacheUse::None));
+        let read = estimate(&style, &motion, &config, &plan(CacheUse::Read));
+        let write = estimate(&style, &motion, &config, &plan(CacheUse::Write));
+        let part = |e: &Estimate| {
+            e.memory
+                .iter()
+                .find(|p| p.what == "simulation cache")
+                .map(|p| p.bytes)
+        };
+        assert_eq!(part(&none), None);
+        // 6,432 particles: a record of 8 + 12·6,432 + 4 bytes, and the positions (12 B each).
+        assert_eq!(part(&read), Some(77_196 + 77_184));
+        assert_eq!(part(&write), Some(77_196 + 8_192));
+        // Reading a cache simulates nothing: no settle, no warm-up.
+        assert_eq!(read.work[0].cpu_s, 0.0);
+        assert_eq!(read.work[1].cpu_s, 0.0);
+        assert!(none.work[0].cpu_s > 0.0 && none.work[1].cpu_s > 0.0);
+        assert_eq!(write.work[0].cpu_s, none.work[0].cpu_s);
     }
 
     #[test]

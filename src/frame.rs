@@ -3,8 +3,8 @@
 //! ```text
 //! animation   motion.sample(t)                -> head and body-collider transforms, and the
 //!                                                character's skinned mesh
-//! simulation  sim.advance(t, colliders, map)  -> guide particles (self-collision reads the
-//!                                                map of the previous frame, Bertails §4.1)
+//! simulation  sim.advance(t, colliders)       -> guide particles (self-collision from the
+//!                                                simulator's own density grid, Bertails §4.1)
 //! interp      interpolate(guides, colliders)  -> render strands (positions, tangents), kept
 //!                                                out of the head and body
 //! map         map.build(strands, light)       -> Tf, σ̄f², direct fraction per cell
@@ -28,10 +28,7 @@ use crate::raster::{
 };
 use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};
 use crate::shade::{Lighting, shade_skin, shade_vertices};
-use crate::sim::{
-    CapsuleCollider, Colliders, DensityField, NoDensity, SimState, Simulator, SphereCollider,
-    StepStats,
-};
+use crate::sim::{CapsuleCollider, Colliders, SimState, Simulator, SphereCollider, StepStats};
 use glam::{Affine3A, Vec3};
 use std::time::Instant;
 
@@ -161,7 +158,6 @@ pub struct Engine {
     sim: Simulator,
     pub state: SimState,
     map: LightMap,
-    map_valid: bool,
     pub strands: StrandGeometry,
     colors: Vec<Vec3>,
     /// Physical width of each render-strand point in metres (fibres per strand × diameter).
@@ -193,12 +189,38 @@ impl Engine {
     /// character with a head mesh gets the hairstyle's head fitted to it first
     /// ([`fit_style_to_character`]).
     pub fn new(style: Hairstyle, motion: Motion, config: EngineConfig) -> Self {
+        let mut engine = Self::unsettled(style, motion, config);
+        // Settle with the head held at the first pose (the simulation starts at −settle_s).
+        engine.run_up_to(0.0);
+        engine.place_camera();
+        engine
+    }
+
+    /// Builds the hair without simulating: the guide particles are `settled_positions` at time
+    /// 0 (what [`Engine::new`]'s settle left, read back from a simulation cache), and the
+    /// camera is framed on them as `new` frames it. Later frames come from
+    /// [`Engine::set_guide_state`]; rendered frames are then the bytes `new` + `frame` make.
+    pub fn from_settled(
+        style: Hairstyle,
+        motion: Motion,
+        config: EngineConfig,
+        settled_positions: &[Vec3],
+    ) -> Self {
+        let mut engine = Self::unsettled(style, motion, config);
+        engine.set_guide_state(0.0, settled_positions);
+        engine.place_camera();
+        engine
+    }
+
+    /// The engine with its guides at rest at −settle_s; the camera is not placed yet.
+    fn unsettled(style: Hairstyle, motion: Motion, config: EngineConfig) -> Self {
         let style = fit_style_to_character(&style, &motion);
         let fiber = Fiber::new(&style.fiber);
         let (guides, layout) = generate(&style);
         let radii = Vec3::from(style.head.radii_m);
         let pose = motion.sample(0.0);
-        let sim = Simulator::new(&style.dynamics, &guides, radii);
+        let mut sim = Simulator::from_hairstyle(&style, &guides);
+        sim.set_self_collision(config.self_collision);
         let (surfaces, textures, character_has_head) = match motion.character() {
             Some(ch) => (
                 ch.materials
@@ -233,7 +255,7 @@ impl Engine {
             config.height,
         );
         let fb = Framebuffer::new(config.width, config.height, config.background);
-        let mut engine = Self {
+        Self {
             style,
             fiber,
             guides,
@@ -245,7 +267,6 @@ impl Engine {
             sim,
             state,
             map: LightMap::new(geom, CountModel::Poisson),
-            map_valid: false,
             strands: StrandGeometry::default(),
             colors: Vec::new(),
             widths_m: Vec::new(),
@@ -263,11 +284,7 @@ impl Engine {
             timings: StageTimings::default(),
             step_stats: StepStats::default(),
             config,
-        };
-        // Settle with the head held at the first pose (the simulation starts at −settle_s).
-        engine.run_up_to(0.0);
-        engine.place_camera();
-        engine
+        }
     }
 
     /// Map geometry in use.
@@ -329,13 +346,8 @@ impl Engine {
                 motion.sample_into(t.max(0.0) as f32, scratch_pose);
                 write_colliders(scratch_pose, radii, c);
             };
-            self.step_stats = if self.config.self_collision && self.map_valid {
-                self.sim
-                    .advance(&mut self.state, t_s, colliders_at, &self.map)
-            } else {
-                self.sim
-                    .advance(&mut self.state, t_s, colliders_at, &NoDensity)
-            };
+            self.sim.set_self_collision(self.config.self_collision);
+            self.step_stats = self.sim.advance(&mut self.state, t_s, colliders_at);
         } else {
             let head = self.pose.head;
             for (p, r) in self.state.positions.iter_mut().zip(&self.guides.rest) {
@@ -343,7 +355,31 @@ impl Engine {
             }
             self.state.time_s = t_s;
         }
-        let t2 = Instant::now();
+        self.interpolate_strands([t0, t1, Instant::now()]);
+    }
+
+    /// Animation and interpolation at time `t_s` with the guide particles set to `positions`
+    /// instead of simulated (a frame of a simulation cache): the stages after the simulation
+    /// see exactly what [`Engine::advance`] leaves when it simulated those positions. The
+    /// caller checks that `positions` has one entry per guide particle
+    /// (`state.positions.len()`); extra entries are ignored, missing ones keep their value.
+    /// For rendering only: the simulation's velocities and step clock are not set, so an
+    /// [`Engine::advance`] after this does not continue the cached motion.
+    pub fn set_guide_state(&mut self, t_s: f64, positions: &[Vec3]) {
+        let t0 = Instant::now();
+        self.motion.sample_into(t_s as f32, &mut self.pose);
+        self.motion.pose_character(t_s as f32, &mut self.character);
+        let t1 = Instant::now();
+        for (p, q) in self.state.positions.iter_mut().zip(positions) {
+            *p = *q;
+        }
+        self.interpolate_strands([t0, t1, Instant::now()]);
+    }
+
+    /// Interpolation of the render strands from the guides; `marks` are the instants the
+    /// animation and simulation stages started and the simulation ended, for the timings.
+    fn interpolate_strands(&mut self, marks: [Instant; 3]) {
+        let radii = Vec3::from(self.style.head.radii_m);
         write_colliders(&self.pose, radii, &mut self.frame_colliders);
         interpolate_among(
             &self.guides,
@@ -353,6 +389,7 @@ impl Engine {
             Some(&self.frame_colliders),
             &mut self.strands,
         );
+        let [t0, t1, t2] = marks;
         let t3 = Instant::now();
         self.timings.animation_s = (t1 - t0).as_secs_f64();
         self.timings.simulation_s = (t2 - t1).as_secs_f64();
@@ -479,7 +516,6 @@ impl Engine {
             None => OccluderMesh::EMPTY,
         };
         self.map.set_occluders_with_mesh(&self.solids, mesh);
-        self.map_valid = true;
     }
 
     /// Places the camera once the hair has settled: the fixed camera, or the head-following
@@ -597,12 +633,4 @@ fn write_colliders(pose: &Pose, radii: Vec3, c: &mut Colliders) {
             b: k.b,
             radius_m: k.radius_m,
         }));
-}
-
-/// The map answers the simulation's density queries (Bertails §4.1).
-impl DensityField for LightMap {
-    #[inline]
-    fn cell_density(&self, p: Vec3) -> Option<(f32, Vec3)> {
-        LightMap::cell_density(self, p)
-    }
 }

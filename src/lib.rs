@@ -5,13 +5,15 @@
 //! ```text
 //! motion   glTF clip -> head (and body-sphere) transforms at time t
 //! sim      rigid-link guide strands: roots on the moving scalp, gravity, damping, bending,
-//!          head/body collisions, repulsion out of over-dense map cells (Bertails 2005 §4.1)
+//!          head/body collisions, self-collision from the guides' own density grid (Bertails
+//!          2005 §4.1)
 //! interp   render strands from their wisp's 3 guides, Catmull-Rom smoothing, curls
 //! map      light-oriented, modulo-indexed grid: fill, column sweep -> Tf, σ̄f², direct fraction
 //! shade    per render-strand vertex: filtered map lookup -> fibre shader
 //! raster   camera, depth-tested anti-aliased lines, the head -> framebuffer (+ coverage)
 //! scene    where the camera is: fixed, or following the head
 //! output   PNG frames or linear RGBA EXR (temporary name + rename), or a window
+//! cache    the guide state of every frame of a run, written once and rendered anywhere
 //! ```
 //!
 //! ## Conventions (stated once)
@@ -26,6 +28,7 @@
 
 pub mod accuracy;
 pub mod budget;
+pub mod cache;
 pub mod export;
 pub mod fiber;
 pub mod frame;

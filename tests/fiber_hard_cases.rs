@@ -312,7 +312,7 @@ fn h_to_plus_minus_one() {
 }
 
 /// With no forward scattering in the map (UNSHADOWED), Figure 5 reduces to the direct path:
-/// (f_s + d_b f_back) cos θi; the alternative T_f·d_f reading would add 0.7 × more.
+/// (f_s + d_b f_back) cos θi; the alternative T_f·d_f reading would add d_f (1 by default) × more.
 #[test]
 fn dual_unshadowed_is_direct_only() {
     let fiber = Fiber::new(&FiberParams::default());

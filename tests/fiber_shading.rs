@@ -255,7 +255,7 @@ fn fibre_json_model_and_new_fields() {
     let d: FiberParams = serde_json::from_str("{}").expect("defaults");
     assert_eq!(d.model, FiberModel::Marschner);
     assert_eq!((d.azimuthal_roughness, d.forward_spread_deg), (0.3, 90.0));
-    assert_eq!((d.d_f, d.d_b), (0.7, 0.7));
+    assert_eq!((d.d_f, d.d_b), (1.0, 0.7));
     let e =
         serde_json::from_str::<FiberParams>(r#"{"model": "kajiya"}"#).expect_err("unknown model");
     assert!(e.to_string().contains("unknown variant"), "{e}");

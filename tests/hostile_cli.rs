@@ -484,8 +484,114 @@ fn a_directory_named_like_a_frame_is_reported_before_the_work() {
     assert!(r.says("frame_00000.png is in the way"), "{}", r.stderr);
 }
 
-/// Generated inputs through the binary: a sample of `hostile_loaders`' mutated hairstyles and
-/// glTF files, rendered (when accepted) as one small frame.
+/// Issue 10's hostile caches and flags through the binary: each exits 2 naming what is wrong
+/// (or 0 where there is nothing wrong: a shard with no frames), never a panic or a hang.
+#[test]
+fn hostile_caches_and_cache_flags_exit_2_naming_the_problem() {
+    use hostile_common::cache::{SEED_HAIRSTYLE, record_at, reseal, seed};
+    let dir = scratch_dir("hostile-cli-cache");
+    let out = dir.join("out");
+    let hair = dir.join("min.json");
+    std::fs::write(&hair, SEED_HAIRSTYLE).unwrap();
+    let good = dir.join("run.wcache");
+    std::fs::write(&good, seed()).unwrap();
+    let b = seed();
+    std::fs::write(dir.join("short.wcache"), &b[..b.len() - 5]).unwrap();
+    let mut v = b.clone();
+    v[8] = 9;
+    reseal(&mut v);
+    std::fs::write(dir.join("v9.wcache"), &v).unwrap();
+    let mut nan = b.clone();
+    let (at, _) = record_at(&nan, 2).unwrap();
+    nan[at + 8..at + 12].copy_from_slice(&f32::NAN.to_le_bytes());
+    reseal(&mut nan);
+    std::fs::write(dir.join("nan.wcache"), &nan).unwrap();
+    let mut flipped = b.clone();
+    flipped[at + 20] ^= 4;
+    std::fs::write(dir.join("flipped.wcache"), &flipped).unwrap();
+    std::fs::create_dir_all(dir.join("adir.wcache")).unwrap();
+    let r = |extra: &str| {
+        let mut a = args(&format!(
+            "render --width 32 --height 32 --max-memory-gb 1 --quiet --hairstyle {} --out {}",
+            hair.display(),
+            out.display()
+        ));
+        a.extend(args(extra));
+        a
+    };
+    let s = |extra: &str| args(&format!("simulate --frames 1 --quiet {extra}"));
+    let cases: Vec<(Vec<String>, i32, &str)> = vec![
+        (
+            r("--cache missing.wcache"),
+            2,
+            "missing.wcache: cannot read",
+        ),
+        (r("--cache adir.wcache"), 2, "adir.wcache: is a directory"),
+        (r("--cache /dev/zero"), 2, "character device"),
+        (r("--cache short.wcache"), 2, "short.wcache: truncated"),
+        (r("--cache v9.wcache"), 2, "version is 9"),
+        (r("--cache nan.wcache"), 2, "frame 1: particle 0 is at [NaN"),
+        (r("--cache flipped.wcache"), 2, "frame 1: checksum"),
+        (
+            args(&format!(
+                "render --quiet --cache run.wcache --hairstyle curly --out {}",
+                out.display()
+            )),
+            2,
+            "not for this hairstyle \"curly\"",
+        ),
+        (
+            r("--cache run.wcache --still"),
+            2,
+            "not with this motion, --still",
+        ),
+        (r("--cache run.wcache --speed 2"), 2, "speed 2"),
+        (r("--cache run.wcache --shard 3/2"), 2, "I must be in 1..=2"),
+        (r("--cache run.wcache --shard 0/2"), 2, "numbered from 1"),
+        (
+            r("--cache run.wcache --shard 1/2/3"),
+            2,
+            "not a whole number",
+        ),
+        (r("--shard 1/2"), 2, "--cache"),
+        (r("--first-frame 1"), 2, "--cache"),
+        (r("--cache run.wcache --fps 24"), 2, "cannot be used with"),
+        (
+            r("--cache run.wcache --start-s 1"),
+            2,
+            "cannot be used with",
+        ),
+        (r("--cache run.wcache --no-sim"), 2, "cannot be used with"),
+        (
+            r("--cache run.wcache --first-frame 3"),
+            2,
+            "holds frames 0 to 2",
+        ),
+        (
+            r("--cache run.wcache --first-frame 1 --frames 3"),
+            2,
+            "--frames 3",
+        ),
+        (
+            r("--cache run.wcache --first-frame 100000"),
+            2,
+            "--first-frame",
+        ),
+        (s("--out adir.wcache"), 2, "adir.wcache: is a directory"),
+        (s("--out /dev/null"), 2, "not a regular file"),
+        (s("--out no/such/run.wcache"), 2, "folder does not exist"),
+        (s("--out"), 2, "--out"),
+    ];
+    expect_all(&dir, &cases);
+    // More shards than frames: the empty shard has nothing to do and says so.
+    let empty = r("--cache run.wcache --shard 1/7");
+    let mut verbose = empty.clone();
+    verbose.retain(|a| a != "--quiet");
+    expect_all(&dir, &[(verbose, 0, "has no frames")]);
+}
+
+/// Generated inputs through the binary: a sample of `hostile_loaders`' mutated hairstyles,
+/// glTF files and simulation caches, rendered (when accepted) as small frames.
 #[test]
 fn generated_inputs_through_the_binary() {
     let dir = scratch_dir("hostile-cli-generated");
@@ -530,7 +636,35 @@ fn generated_inputs_through_the_binary() {
             ));
         }
     }
-    assert!(runs >= 48);
+    // Mutated simulation caches, rendered with the seed's hairstyle.
+    let hair = dir.join("min.json");
+    std::fs::write(&hair, hostile_common::cache::SEED_HAIRSTYLE).unwrap();
+    let caches = all
+        .iter()
+        .find(|f| f.name == "simulation cache")
+        .expect("the cache format");
+    for i in 0..12u64 {
+        let seed = 0xC12_0008 + i;
+        let (case, what) = formats::mutated(caches, &mut Rng::new(seed));
+        let case_dir = dir.join(format!("cache-{i}"));
+        std::fs::create_dir_all(&case_dir).unwrap();
+        let entry = case.write(&case_dir).unwrap();
+        let mut a = args("render --width 32 --height 32 --max-memory-gb 1 --quiet");
+        for (flag, path) in [("--hairstyle", &hair), ("--cache", &entry), ("--out", &out)] {
+            a.extend([flag.to_string(), path.display().to_string()]);
+        }
+        let r = wisp(&a.iter().map(String::as_str).collect::<Vec<_>>(), &case_dir);
+        runs += 1;
+        if r.timed_out || r.says("panicked") || !matches!(r.code, Some(0) | Some(2)) {
+            failures.push(format!(
+                "cache seed {seed} ({}): exit {:?}: {}",
+                what.join("; "),
+                r.code,
+                r.stderr.trim()
+            ));
+        }
+    }
+    assert!(runs >= 60);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 

@@ -1,6 +1,6 @@
 //! Generated must-not-panic cases for every input format, in process: thousands of mutated
-//! hairstyles and glTF files (binary, JSON with an external .bin, JSON with a base64 buffer)
-//! from valid seeds. Each case must end accepted or refused with a short message naming the
+//! hairstyles, glTF files (binary, JSON with an external .bin, JSON with a base64 buffer) and
+//! simulation caches from valid seeds. Each case must end accepted or refused with a short message naming the
 //! file, with no panic, within a time bound (a hang detector, not a speed test) and a memory
 //! bound.
 //!
@@ -16,7 +16,7 @@ use hostile_common::{Rng, run_bounded, scratch_dir};
 use std::time::Duration;
 
 /// Cases per format per run (the generated suite runs at least 1,000 cases in all).
-const CASES_PER_FORMAT: [usize; 4] = [500, 300, 200, 100];
+const CASES_PER_FORMAT: [usize; 5] = [500, 300, 200, 100, 300];
 /// Hang bound per case: the slowest case takes milliseconds (see the run's summary).
 const TIME_LIMIT: Duration = Duration::from_secs(30);
 /// Memory bound per case: a base for the parsed structures plus a multiple of the input size.
@@ -273,6 +273,77 @@ fn accepted_motions_render_finite_nonblank_frames() {
         }
     }
     println!("rendered {rendered} accepted motions");
+    assert_eq!(rendered, wanted);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The same promise for accepted simulation caches (generated edits that keep the checksums
+/// valid, such as a position nudged by a millimetre): every frame renders from the cache with
+/// every pixel finite and something drawn.
+#[test]
+fn accepted_caches_render_finite_nonblank_frames() {
+    use hostile_common::cache::{expected, seed_config, seed_style};
+    use wisp::cache::CacheReader;
+    use wisp::frame::Engine;
+    use wisp::motion::Motion;
+
+    let all = formats::all();
+    let format = all
+        .iter()
+        .find(|f| f.name == "simulation cache")
+        .expect("the cache format");
+    let root = scratch_dir("hostile-cache-renders");
+    let wanted = env_u64("WISP_HOSTILE_RENDERS").map_or(8, |n| n as usize);
+    let (mut rendered, mut failures) = (0usize, Vec::new());
+    for seed in 0xF13_0008u64..0xF13_0008 + 100_000 {
+        if rendered == wanted {
+            break;
+        }
+        let mut rng = Rng::new(seed);
+        let (case, what) = formats::mutated(format, &mut rng);
+        let path = case.write(&root).expect("write case");
+        let motion = Motion::default_dance();
+        let Ok(mut reader) = CacheReader::open(&path, &expected()) else {
+            continue;
+        };
+        let Ok(settled) = reader.read_settled(&motion).map(<[_]>::to_vec) else {
+            continue;
+        };
+        let frames: Result<Vec<_>, _> = (0..reader.header().frames)
+            .map(|i| {
+                let t = reader.header().frame_time_s(i);
+                reader.read_frame(i, &motion).map(|p| (t, p.to_vec()))
+            })
+            .collect();
+        let Ok(frames) = frames else { continue };
+        let outcome = run_bounded(
+            move || {
+                let config = seed_config();
+                let background = config.background;
+                let mut engine = Engine::from_settled(seed_style(), motion, config, &settled);
+                for (t, p) in &frames {
+                    engine.set_guide_state(*t, p);
+                    let fb = engine.render();
+                    if let Some(c) = fb.color.iter().find(|c| !c.is_finite()) {
+                        return Err(format!("at {t} s a pixel is {c}"));
+                    }
+                    if fb.color.iter().all(|c| *c == background) {
+                        return Err(format!("the frame at {t} s is blank"));
+                    }
+                }
+                Ok(())
+            },
+            Duration::from_secs(120),
+        );
+        rendered += 1;
+        if let Some(p) = match outcome {
+            Err(e) => Some(e),
+            Ok(r) => r.value.err(),
+        } {
+            failures.push(format!("seed {seed} ({}): {p}", what.join("; ")));
+        }
+    }
+    println!("rendered {rendered} accepted caches");
     assert_eq!(rendered, wanted);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

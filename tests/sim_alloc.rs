@@ -7,7 +7,7 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use wisp::hairstyle::{Hairstyle, generate};
 use wisp::sim::dance::AnalyticDance;
-use wisp::sim::{Colliders, NoDensity, SimState, Simulator};
+use wisp::sim::{Colliders, SimState, Simulator};
 
 struct Counting;
 
@@ -41,17 +41,17 @@ fn advance_does_not_allocate_after_warm_up() {
         .num_threads(2)
         .build()
         .expect("thread pool");
-    let mut sim = Simulator::new(&style.dynamics, &guides, Vec3::from(style.head.radii_m));
+    // Self-collision on, as the presets ship: its density grid must not allocate either.
+    let mut sim = Simulator::from_hairstyle(&style, &guides);
+    assert!(sim.self_collision());
     let mut state = SimState::at_rest(&guides, &dance.colliders(0.0), 0.0);
     pool.install(|| {
         // Warm-up: the collider scratch grows its sphere vector once, rayon starts its workers.
-        sim.advance(&mut state, 0.1, motion, &NoDensity);
+        sim.advance(&mut state, 0.1, motion);
         ARMED.store(true, Ordering::SeqCst);
         let mut steps = 0;
         for f in 4..=30 {
-            steps += sim
-                .advance(&mut state, f64::from(f) / 30.0, motion, &NoDensity)
-                .steps;
+            steps += sim.advance(&mut state, f64::from(f) / 30.0, motion).steps;
         }
         ARMED.store(false, Ordering::SeqCst);
         assert!(steps > 200);

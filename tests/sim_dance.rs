@@ -9,7 +9,7 @@ use glam::Vec3;
 use sim_common::*;
 use wisp::hairstyle::Hairstyle;
 use wisp::sim::dance::AnalyticDance;
-use wisp::sim::{Colliders, NoDensity, SimState, Simulator};
+use wisp::sim::{Colliders, SimState, Simulator};
 
 /// Penetration allowed into the true head ellipsoid or a sphere, metres. Collisions push to a
 /// 1 mm margin (`COLLISION_MARGIN_M`) and the final length projection may take some of it back;
@@ -17,8 +17,10 @@ use wisp::sim::{Colliders, NoDensity, SimState, Simulator};
 /// (`Colliders::penetration_m`).
 const PENETRATION_TOLERANCE_M: f32 = 1.0e-3;
 
-/// Relative link-length tolerance required by issue #4.
-const LENGTH_TOLERANCE: f32 = 1.0e-4;
+/// Relative link-length tolerance: issue #4 required 1e-4, issue 11 keeps what held then,
+/// 1e-5 (measured 6e-6 to 8e-6: about one f32 ulp of a world coordinate near 1.6 m, 1.2e-7 m,
+/// relative to a 17 to 23 mm link).
+const LENGTH_TOLERANCE: f32 = 1.0e-5;
 
 fn presets() -> [Hairstyle; 2] {
     [Hairstyle::default_smooth(), Hairstyle::default_curly()]
@@ -37,7 +39,7 @@ fn run<M, F>(
     F: FnMut(&SimState, u32),
 {
     for f in 1..=frames {
-        sim.advance(state, f64::from(f) * frame_s, motion, &NoDensity);
+        sim.advance(state, f64::from(f) * frame_s, motion);
         check(state, f);
     }
 }
@@ -54,7 +56,7 @@ fn dance_keeps_links_rigid_and_hair_outside_at_every_step() {
         let mut c = dance.colliders(0.0);
         let (mut worst_pen, mut worst_len, mut sim_pen) = (0.0f32, 0.0f32, 0.0f32);
         for k in 1..=steps {
-            let stats = sim.advance(&mut state, f64::from(k) * dt, motion, &NoDensity);
+            let stats = sim.advance(&mut state, f64::from(k) * dt, motion);
             assert_eq!(stats.steps, 1, "one call per step");
             sim_pen = sim_pen.max(stats.max_penetration_m);
             dance.colliders_at(state.time_s, &mut c);
@@ -169,9 +171,10 @@ fn positions_do_not_depend_on_the_output_frame_rate() {
         while t < 2.0 {
             t = (t + slicing[k % slicing.len()]).min(2.0);
             k += 1;
-            total_steps += sim.advance(&mut state, t, motion, &NoDensity).steps;
+            total_steps += sim.advance(&mut state, t, motion).steps;
         }
-        assert_eq!(total_steps, 480, "2 s at 240 Hz");
+        let dt = f64::from(style.dynamics.step_s);
+        assert_eq!(total_steps, (2.0 / dt).round() as u32, "2 s of steps");
         finals.push(state.positions);
     }
     assert!(same_bits(&finals[0], &finals[1]), "1/30 s vs 1/60 s calls");
@@ -189,7 +192,7 @@ fn a_long_hiccup_is_capped_and_the_hair_follows_the_head() {
     let (guides, mut sim, mut state) = setup(&style, &dance.colliders(0.0));
     run(&mut sim, &mut state, 15, 1.0 / 30.0, motion, |_, _| {});
     // A 1 s stall: only max_catch_up_s (0.25 s) is simulated, the rest is skipped.
-    let stats = sim.advance(&mut state, 1.5, motion, &NoDensity);
+    let stats = sim.advance(&mut state, 1.5, motion);
     let cap = f64::from(sim.params().max_catch_up_s);
     let dt = f64::from(sim.params().step_s);
     assert_eq!(stats.steps, (cap / dt).round() as u32);
@@ -217,12 +220,9 @@ fn non_finite_colliders_and_times_do_not_poison_the_state() {
     let style = Hairstyle::default_curly();
     let dance = AnalyticDance::new(Vec3::from(style.head.radii_m));
     let (guides, mut sim, mut state) = setup(&style, &dance.colliders(0.0));
-    let stats = sim.advance(
-        &mut state,
-        f64::NAN,
-        |t, c: &mut Colliders| dance.colliders_at(t, c),
-        &NoDensity,
-    );
+    let stats = sim.advance(&mut state, f64::NAN, |t, c: &mut Colliders| {
+        dance.colliders_at(t, c)
+    });
     assert_eq!(stats.steps, 0);
     let bad = |t: f64, c: &mut Colliders| {
         dance.colliders_at(t, c);
@@ -232,13 +232,13 @@ fn non_finite_colliders_and_times_do_not_poison_the_state() {
             c.spheres[1].center.y = f32::NAN;
         }
     };
-    let stats = sim.advance(&mut state, 0.2, bad, &NoDensity);
+    let stats = sim.advance(&mut state, 0.2, bad);
     assert!(stats.steps > 0);
     assert!(all_finite(&state));
     assert!(max_length_error(&state, &guides) < LENGTH_TOLERANCE);
     // Going back in time does nothing.
     let before = state.positions.clone();
-    let stats = sim.advance(&mut state, 0.1, bad, &NoDensity);
+    let stats = sim.advance(&mut state, 0.1, bad);
     assert_eq!(stats.steps, 0);
     assert!(same_bits(&before, &state.positions));
 }

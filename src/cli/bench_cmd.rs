@@ -73,6 +73,7 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         frame_interval_s: 1.0 / 30.0,
         warm_up_s: at_s,
         export_png: false,
+        cache: wisp::budget::CacheUse::None,
     };
     for &n in &args.map_res_list {
         let mut sweep = wisp::frame::EngineConfig {

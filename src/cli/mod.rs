@@ -5,6 +5,7 @@
 
 pub mod accuracy_cmd;
 pub mod bench_cmd;
+pub mod cache_cmd;
 pub mod export_cmd;
 pub mod fiber_cmd;
 pub mod play_cmd;
@@ -58,6 +59,10 @@ pub enum Command {
     /// Render the dance (default: the embedded dance and the `smooth` hairstyle) to PNG frames.
     #[command(allow_negative_numbers = true)]
     Render(render_cmd::RenderArgs),
+    /// Simulate the hair once and write every frame's guide state to a cache file, for
+    /// `render --cache` (any light, camera, shader or size; frame ranges; shards).
+    #[command(allow_negative_numbers = true)]
+    Simulate(cache_cmd::SimulateArgs),
     /// Play the dance live in a window (needs a display; see `render` otherwise).
     #[command(allow_negative_numbers = true)]
     Play(play_cmd::PlayArgs),
@@ -500,6 +505,7 @@ pub fn main() -> ExitCode {
     }
     let result = match cli.command {
         Command::Render(args) => render_cmd::run(args),
+        Command::Simulate(args) => cache_cmd::simulate(args),
         Command::Play(args) => play_cmd::run(args),
         Command::Bench(args) => bench_cmd::run(args),
         Command::Fiber(args) => fiber_cmd::run(args),

@@ -35,6 +35,7 @@ pub fn run(args: PlayArgs) -> Result<(), AppError> {
         frame_interval_s: 1.0 / 60.0,
         warm_up_s: 0.0,
         export_png: args.screenshot.is_some(),
+        cache: wisp::budget::CacheUse::None,
     };
     args.scene
         .check_budget(&style, &motion, &mut config, &plan)?;

@@ -29,16 +29,28 @@ pub struct RenderArgs {
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_FRAMES as i64))]
     pub frames: Option<u32>,
     /// Output frame rate in frames per second, in (0, 1000] (the simulation step is independent
-    /// of it).
-    #[arg(long, default_value_t = 30.0, value_parser = super::parse_fps, allow_hyphen_values = true)]
+    /// of it; a cache keeps the rate it was simulated at).
+    #[arg(long, default_value_t = 30.0, value_parser = super::parse_fps, allow_hyphen_values = true, conflicts_with = "cache")]
     pub fps: f32,
     /// Time of the first frame in seconds of the motion. The clip loops, so a start beyond one
     /// loop is wrapped into it (the hair's history is simulated from the start of that loop).
-    #[arg(long, default_value_t = 0.0, value_parser = super::parse_finite_f64, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 0.0, value_parser = super::parse_finite_f64, allow_hyphen_values = true, conflicts_with = "cache")]
     pub start_s: f64,
     /// Output directory (created if missing); frames are frame_00000.png, frame_00001.png, ...
     #[arg(long, default_value = "frames")]
     pub out: PathBuf,
+    /// Render the guide states of a simulation cache (`wisp simulate`) instead of simulating:
+    /// any scene, shader or size, with the hairstyle and motion the cache was made for. With
+    /// --frames, that many frames from --first-frame (default: all of them).
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["no_sim", "no_self_collision"])]
+    pub cache: Option<PathBuf>,
+    /// First cache frame to render (0-based; frames keep their number in file names).
+    #[arg(long, requires = "cache", value_parser = clap::value_parser!(u32).range(0..MAX_FRAMES as i64))]
+    pub first_frame: Option<u32>,
+    /// Render the I-th of N contiguous blocks of the frames (1-based, e.g. 2/8), writing the
+    /// file names a whole run writes: one job of a Slurm array or a Kubernetes Indexed Job.
+    #[arg(long, value_name = "I/N", requires = "cache", value_parser = super::cache_cmd::parse_shard)]
+    pub shard: Option<super::cache_cmd::Shard>,
     /// Print only errors.
     #[arg(long)]
     pub quiet: bool,
@@ -66,6 +78,9 @@ pub fn wrapped_start_s(start_s: f64, duration_s: f32, speed: f32) -> (f64, bool)
 }
 
 pub fn run(args: RenderArgs) -> Result<(), AppError> {
+    if args.cache.is_some() {
+        return super::cache_cmd::render_from_cache(args);
+    }
     let (style, motion, mut config) = args.scene.resolve()?;
     let still = args.scene.still;
     let frames = args.frames.unwrap_or_else(|| {
@@ -91,10 +106,11 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
         frame_interval_s: 1.0 / args.fps as f64,
         warm_up_s: start_s,
         export_png: true,
+        cache: wisp::budget::CacheUse::None,
     };
     args.scene
         .check_budget(&style, &motion, &mut config, &plan)?;
-    prepare_output_dir(&args.out, frames, args.quiet)?;
+    prepare_output_dir(&args.out, &Tidy::whole_run(frames), args.quiet)?;
     let name = style.name.clone();
     let started = std::time::Instant::now();
     let mut engine = Engine::new(style, motion, config);
@@ -117,12 +133,38 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
             setup_s
         );
     }
+    let fps = args.fps as f64;
+    export_frames(
+        &mut engine,
+        0..frames,
+        &args.out,
+        args.quiet,
+        started,
+        |engine, i| {
+            let t = start_s + i as f64 / fps;
+            engine.advance(t);
+            Ok(t)
+        },
+    )
+}
+
+/// Renders frames `indices` and writes them to `out` as `frame_NNNNN.png` (numbered by
+/// index) through a writer thread. `hair_at(engine, i)` puts the hair of frame `i` in place
+/// (simulated, or read from a cache) and returns its time; the engine renders it.
+pub fn export_frames(
+    engine: &mut Engine,
+    indices: std::ops::Range<u32>,
+    out: &Path,
+    quiet: bool,
+    started: std::time::Instant,
+    mut hair_at: impl FnMut(&mut Engine, u32) -> Result<f64, AppError>,
+) -> Result<(), AppError> {
     let (to_writer, jobs) = crossbeam_channel::bounded::<Job>(2);
     let (to_renderer, spare) = crossbeam_channel::bounded::<Vec<u8>>(3);
     for _ in 0..3 {
         let _ = to_renderer.send(Vec::new());
     }
-    let out_dir = args.out.clone();
+    let out_dir = out.to_path_buf();
     let writer = std::thread::spawn(move || -> Result<(), wisp::output::OutputError> {
         for job in jobs {
             let path = frame_path(&out_dir, job.index);
@@ -133,12 +175,20 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
     });
     let mut total = StageTimings::default();
     let (width, height) = (engine.config.width, engine.config.height);
+    let frames = indices.len() as u32;
     let mut failed = None;
-    for i in 0..frames {
-        let t = start_s + i as f64 / args.fps as f64;
-        engine.frame(t);
-        if i == 0 {
-            warn_about_first_frame(&engine);
+    let mut hair_error = None;
+    for (n, i) in indices.clone().enumerate() {
+        let t = match hair_at(engine, i) {
+            Ok(t) => t,
+            Err(e) => {
+                hair_error = Some(e);
+                break;
+            }
+        };
+        engine.render();
+        if n == 0 {
+            warn_about_first_frame(engine);
         }
         let mut rgb = spare.recv().unwrap_or_default();
         engine.framebuffer().to_srgb8_into(&mut rgb);
@@ -155,8 +205,8 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
             failed = Some(i);
             break;
         }
-        if !args.quiet && (i + 1) % 30 == 0 {
-            eprintln!("wisp: frame {}/{} (t = {:.2} s)", i + 1, frames, t);
+        if !quiet && (n + 1) % 30 == 0 {
+            eprintln!("wisp: frame {}/{} (t = {:.2} s)", n + 1, frames, t);
         }
     }
     drop(to_writer);
@@ -164,14 +214,26 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
         .join()
         .map_err(|_| AppError::other(anyhow::anyhow!("the PNG writer thread panicked")))?;
     written.map_err(AppError::other)?;
+    if let Some(e) = hair_error {
+        return Err(e);
+    }
     if let Some(i) = failed {
         return Err(AppError::other(anyhow::anyhow!(
             "frame {i}: the PNG writer stopped"
         )));
     }
-    if !args.quiet {
+    if !quiet {
         print_timings(&total, frames, started.elapsed().as_secs_f64());
-        eprintln!("wisp: wrote {} frames to {}", frames, args.out.display());
+        let shown = out.display();
+        if indices.start == 0 {
+            eprintln!("wisp: wrote {frames} frames to {shown}");
+        } else {
+            eprintln!(
+                "wisp: wrote {frames} frames ({} to {}) to {shown}",
+                indices.start,
+                indices.end - 1
+            );
+        }
     }
     Ok(())
 }
@@ -205,11 +267,37 @@ pub fn warn_about_first_frame(engine: &Engine) {
     }
 }
 
-/// Makes `dir` ready for `frames` frames: creates it, checks that files can be written there,
-/// and removes what an earlier export left: `frame_NNNNN.png.tmp` files of an interrupted run
-/// and `frame_NNNNN.png` files numbered `frames` or more (which this run would not overwrite).
-/// Only files named exactly like wisp's frames are touched.
-pub fn prepare_output_dir(dir: &Path, frames: u32, quiet: bool) -> Result<(), AppError> {
+/// What an export may remove from its output directory before it starts.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tidy {
+    /// The frames this run writes: their temporary files (of an interrupted run) are removed,
+    /// and a non-file in the way of one is an error.
+    pub own: std::ops::Range<u32>,
+    /// Temporary files of any frame are removed (false when other processes may be writing
+    /// frames into the same directory: shards).
+    pub all_temporaries: bool,
+    /// Frames numbered this or more are removed (no run of this sequence writes them).
+    pub stale_from: Option<u32>,
+}
+
+impl Tidy {
+    /// A run that writes frames 0 to `frames − 1` alone: the folder ends up holding exactly
+    /// its frames.
+    pub fn whole_run(frames: u32) -> Self {
+        Self {
+            own: 0..frames,
+            all_temporaries: true,
+            stale_from: Some(frames),
+        }
+    }
+}
+
+/// Makes `dir` ready for a run's frames: creates it, checks that files can be written there,
+/// and removes what an earlier export left, as `tidy` allows: `frame_NNNNN.png.tmp` files of
+/// an interrupted run and `frame_NNNNN.png` files beyond the sequence (which this run would not
+/// overwrite). Only files named exactly like wisp's frames are touched, and a file another
+/// process removed first is not an error (shards tidy the same folder at once).
+pub fn prepare_output_dir(dir: &Path, tidy: &Tidy, quiet: bool) -> Result<(), AppError> {
     let shown = dir.display();
     if dir.exists() && !dir.is_dir() {
         return Err(AppError::input(anyhow::anyhow!(
@@ -219,7 +307,11 @@ pub fn prepare_output_dir(dir: &Path, frames: u32, quiet: bool) -> Result<(), Ap
     std::fs::create_dir_all(dir)
         .with_context(|| format!("--out {shown}: cannot create the output directory"))
         .map_err(AppError::input)?;
-    let probe = dir.join(format!(".wisp-write-test-{}", std::process::id()));
+    let probe = dir.join(format!(
+        ".wisp-write-test-{}-{}",
+        std::process::id(),
+        tidy.own.start
+    ));
     std::fs::write(&probe, b"")
         .with_context(|| format!("--out {shown}: cannot write files into the directory"))
         .map_err(AppError::input)?;
@@ -235,7 +327,8 @@ pub fn prepare_output_dir(dir: &Path, frames: u32, quiet: bool) -> Result<(), Ap
             continue;
         };
         let is_file = entry.file_type().is_ok_and(|t| t.is_file());
-        if !temporary && index < frames {
+        let own = tidy.own.contains(&index);
+        if !temporary && own {
             if !is_file && !entry.path().is_file() {
                 return Err(AppError::input(anyhow::anyhow!(
                     "--out {shown}: {name} is in the way (not a file, so this run cannot replace it)"
@@ -243,12 +336,24 @@ pub fn prepare_output_dir(dir: &Path, frames: u32, quiet: bool) -> Result<(), Ap
             }
             continue;
         }
-        if !is_file {
+        let remove = if temporary {
+            own || tidy.all_temporaries
+        } else {
+            tidy.stale_from.is_some_and(|from| index >= from)
+        };
+        if !is_file || !remove {
             continue;
         }
-        std::fs::remove_file(entry.path())
-            .with_context(|| format!("{}: cannot remove it", entry.path().display()))
-            .map_err(AppError::input)?;
+        match std::fs::remove_file(entry.path()) {
+            Ok(()) => {}
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => continue,
+            Err(e) => {
+                return Err(AppError::input(anyhow::anyhow!(
+                    "{}: cannot remove it: {e}",
+                    entry.path().display()
+                )));
+            }
+        }
         if temporary {
             temporaries += 1;
         } else {
@@ -256,8 +361,11 @@ pub fn prepare_output_dir(dir: &Path, frames: u32, quiet: bool) -> Result<(), Ap
         }
     }
     if !quiet && temporaries + stale > 0 {
+        let beyond = tidy
+            .stale_from
+            .map_or(String::new(), |f| format!(" numbered {f} or more"));
         eprintln!(
-            "wisp: removed from {shown} what an earlier export left: {stale} frames numbered {frames} or more, {temporaries} temporary files"
+            "wisp: removed from {shown} what an earlier export left: {stale} frames{beyond}, {temporaries} temporary files"
         );
     }
     Ok(())

@@ -64,19 +64,17 @@ fn kind_of(ft: &std::fs::FileType) -> &'static str {
     "not a regular file"
 }
 
-/// Reads the whole of `path` if it is a regular file of at most `limit` bytes (symbolic links
-/// are followed). `what` names the expected content in the size message ("a hairstyle file").
-pub fn read_capped(path: &Path, limit: u64, what: &'static str) -> Result<Vec<u8>, ReadError> {
-    let too_large = |bytes: u64| ReadError::TooLarge { bytes, limit, what };
+/// Opens `path` for reading if it is a regular file (symbolic links are followed), and
+/// returns it with its length in bytes. For formats read piece by piece (a simulation cache is
+/// read one frame at a time, so its size has no cap): the caller checks what it reads against
+/// the returned length before allocating.
+pub fn open_regular(path: &Path) -> Result<(std::fs::File, u64), ReadError> {
     // Stat before opening: opening a FIFO blocks until a writer appears.
     let meta = std::fs::metadata(path).map_err(ReadError::Io)?;
     if !meta.file_type().is_file() {
         return Err(ReadError::NotAFile {
             kind: kind_of(&meta.file_type()),
         });
-    }
-    if meta.len() > limit {
-        return Err(too_large(meta.len()));
     }
     let file = std::fs::File::open(path).map_err(ReadError::Io)?;
     // The path may have been replaced between the two calls: check what was opened.
@@ -86,7 +84,19 @@ pub fn read_capped(path: &Path, limit: u64, what: &'static str) -> Result<Vec<u8
             kind: kind_of(&opened.file_type()),
         });
     }
-    let mut bytes = Vec::with_capacity(opened.len().min(limit) as usize);
+    Ok((file, opened.len()))
+}
+
+/// Reads the whole of `path` if it is a regular file of at most `limit` bytes (symbolic links
+/// are followed). `what` names the expected content in the size message ("a hairstyle file").
+pub fn read_capped(path: &Path, limit: u64, what: &'static str) -> Result<Vec<u8>, ReadError> {
+    let too_large = |bytes: u64| ReadError::TooLarge { bytes, limit, what };
+    // Refused from its size alone, before a byte is read.
+    let (file, len) = open_regular(path)?;
+    if len > limit {
+        return Err(too_large(len));
+    }
+    let mut bytes = Vec::with_capacity(len.min(limit) as usize);
     file.take(limit.saturating_add(1))
         .read_to_end(&mut bytes)
         .map_err(ReadError::Io)?;

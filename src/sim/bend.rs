@@ -3,33 +3,88 @@
 //!
 //! What: `step.rs` pulls each link toward its rest bend relative to its parent link, expressed
 //! in a frame parallel-transported down the strand with [`rotation_arc`], then damps the
-//! links' relative rotation with [`damp_bending`]. This file holds those pieces and the maps
+//! links' relative rotation with [`damp_bending`]. This file holds those pieces and the map
 //! from the JSON parameters to per-step factors.
 //!
-//! Why per-step factors derived here: the parameters must mean the same at any `step_s`.
-//! - Pull: `k = 1 − (1 − bending_stiffness)^(dt / (1/240 s))`, so `bending_stiffness` is the
-//!   fraction of the deviation removed per 1/240 s whatever the step.
-//! - The pulled link is an oscillator: from the per-step map `e ← (1 − k)(e + v dt)`,
-//!   `v dt ← e' − e`, the eigenvalues solve `λ² − 2(1 − k)λ + (1 − k) = 0`, i.e. for small k
-//!   `λ ≈ 1 ± i√k`: angular frequency `ω = √k / dt` (120 rad/s at k = 0.25, dt = 1/240 s).
-//! - Damping: a rate `c = 2ζω` (critical for ζ = 1) is the per-step factor
-//!   `κ = 1 − exp(−c dt) = 1 − exp(−2ζ√k)`, independent of dt for a given k.
+//! # The bending of one link is a damped oscillator, the same at any step
+//! Seen from its parent, a link's deviation `e` from its rest bend follows, per step of `dt`
+//! (pull by `k` in `step.rs`, then damping of the relative velocity by `κ` here):
+//!
+//! `e' = (1 − k)(e + u)`,  `u' = (1 − κ)(e' − e)`   (`u` = relative velocity × dt)
+//!
+//! a linear map with trace `(1 − k)(2 − κ)` and determinant `(1 − k)(1 − κ)`. The continuous
+//! oscillator `ë + 2ζω ė + ω² e = 0` advanced exactly over `dt` has the eigenvalues
+//! `exp((−ζ ± √(ζ² − 1)) ω dt)`, i.e. trace `T` and determinant `D = exp(−2ζω dt)`.
+//! Matching both gives the per-step factors
+//!
+//! `k = 1 − T + D`,  `κ = 1 − D / (T − D)`
+//!
+//! so every step size advances the isolated link exactly as the same continuous oscillator
+//! would: the bending frequency ω and damping ratio ζ are properties of the hair, not of the
+//! step. For ζ = 1 (critical, the default) this is `k = (1 − e^{−ωdt})²`,
+//! `1 − κ = e^{−ωdt} / (2 − e^{−ωdt})`; for small `ω dt`, `k → (ω dt)²` (a spring of
+//! angular frequency ω) and `κ → 2ζω dt` (a damping rate 2ζω).
+//!
+//! The stiffness in the JSON, `s ∈ [0, 1]`, keeps its old meaning at the reference step
+//! 1/240 s, where the pull was `k = s` per step: ω is chosen so that the critically damped
+//! oscillator's pull over 1/240 s is `s`, `ω = −ln(1 − √s) / (1/240 s)` (s = 0.25: 166 rad/s;
+//! 0.6: 357 rad/s; 0 limp, 1 rigid). At 1/240 s the factors are therefore what they were, and
+//! other steps now give the same oscillator instead of a stiffer one at smaller steps (the old
+//! `k = 1 − (1 − s)^(dt/(1/240 s))` made ω grow as 1/√dt: the hair was twice as stiff at
+//! 1/960 s as at 1/240 s, which was the largest step dependence measured, see
+//! `docs/notes/sim-quality.md`).
+//!
+//! Why the bending needs damping at all: the pull acts on the child only, so link i is an
+//! oscillator driven by link i−1 with no reaction back; with only air damping its resonance
+//! gain is ω/c ≈ 100 per link, cascading over 13 links (measured before: tips whirled at
+//! 17 m/s under a still head). Damping the relative rotation bounds the gain near 1 and leaves
+//! a rigid swing of the whole strand (equal angular velocities) untouched.
 
 use glam::{Quat, Vec3, Vec3A};
 
-/// Reference step that `bending_stiffness` is defined at, seconds.
-pub const BENDING_REFERENCE_STEP_S: f32 = 1.0 / 240.0;
+use super::REFERENCE_STEP_S;
 
-/// Fraction `k` of the deviation from the rest bend removed per step of `dt` seconds, for
-/// `stiffness` in [0, 1] defined per [`BENDING_REFERENCE_STEP_S`].
-pub(crate) fn pull_per_step(stiffness: f32, dt: f32) -> f32 {
-    1.0 - (1.0 - stiffness).powf(dt / BENDING_REFERENCE_STEP_S)
+/// Angular frequency ω (rad/s) of the bending oscillator for a stiffness `s` in [0, 1]
+/// (see the module doc); infinite for `s >= 1`.
+pub fn bending_frequency_rad_s(stiffness: f32) -> f64 {
+    let s = f64::from(stiffness).clamp(0.0, 1.0);
+    if s >= 1.0 {
+        return f64::INFINITY;
+    }
+    -(1.0 - s.sqrt()).ln() / f64::from(REFERENCE_STEP_S)
 }
 
-/// Fraction `κ` of the relative angular velocity of adjacent links removed per step, for a
-/// damping ratio `zeta` and the per-step pull `k` (see the module doc).
-pub(crate) fn damping_per_step(zeta: f32, k: f32) -> f32 {
-    1.0 - (-2.0 * zeta * k.sqrt()).exp()
+/// Per-step pull `k` and relative-velocity damping `κ`, both in [0, 1], of the bending
+/// oscillator of frequency `omega_rad_s` and damping ratio `zeta` advanced over `dt_s`
+/// (see the module doc for the derivation).
+pub(crate) fn step_factors(omega_rad_s: f64, zeta: f64, dt_s: f64) -> (f32, f32) {
+    let x = omega_rad_s * dt_s;
+    if !x.is_finite() {
+        return (1.0, 1.0);
+    }
+    if x.is_nan() || x <= 0.0 {
+        return (0.0, 0.0);
+    }
+    let zeta = zeta.max(0.0);
+    // Trace of the exact step map: the sum of its two eigenvalues, written so that no
+    // exponential overflows (both terms decay for ζ >= 1).
+    let trace = if zeta < 1.0 {
+        2.0 * (-zeta * x).exp() * (x * (1.0 - zeta * zeta).sqrt()).cos()
+    } else {
+        let r = (zeta * zeta - 1.0).sqrt();
+        (-(zeta - r) * x).exp() + (-(zeta + r) * x).exp()
+    };
+    let det = (-2.0 * zeta * x).exp();
+    let k = (1.0 - trace + det).clamp(0.0, 1.0);
+    // T − D <= 0 (an under-damped oscillator not resolved by the step): no pull survives
+    // a step, so the relative velocity is removed entirely. κ < 0 (anti-damping, at ζ near 0)
+    // is clamped to 0: the step is then slightly more damped than the oscillator.
+    let kappa = if trace - det > 0.0 {
+        (1.0 - det / (trace - det)).clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
+    (k as f32, kappa as f32)
 }
 
 /// The minimal rotation taking unit `a` to unit `b`: the quaternion (a × b, 1 + a·b),
@@ -49,39 +104,104 @@ pub(crate) fn rotation_arc(a: Vec3A, b: Vec3A) -> Quat {
     }
 }
 
-/// Damps each link's angular velocity relative to its parent link's by the factor `kappa` per
-/// step, keeping the radial (along-link) relative velocity: with `rᵢ = pᵢ − pᵢ₋₁` and
-/// `wᵢ = vᵢ − vᵢ₋₁`, the link's angular velocity is `Ωᵢ = rᵢ × wᵢ / |rᵢ|²`; it becomes
-/// `Ωᵢ − kappa (Ωᵢ − Ωᵢ₋₁)` and the velocity is rebuilt as
-/// `vᵢ = v'ᵢ₋₁ + (wᵢ·r̂ᵢ) r̂ᵢ + Ω'ᵢ × rᵢ` from the already damped parent, so a strand swinging or
-/// turning rigidly is untouched (all Ωᵢ equal) and only bending motion loses energy.
-pub(crate) fn damp_bending(pos: &[Vec3], vel: &mut [Vec3], kappa: f32) {
-    let r0 = Vec3A::from(pos[1]) - Vec3A::from(pos[0]);
-    let l0 = r0.length_squared();
-    let mut omega_parent = if l0 > 0.0 {
-        r0.cross(Vec3A::from(vel[1]) - Vec3A::from(vel[0])) / l0
-    } else {
-        Vec3A::ZERO
-    };
-    let mut v_parent_new = Vec3A::from(vel[1]);
-    let mut v_parent_old = v_parent_new;
-    for i in 2..pos.len() {
-        let r = Vec3A::from(pos[i]) - Vec3A::from(pos[i - 1]);
-        let l2 = r.length_squared();
-        let v = Vec3A::from(vel[i]);
-        let w = v - v_parent_old;
-        v_parent_old = v;
-        if l2.is_nan() || l2 <= 0.0 {
-            v_parent_new = v;
-            continue;
+/// The weights of the exact one-sided damping over one step (see [`damp_bending`]): the
+/// Poisson probabilities `P_m = e^{−x} x^m / m!` for `x = −ln(1 − kappa)` (the step's damping
+/// `c dt`), for m = 0.. until they fall below 1e-9 past their peak (the rest of the mass goes
+/// to the link just beyond, see [`damp_bending`]), at most `max_len` of them. `kappa >= 1`
+/// gives no weights (every link takes its farthest ancestor's rotation); `kappa <= 0` gives
+/// `[1]` (no damping).
+pub(crate) fn damping_weights(kappa: f32, max_len: usize) -> Vec<f32> {
+    let kappa = f64::from(kappa);
+    if kappa.is_nan() || kappa <= 0.0 {
+        return vec![1.0];
+    }
+    if kappa >= 1.0 {
+        return Vec::new();
+    }
+    let x = -(1.0 - kappa).ln();
+    let mut w = Vec::new();
+    let mut p = (-x).exp();
+    let mut m = 0usize;
+    while w.len() < max_len.max(1) {
+        w.push(p as f32);
+        m += 1;
+        p *= x / m as f64;
+        if m as f64 > x && p < 1e-9 {
+            break;
         }
-        let radial = r * (w.dot(r) / l2);
-        let omega = r.cross(w) / l2;
-        let omega_new = omega - (omega - omega_parent) * kappa;
-        let v_new = v_parent_new + radial + omega_new.cross(r);
+    }
+    w
+}
+
+/// Damps the links' angular velocities relative to their parents, exactly over the step,
+/// keeping the radial (along-link) relative velocities. With `rᵢ = pᵢ − pᵢ₋₁` and
+/// `wᵢ = vᵢ − vᵢ₋₁`, link i turns at `Ωᵢ = rᵢ × wᵢ / |rᵢ|²`. The damping
+/// `dΩᵢ/dt = −c (Ωᵢ − Ωᵢ₋₁)` (each link toward its parent, link 1 the kinematic root segment,
+/// held over the step) is a chain of first-order lags whose exact solution after `x = c dt` is
+/// `Ω'ᵢ = Σₘ Pₘ Ωᵢ₋ₘ` with the Poisson weights `Pₘ = e^{−x} xᵐ / m!` of [`damping_weights`],
+/// the mass they leave going to the last link reached (for link i, the root segment). Velocities
+/// are rebuilt root to tip, `vᵢ = v'ᵢ₋₁ + (wᵢ·r̂ᵢ) r̂ᵢ + Ω'ᵢ × rᵢ`, so a strand swinging or
+/// turning rigidly is untouched (all Ωᵢ equal, weights summing to 1) and only bending motion
+/// loses energy.
+///
+/// Why exact rather than one damping factor per link, root to tip (the first version,
+/// `Ω'ᵢ = Ωᵢ − κ (Ωᵢ − Ω'ᵢ₋₁)`): that sweep hands each link its parent's already damped
+/// rotation within the same step, weights `(1 − κ) κᵐ` instead of `Pₘ`, so a rotation travels
+/// down the chain at a speed set by the step, not by c. Measured on the dance: it made the
+/// coarse-step hair lag the converged motion by about 6 steps, half of the error at 1/240 s
+/// (tip error 19.5 → 10.0 mm RMS with the exact weights).
+pub(crate) fn damp_bending(pos: &[Vec3], vel: &mut [Vec3], weights: &[f32]) {
+    let n = pos.len().min(vel.len());
+    if n < 3 {
+        return;
+    }
+    // The undamped Ω of the last RING links (the weights reach at most RING − 1 links back;
+    // `damping_weights` stops far earlier for any κ below 1 in f32).
+    const RING: usize = 64;
+    let mut ring = [Vec3A::ZERO; RING];
+    let (omega_root, _) = link_motion(pos[0], pos[1], vel[0], vel[1]);
+    ring[1] = omega_root;
+    let reach = weights.len().min(RING - 1);
+    let mut v_parent_old = vel[1];
+    let mut v_parent_new = Vec3A::from(vel[1]);
+    for i in 2..n {
+        let (omega, radial) = link_motion(pos[i - 1], pos[i], v_parent_old, vel[i]);
+        v_parent_old = vel[i];
+        ring[i % RING] = omega;
+        let damped = if weights.is_empty() {
+            // κ = 1: every link takes the root segment's rotation.
+            omega_root
+        } else {
+            // Links i, i − 1, … with weights P₀, P₁, …; the mass left goes to the last link
+            // reached (the root segment unless the weights end first).
+            let window = (i - 1).min(reach);
+            let mut acc = Vec3A::ZERO;
+            let mut mass = 0.0f32;
+            for (m, p) in weights[..window].iter().enumerate() {
+                acc += ring[(i - m) % RING] * *p;
+                mass += *p;
+            }
+            acc + ring[(i - window) % RING] * (1.0 - mass).max(0.0)
+        };
+        let r = Vec3A::from(pos[i]) - Vec3A::from(pos[i - 1]);
+        let v_new = v_parent_new + radial + damped.cross(r);
         vel[i] = Vec3::from(v_new);
         v_parent_new = v_new;
-        omega_parent = omega_new;
+    }
+}
+
+/// Angular velocity `r × w / |r|²` of the link from `a` to `b` (velocities `va`, `vb`) and the
+/// radial part of the relative velocity `w = vb − va`; a degenerate link has no rotation and
+/// keeps all of `w` as radial.
+#[inline]
+fn link_motion(a: Vec3, b: Vec3, va: Vec3, vb: Vec3) -> (Vec3A, Vec3A) {
+    let r = Vec3A::from(b) - Vec3A::from(a);
+    let w = Vec3A::from(vb) - Vec3A::from(va);
+    let l2 = r.length_squared();
+    if l2 > 0.0 && l2.is_finite() {
+        (r.cross(w) / l2, r * (w.dot(r) / l2))
+    } else {
+        (Vec3A::ZERO, w)
     }
 }
 
@@ -118,33 +238,156 @@ mod tests {
         let omega = Vec3::new(0.0, 0.0, 3.0);
         let mut vel: Vec<Vec3> = pos.iter().map(|p| omega.cross(*p)).collect();
         let rigid = vel.clone();
-        damp_bending(&pos, &mut vel, 0.6);
+        let w = damping_weights(0.6, 4);
+        damp_bending(&pos, &mut vel, &w);
         for (v, r) in vel.iter().zip(&rigid) {
             assert!((*v - *r).length() < 1e-6);
         }
         // Only the last link bends (its tip moves sideways relative to a still chain).
         let mut vel = vec![Vec3::ZERO; 4];
         vel[3] = Vec3::new(1.0, 0.0, 0.0);
-        damp_bending(&pos, &mut vel, 0.6);
+        damp_bending(&pos, &mut vel, &w);
         assert!((vel[3].x - 0.4).abs() < 1e-6, "{}", vel[3]);
         // Stretching velocity along the link is not bending and is kept.
         let mut vel = vec![Vec3::ZERO; 4];
         vel[3] = Vec3::new(0.0, 1.0, 0.0);
-        damp_bending(&pos, &mut vel, 0.6);
+        damp_bending(&pos, &mut vel, &w);
         assert!((vel[3] - Vec3::Y).length() < 1e-6);
+        // κ = 1: every link turns with the root segment; κ = 0: nothing changes.
+        let mut vel = vec![Vec3::ZERO; 4];
+        vel[3] = Vec3::new(1.0, 0.0, 0.0);
+        damp_bending(&pos, &mut vel, &damping_weights(1.0, 4));
+        assert!(vel[3].length() < 1e-6);
+        let before = vel.clone();
+        damp_bending(&pos, &mut vel, &damping_weights(0.0, 4));
+        assert_eq!(vel, before);
     }
 
     #[test]
-    fn per_step_factors_do_not_depend_on_the_step() {
-        // Two steps of 1/480 s remove the same fraction as one of 1/240 s.
-        let k240 = pull_per_step(0.25, 1.0 / 240.0);
-        let k480 = pull_per_step(0.25, 1.0 / 480.0);
-        assert!((k240 - 0.25).abs() < 1e-6);
-        assert!(((1.0 - k480) * (1.0 - k480) - (1.0 - k240)).abs() < 1e-6);
-        assert_eq!(pull_per_step(0.0, 0.01), 0.0);
-        assert_eq!(pull_per_step(1.0, 0.001), 1.0);
-        // Critical damping of the k = 0.25 spring: κ = 1 − e⁻¹.
-        assert!((damping_per_step(1.0, 0.25) - (1.0 - (-1.0f32).exp())).abs() < 1e-6);
-        assert_eq!(damping_per_step(1.0, 0.0), 0.0);
+    fn bending_damping_is_exact_one_step_equals_two_half_steps() {
+        // A straight 12-link chain along +Y whose links turn about Z at different rates; its
+        // root segment (link 1) turns at 2 rad/s. The exact solution over c·dt = x equals two
+        // solutions over x/2 (the old root-to-tip sweep failed this by 14% of the change at the
+        // tip: it handed each link its parent's damped rotation within the same step).
+        let pos: Vec<Vec3> = (0..13)
+            .map(|i| Vec3::new(0.0, i as f32 * 0.02, 0.0))
+            .collect();
+        let rates = [
+            0.0, 2.0, -1.0, 3.0, 0.5, -2.0, 1.0, 4.0, -3.0, 0.0, 2.5, -1.5, 1.0,
+        ];
+        let mut vel = vec![Vec3::ZERO; 13];
+        for i in 1..13 {
+            // v_i = v_{i-1} + ω_i ẑ × r_i with r_i = 0.02 ŷ: −0.02 ω_i along x.
+            vel[i] = vel[i - 1] + Vec3::new(-0.02 * rates[i], 0.0, 0.0);
+        }
+        let x = 1.3f64;
+        let kappa = |x: f64| (1.0 - (-x).exp()) as f32;
+        let mut one = vel.clone();
+        damp_bending(&pos, &mut one, &damping_weights(kappa(x), 13));
+        let mut two = vel.clone();
+        let half = damping_weights(kappa(x / 2.0), 13);
+        damp_bending(&pos, &mut two, &half);
+        damp_bending(&pos, &mut two, &half);
+        for (a, b) in one.iter().zip(&two) {
+            assert!((*a - *b).length() < 1e-6, "{a} vs {b}");
+        }
+        // The tip's rate against the closed form Σ Pₘ ωᵢ₋ₘ + (1 − Σ Pₘ) ω₁, in f64.
+        let mut expected = 0.0f64;
+        let mut mass = 0.0f64;
+        let mut p = (-x).exp();
+        for m in 0..=10 {
+            expected += p * f64::from(rates[12 - m]);
+            mass += p;
+            p *= x / (m + 1) as f64;
+        }
+        expected += (1.0 - mass) * f64::from(rates[1]);
+        let tip_rate = -f64::from(one[12].x - one[11].x) / 0.02;
+        assert!(
+            (tip_rate - expected).abs() < 1e-4,
+            "{tip_rate} vs {expected}"
+        );
+        assert!((expected - 0.254).abs() < 1e-3, "{expected}");
+    }
+
+    #[test]
+    fn the_stiffness_keeps_its_meaning_at_the_reference_step() {
+        // At 1/240 s and ζ = 1, the pull is the stiffness itself (the old definition).
+        for s in [0.05f32, 0.25, 0.6, 0.9] {
+            let w = bending_frequency_rad_s(s);
+            let (k, _) = step_factors(w, 1.0, f64::from(REFERENCE_STEP_S));
+            assert!((k - s).abs() < 1e-6, "{s}: {k}");
+        }
+        assert_eq!(bending_frequency_rad_s(0.0), 0.0);
+        assert_eq!(step_factors(0.0, 1.0, 0.01), (0.0, 0.0));
+        assert_eq!(
+            step_factors(bending_frequency_rad_s(1.0), 1.0, 0.001),
+            (1.0, 1.0)
+        );
+        // ω for the smooth preset: −ln(1 − 0.5) · 240 = 166.4 rad/s.
+        // (1/240 s is rounded to f32, hence the tolerance.)
+        assert!((bending_frequency_rad_s(0.25) - 240.0 * 2f64.ln()).abs() < 1e-4);
+    }
+
+    /// Seconds until the isolated link's deviation stays below `tol` for good, at step `dt`.
+    fn settle_time_s(w: f64, zeta: f64, dt: f64, tol: f64) -> f64 {
+        let (k, kappa) = step_factors(w, zeta, dt);
+        let (k, kappa) = (f64::from(k), f64::from(kappa));
+        let (mut e, mut u) = (1.0f64, 0.0f64);
+        let mut last_above = 0usize;
+        for n in 1..100_000 {
+            let e_new = (1.0 - k) * (e + u);
+            u = (1.0 - kappa) * (e_new - e);
+            e = e_new;
+            if e.abs() > tol {
+                last_above = n;
+            }
+        }
+        last_above as f64 * dt
+    }
+
+    #[test]
+    fn the_link_settles_in_the_same_time_at_any_step() {
+        // The continuous critically damped link, e(t) = (1 + ωt) e^{−ωt} from e = 1 at rest,
+        // is below 1e-4 after t with (1 + ωt) e^{−ωt} = 1e-4: ωt = 11.76 (solved below), i.e.
+        // 70.7 ms at ω = 166.4 rad/s. The discrete map has the same eigenvalues at every step
+        // (it starts from a slightly different velocity, since u = 0 means "at rest" over the
+        // previous step), so it settles at the same time to within about two steps (measured:
+        // 50, 67, 70 and 70 ms at 1/60, 1/240, 1/960 and 1/3840 s). The old per-step scaling,
+        // k = 1 − (1 − s)^(dt·240) and κ = 1 − exp(−2√k), took 100, 46, 36 and 21 ms.
+        let w = bending_frequency_rad_s(0.25);
+        let mut wt = 10.0f64;
+        for _ in 0..50 {
+            let f = (1.0 + wt) * (-wt).exp() - 1e-4;
+            let df = -wt * (-wt).exp();
+            wt -= f / df;
+        }
+        let exact_s = wt / w;
+        assert!((exact_s - 0.0707).abs() < 5e-4, "{exact_s}");
+        for dt in [1.0 / 60.0, 1.0 / 240.0, 1.0 / 960.0, 1.0 / 3840.0] {
+            let t = settle_time_s(w, 1.0, dt, 1e-4);
+            assert!(
+                (t - exact_s).abs() <= 2.0 * dt,
+                "dt {dt}: {t} s vs {exact_s} s"
+            );
+        }
+        // Under- and over-damped links (ζ = 0.5, 2): the same time at 1/240 and 1/3840 s.
+        for zeta in [0.5f64, 2.0] {
+            let a = settle_time_s(w, zeta, 1.0 / 240.0, 1e-4);
+            let b = settle_time_s(w, zeta, 1.0 / 3840.0, 1e-4);
+            assert!((a - b).abs() <= 2.0 / 240.0, "ζ {zeta}: {a} vs {b}");
+        }
+    }
+
+    #[test]
+    fn factors_stay_in_range_for_extreme_inputs() {
+        for w in [0.0, 1e-3, 10.0, 166.0, 1e4, 1e9, f64::INFINITY] {
+            for zeta in [0.0, 0.3, 1.0, 3.0, 10.0] {
+                for dt in [1e-5, 1.0 / 240.0, 0.05] {
+                    let (k, kappa) = step_factors(w, zeta, dt);
+                    assert!((0.0..=1.0).contains(&k), "{w} {zeta} {dt}: k {k}");
+                    assert!((0.0..=1.0).contains(&kappa), "{w} {zeta} {dt}: κ {kappa}");
+                }
+            }
+        }
     }
 }

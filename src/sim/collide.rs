@@ -29,10 +29,11 @@
 //! sphere's cap facing it), so a particle can only end on the wrong side if its predecessor is
 //! already inside. Predecessors are resolved first and the root segment is outside the head by
 //! construction, so what remains is a collider moving so far in one step that it jumps past
-//! a whole link, i.e. by more than the smallest collider dimension: at `step_s = 1/240 s` that
-//! is 0.076 m · 240 ≈ 18 m/s relative speed for the head and `radius · 240` for a sphere
-//! (neck sphere of the dance, 0.045 m: 10.8 m/s). The dance's fastest scalp points move at
-//! about 0.8 m/s from the 8 rad/s yaw and 1.26 m/s from the bob; 3x speed stays under 4 m/s.
+//! a whole link, i.e. by more than the smallest collider dimension per step: 0.076 m / step_s
+//! relative speed for the head and `radius / step_s` for a sphere: at 1/240 s, 18 m/s for the
+//! head and 10.8 m/s for the dance's 0.045 m neck sphere; twice that at the default 1/480 s. The dance's fastest scalp points
+//! move at about 0.8 m/s from the 8 rad/s yaw and 1.26 m/s from the bob; 3x speed stays under
+//! 4 m/s.
 
 use glam::{Affine3A, Vec3, Vec3A};
 
@@ -171,8 +172,8 @@ impl<'a> CollisionScene<'a> {
                 if (p - c).length_squared() < ro * ro {
                     let out =
                         circle_exit(prev, p, link_m, c, ro, fallback_dir).unwrap_or_else(|| {
-                            // The predecessor is inside too (it can only be a kinematic root
-                            // particle): push radially and accept what the length allows.
+                            // The link cannot reach the surface (a kinematic root particle deep
+                            // inside): push radially and accept what the length allows.
                             c + (p - c).normalize_or(fallback_dir) * ro
                         });
                     p = prev + (out - prev).normalize_or(fallback_dir) * link_m;
@@ -218,12 +219,18 @@ impl<'a> CollisionScene<'a> {
 }
 
 /// The point nearest `p` among those at distance `link` from `prev` and not inside the sphere
-/// (`c`, `r`), for `prev` outside that sphere. Those points form a spherical cap of the link
-/// sphere, bounded by the circle where the two spheres meet: with `D = |c − prev|` and axis
-/// `a = (c − prev)/D`, the circle's centre is `prev + h a` with `h = (D² + L² − r²) / (2D)`
-/// and its radius `ρ = √(L² − h²)`. A point of the link sphere beyond the cap (inside the
-/// collider) is nearest to the circle point of the same azimuth about `a`. `None` when `prev`
-/// is inside the sphere or the link cannot reach it.
+/// (`c`, `r`). Those points form a spherical cap of the link sphere, bounded by the circle
+/// where the two spheres meet: with `D = |c − prev|` and axis `a = (c − prev)/D`, the circle's
+/// centre is `prev + h a` with `h = (D² + L² − r²) / (2D)` and its radius `ρ = √(L² − h²)`.
+/// A point of the link sphere beyond the cap (inside the collider) is nearest to the circle
+/// point of the same azimuth about `a`. `None` when the two spheres do not meet (|h| > L: the
+/// link sphere is wholly inside or wholly outside) or `prev` is the centre.
+///
+/// The formula holds whether `prev` is outside, on or inside the sphere. It used to refuse a
+/// `prev` inside, but a predecessor resting on the inflated surface is inside or outside by
+/// rounding from one step to the next, and the radial fallback it then took lands up to 64 µm
+/// away from the circle point: hair resting on a sphere jumped between the two every few
+/// steps and never came to rest (issue 11; measured 2e-2 m/s on curly hair at the nape).
 #[inline]
 pub(crate) fn circle_exit(
     prev: Vec3A,
@@ -235,12 +242,13 @@ pub(crate) fn circle_exit(
 ) -> Option<Vec3A> {
     let to_c = c - prev;
     let d = to_c.length();
-    if !(d >= r && d > 0.0) {
+    // d is NaN or 0: no axis.
+    if d.is_nan() || d <= 0.0 {
         return None;
     }
     let a = to_c / d;
     let h = (d * d + link * link - r * r) / (2.0 * d);
-    if h.is_nan() || h > link {
+    if h.is_nan() || h.abs() > link {
         return None;
     }
     let rho = (link * link - h * h).max(0.0).sqrt();
@@ -312,6 +320,31 @@ mod tests {
         let (p, _) = scene.resolve(outside, head_centre, 0.2, Vec3A::NEG_Y);
         assert!(p.is_finite());
         assert!(((p - outside).length() / 0.2 - 1.0).abs() < 1e-5);
+    }
+
+    #[test]
+    fn exit_point_is_continuous_as_the_predecessor_crosses_the_surface() {
+        // Regression (issue 11): a predecessor resting on the inflated sphere is inside or
+        // outside it by rounding; the exit point must not jump between the two cases.
+        let c = Vec3A::new(0.1, 1.3, -0.2);
+        let r = 0.13;
+        let link = 0.017;
+        let normal = Vec3A::new(0.3, 0.9, -0.2).normalize();
+        let tangent = normal.any_orthonormal_vector();
+        // A candidate pushed 7 mm into the sphere, nearly on the axis prev → c (where the
+        // nearest point is most sensitive).
+        let mut exits = Vec::new();
+        for rel in [-3e-7f32, -1e-7, 0.0, 1e-7, 3e-7] {
+            let prev = c + normal * (r * (1.0 + rel));
+            let p = prev - normal * 0.007 + tangent * 0.002;
+            let e = circle_exit(prev, p, link, c, r, tangent).expect("circle exists");
+            assert!(((e - prev).length() / link - 1.0).abs() < 1e-4);
+            assert!((e - c).length() >= r * (1.0 - 1e-5), "exit inside: {e}");
+            exits.push(e);
+        }
+        for e in &exits {
+            assert!((*e - exits[2]).length() < 1e-6, "{e} vs {}", exits[2]);
+        }
     }
 
     #[test]

@@ -3,17 +3,23 @@
 //!
 //! What: every guide strand is a chain of inextensible links whose root segment is carried by
 //! the moving head; the rest of the chain feels gravity, air damping, bending stiffness toward
-//! its rest shape, collisions with the head ellipsoid and body spheres, and repulsion out of
-//! over-dense cells of the density map (self-collision, Bertails §4.1).
+//! its rest shape, collisions with the head ellipsoid and body spheres, and self-collision:
+//! repulsion down the gradient of the hair's excess density and hair-hair friction, from a
+//! density grid the simulator builds from the guides at every step (Bertails §4.1).
 //!
-//! How: [`Simulator::advance`] runs fixed steps of [`SimParams::step_s`] (default 1/240 s) up
+//! How: [`Simulator::advance`] runs fixed steps of [`SimParams::step_s`] (default 1/480 s) up
 //! to the requested time, whatever the output frame rate (a slow display never makes the
 //! physics coarser, the TressFX failure mode where hair lags and clips when simulation is capped
 //! at 60 Hz). Each step is position based: predict with forces, sweep root to tip placing each
 //! particle at exactly one link length from its predecessor (follow the leader), resolve
 //! collisions, then derive velocities with Müller's correction. See `step.rs` for the
 //! equations, `bend.rs` for the bending constants and damping, `collide.rs` for collisions and
-//! their order, `density.rs` for §4.1.
+//! their order, `density.rs` for self-collision (§4.1).
+//!
+//! Every parameter is a rate or a frequency per unit time, converted to per-step factors with
+//! exact solutions over the step (`bend.rs`, `density.rs`), so the model is the same at any
+//! step and a smaller step only reduces the discretisation error (measured: first order, see
+//! `docs/notes/sim-quality.md` and `examples/sim_steps.rs`).
 //!
 //! Why: rigid links by construction (no iteration count to tune, lengths exact to rounding),
 //! unconditionally stable position projections, and guides independent within a step, so they
@@ -31,58 +37,85 @@ pub mod density;
 pub mod state;
 pub mod step;
 
-pub use bend::BENDING_REFERENCE_STEP_S;
+pub use bend::bending_frequency_rad_s;
 pub use capsule::CapsuleCollider;
 pub use collide::{COLLISION_MARGIN_M, Colliders, SphereCollider};
-pub use density::{DensityField, NoDensity};
+pub use density::MAX_NODES as DENSITY_GRID_MAX_NODES;
 pub use state::SimState;
 pub use step::{Simulator, StepStats};
 
 use serde::{Deserialize, Serialize};
 
+/// The step at which the per-step parameters `bending_stiffness` and `ftl_correction` are
+/// defined, seconds (1/240 s, the step they were tuned at). Other steps convert them to the
+/// same behaviour per unit time (`bend.rs`, `step.rs`).
+pub const REFERENCE_STEP_S: f32 = 1.0 / 240.0;
+
 /// Dynamics parameters of a hairstyle (`"dynamics"` in JSON). Units in the names.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SimParams {
-    /// Fixed simulation step in seconds (default 1/240), independent of the output frame rate.
+    /// Fixed simulation step in seconds (default 1/480), independent of the output frame rate.
+    /// Chosen from the speed-against-error table (`examples/sim_steps.rs`): the coarsest step
+    /// whose guide-tip error over the dance is under half a frame of motion for both presets.
     pub step_s: f32,
     /// Gravity magnitude in m/s² along world −Y (default 9.81).
     pub gravity_m_s2: f32,
     /// Air damping rate in 1/s: velocity decays as exp(−rate·t) (default 1.5).
     pub damping_per_s: f32,
-    /// Bending stiffness toward the rest shape, in [0, 1] (0 limp, 1 rigid; default 0.3): the
-    /// fraction of a link's deviation from its rest bend removed per 1/240 s (`step.rs`).
+    /// Bending stiffness toward the rest shape, in [0, 1] (0 limp, 1 rigid; default 0.3). It
+    /// sets the bending oscillator's angular frequency ω = −ln(1 − √s) / (1/240 s), whose
+    /// critically damped pull removes the fraction s of a link's deviation from its rest bend
+    /// over 1/240 s; the same ω is used at any step (`bend.rs`).
     pub bending_stiffness: f32,
-    /// Hair volume fraction above which a map cell repels hair (Bertails §4.1; default 0.25).
+    /// Hair volume fraction (of the simulator's density grid, smoothed over about one link
+    /// length) above which hair repels hair (Bertails §4.1), >= 0 (default 0.04; `density.rs`).
     pub density_threshold: f32,
-    /// Repulsion strength in m/s² per unit of excess volume fraction (default 20).
-    pub repulsion_m_s2: f32,
-    /// Damping ratio ζ of the bending spring, >= 0 (default 1, critical): each link's angular
-    /// velocity relative to its parent link is damped at the rate 2ζω, with ω = √k / step the
-    /// bending spring's angular frequency (see `step.rs`). Without it the one-sided bending pull
-    /// makes a chain of lightly damped oscillators that amplify motion toward the tip.
+    /// Self-collision repulsion K in m²/s², >= 0 (0: off; default 60): hair accelerates down the
+    /// gradient of the excess volume fraction, a = −K ∇(φ − threshold)₊ (`density.rs`).
+    pub repulsion_m2_s2: f32,
+    /// Hair-hair friction in 1/s, >= 0 (0: off; default 20): where the hair is at the
+    /// threshold density or denser, a particle's velocity relative to the hair around it
+    /// decays at this rate (less in sparser hair; `density.rs`).
+    pub hair_friction_per_s: f32,
+    /// Damping ratio ζ of the bending oscillator, in [0, 10] (default 1, critical): each link's
+    /// angular velocity relative to its parent link is damped at the rate 2ζω (`bend.rs`).
+    /// Without it the one-sided bending pull makes a chain of lightly damped oscillators that
+    /// amplify motion toward the tip.
     pub bending_damping_ratio: f32,
     /// Follow-the-leader velocity correction factor (the s_damping of Müller, Kim & Chentanez
     /// 2012's dynamic FTL), in [0, 1] (0: plain FTL; 1: full reaction on the parent; default
-    /// 0.5, see `step.rs` for the measured trade-off).
+    /// 0.5), defined per 1/240 s: a step of dt uses 1 − (1 − s)^(dt / (1/240 s)), because the
+    /// correction acts as a per-step damping (see `step.rs` for the measurement).
     pub ftl_correction: f32,
     /// Largest gap of simulated time one `advance` call catches up, seconds in (0, 10]
     /// (default 0.25): beyond it the hair is carried rigidly with the head.
     pub max_catch_up_s: f32,
+    /// Rest tolerance in metres, in [0, 1e-3] (default 2e-5; 0: off). A guide whose roots have
+    /// not moved and whose particles have all stayed within this distance of where they were
+    /// for [`REST_WINDOW_S`] is held exactly still until its roots move or a particle would
+    /// leave that distance (`step.rs`): what is left then is f32 rounding, a flicker of a few
+    /// µm that would change a few pixels of every frame.
+    pub rest_tolerance_m: f32,
 }
+
+/// How long a guide must stay within `rest_tolerance_m` before it is held still, seconds.
+pub const REST_WINDOW_S: f64 = 0.5;
 
 impl Default for SimParams {
     fn default() -> Self {
         Self {
-            step_s: 1.0 / 240.0,
+            step_s: 1.0 / 480.0,
             gravity_m_s2: 9.81,
             damping_per_s: 1.5,
             bending_stiffness: 0.3,
-            density_threshold: 0.25,
-            repulsion_m_s2: 20.0,
+            density_threshold: 0.04,
+            repulsion_m2_s2: 60.0,
+            hair_friction_per_s: 20.0,
             bending_damping_ratio: 1.0,
             ftl_correction: 0.5,
             max_catch_up_s: 0.25,
+            rest_tolerance_m: 2.0e-5,
         }
     }
 }
@@ -100,7 +133,8 @@ impl SimParams {
             ("gravity_m_s2", self.gravity_m_s2),
             ("damping_per_s", self.damping_per_s),
             ("density_threshold", self.density_threshold),
-            ("repulsion_m_s2", self.repulsion_m_s2),
+            ("repulsion_m2_s2", self.repulsion_m2_s2),
+            ("hair_friction_per_s", self.hair_friction_per_s),
         ] {
             if !(v.is_finite() && v >= 0.0) {
                 return Err(format!("{name} must be finite and >= 0 (got {v})"));
@@ -135,6 +169,12 @@ impl SimParams {
                 self.max_catch_up_s
             ));
         }
+        if !(self.rest_tolerance_m.is_finite() && (0.0..=1e-3).contains(&self.rest_tolerance_m)) {
+            return Err(format!(
+                "rest_tolerance_m must be in [0, 1e-3] metres (got {})",
+                self.rest_tolerance_m
+            ));
+        }
         Ok(())
     }
 
@@ -151,7 +191,13 @@ impl SimParams {
             damping_per_s: pick(self.damping_per_s, d.damping_per_s, 0.0, f32::MAX),
             bending_stiffness: pick(self.bending_stiffness, d.bending_stiffness, 0.0, 1.0),
             density_threshold: pick(self.density_threshold, d.density_threshold, 0.0, f32::MAX),
-            repulsion_m_s2: pick(self.repulsion_m_s2, d.repulsion_m_s2, 0.0, f32::MAX),
+            repulsion_m2_s2: pick(self.repulsion_m2_s2, d.repulsion_m2_s2, 0.0, f32::MAX),
+            hair_friction_per_s: pick(
+                self.hair_friction_per_s,
+                d.hair_friction_per_s,
+                0.0,
+                f32::MAX,
+            ),
             bending_damping_ratio: pick(
                 self.bending_damping_ratio,
                 d.bending_damping_ratio,
@@ -160,6 +206,7 @@ impl SimParams {
             ),
             ftl_correction: pick(self.ftl_correction, d.ftl_correction, 0.0, 1.0),
             max_catch_up_s: pick(self.max_catch_up_s, d.max_catch_up_s, 1e-3, 10.0),
+            rest_tolerance_m: pick(self.rest_tolerance_m, d.rest_tolerance_m, 0.0, 1e-3),
         }
     }
 }

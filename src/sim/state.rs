@@ -33,6 +33,11 @@ pub struct SimState {
     pub(crate) steps: u64,
     /// Duration of the last step in seconds (0 before the first step).
     pub(crate) last_step_s: f32,
+    /// Where each particle was when its guide's current rest window began (`step.rs`, rest).
+    pub(crate) anchor: Vec<Vec3>,
+    /// Per guide: consecutive steps its roots stayed bitwise put and its particles within the
+    /// rest tolerance of `anchor`.
+    pub(crate) still_steps: Vec<u32>,
 }
 
 impl SimState {
@@ -77,6 +82,8 @@ impl SimState {
         let t_s = if t_s.is_finite() { t_s } else { 0.0 };
         SimState {
             prev_positions: positions.clone(),
+            anchor: positions.clone(),
+            still_steps: vec![0; count],
             velocities: vec![Vec3::ZERO; n],
             positions,
             time_s: t_s,
@@ -102,6 +109,20 @@ impl SimState {
             .zip(&self.prev_positions)
             .map(|(p, q)| 0.5 * ((*p - *q).as_dvec3() * inv_dt).length_squared())
             .sum()
+    }
+
+    /// Largest speed of any particle over the last step, m/s: its displacement divided by the
+    /// step's duration (as in [`SimState::kinetic_energy`]); 0 before the first step.
+    pub fn max_speed_m_s(&self) -> f64 {
+        if self.last_step_s <= 0.0 {
+            return 0.0;
+        }
+        let inv_dt = 1.0 / f64::from(self.last_step_s);
+        self.positions
+            .iter()
+            .zip(&self.prev_positions)
+            .map(|(p, q)| f64::from((*p - *q).length()) * inv_dt)
+            .fold(0.0, f64::max)
     }
 
     /// The integrator's velocities in m/s (guide-major).

@@ -1,18 +1,22 @@
 //! The rigid-link integrator: fixed steps, follow-the-leader links, bending toward the rest
-//! shape, collisions, density repulsion, parallel over guides.
+//! shape, collisions, self-collision, parallel over guides.
 //!
-//! One step of `step_s` (default 1/240 s) for one guide, particles `0..n` root to tip:
+//! One step of `step_s` (default 1/480 s), for all guides (stage 0) and then for each guide,
+//! particles `0..n` root to tip:
 //!
+//! 0. **Density grid** (self-collision on): every particle's hair volume and velocity at the
+//!    start of the step are splatted into the simulator's density grid (`density.rs`).
 //! 1. **Kinematic root segment.** Particles 0 and 1 are the rest positions carried by the head
 //!    transform: the root sits on the scalp and the first link keeps its rest direction relative
 //!    to the head, which leaves the scalp near the scalp normal (the rest generator starts every
 //!    guide along the normal). A follicle does not pivot, so a rigid first link is the physical
 //!    reading, and it removes the need for a stiff (and step-limiting) root constraint.
-//! 2. **Forces, symplectic Euler.** For free particles (i ≥ 2):
+//! 2. **Forces, symplectic Euler.** For free particles (i ≥ 2): hair-hair friction
+//!    `v ← v̄ + (v − v̄) e^{−c dt}` toward the local mean velocity v̄, then
 //!    `v ← v · exp(−damping_per_s · dt) + dt · (g + a_rep)`, `p* = x + dt · v`, with
-//!    `g = (0, −gravity_m_s2, 0)` and `a_rep` the Bertails §4.1 repulsion (`density.rs`),
-//!    evaluated at `x` (the field is the map of the previous frame). The decay factor is the
-//!    exact solution of `dv/dt = −c v` over the step, so damping does not depend on `dt`.
+//!    `g = (0, −gravity_m_s2, 0)` and `a_rep = −K ∇ẽ(x)` the Bertails §4.1 repulsion
+//!    (`density.rs`), all read at `x` from the grid of this step. The decay factors are exact
+//!    solutions of `dv/dt = −c v` over the step, so they do not depend on `dt`.
 //! 3. **Root-to-tip sweep** (Gauss–Seidel, each particle sees its predecessor's final position):
 //!    - a) *Bending.* `Q` is a rotation carrying rest directions (head frame) to the current
 //!      frame of the previous link, parallel-transported down the strand: `Q₁ = R_head`, and
@@ -20,9 +24,9 @@
 //!      minimal rotation). The target of link i is `tᵢ = Qᵢ₋₁ rᵢ`: the rest bend between
 //!      links i−1 and i, including its plane, so waves and curls keep their shape and their
 //!      orientation about the strand. The particle is pulled toward it,
-//!      `p* ← p* + k (pᵢ₋₁ + L tᵢ − p*)`, with `k = 1 − (1 − bending_stiffness)^(dt / (1/240 s))`:
-//!      the stiffness is the fraction of the deviation removed per 1/240 s, the same at any
-//!      step (0: limp, 1: rigid rest shape).
+//!      `p* ← p* + k (pᵢ₋₁ + L tᵢ − p*)`, with `k` from `bend.rs`: the pull of a bending
+//!      oscillator of fixed frequency ω advanced exactly over `dt`, so the same at any step
+//!      (0: limp, 1: rigid rest shape).
 //!    - b) *Follow the leader* (Müller, Kim & Chentanez 2012, "Fast Simulation of Inextensible
 //!      Hair and Fur", dynamic FTL; the paper is not in `shared/papers`, so no equation
 //!      numbers are cited): `pᵢ = pᵢ₋₁ + L · (p* − pᵢ₋₁)/|p* − pᵢ₋₁|`, so every link has
@@ -40,35 +44,55 @@
 //!    a velocity `−s·dᵢ₊₁/dt` in every hanging particle at rest (undone each step by the
 //!    projection), whose rounding noise raised the rest kinetic-energy floor from 3e-7 (s = 0)
 //!    to 4e-6 (0.5) and 3e-4 m²/s² (0.9) and made settled particles wander 0.3 mm (0.9). 0.5 is
-//!    the compromise.
-//! 5. **Bending damping.** Each link's angular velocity relative to its parent link is damped by
-//!    the factor `κ = 1 − exp(−2 ζ √k)` per step (`ζ = bending_damping_ratio`, default 1), see
-//!    `bend.rs`. Why it is needed: the pull in 3a acts on the child only, so link i is
-//!    an oscillator of angular frequency ω = √k / dt (for small k, from the per-step map
-//!    e ← (1 − k)(e + v dt)) driven by link i−1, with no reaction back. Its gain from the parent's
-//!    motion at resonance is ω/c for a damping rate c; with only air damping (c = 1.5 /s,
-//!    ω = 120 /s at k = 0.25) that is 80 per link, cascading over 13 links: measured, tips
-//!    whirled at 17 m/s under a still head. Damping the relative rotation at c = 2ζω (critical
-//!    for ζ = 1, which is what κ is per step) bounds the gain near 1 and leaves rigid swinging
-//!    of the whole strand (equal angular velocities) untouched, so air damping alone still sets
-//!    how long hair swings.
+//!    the compromise. `s` is defined per 1/240 s: a step of `dt` uses
+//!    `1 − (1 − s)^(dt / (1/240 s))`, because the correction acts as a damping per step:
+//!    measured, s = 0.5 against s = 0 moved the dance's guide tips by 0.94 mm RMS at 1/240 s
+//!    but 4.3 mm at 1/1920 s; with the scaling, 1.35 / 0.94 / 0.82 / 0.64 mm at 1/60, 1/240,
+//!    1/960 and 1/1920 s.
+//! 5. **Bending damping.** Each link's angular velocity relative to its parent link decays at
+//!    the damping rate of the same exactly advanced oscillator as `k` (ratio
+//!    `ζ = bending_damping_ratio`, default 1), solved exactly over the step for the whole chain
+//!    (`bend::damp_bending`, also for why it is needed and what the first, root-to-tip version
+//!    cost). Rigid swinging of the whole strand (equal angular velocities) is untouched, so air
+//!    damping alone still sets how long hair swings.
+//! 6. **Rest.** A guide whose root segment has not moved (bit for bit) and whose particles
+//!    have all stayed within `rest_tolerance_m` (default 20 µm) of where they were for
+//!    [`super::REST_WINDOW_S`] (0.5 s) is held exactly there: its computed positions are
+//!    replaced by those. It wakes the step its roots move or a computed particle leaves the
+//!    tolerance. Why: settled hair is an equilibrium of the dynamics only up to f32 rounding,
+//!    which leaves a flicker of a few ulps per step (measured over 10 s, 1.6 m from the origin
+//!    where the ulp is 1.2e-7 m: up to 7 µm for the presets and 15 µm for twice their density,
+//!    at 1/480 s); a flicker that small still changes a few pixels of every 800×800 frame
+//!    (measured: 6 to 20 pixels by 1 to 3 levels), because some pixel always sits on a
+//!    rounding boundary. Cost: motion slower than 20 µm / 0.5 s = 40 µm/s (a pixel at 800×800
+//!    in 20 s) does not move resting hair, and a response to a disturbance smaller than the
+//!    tolerance may stop part-way. The hair's own settling does not rely on it: the tests check
+//!    the dynamics settle with it off.
+//!
+//! What remains step-dependent is the discretisation itself: measured on the dance
+//! (`examples/sim_steps.rs`), the guide-tip error falls with an observed order of 0.4 to 0.7
+//! at steps coarser than 1/480 s and 1 to 1.4 below; the default 1/480 s is 0.4 frames of
+//! motion from converged on the smooth preset (`docs/DESIGN.md`).
 //!
 //! Parallelism and determinism: guides are independent within a step (self-collision only goes
-//! through the density field, which is fixed during a call), so guides are processed in
-//! parallel with rayon on disjoint chunks. The arithmetic on a guide does not depend on the
-//! thread that runs it, and the only cross-guide reductions are a `max` of f32 and integer
-//! counts, which are order-independent: positions are bit-identical for any thread count.
+//! through the density grid, built on one thread before the guides and only read by them), so
+//! guides are processed in parallel with rayon on disjoint chunks. The arithmetic on a guide
+//! does not depend on the thread that runs it, and the only cross-guide reductions are a `max`
+//! of f32 and integer counts, which are order-independent: positions are bit-identical for any
+//! thread count.
 //!
-//! Allocation: none per step; the scratch for the corrections `d` lives in the simulator, and
-//! the collider closure writes into a `Colliders` kept by the simulator (clearing and refilling
-//! its sphere vector reuses its capacity).
+//! Allocation: none per step; the scratch for the corrections `d` and the density grid live in
+//! the simulator (the grid's storage is reserved for the reachable cube at construction), and
+//! the collider
+//! closure writes into a `Colliders` kept by the simulator (clearing and refilling its sphere
+//! vector reuses its capacity).
 
 use super::SimParams;
 use super::bend;
 use super::collide::{Colliders, CollisionScene};
-use super::density::{DensityField, repulsion_m_s2};
+use super::density::DensityGrid;
 use super::state::SimState;
-use crate::hairstyle::GuideSet;
+use crate::hairstyle::{GuideSet, Hairstyle};
 use glam::{Affine3A, Quat, Vec3, Vec3A};
 use rayon::prelude::*;
 
@@ -77,13 +101,18 @@ use rayon::prelude::*;
 pub struct StepStats {
     /// Fixed steps taken.
     pub steps: u32,
-    /// Particle-steps that received density repulsion (summed over steps).
+    /// Particle-steps that received self-collision repulsion (summed over steps).
     pub repelled_particles: u32,
+    /// Steps whose self-collision was skipped because the hair spread over more than
+    /// [`super::DENSITY_GRID_MAX_NODES`] grid nodes (0 in normal use).
+    pub self_collision_skipped_steps: u32,
     /// Largest penetration of a free particle (index ≥ 2) into the true head ellipsoid or a
     /// sphere after any step, metres (conservative bound for the ellipsoid).
     pub max_penetration_m: f32,
     /// Guides reset to their rest shape because a value became non-finite (0 in normal use).
     pub reset_guides: u32,
+    /// Guides held exactly still at the last step (see the module doc, rest).
+    pub resting_guides: u32,
     /// Simulated time skipped by the catch-up cap, seconds (the hair was carried rigidly with
     /// the head over it).
     pub dropped_s: f64,
@@ -95,6 +124,8 @@ struct GuideStats {
     repelled: u32,
     max_penetration_m: f32,
     reset: u32,
+    grid_skipped: u32,
+    resting: u32,
 }
 
 impl GuideStats {
@@ -103,6 +134,8 @@ impl GuideStats {
             repelled: a.repelled + b.repelled,
             max_penetration_m: a.max_penetration_m.max(b.max_penetration_m),
             reset: a.reset + b.reset,
+            grid_skipped: a.grid_skipped + b.grid_skipped,
+            resting: a.resting + b.resting,
         }
     }
 }
@@ -134,6 +167,10 @@ struct Shape {
     rest_dir: Vec<Vec3A>,
     /// Link length per guide, metres.
     link_m: Vec<f32>,
+    /// Hair volume each particle of a guide stands for, m³ (`density.rs`).
+    particle_volume_m3: Vec<f32>,
+    /// Weights of the exact bending damping over one step (`bend::damping_weights`).
+    damping_weights: Vec<f32>,
 }
 
 /// Step constants derived from [`SimParams`].
@@ -147,7 +184,11 @@ struct Consts {
     bend_damp: f32,
     ftl_correction: f32,
     density_threshold: f32,
-    repulsion_m_s2: f32,
+    repulsion_m2_s2: f32,
+    friction_per_s: f32,
+    rest_tolerance_m: f32,
+    /// Steps of [`super::REST_WINDOW_S`], at least 1.
+    rest_steps: u32,
 }
 
 /// Advances guide strands in fixed steps (see the module doc).
@@ -161,14 +202,63 @@ pub struct Simulator {
     colliders: Colliders,
     /// Head semi-axes given to `new`, used when the closure leaves invalid ones.
     head_radii_m: Vec3,
+    /// The self-collision density grid, rebuilt every step when self-collision is on.
+    grid: DensityGrid,
+    /// Whether the parameters and the hair cross-section give self-collision any strength.
+    self_collision_possible: bool,
+    /// Self-collision on (the default when possible) or off.
+    self_collision: bool,
+}
+
+/// Cross-section of real hair (m²) each guide stands for: every fibre of every render strand,
+/// π r² per fibre, shared by the guides (3 per wisp), times the helix length factor
+/// √(1 + (2π R / P)²) of curled strands (a curl of radius R and period P puts that much more
+/// fibre length along each metre of guide).
+pub fn hair_section_per_guide_m2(style: &Hairstyle, guides: &GuideSet) -> f32 {
+    let fibres = style.wisps.count as f64
+        * f64::from(style.wisps.strands_per_wisp)
+        * f64::from(style.strands.fibers_per_strand);
+    let r = f64::from(style.fiber.radius_m);
+    let (cr, cp) = (
+        f64::from(style.curl.radius_m),
+        f64::from(style.curl.period_m),
+    );
+    let curl = if cr > 0.0 && cp > 0.0 {
+        (1.0 + (std::f64::consts::TAU * cr / cp).powi(2)).sqrt()
+    } else {
+        1.0
+    };
+    let per_guide = fibres * std::f64::consts::PI * r * r * curl / guides.count().max(1) as f64;
+    if per_guide.is_finite() {
+        per_guide as f32
+    } else {
+        0.0
+    }
 }
 
 impl Simulator {
+    /// The simulator of a hairstyle's guides (its dynamics, head and hair cross-section).
+    pub fn from_hairstyle(style: &Hairstyle, guides: &GuideSet) -> Simulator {
+        Simulator::new(
+            &style.dynamics,
+            guides,
+            Vec3::from(style.head.radii_m),
+            hair_section_per_guide_m2(style, guides),
+        )
+    }
+
     /// Prepares the rest-shape data of `guides`. `params` should have passed
     /// [`SimParams::validate`]; out-of-range values are clamped into range here rather than
     /// producing a simulator that loops forever or returns NaN. `head_radii_m` initialises the
-    /// head ellipsoid the collider closure sees (it may change it).
-    pub fn new(params: &SimParams, guides: &GuideSet, head_radii_m: Vec3) -> Simulator {
+    /// head ellipsoid the collider closure sees (it may change it). `hair_section_m2` is the
+    /// cross-section of real hair each guide stands for ([`hair_section_per_guide_m2`]), which
+    /// self-collision turns into volume; 0 turns self-collision off.
+    pub fn new(
+        params: &SimParams,
+        guides: &GuideSet,
+        head_radii_m: Vec3,
+        hair_section_m2: f32,
+    ) -> Simulator {
         let params = params.sanitized();
         let ppg = guides.points_per_guide;
         let count = usable_guides(guides);
@@ -184,23 +274,62 @@ impl Simulator {
                 rest_dir.push(d.normalize_or(prev));
             }
         }
-        let link_m = guides.link_length_m[..count]
+        let link_m: Vec<f32> = guides.link_length_m[..count]
             .iter()
             .map(|l| sanitized_link_m(*l))
             .collect();
+        let section = if hair_section_m2.is_finite() && hair_section_m2 > 0.0 {
+            hair_section_m2
+        } else {
+            0.0
+        };
+        // Each of the ppg particles stands for an equal share of the guide's hair.
+        let share = if ppg > 0 {
+            (ppg - 1) as f32 / ppg as f32
+        } else {
+            0.0
+        };
+        let particle_volume_m3 = link_m.iter().map(|l| section * l * share).collect();
+        // How far from the head centre any particle can be: root distance plus guide length.
+        let reach_m = (0..count)
+            .map(|g| {
+                let root = rest[g * ppg].length();
+                root + link_m[g] * (ppg.saturating_sub(1)) as f32
+            })
+            .fold(0.0f32, f32::max);
+        // Grid spacing: the mean link length, so that one sample per particle gives a density
+        // that is smooth along the strand (the B-spline's partition of unity), but at least
+        // 1/60 of the reach, so that the whole reachable cube, 2·reach/h + 4 ≤ 124 nodes a
+        // side, fits in the grid's node budget.
+        let mean_link_m = if count > 0 {
+            link_m.iter().map(|l| f64::from(*l)).sum::<f64>() / count as f64
+        } else {
+            0.02
+        };
+        let cell_m = (mean_link_m as f32).max(reach_m / 60.0).clamp(1e-3, 1.0);
         let dt = params.step_s;
-        let bend_k = bend::pull_per_step(params.bending_stiffness, dt);
+        let omega = bend::bending_frequency_rad_s(params.bending_stiffness);
+        let (bend_k, bend_damp) = bend::step_factors(
+            omega,
+            f64::from(params.bending_damping_ratio),
+            f64::from(dt),
+        );
         let consts = Consts {
             dt,
             inv_dt: 1.0 / dt,
             gravity: Vec3A::new(0.0, -params.gravity_m_s2, 0.0),
             damping_factor: (-params.damping_per_s * dt).exp(),
             bend_k,
-            bend_damp: bend::damping_per_step(params.bending_damping_ratio, bend_k),
-            ftl_correction: params.ftl_correction,
+            bend_damp,
+            ftl_correction: 1.0 - (1.0 - params.ftl_correction).powf(dt / super::REFERENCE_STEP_S),
             density_threshold: params.density_threshold,
-            repulsion_m_s2: params.repulsion_m_s2,
+            repulsion_m2_s2: params.repulsion_m2_s2,
+            friction_per_s: params.hair_friction_per_s,
+            rest_tolerance_m: params.rest_tolerance_m,
+            rest_steps: (super::REST_WINDOW_S / f64::from(dt)).ceil().max(1.0) as u32,
         };
+        let self_collision =
+            section > 0.0 && (params.repulsion_m2_s2 > 0.0 || params.hair_friction_per_s > 0.0);
         Simulator {
             params,
             consts,
@@ -209,10 +338,40 @@ impl Simulator {
                 rest,
                 rest_dir,
                 link_m,
+                particle_volume_m3,
+                damping_weights: bend::damping_weights(bend_damp, ppg),
             },
             correction: vec![Vec3A::ZERO; n],
             colliders: Colliders::head_only(Affine3A::IDENTITY, head_radii_m),
             head_radii_m,
+            grid: DensityGrid::new(cell_m, if self_collision { reach_m } else { 0.0 }),
+            self_collision_possible: self_collision,
+            self_collision,
+        }
+    }
+
+    /// Turns self-collision on or off (it is on after `new` when the parameters and the hair
+    /// cross-section give it any strength; turning it on otherwise does nothing).
+    pub fn set_self_collision(&mut self, on: bool) {
+        self.self_collision = on && self.self_collision_possible;
+    }
+
+    /// Whether self-collision is on.
+    pub fn self_collision(&self) -> bool {
+        self.self_collision
+    }
+
+    /// Node spacing of the self-collision density grid, metres (the mean link length).
+    pub fn density_cell_m(&self) -> f32 {
+        self.grid.cell_m()
+    }
+
+    /// Nodes of the density grid of the last step (0 when self-collision is off).
+    pub fn density_grid_nodes(&self) -> usize {
+        if self.self_collision {
+            self.grid.node_count()
+        } else {
+            0
         }
     }
 
@@ -242,16 +401,14 @@ impl Simulator {
     /// `max_catch_up_s` is simulated, so one slow frame cannot make the next one slower.
     /// A state from a different guide set, an empty guide set, a non-finite `t_end_s` or one
     /// in the past does nothing.
-    pub fn advance<C, D>(
+    pub fn advance<C>(
         &mut self,
         state: &mut SimState,
         t_end_s: f64,
         mut colliders_at: C,
-        density: &D,
     ) -> StepStats
     where
         C: FnMut(f64, &mut Colliders),
-        D: DensityField,
     {
         let mut stats = StepStats::default();
         let n = self.particle_count();
@@ -260,6 +417,8 @@ impl Simulator {
             || state.positions.len() != n
             || state.velocities.len() != n
             || state.prev_positions.len() != n
+            || state.anchor.len() != n
+            || state.still_steps.len() != n / self.shape.points_per_guide.max(1)
         {
             return stats;
         }
@@ -281,11 +440,13 @@ impl Simulator {
             let t = state.origin_s + (state.steps + 1) as f64 * dt;
             colliders_at(t, &mut self.colliders);
             self.sanitize_colliders(state.head);
-            let s = self.step(state, density);
+            let s = self.step(state);
             stats.steps += 1;
             stats.repelled_particles = stats.repelled_particles.saturating_add(s.repelled);
+            stats.self_collision_skipped_steps += s.grid_skipped;
             stats.max_penetration_m = stats.max_penetration_m.max(s.max_penetration_m);
             stats.reset_guides = stats.reset_guides.saturating_add(s.reset);
+            stats.resting_guides = s.resting;
             state.steps += 1;
             state.time_s = t;
             state.head = self.colliders.head;
@@ -308,8 +469,28 @@ impl Simulator {
     }
 
     /// One fixed step of every guide, in parallel.
-    fn step<D: DensityField>(&mut self, state: &mut SimState, density: &D) -> GuideStats {
+    fn step(&mut self, state: &mut SimState) -> GuideStats {
         let ppg = self.shape.points_per_guide;
+        // 0. The density grid of the positions and velocities the step starts from, in the head
+        // frame of the step (the same transform for the splat and the queries).
+        let grid_skipped = if self.self_collision {
+            let ok = self.grid.build(
+                self.colliders.head,
+                &state.positions,
+                &state.velocities,
+                ppg,
+                &self.shape.particle_volume_m3,
+                self.consts.density_threshold,
+            );
+            u32::from(!ok)
+        } else {
+            0
+        };
+        let grid = if self.self_collision && self.grid.is_active() {
+            Some(&self.grid)
+        } else {
+            None
+        };
         let scene = CollisionScene::new(&self.colliders);
         let head = self.colliders.head;
         let head_rot = Quat::from_mat3a(&head.matrix3).normalize();
@@ -320,18 +501,25 @@ impl Simulator {
         };
         let shape = &self.shape;
         let c = self.consts;
-        state
+        let stats = state
             .positions
             .par_chunks_mut(ppg)
             .zip(state.prev_positions.par_chunks_mut(ppg))
             .zip(state.velocities.par_chunks_mut(ppg))
             .zip(self.correction.par_chunks_mut(ppg))
+            .zip(state.anchor.par_chunks_mut(ppg))
+            .zip(state.still_steps.par_iter_mut())
             .enumerate()
             .with_min_len(8)
-            .map(|(g, (((pos, prev), vel), corr))| {
-                step_guide(g, pos, prev, vel, corr, shape, &c, &frame, density)
+            .map(|(g, (((((pos, prev), vel), corr), anchor), still))| {
+                let rest = Rest { anchor, still };
+                step_guide(g, pos, prev, vel, corr, rest, shape, &c, &frame, grid)
             })
-            .reduce(GuideStats::default, GuideStats::merge)
+            .reduce(GuideStats::default, GuideStats::merge);
+        GuideStats {
+            grid_skipped,
+            ..stats
+        }
     }
 }
 
@@ -349,7 +537,15 @@ fn carry_rigidly(state: &mut SimState, new_head: Affine3A) {
     for v in &mut state.velocities {
         *v = delta.transform_vector3(*v);
     }
+    state.anchor.copy_from_slice(&state.positions);
+    state.still_steps.iter_mut().for_each(|s| *s = 0);
     state.head = new_head;
+}
+
+/// One guide's rest bookkeeping (see the module doc, rest).
+struct Rest<'a> {
+    anchor: &'a mut [Vec3],
+    still: &'a mut u32,
 }
 
 /// The head pose of one step.
@@ -361,16 +557,17 @@ struct Frame<'a> {
 
 /// One step of guide `g` (see the module doc for the stages).
 #[allow(clippy::too_many_arguments)]
-fn step_guide<D: DensityField>(
+fn step_guide(
     g: usize,
     pos: &mut [Vec3],
     prev: &mut [Vec3],
     vel: &mut [Vec3],
     corr: &mut [Vec3A],
+    rest_state: Rest,
     shape: &Shape,
     c: &Consts,
     frame: &Frame,
-    density: &D,
+    grid: Option<&DensityGrid>,
 ) -> GuideStats {
     let ppg = pos.len();
     let base = g * ppg;
@@ -389,15 +586,25 @@ fn step_guide<D: DensityField>(
     // 2. Forces and prediction.
     for i in 2..ppg {
         let x = Vec3A::from(prev[i]);
+        let mut v = Vec3A::from(vel[i]);
         let mut a = c.gravity;
-        if c.repulsion_m_s2 > 0.0
-            && let Some(rep) =
-                repulsion_m_s2(density, prev[i], c.density_threshold, c.repulsion_m_s2)
-        {
-            a += Vec3A::from(rep);
-            stats.repelled += 1;
+        if let Some(grid) = grid {
+            let hair = grid.around(x);
+            if c.friction_per_s > 0.0 && hair.volume_fraction > 0.0 {
+                let fullness = if c.density_threshold > 0.0 {
+                    (hair.volume_fraction / c.density_threshold).min(1.0)
+                } else {
+                    1.0
+                };
+                let keep = (-c.friction_per_s * fullness * c.dt).exp();
+                v = hair.mean_velocity_m_s + (v - hair.mean_velocity_m_s) * keep;
+            }
+            if c.repulsion_m2_s2 > 0.0 && hair.excess_gradient_per_m != Vec3A::ZERO {
+                a -= hair.excess_gradient_per_m * c.repulsion_m2_s2;
+                stats.repelled += 1;
+            }
         }
-        let v = Vec3A::from(vel[i]) * c.damping_factor + a * c.dt;
+        let v = v * c.damping_factor + a * c.dt;
         pos[i] = Vec3::from(x + v * c.dt);
     }
     // 3. Root-to-tip sweep: bending, follow the leader, collisions.
@@ -434,7 +641,28 @@ fn step_guide<D: DensityField>(
     }
     // 5. Bending damping, root to tip (after the velocities it damps).
     if c.bend_damp > 0.0 && ppg >= 3 {
-        bend::damp_bending(pos, vel, c.bend_damp);
+        bend::damp_bending(pos, vel, &shape.damping_weights);
+    }
+    // 6. Rest: held exactly still once it has stayed within the tolerance for the window.
+    let Rest { anchor, still } = rest_state;
+    if c.rest_tolerance_m > 0.0 {
+        let roots = 2.min(ppg);
+        let roots_still = pos[..roots] == anchor[..roots];
+        let tol2 = c.rest_tolerance_m * c.rest_tolerance_m;
+        let near = pos[roots..]
+            .iter()
+            .zip(&anchor[roots..])
+            .all(|(p, a)| (*p - *a).length_squared() <= tol2);
+        if roots_still && near {
+            *still = still.saturating_add(1);
+            if *still >= c.rest_steps {
+                pos.copy_from_slice(anchor);
+                stats.resting = 1;
+            }
+        } else {
+            anchor.copy_from_slice(pos);
+            *still = 0;
+        }
     }
     // NaN guard: a guide that went non-finite restarts from its rest shape, at rest.
     if !pos.iter().chain(vel.iter()).all(|p| p.is_finite()) {
@@ -443,7 +671,10 @@ fn step_guide<D: DensityField>(
             prev[i] = pos[i];
             vel[i] = Vec3::ZERO;
         }
+        anchor.copy_from_slice(pos);
+        *still = 0;
         stats.reset = 1;
+        stats.resting = 0;
         stats.max_penetration_m = 0.0;
     }
     stats
@@ -452,7 +683,7 @@ fn step_guide<D: DensityField>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::{COLLISION_MARGIN_M, NoDensity, SphereCollider};
+    use crate::sim::{COLLISION_MARGIN_M, SphereCollider};
 
     fn one_guide(rest: Vec<Vec3>, link: f32) -> GuideSet {
         GuideSet {
@@ -472,19 +703,112 @@ mod tests {
             .collect();
         let guides = one_guide(rest, 0.02);
         let colliders = Colliders::head_only(Affine3A::IDENTITY, radii);
-        let mut sim = Simulator::new(&SimParams::default(), &guides, radii);
+        let mut sim = Simulator::new(&SimParams::default(), &guides, radii, 0.0);
         let mut state = SimState::at_rest(&guides, &colliders, 0.0);
         let start = state.positions.clone();
-        let stats = sim.advance(
-            &mut state,
-            2.0,
-            |_, c: &mut Colliders| *c = colliders.clone(),
-            &NoDensity,
+        let stats = sim.advance(&mut state, 2.0, |_, c: &mut Colliders| {
+            *c = colliders.clone()
+        });
+        let dt = SimParams::default().step_s;
+        assert_eq!(
+            stats.steps,
+            (0.25 / dt).round() as u32,
+            "capped at max_catch_up_s = 0.25 s"
         );
-        assert_eq!(stats.steps, 60, "capped at max_catch_up_s = 0.25 s");
         for (p, q) in state.positions.iter().zip(&start) {
             assert!((*p - *q).length() < 1e-5, "moved from {q} to {p}");
         }
+    }
+
+    #[test]
+    fn a_resting_guide_is_held_exactly_and_wakes_when_its_head_moves() {
+        // A guide sticking out sideways settles under gravity, is held bit-for-bit still, and
+        // follows the head the very step the head moves by a micrometre.
+        let radii = Vec3::splat(0.05);
+        let rest: Vec<Vec3> = (0..10)
+            .map(|i| Vec3::new(0.05 + i as f32 * 0.02, 0.0, 0.0))
+            .collect();
+        let guides = GuideSet {
+            root_normal: vec![Vec3::X],
+            ..one_guide(rest, 0.02)
+        };
+        let params = SimParams::default();
+        let mut sim = Simulator::new(&params, &guides, radii, 0.0);
+        let still = Colliders::head_only(Affine3A::from_translation(Vec3::Y), radii);
+        let mut state = SimState::at_rest(&guides, &still, 0.0);
+        let dt = f64::from(params.step_s);
+        let mut t = 0.0;
+        let mut held_from = None;
+        while t < 3.0 {
+            t += dt;
+            let stats = sim.advance(&mut state, t, |_, c: &mut Colliders| *c = still.clone());
+            if stats.resting_guides == 1 && held_from.is_none() {
+                held_from = Some(t);
+            }
+        }
+        let held_from = held_from.expect("the guide came to rest");
+        assert!(held_from < 2.0, "held only from {held_from} s");
+        let before = state.positions.clone();
+        let stats = sim.advance(&mut state, t + dt, |_, c: &mut Colliders| {
+            *c = still.clone()
+        });
+        assert_eq!(stats.resting_guides, 1);
+        assert_eq!(state.positions, before, "held exactly");
+        assert_eq!(state.max_speed_m_s(), 0.0);
+        // The head moves 1 µm along z: the guide wakes at once (its roots move with the head).
+        let nudged =
+            Colliders::head_only(Affine3A::from_translation(Vec3::new(0.0, 1.0, 1e-6)), radii);
+        let stats = sim.advance(&mut state, t + 2.0 * dt, |_, c: &mut Colliders| {
+            *c = nudged.clone()
+        });
+        assert_eq!(stats.resting_guides, 0);
+        for (p, q) in state.positions[..2].iter().zip(&before) {
+            assert!((p.z - q.z - 1e-6).abs() < 1e-8, "root {p} from {q}");
+        }
+        // Moved by 1 mm, the guide follows to within the tolerance (a response smaller than
+        // the tolerance may be held part-way: that is the documented dead band).
+        let moved =
+            Colliders::head_only(Affine3A::from_translation(Vec3::new(0.0, 1.0, 1e-3)), radii);
+        sim.advance(&mut state, t + 1.0, |_, c: &mut Colliders| {
+            *c = moved.clone()
+        });
+        let tol = params.rest_tolerance_m;
+        for (p, q) in state.positions.iter().zip(&before) {
+            assert!(
+                (p.z - q.z - 1e-3).abs() < 2.0 * tol,
+                "{p} did not follow the head from {q}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_long_many_link_guide_keeps_its_density_grid_within_budget() {
+        // 256 links of 4 mm: the mean link would give a 2 m/4 mm = 500-node-wide lattice
+        // (1.25e8 nodes); the spacing floor of reach/60 keeps the reachable cube within
+        // DENSITY_GRID_MAX_NODES, so self-collision is never skipped, even with the hair
+        // straight out sideways.
+        let radii = Vec3::splat(0.05);
+        let link = 0.004;
+        let rest: Vec<Vec3> = (0..257)
+            .map(|i| Vec3::new(0.05 + i as f32 * link, 0.0, 0.0))
+            .collect();
+        let guides = GuideSet {
+            root_normal: vec![Vec3::X],
+            ..one_guide(rest, link)
+        };
+        let mut sim = Simulator::new(&SimParams::default(), &guides, radii, 1e-6);
+        assert!(sim.self_collision());
+        let reach = 0.05 + 256.0 * link;
+        assert!(sim.density_cell_m() >= reach / 60.0 * 0.999);
+        let colliders = Colliders::head_only(Affine3A::IDENTITY, radii);
+        let mut state = SimState::at_rest(&guides, &colliders, 0.0);
+        let stats = sim.advance(&mut state, 0.05, |_, c: &mut Colliders| {
+            *c = colliders.clone()
+        });
+        assert!(stats.steps > 0);
+        assert_eq!(stats.self_collision_skipped_steps, 0);
+        assert!(sim.density_grid_nodes() > 0);
+        assert!(sim.density_grid_nodes() <= crate::sim::DENSITY_GRID_MAX_NODES);
     }
 
     #[test]
@@ -503,16 +827,13 @@ mod tests {
             ..SimParams::default()
         };
         let colliders = Colliders::head_only(Affine3A::IDENTITY, radii);
-        let mut sim = Simulator::new(&params, &guides, radii);
+        let mut sim = Simulator::new(&params, &guides, radii, 0.0);
         let mut state = SimState::at_rest(&guides, &colliders, 0.0);
         let mut lowest_tip_m = 0.0f32;
         for f in 1..=18 {
-            sim.advance(
-                &mut state,
-                f as f64 / 60.0,
-                |_, c: &mut Colliders| *c = colliders.clone(),
-                &NoDensity,
-            );
+            sim.advance(&mut state, f as f64 / 60.0, |_, c: &mut Colliders| {
+                *c = colliders.clone()
+            });
             lowest_tip_m = lowest_tip_m.min(state.positions[9].y);
             assert!(state.kinetic_energy() > 0.0);
             for w in state.positions.windows(2) {
@@ -529,7 +850,7 @@ mod tests {
 
     #[test]
     fn a_fast_sphere_sweeping_through_hanging_hair_pushes_it_without_tunnelling() {
-        // A 45 mm sphere crosses a hanging guide sideways at 5 m/s (under the 10.8 m/s limit
+        // A 45 mm sphere crosses a hanging guide sideways at 5 m/s (under the 21.6 m/s limit
         // derived in collide.rs): every particle it meets is pushed ahead of it, none is
         // left inside or passed through.
         let radii = Vec3::splat(0.05);
@@ -550,14 +871,14 @@ mod tests {
         };
         let mut c0 = Colliders::head_only(Affine3A::IDENTITY, radii);
         colliders_at(0.0, &mut c0);
-        let mut sim = Simulator::new(&SimParams::default(), &guides, radii);
+        let mut sim = Simulator::new(&SimParams::default(), &guides, radii, 0.0);
         let mut state = SimState::at_rest(&guides, &c0, 0.0);
         let dt = f64::from(sim.params().step_s);
         let mut c = c0.clone();
         let mut furthest_push_m = 0.0f32;
-        for k in 1..=24 {
-            // 0.1 s: the sphere travels 0.5 m, from x = -0.2 to 0.3, through the guide.
-            let stats = sim.advance(&mut state, f64::from(k) * dt, colliders_at, &NoDensity);
+        // 0.1 s: the sphere travels 0.5 m, from x = -0.2 to 0.3, through the guide.
+        for k in 1..=(0.1 / dt).round() as u32 {
+            let stats = sim.advance(&mut state, f64::from(k) * dt, colliders_at);
             assert!(
                 stats.max_penetration_m < 1e-4,
                 "{}",
@@ -612,19 +933,19 @@ mod tests {
         let mut guides = one_guide(vec![Vec3::Y * 0.05, Vec3::Y * 0.07, Vec3::Y * 0.09], 0.02);
         guides.link_length_m.push(0.02); // claims 2 guides, holds 1
         let colliders = Colliders::head_only(Affine3A::IDENTITY, radii);
-        let mut sim = Simulator::new(&SimParams::default(), &guides, radii);
+        let mut sim = Simulator::new(&SimParams::default(), &guides, radii, 0.0);
         assert_eq!(sim.particle_count(), 3);
         let mut state = SimState::at_rest(&guides, &colliders, 0.0);
         assert_eq!(state.positions.len(), 3);
         state.positions.push(Vec3::ZERO); // now mismatched
-        let stats = sim.advance(&mut state, 1.0, |_, _: &mut Colliders| {}, &NoDensity);
+        let stats = sim.advance(&mut state, 1.0, |_, _: &mut Colliders| {});
         assert_eq!(stats.steps, 0);
         let params = SimParams {
             step_s: f32::NAN,
             bending_stiffness: 7.0,
             ..SimParams::default()
         };
-        let sim = Simulator::new(&params, &guides, radii);
+        let sim = Simulator::new(&params, &guides, radii, 0.0);
         assert_eq!(sim.params().step_s, SimParams::default().step_s);
         // A non-finite head at construction gives a finite state.
         let mut nan_head = colliders.clone();
@@ -637,10 +958,10 @@ mod tests {
                 points_per_guide: ppg,
                 ..guides.clone()
             };
-            let mut sim = Simulator::new(&SimParams::default(), &empty, radii);
+            let mut sim = Simulator::new(&SimParams::default(), &empty, radii, 0.0);
             let mut state = SimState::at_rest(&empty, &colliders, 0.0);
             assert!(state.positions.is_empty());
-            let stats = sim.advance(&mut state, 1.0, |_, _: &mut Colliders| {}, &NoDensity);
+            let stats = sim.advance(&mut state, 1.0, |_, _: &mut Colliders| {});
             assert_eq!(stats.steps, 0);
         }
         assert_eq!(sim.params().bending_stiffness, 1.0);

@@ -2,7 +2,7 @@
 //! structured (for structural mutations), and a loader that says accepted or refused and
 //! checks what an accepted input promises.
 //!
-//! To add a format (TressFX `.tfx`, cyHair `.hair`, a simulation cache), add one entry to
+//! To add a format (TressFX `.tfx`, cyHair `.hair`), add one entry to
 //! [`all`]: its seeds (valid files, the entry first) and a loader calling the library. The
 //! mutators and the runner in `tests/hostile_loaders.rs` then cover it with no further code.
 
@@ -22,6 +22,9 @@ pub enum Layout {
     Glb,
     /// Opaque bytes.
     Binary,
+    /// A simulation cache: edits of its fields and records with the checksums resealed
+    /// (`cache::mutate`), or raw byte edits.
+    Cache,
 }
 
 /// A file given to the loader in a special form instead of its bytes.
@@ -266,6 +269,31 @@ fn load_gltf_files(case: &Case, dir: &Path) -> Result<Verdict, String> {
     }
 }
 
+/// What an accepted cache promises: every record reads back, each position finite.
+fn load_cache(case: &Case, dir: &Path) -> Result<Verdict, String> {
+    let entry = case
+        .write(dir)
+        .map_err(|e| format!("cannot write the case: {e}"))?;
+    let name = &case.files[0].0;
+    let motion = Motion::default_dance();
+    let outcome =
+        wisp::cache::CacheReader::open(&entry, &super::cache::expected()).and_then(|mut reader| {
+            reader.read_settled(&motion)?;
+            for i in 0..reader.header().frames {
+                let p = reader.read_frame(i, &motion)?;
+                if let Some(q) = p.iter().find(|q| !q.is_finite()) {
+                    return Ok(Some(format!("accepted, but frame {i} has a position {q}")));
+                }
+            }
+            Ok(None)
+        });
+    match outcome {
+        Ok(None) => Ok(Verdict::Accepted),
+        Ok(Some(broken)) => Err(broken),
+        Err(e) => refused(e.to_string(), name),
+    }
+}
+
 /// A hairstyle with only the required fields.
 const MINIMAL_HAIRSTYLE: &str = r#"{"name": "min", "head": {"radii_m": [0.08, 0.1, 0.09]},
  "scalp": {"max_polar_deg": 100, "front_polar_deg": 50},
@@ -317,6 +345,12 @@ pub fn all() -> Vec<Format> {
             seeds: vec![as_gltf(&dance, None)],
             load: load_gltf_files,
         },
+        Format {
+            name: "simulation cache",
+            layout: Layout::Cache,
+            seeds: vec![file("hostile.wcache", super::cache::seed())],
+            load: load_cache,
+        },
     ]
 }
 
@@ -359,6 +393,7 @@ pub fn mutated(format: &Format, rng: &mut Rng) -> (Case, Vec<String>) {
                 }
                 None => mutate::bytes(rng, bytes),
             },
+            (0, Layout::Cache) if rng.chance(0.7) => super::cache::mutate(rng, bytes),
             (_, _) if k > 0 && rng.chance(0.5) => mutate::floats(rng, bytes),
             _ => mutate::bytes(rng, bytes),
         };

@@ -2,10 +2,11 @@
 //! allocator with a per-thread cap, a runner that bounds each case in time and memory, input
 //! mutators and the table of input formats.
 //!
-//! A new input format (a groom file, a cache) plugs in with one [`formats::Format`] entry:
+//! A new input format (a groom file; the simulation cache did) plugs in with one [`formats::Format`] entry:
 //! a name, valid seed files and a loader that returns accepted or refused (see `formats.rs`).
 #![allow(dead_code)]
 
+pub mod cache;
 pub mod formats;
 pub mod mutate;
 

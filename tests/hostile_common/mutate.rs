@@ -488,23 +488,26 @@ pub fn make_glb(json: &str, bin: &[u8]) -> Vec<u8> {
     out
 }
 
+/// Hostile float values: not numbers, infinities, huge, zero, negative, denormal, near the top.
+pub const FLOATS: [f32; 9] = [
+    f32::NAN,
+    f32::INFINITY,
+    f32::NEG_INFINITY,
+    1e30,
+    -1e30,
+    0.0,
+    -1.0,
+    1e-40,
+    3.4e38,
+];
+
 /// Overwrites one f32 of `bin` (4-byte aligned) with a hostile value: keyframe times and
 /// values, vertex data.
 pub fn floats(rng: &mut Rng, bin: &mut [u8]) -> String {
     if bin.len() < 4 {
         return "nothing".into();
     }
-    let v: f32 = *rng.pick(&[
-        f32::NAN,
-        f32::INFINITY,
-        f32::NEG_INFINITY,
-        1e30,
-        -1e30,
-        0.0,
-        -1.0,
-        1e-40,
-        3.4e38,
-    ]);
+    let v: f32 = *rng.pick(&FLOATS);
     let n = 1 + rng.below(16);
     for _ in 0..n {
         let at = rng.below(bin.len() / 4) * 4;

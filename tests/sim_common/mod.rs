@@ -5,14 +5,14 @@
 
 #![allow(dead_code)]
 
-use glam::Vec3;
 use wisp::hairstyle::{GuideSet, Hairstyle, generate};
 use wisp::sim::{Colliders, SimState, Simulator};
 
-/// A preset's guides, a simulator for them, and a state at rest at t = 0 under `colliders0`.
+/// A preset's guides, a simulator for them (self-collision on, as in the presets), and a state
+/// at rest at t = 0 under `colliders0`.
 pub fn setup(style: &Hairstyle, colliders0: &Colliders) -> (GuideSet, Simulator, SimState) {
     let (guides, _) = generate(style);
-    let sim = Simulator::new(&style.dynamics, &guides, Vec3::from(style.head.radii_m));
+    let sim = Simulator::from_hairstyle(style, &guides);
     let state = SimState::at_rest(&guides, colliders0, 0.0);
     (guides, sim, state)
 }

@@ -1,0 +1,113 @@
+//! Simulation caches: the guide particles of every frame of a run, written once by `wisp
+//! simulate` and rendered any number of times, in any frame range, by any number of machines.
+//!
+//! # What a cache holds, and why that is enough
+//! A frame's picture depends on the simulation only through the guide particles' world
+//! positions (`SimState::positions`): interpolation, the light map, shading and raster are
+//! functions of those positions, of the motion's pose at the frame's time (sampled again from
+//! the motion, which the cache's motion digest pins) and of the scene (light, camera, shader,
+//! size). The camera that follows the head is framed once on the hair as it settled at time 0,
+//! so the cache stores that settled state as well. A cache therefore stores, per frame, the
+//! frame's time and every guide particle's position as the f32 bits the simulation left, and
+//! [`Engine::set_guide_state`](crate::frame::Engine::set_guide_state) puts them back: a frame
+//! rendered from the cache is the same bytes as the frame rendered in one run (tested in
+//! `tests/cache.rs` and, through the binary and the local shard runner, `tests/cache_cli.rs`).
+//! The simulation is deterministic for any thread count, so it does not matter how many
+//! threads simulated or render.
+//!
+//! Not stored: the integrator's velocities, the positions before the last step and the step
+//! clock. A cache replays a simulation; it does not resume one.
+//!
+//! What the simulation itself depended on is recorded in the header: the hairstyle and motion
+//! (as digests, so a cache is refused for another hairstyle or motion with a message saying
+//! which) and the frame times. The motion does not depend on the light, the map or the image:
+//! self-collision reads the simulator's own density grid (`sim::density`), so rendering with
+//! another light, camera, shader, map size or image size gives the bytes a single run with
+//! those flags gives. The header also records the light direction, map resolution and solids
+//! of the `simulate` run, for the record (format version 1 keeps them).
+//!
+//! # Format (version 1, little-endian)
+//! A header ([`format::CacheHeader`], its own CRC-32 last), then `frames + 1` records of the
+//! same size: record 0 is the settled state at time 0, record `k + 1` is frame `k`. A record
+//! is the frame time (f64 seconds), `particles` positions (3 × f32 metres, guide-major as
+//! `GuideSet::rest`) and a CRC-32 of the record index and the record. Fixed-size records let a
+//! shard seek straight to its frames; the file's size must equal what the header's counts
+//! imply, which is checked before anything is allocated from those counts. See
+//! [`format`] for the byte layout.
+//!
+//! # Checks on reading
+//! Everything a hostile or damaged file can say is checked, and refused with the file name,
+//! the field and the rule ([`CacheError`]): the magic and version, the header's checksum,
+//! counts against the file's size, ranges of every header field, each record's checksum (a
+//! flipped byte anywhere is caught), each record's time against the header's frame times,
+//! and each position: finite, and within twice the reach of hair from the head at that
+//! frame ([`CacheReader::read_frame`]).
+
+pub mod digest;
+pub mod format;
+mod read;
+mod state;
+mod write;
+
+pub use digest::{Digest, hairstyle_digest, motion_digest};
+pub use format::CacheHeader;
+pub use read::{CacheReader, Expected};
+pub use write::CacheWriter;
+
+use crate::input::ReadError;
+
+/// Largest number of frames a cache holds (as `wisp render --frames`).
+pub const MAX_FRAMES: u32 = 100_000;
+
+/// Why a cache could not be read or written. Every message names the file.
+#[derive(Debug, thiserror::Error)]
+pub enum CacheError {
+    /// The file could not be opened or read (missing, a directory, a device, an I/O error).
+    #[error("{file}: {error}")]
+    Read {
+        /// File name.
+        file: String,
+        /// What went wrong.
+        error: ReadError,
+    },
+    /// The file breaks the format: the field and the rule.
+    #[error("{file}: {reason}")]
+    Invalid {
+        /// File name.
+        file: String,
+        /// What is wrong, naming the field.
+        reason: String,
+    },
+    /// A valid cache made for another hairstyle, motion or hair model.
+    #[error("{file}: {reason}")]
+    Mismatch {
+        /// File name.
+        file: String,
+        /// What differs, and what to do.
+        reason: String,
+    },
+    /// The output path cannot hold a cache (a directory, a device, a missing folder).
+    #[error("{file}: {reason}")]
+    BadOutput {
+        /// File name.
+        file: String,
+        /// Why.
+        reason: String,
+    },
+    /// Writing failed (disk full, permissions).
+    #[error("{file}: cannot write: {error}")]
+    Write {
+        /// File name.
+        file: String,
+        /// The cause.
+        error: std::io::Error,
+    },
+}
+
+impl CacheError {
+    /// True when the error is the input's fault (exit code 2 on the command line): anything
+    /// but a failed write.
+    pub fn is_bad_input(&self) -> bool {
+        !matches!(self, CacheError::Write { .. })
+    }
+}

@@ -1,0 +1,32 @@
+#!/usr/bin/env python3
+"""Re-run only wisp on one case of a table that run_table.py made, and compare it with the
+path tracer's renders cached there (the same exported strands and camera), so a change to the
+shading is measured in seconds instead of re-rendering with Mitsuba.
+
+usage: rerun_case.py OUTDIR TABLEDIR case colour light kind [wisp flags...]
+  case: dense | isolated | curly; colour: blond | brown | red; light: front | side | back;
+  kind: dual | single. TABLEDIR/styles/*.json are the table's hairstyles (edit a copy to try
+  other fibre parameters). WISP (environment) is the wisp binary (default target/release/wisp);
+  it must export the same strands as the binary that made the table.
+"""
+import json, os, subprocess, sys
+import numpy as np
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import run_table as rt
+out, table, case, colour, light, kind = sys.argv[1:7]
+extra = sys.argv[7:]
+wisp = os.environ.get("WISP", "target/release/wisp")
+style = os.path.join(table, "styles", f"{'dense-'+colour if case=='dense' else ('isolated-blond' if case=='isolated' else 'curly')}.json")
+cam = json.load(open(os.path.join(table, case, "camera", "scene.json")))["camera"]
+size = 400
+common = [wisp, "export", "--hairstyle", style, "--still", "--no-solids", "--ambient", "0", "--irradiance", "1", "--width", str(size), "--height", str(size)]
+view = ["--camera-eye", rt.vec(cam["eye"]), "--camera-target", rt.vec(cam["target"]), "--camera-up", rt.vec(cam["up"]), "--fov-deg", f"{cam['fov_y_deg']:.6g}", "--light-dir", rt.vec(rt.light_dir(cam, light))]
+shading = {"dual": "dual", "single": "single"}[kind]
+d = os.path.join(out, f"{case}-{colour}-{light}-{kind}")
+p = subprocess.run(common + view + ["--shading", shading, "--out", d] + extra, capture_output=True, text=True)
+if p.returncode: sys.exit(p.stderr)
+depth = 64 if kind == "dual" else 2
+ref_dir = os.path.join(table, case, f"{colour}-{light}-{kind}")
+ref = os.path.join(ref_dir, f"mitsuba_d{depth}.exr")
+p = subprocess.run([sys.executable, os.path.join(os.path.dirname(os.path.abspath(__file__)), "compare.py"), os.path.join(d, "wisp.exr"), ref, "--passes", os.path.join(ref_dir, f"mitsuba_d{depth}_passes.npy"), "--png", os.path.join(out, f"cmp-{case}-{colour}-{light}-{kind}.png"), "--label", f"{case} {colour} {light} {kind} {' '.join(extra)}"], capture_output=True, text=True)
+print(p.stdout.strip() or p.stderr)
