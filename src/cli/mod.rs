@@ -10,6 +10,7 @@ pub mod export_cmd;
 pub mod fiber_cmd;
 pub mod play_cmd;
 pub mod render_cmd;
+pub mod shard;
 pub mod view_args;
 
 use clap::{Parser, Subcommand, ValueEnum};
@@ -292,7 +293,7 @@ impl SceneArgs {
             wisp::budget::fit_map_resolution(style, motion, config, plan, &self.budget())
         {
             eprintln!(
-                "wisp: warning: the automatic map resolution {auto} (cells of twice the strand spacing at the scalp) could need more memory than --max-memory-gb {}; using {n}",
+                "wisp: warning: the automatic map resolution {auto} (cells of 1.5 strand spacings at the scalp) could need more memory than --max-memory-gb {}; using {n}",
                 self.max_memory_gb
             );
             config.map_res = Some(n);
@@ -504,6 +505,7 @@ pub fn main() -> ExitCode {
         }
     }
     let result = match cli.command {
+        Command::Render(args) if args.cache.is_some() => cache_cmd::render_from_cache(args),
         Command::Render(args) => render_cmd::run(args),
         Command::Simulate(args) => cache_cmd::simulate(args),
         Command::Play(args) => play_cmd::run(args),

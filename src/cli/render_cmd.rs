@@ -17,8 +17,7 @@ use wisp::budget::RunPlan;
 use wisp::frame::{Engine, StageTimings};
 use wisp::output::write_png_rgb8;
 
-/// Most frames one export writes (`--frames`, and the default of one loop of the clip).
-pub const MAX_FRAMES: u32 = 100_000;
+pub use super::shard::MAX_FRAMES;
 
 #[derive(clap::Args, Debug)]
 pub struct RenderArgs {
@@ -49,8 +48,8 @@ pub struct RenderArgs {
     pub first_frame: Option<u32>,
     /// Render the I-th of N contiguous blocks of the frames (1-based, e.g. 2/8), writing the
     /// file names a whole run writes: one job of a Slurm array or a Kubernetes Indexed Job.
-    #[arg(long, value_name = "I/N", requires = "cache", value_parser = super::cache_cmd::parse_shard)]
-    pub shard: Option<super::cache_cmd::Shard>,
+    #[arg(long, value_name = "I/N", requires = "cache", value_parser = super::shard::parse_shard)]
+    pub shard: Option<super::shard::Shard>,
     /// Print only errors.
     #[arg(long)]
     pub quiet: bool,
@@ -77,10 +76,8 @@ pub fn wrapped_start_s(start_s: f64, duration_s: f32, speed: f32) -> (f64, bool)
     (wrapped, wrapped != start_s)
 }
 
+/// A single run: simulate and render (`render --cache` goes to `cache_cmd::render_from_cache`).
 pub fn run(args: RenderArgs) -> Result<(), AppError> {
-    if args.cache.is_some() {
-        return super::cache_cmd::render_from_cache(args);
-    }
     let (style, motion, mut config) = args.scene.resolve()?;
     let still = args.scene.still;
     let frames = args.frames.unwrap_or_else(|| {

@@ -40,24 +40,9 @@ pub struct MitsubaHair {
 }
 
 /// Chiang's longitudinal roughness b whose R lobe has standard deviation `std_theta_o_rad` in
-/// θo: the root of 0.726b + 0.812b² + 3.7b²⁰ = std (MAPPING.md, verified there against
-/// Mitsuba's lobes), by bisection on [0, 1] (the left side is increasing and reaches 5.2 at
-/// b = 1, above any valid 2β_R ≤ π/2). Inputs ≤ 0 or NaN give 0.
+/// θo (MAPPING.md, verified there against Mitsuba's lobes); inputs ≤ 0 or NaN give 0.
 pub fn longitudinal_roughness_for_std(std_theta_o_rad: f64) -> f64 {
-    let f = |b: f64| 0.726 * b + 0.812 * b * b + 3.7 * b.powi(20);
-    if !(std_theta_o_rad > 0.0) {
-        return 0.0;
-    }
-    let (mut lo, mut hi) = (0.0, 1.0);
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if f(mid) < std_theta_o_rad {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
+    crate::fiber::roughness_for_std(std_theta_o_rad)
 }
 
 /// The fibre model named in the fibre JSON (`"model"`), `"marschner"` when absent.

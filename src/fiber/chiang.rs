@@ -61,27 +61,6 @@ pub fn logistic_scale(beta_n: f64) -> f64 {
     (PI / 8.0).sqrt() * (0.265 * beta_n + 1.194 * beta_n * beta_n + 5.372 * beta_n.powi(22))
 }
 
-/// C16's fit of d'Eon's R-lobe standard deviation √v₀ (radians) to the longitudinal roughness
-/// b ∈ [0, 1]: 0.726b + 0.812b² + 3.7b²⁰.
-pub fn std_for_roughness(b: f64) -> f64 {
-    0.726 * b + 0.812 * b * b + 3.7 * b.powi(20)
-}
-
-/// The inverse of [`std_for_roughness`] on [0, 1] by bisection (the fit is increasing); clamped
-/// to [0, 1] for standard deviations outside the fit's range (0 to 5.24 rad).
-pub fn roughness_for_std(std_rad: f64) -> f64 {
-    let (mut lo, mut hi) = (0.0f64, 1.0f64);
-    for _ in 0..80 {
-        let mid = 0.5 * (lo + hi);
-        if std_for_roughness(mid) < std_rad {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
-}
-
 /// The model's constants, derived once from [`FiberParams`] (radians, rad²).
 #[derive(Clone, Copy, Debug)]
 pub struct ChiangConstants {
@@ -353,6 +332,7 @@ mod tests {
 
     #[test]
     fn roughness_fit_round_trip() {
+        use crate::fiber::{roughness_for_std, std_for_roughness};
         // MAPPING.md: β_R = 2.5/5/7.5/10° gives b = 0.107/0.197/0.276/0.347.
         for (beta, b) in [(2.5f64, 0.107), (5.0, 0.197), (7.5, 0.276), (10.0, 0.347)] {
             let got = roughness_for_std((2.0 * beta).to_radians());

@@ -52,7 +52,10 @@ mod params;
 pub mod shader;
 pub mod tables;
 
-pub use params::{ECCENTRICITY_MIN, FiberModel, FiberParams, Lobe, LobeConstants};
+pub use params::{
+    ECCENTRICITY_MIN, FiberModel, FiberParams, Lobe, LobeConstants, roughness_for_std,
+    std_for_roughness,
+};
 pub use shader::HairAngles;
 use shader::Trig;
 pub use tables::TableResolution;

@@ -189,7 +189,7 @@ impl FiberParams {
     /// (radians; the fit of d'Eon's √v₀ used by pbrt and Mitsuba), by bisection. For the
     /// reference exporter; the model itself uses v₀ = (2β_R)² directly.
     pub fn chiang_longitudinal_roughness(&self) -> f64 {
-        crate::fiber::chiang::roughness_for_std((2.0 * self.beta_r_deg as f64).to_radians())
+        roughness_for_std((2.0 * self.beta_r_deg as f64).to_radians())
     }
 }
 
@@ -255,6 +255,30 @@ impl LobeConstants {
     pub fn std_x(&self, lobe: Lobe) -> f64 {
         2.0 * self.beta[lobe as usize]
     }
+}
+
+/// C16's fit of d'Eon's R-lobe standard deviation √v₀ (radians) to the longitudinal roughness
+/// b ∈ [0, 1]: 0.726b + 0.812b² + 3.7b²⁰.
+pub fn std_for_roughness(b: f64) -> f64 {
+    0.726 * b + 0.812 * b * b + 3.7 * b.powi(20)
+}
+
+/// The inverse of [`std_for_roughness`] on [0, 1] by bisection (the fit is increasing); clamped
+/// to [0, 1] for standard deviations outside the fit's range (0 to 5.24 rad); 0 for NaN or ≤ 0.
+pub fn roughness_for_std(std_rad: f64) -> f64 {
+    if std_rad.is_nan() || std_rad <= 0.0 {
+        return 0.0;
+    }
+    let (mut lo, mut hi) = (0.0f64, 1.0f64);
+    for _ in 0..80 {
+        let mid = 0.5 * (lo + hi);
+        if std_for_roughness(mid) < std_rad {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
 }
 
 #[cfg(test)]

@@ -33,7 +33,7 @@ use glam::{Affine3A, Mat4, Vec3};
 use gltf::Semantic;
 
 use super::gltf_io::{Loaded, read_accessor};
-use super::load::Skeleton;
+use super::skeleton::Skeleton;
 use super::{Fit, HAIRSTYLE_HEAD_RADIUS_M};
 
 /// Where a [`Fit`] came from.

@@ -43,6 +43,7 @@ mod gltf_io;
 mod load;
 pub mod sampler;
 pub mod scalp;
+mod skeleton;
 pub mod skin;
 pub mod texture;
 

@@ -39,7 +39,7 @@ use rayon::prelude::*;
 
 use super::MotionError;
 use super::gltf_io::{Loaded, invalid, read_accessor};
-use super::load::Skeleton;
+use super::skeleton::Skeleton;
 use super::texture::{self, Texture};
 
 /// Most vertices a character may have.

@@ -66,100 +66,13 @@ use rayon::prelude::*;
 
 use super::camera::Camera;
 use super::framebuffer::Framebuffer;
+use super::polyline::{LineStyle, LineWidth, Polylines};
 use super::segment::{Params, Seg, setup_segment};
 
 /// Image rows per band (the unit of parallel work and of binning).
 const BAND_ROWS: usize = 16;
 /// Segments per parallel set-up task.
 const SETUP_CHUNK: usize = 4096;
-/// Widest line drawn, pixels; the coverage model is meant for thin lines.
-pub const MAX_WIDTH_PX: f32 = 64.0;
-
-/// Polylines sharing one point count: line `l` is `points[l*n .. (l+1)*n]` with
-/// `n = points_per_line`. Points in world metres, colours linear RGB, one per point. Trailing
-/// points that do not make a whole line, and lines without a colour for every point, are
-/// ignored.
-#[derive(Clone, Copy, Debug)]
-pub struct Polylines<'a> {
-    /// Vertices in world metres, line after line.
-    pub points: &'a [Vec3],
-    /// Linear RGB per vertex (same indexing as `points`); values above 1 are allowed.
-    pub colors: &'a [Vec3],
-    /// Physical width per vertex in world metres (same indexing as `points`), read only by
-    /// [`LineWidth::Projected`]; may be empty otherwise. A segment whose end has no width
-    /// there draws nothing.
-    pub widths_m: &'a [f32],
-    /// Vertices per line, `n` (every line has the same count); below 2 draws nothing.
-    pub points_per_line: usize,
-}
-
-impl Polylines<'_> {
-    /// Number of whole lines that have a point and a colour for every vertex.
-    pub fn line_count(&self) -> usize {
-        match self.points_per_line {
-            0 => 0,
-            n => self.points.len().min(self.colors.len()) / n,
-        }
-    }
-
-    /// Number of segments drawn: `line_count() * (points_per_line − 1)`.
-    pub fn segment_count(&self) -> usize {
-        self.line_count() * self.points_per_line.saturating_sub(1)
-    }
-}
-
-/// How wide lines are drawn.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum LineWidth {
-    /// Every line this many pixels wide on screen, whatever its depth; at most
-    /// [`MAX_WIDTH_PX`]; ≤ 0 or NaN draws nothing. [`Polylines::widths_m`] is not read.
-    Pixels(f32),
-    /// Physical width: each point's [`Polylines::widths_m`] (world metres) projected at its
-    /// depth, `w_px = width_m · focal_px / depth`, averaged over the segment's two ends. A
-    /// segment narrower than `min_px` is drawn `min_px` wide at opacity `w_px / min_px`, so
-    /// its coverage (summed α = length × w_px) is conserved while thin lines stay smooth; a
-    /// wider one is drawn `w_px` wide (at most [`MAX_WIDTH_PX`]) at full opacity. `min_px`
-    /// ≤ 0 or NaN draws nothing, and so does a point without a finite width > 0.
-    Projected {
-        /// Narrowest drawn width in pixels (1 px gives a tent footprint across the line).
-        min_px: f32,
-    },
-}
-
-/// How lines look.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LineStyle {
-    /// Width model, default `Pixels(1.0)`.
-    pub width: LineWidth,
-    /// Coverage multiplier in (0, 1], default 1; ≤ 0 or NaN draws nothing, > 1 acts as 1.
-    pub opacity: f32,
-}
-
-impl LineStyle {
-    /// Every line `width_px` wide at `opacity` (the engine's style before physical coverage
-    /// was 1 px at 0.85).
-    pub const fn pixels(width_px: f32, opacity: f32) -> LineStyle {
-        LineStyle {
-            width: LineWidth::Pixels(width_px),
-            opacity,
-        }
-    }
-
-    /// Physical width from [`Polylines::widths_m`] with a minimum of `min_px` pixels.
-    pub const fn projected(min_px: f32) -> LineStyle {
-        LineStyle {
-            width: LineWidth::Projected { min_px },
-            opacity: 1.0,
-        }
-    }
-}
-
-impl Default for LineStyle {
-    fn default() -> Self {
-        LineStyle::pixels(1.0, 1.0)
-    }
-}
-
 /// Buffers reused between frames, so a warmed-up frame allocates nothing.
 #[derive(Debug, Default)]
 pub struct LineScratch {

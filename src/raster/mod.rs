@@ -26,13 +26,13 @@ pub mod camera;
 pub mod framebuffer;
 pub mod lines;
 pub mod mesh;
+pub mod polyline;
 mod segment;
 pub mod solid;
 
 pub use camera::{Camera, DEFAULT_NEAR_M, View};
 pub use framebuffer::Framebuffer;
-pub use lines::{
-    LineScratch, LineStyle, LineWidth, MAX_SEGMENTS, MAX_WIDTH_PX, Polylines, draw_polylines,
-};
+pub use lines::{LineScratch, MAX_SEGMENTS, draw_polylines};
 pub use mesh::{Mesh, MeshScratch, Surface, Texture, draw_mesh};
+pub use polyline::{LineStyle, LineWidth, MAX_WIDTH_PX, Polylines};
 pub use solid::draw_ellipsoid;

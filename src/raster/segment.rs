@@ -16,7 +16,7 @@
 use glam::Vec3;
 
 use super::camera::View;
-use super::lines::{LineWidth, MAX_WIDTH_PX, Polylines};
+use super::polyline::{LineWidth, MAX_WIDTH_PX, Polylines};
 
 /// A segment ready to rasterise, in pixel coordinates.
 #[derive(Clone, Copy, Debug)]

@@ -6,11 +6,10 @@
 //! particle, at one link length from its predecessor (outside every collider), moves to the
 //! nearest point at that distance on the sphere's inflated surface. Where that point is still
 //! inside the capsule (a long capsule seen at a slant), the collision rounds of
-//! `CollisionScene::resolve` repeat with the new nearest segment point.
+//! `CollisionScene::resolve` repeat with the new nearest segment point. That exit is
+//! `CapsuleCollider::push_out`, next to the sphere's in `collide.rs`.
 
 use glam::{Vec3, Vec3A};
-
-use super::collide::{COLLISION_MARGIN_M, circle_exit};
 
 /// A body capsule in world space.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -35,31 +34,8 @@ impl CapsuleCollider {
         a + ab * ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
     }
 
-    fn usable(&self) -> bool {
+    pub(crate) fn usable(&self) -> bool {
         self.radius_m > 0.0 && self.radius_m.is_finite() && self.a.is_finite() && self.b.is_finite()
-    }
-
-    /// `p` moved out of the capsule inflated by the collision margin, at `link_m` from `prev`,
-    /// or `None` when it is already outside (see the module doc).
-    #[inline]
-    pub(crate) fn push_out(
-        &self,
-        prev: Vec3A,
-        p: Vec3A,
-        link_m: f32,
-        fallback_dir: Vec3A,
-    ) -> Option<Vec3A> {
-        if !self.usable() {
-            return None;
-        }
-        let c = self.nearest(p);
-        let ro = self.radius_m + COLLISION_MARGIN_M;
-        if (p - c).length_squared() >= ro * ro {
-            return None;
-        }
-        let out = circle_exit(prev, p, link_m, c, ro, fallback_dir)
-            .unwrap_or_else(|| c + (p - c).normalize_or(fallback_dir) * ro);
-        Some(prev + (out - prev).normalize_or(fallback_dir) * link_m)
     }
 
     /// Depth of `p` inside the (true, not inflated) capsule in metres, 0 outside.

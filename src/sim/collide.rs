@@ -218,6 +218,31 @@ impl<'a> CollisionScene<'a> {
     }
 }
 
+impl CapsuleCollider {
+    /// `p` moved out of the capsule inflated by the collision margin, at `link_m` from `prev`,
+    /// or `None` when it is already outside (see the module doc).
+    #[inline]
+    pub(crate) fn push_out(
+        &self,
+        prev: Vec3A,
+        p: Vec3A,
+        link_m: f32,
+        fallback_dir: Vec3A,
+    ) -> Option<Vec3A> {
+        if !self.usable() {
+            return None;
+        }
+        let c = self.nearest(p);
+        let ro = self.radius_m + COLLISION_MARGIN_M;
+        if (p - c).length_squared() >= ro * ro {
+            return None;
+        }
+        let out = circle_exit(prev, p, link_m, c, ro, fallback_dir)
+            .unwrap_or_else(|| c + (p - c).normalize_or(fallback_dir) * ro);
+        Some(prev + (out - prev).normalize_or(fallback_dir) * link_m)
+    }
+}
+
 /// The point nearest `p` among those at distance `link` from `prev` and not inside the sphere
 /// (`c`, `r`). Those points form a spherical cap of the link sphere, bounded by the circle
 /// where the two spheres meet: with `D = |c − prev|` and axis `a = (c − prev)/D`, the circle's

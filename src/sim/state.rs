@@ -49,7 +49,7 @@ impl SimState {
     /// transform is replaced by the identity (and the spheres ignored).
     pub fn at_rest(guides: &GuideSet, colliders: &Colliders, t_s: f64) -> SimState {
         let ppg = guides.points_per_guide;
-        let count = super::step::usable_guides(guides);
+        let count = usable_guides(guides);
         let n = count * ppg;
         // A non-finite head transform would make every position NaN: use the identity instead.
         let fallback;
@@ -64,7 +64,7 @@ impl SimState {
         let mut positions = Vec::with_capacity(n);
         for g in 0..count {
             let rest = guides.guide(g);
-            let link = super::step::sanitized_link_m(guides.link_length_m[g]);
+            let link = sanitized_link_m(guides.link_length_m[g]);
             let mut prev = Vec3A::ZERO;
             for (i, r) in rest.iter().enumerate() {
                 let mut p = head.transform_point3a(Vec3A::from(*r));
@@ -134,4 +134,21 @@ impl SimState {
     pub fn head(&self) -> Affine3A {
         self.head
     }
+}
+
+/// Number of complete guides in `guides` (defensive against inconsistent hand-built sets).
+pub(crate) fn usable_guides(guides: &GuideSet) -> usize {
+    if guides.points_per_guide < 2 {
+        return 0;
+    }
+    guides
+        .count()
+        .min(guides.root_normal.len())
+        .min(guides.rest.len() / guides.points_per_guide)
+}
+
+/// A usable link length: non-finite or non-positive lengths (impossible from `generate`) become
+/// 1 mm rather than NaN positions.
+pub(crate) fn sanitized_link_m(l: f32) -> f32 {
+    if l.is_finite() && l > 0.0 { l } else { 1e-3 }
 }

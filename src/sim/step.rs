@@ -91,7 +91,7 @@ use super::SimParams;
 use super::bend;
 use super::collide::{Colliders, CollisionScene};
 use super::density::DensityGrid;
-use super::state::SimState;
+use super::state::{SimState, sanitized_link_m, usable_guides};
 use crate::hairstyle::{GuideSet, Hairstyle};
 use glam::{Affine3A, Quat, Vec3, Vec3A};
 use rayon::prelude::*;
@@ -138,23 +138,6 @@ impl GuideStats {
             resting: a.resting + b.resting,
         }
     }
-}
-
-/// Number of complete guides in `guides` (defensive against inconsistent hand-built sets).
-pub(crate) fn usable_guides(guides: &GuideSet) -> usize {
-    if guides.points_per_guide < 2 {
-        return 0;
-    }
-    guides
-        .count()
-        .min(guides.root_normal.len())
-        .min(guides.rest.len() / guides.points_per_guide)
-}
-
-/// A usable link length: non-finite or non-positive lengths (impossible from `generate`) become
-/// 1 mm rather than NaN positions.
-pub(crate) fn sanitized_link_m(l: f32) -> f32 {
-    if l.is_finite() && l > 0.0 { l } else { 1e-3 }
 }
 
 /// Constant per-particle data of the rest shape, head frame.
