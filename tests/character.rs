@@ -398,7 +398,7 @@ fn roots_lie_on_the_drawn_head_and_a_wrong_fit_is_told() {
 /// Render strands against the drawn mesh over a whole loop of the dance (every 0.1 s): the
 /// deepest a strand point lies under the mannequin's surface, and how many lie deeper than
 /// 3 mm. Tolerance (stated in the README): 1 cm, and fewer than 1 point in 100,000 deeper than
-/// 3 mm. Measured: 2.4 mm at 1.0 s (render points are pushed onto the capsules, which contain
+/// 3 mm. Measured: 1.3 mm at 2.4 s (render points are pushed onto the capsules, which contain
 /// every vertex; what is left lies where a facet between two capsules' vertices cuts inside
 /// both), no point deeper than 3 mm of 8.3 M. The guides themselves stay outside the capsules
 /// up to the pinch tolerance of `tests/dance_clip.rs`.
