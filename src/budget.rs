@@ -26,7 +26,7 @@ use crate::hairstyle::Hairstyle;
 use crate::input::human_bytes;
 use crate::map::MapGeometry;
 use crate::motion::Motion;
-use crate::raster::{Framebuffer, LineScratch};
+use crate::raster::{Framebuffer, LineScratch, MeshScratch};
 use crate::sim::Simulator;
 use glam::Vec3;
 
@@ -259,6 +259,8 @@ pub fn fit_map_resolution(
     if config.map_res.is_some() {
         return None;
     }
+    let fitted = crate::frame::fit_style_to_character(style, motion);
+    let style = &fitted;
     let fits = |n: u32| {
         let c = EngineConfig {
             map_res: Some(n),
@@ -291,6 +293,8 @@ pub fn estimate(
     config: &EngineConfig,
     plan: &RunPlan,
 ) -> Estimate {
+    let fitted = crate::frame::fit_style_to_character(style, motion);
+    let style = &fitted;
     let wisps = style.wisps.count as u64;
     let guides = 3 * wisps;
     let points_per_guide = style.guides.links as u64 + 1;
@@ -395,6 +399,24 @@ pub fn estimate(
             set_by: "the glTF clip",
         },
     ];
+    if let Some(ch) = motion.character() {
+        // The posed mesh is held by the motion's part; drawing it needs the raster's samples
+        // and binned triangles, and the occluder grid its vertices in the light frame.
+        let triangles = ch.triangles.len() as u64;
+        memory.push(MemoryPart {
+            what: "character raster",
+            product: format!(
+                "{}×{} pixels × 4 samples, {} triangles, {} vertices",
+                config.width,
+                config.height,
+                grouped(triangles),
+                grouped(ch.vertex_count() as u64)
+            ),
+            bytes: MeshScratch::estimated_bytes(config.width, config.height, triangles)
+                + b(ch.vertex_count() * size_of::<Vec3>()),
+            set_by: "--width × --height, and the glTF's meshes",
+        });
+    }
     if plan.export_png {
         // Three sRGB buffers in flight between the renderer and the writer, and the PNG
         // encoder's filtered copy of the one being written.

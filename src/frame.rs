@@ -1,13 +1,16 @@
 //! One frame of the pipeline, stage by stage, with per-stage timings.
 //!
 //! ```text
-//! animation   motion.sample(t)                -> head and body-sphere transforms
+//! animation   motion.sample(t)                -> head and body-collider transforms, and the
+//!                                                character's skinned mesh
 //! simulation  sim.advance(t, colliders)       -> guide particles (self-collision from the
 //!                                                simulator's own density grid, Bertails §4.1)
-//! interp      interpolate(guides)             -> render strands (positions, tangents)
+//! interp      interpolate(guides, colliders)  -> render strands (positions, tangents), kept
+//!                                                out of the head and body
 //! map         map.build(strands, light)       -> Tf, σ̄f², direct fraction per cell
 //! shading     shade_vertices(map, fiber)      -> vertex colours
-//! raster      head, body spheres, hair lines  -> framebuffer
+//! raster      character mesh (or the head and   -> framebuffer
+//!             body spheres), hair lines
 //! ```
 //!
 //! [`Engine`] owns every buffer, so after the first frame no stage allocates. Each stage is a
@@ -16,15 +19,16 @@
 
 use crate::fiber::Fiber;
 use crate::hairstyle::{GuideSet, Hairstyle, StrandLayout, generate};
-use crate::interp::{StrandGeometry, interpolate};
-use crate::map::{CountModel, LightMap, MapGeometry, MapStats, Solid};
-use crate::motion::{Motion, Pose};
+use crate::interp::{StrandGeometry, interpolate_among};
+use crate::map::{CountModel, LightMap, MapGeometry, MapStats, OccluderMesh, Solid};
+use crate::motion::{CharacterPose, Motion, Pose, RootsOnHead};
 use crate::raster::{
-    Camera, Framebuffer, LineScratch, LineStyle, Polylines, draw_ellipsoid, draw_polylines,
+    Camera, Framebuffer, LineScratch, LineStyle, Mesh, MeshScratch, Polylines, Surface, Texture,
+    draw_ellipsoid, draw_mesh, draw_polylines,
 };
 use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};
 use crate::shade::{Lighting, shade_skin, shade_vertices};
-use crate::sim::{Colliders, SimState, Simulator, SphereCollider, StepStats};
+use crate::sim::{CapsuleCollider, Colliders, SimState, Simulator, SphereCollider, StepStats};
 use glam::{Affine3A, Vec3};
 use std::time::Instant;
 
@@ -149,6 +153,8 @@ pub struct Engine {
     pose: Pose,
     /// Scratch pose for the simulation's sub-step collider queries (reused, no allocation).
     sim_pose: Pose,
+    /// The colliders of `pose`, which render strands are kept out of (reused).
+    frame_colliders: Colliders,
     sim: Simulator,
     pub state: SimState,
     map: LightMap,
@@ -161,8 +167,17 @@ pub struct Engine {
     follow: Option<HeadFollowing>,
     fb: Framebuffer,
     scratch: LineScratch,
-    /// The head and body solids of the current pose (reused buffer).
+    /// The head and body solids of the current pose (reused buffer), and their albedos.
     solids: Vec<Solid>,
+    solid_albedo: Vec<Vec3>,
+    /// The character's mesh posed at the current time (empty without a character).
+    character: CharacterPose,
+    /// How the character's triangles look (from its materials) and its textures.
+    surfaces: Vec<Surface>,
+    textures: Vec<Texture>,
+    /// The character's mesh includes its head (else the head ellipsoid is drawn too).
+    character_has_head: bool,
+    mesh_scratch: MeshScratch,
     /// Timings of the last frame.
     pub timings: StageTimings,
     /// Figures of the last simulation advance.
@@ -170,14 +185,19 @@ pub struct Engine {
 }
 
 impl Engine {
-    /// Builds the hair, settles it on the first pose of the motion and frames the camera.
+    /// Builds the hair, settles it on the first pose of the motion and frames the camera. A
+    /// character with a head mesh gets the hairstyle's head fitted to it first
+    /// ([`fit_style_to_character`]).
     pub fn new(style: Hairstyle, motion: Motion, config: EngineConfig) -> Self {
+        let style = fit_style_to_character(&style, &motion);
         let (guides, layout) = generate(&style);
         Self::with_hair(style, guides, layout, motion, config)
     }
 
     /// [`Engine::new`] with hair made elsewhere (an imported groom, `crate::groom`): `style`
-    /// gives the head, fibre, dynamics and sizes; `guides` and `layout` the hair.
+    /// gives the head, fibre, dynamics and sizes; `guides` and `layout` the hair. `style` is
+    /// used as given: the groom was placed on its head, so fit that head to a character first
+    /// ([`fit_style_to_character`]) and place the groom on the fitted head.
     pub fn with_hair(
         style: Hairstyle,
         guides: GuideSet,
@@ -202,6 +222,7 @@ impl Engine {
         config: EngineConfig,
         settled_positions: &[Vec3],
     ) -> Self {
+        let style = fit_style_to_character(&style, &motion);
         let (guides, layout) = generate(&style);
         let mut engine = Self::unsettled(style, guides, layout, motion, config);
         engine.set_guide_state(0.0, settled_positions);
@@ -222,6 +243,28 @@ impl Engine {
         let pose = motion.sample(0.0);
         let mut sim = Simulator::from_hairstyle(&style, &guides);
         sim.set_self_collision(config.self_collision);
+        let (surfaces, textures, character_has_head) = match motion.character() {
+            Some(ch) => (
+                ch.materials
+                    .iter()
+                    .map(|m| Surface {
+                        albedo: m.base_color,
+                        texture: m.texture.map(|t| t as u32),
+                        double_sided: m.double_sided,
+                    })
+                    .collect(),
+                ch.textures
+                    .iter()
+                    .map(|t| Texture {
+                        width: t.width,
+                        height: t.height,
+                        texels: t.texels.clone(),
+                    })
+                    .collect(),
+                ch.has_head(),
+            ),
+            None => (Vec::new(), Vec::new(), false),
+        };
         let state = SimState::at_rest(&guides, &colliders_of(&pose, radii), -config.settle_s);
         let geom = map_geometry(&style, &config);
         // Replaced once the settled hair is framed (`place_camera`), before any render.
@@ -241,6 +284,7 @@ impl Engine {
             layout,
             motion,
             sim_pose: pose.clone(),
+            frame_colliders: colliders_of(&pose, radii),
             pose,
             sim,
             state,
@@ -253,6 +297,12 @@ impl Engine {
             fb,
             scratch: LineScratch::default(),
             solids: Vec::new(),
+            solid_albedo: Vec::new(),
+            character: CharacterPose::default(),
+            surfaces,
+            textures,
+            character_has_head,
+            mesh_scratch: MeshScratch::default(),
             timings: StageTimings::default(),
             step_stats: StepStats::default(),
             config,
@@ -279,6 +329,10 @@ impl Engine {
     pub fn pose(&self) -> &Pose {
         &self.pose
     }
+    /// The character's mesh at the current time (pose world; empty without a character).
+    pub fn character_pose(&self) -> &CharacterPose {
+        &self.character
+    }
     /// Vertex colours of the last render (linear RGB), indexed like `strands.positions`.
     pub fn colors(&self) -> &[Vec3] {
         &self.colors
@@ -304,6 +358,7 @@ impl Engine {
     pub fn advance(&mut self, t_s: f64) {
         let t0 = Instant::now();
         self.motion.sample_into(t_s as f32, &mut self.pose);
+        self.motion.pose_character(t_s as f32, &mut self.character);
         let radii = Vec3::from(self.style.head.radii_m);
         let t1 = Instant::now();
         if self.config.simulate {
@@ -335,6 +390,7 @@ impl Engine {
     pub fn set_guide_state(&mut self, t_s: f64, positions: &[Vec3]) {
         let t0 = Instant::now();
         self.motion.sample_into(t_s as f32, &mut self.pose);
+        self.motion.pose_character(t_s as f32, &mut self.character);
         let t1 = Instant::now();
         for (p, q) in self.state.positions.iter_mut().zip(positions) {
             *p = *q;
@@ -345,11 +401,14 @@ impl Engine {
     /// Interpolation of the render strands from the guides; `marks` are the instants the
     /// animation and simulation stages started and the simulation ended, for the timings.
     fn interpolate_strands(&mut self, marks: [Instant; 3]) {
-        interpolate(
+        let radii = Vec3::from(self.style.head.radii_m);
+        write_colliders(&self.pose, radii, &mut self.frame_colliders);
+        interpolate_among(
             &self.guides,
             &self.layout,
             &self.style.curl,
             &self.state.positions,
+            Some(&self.frame_colliders),
             &mut self.strands,
         );
         let [t0, t1, t2] = marks;
@@ -409,17 +468,34 @@ impl Engine {
         &self.fb
     }
 
-    /// The head and the body spheres, opaque, lit through the hair's shadow.
+    /// The character's mesh (or the head and the body spheres), opaque, lit through the hair's
+    /// shadow.
     fn draw_solids(&mut self) {
         let (map, lighting) = (&self.map, &self.config.lighting);
-        // The head first (skin), then the body spheres (cloth): the solids of the map.
-        for (k, s) in self.solids.iter().enumerate() {
-            let albedo = if k == 0 { SKIN } else { CLOTH };
+        for (s, albedo) in self.solids.iter().zip(&self.solid_albedo) {
             draw_ellipsoid(
                 &mut self.fb,
                 &self.camera,
                 s.unit_sphere_to_world,
-                |p, n| shade_skin(map, lighting, albedo, p, n),
+                |p, n| shade_skin(map, lighting, *albedo, p, n),
+            );
+        }
+        if let Some(ch) = self.motion.character() {
+            let mesh = Mesh {
+                positions: &self.character.positions,
+                normals: &self.character.normals,
+                uv: &ch.uv,
+                triangles: &ch.triangles,
+                triangle_surface: &ch.triangle_material,
+                surfaces: &self.surfaces,
+                textures: &self.textures,
+            };
+            draw_mesh(
+                &mut self.fb,
+                &self.camera,
+                &mesh,
+                |p, n, albedo| shade_skin(map, lighting, albedo, p, n),
+                &mut self.mesh_scratch,
             );
         }
     }
@@ -443,11 +519,25 @@ impl Engine {
             fiber: &self.fiber,
         });
         self.solids.clear();
+        self.solid_albedo.clear();
+        let character = self.motion.character().filter(|_| self.config.draw_solids);
         if self.config.draw_solids {
-            self.solids
-                .extend(solids_of(&self.pose, Vec3::from(self.style.head.radii_m)));
+            // The head ellipsoid unless the character's mesh has a head, then body spheres.
+            let radii = Vec3::from(self.style.head.radii_m);
+            let skip_head = usize::from(character.is_some() && self.character_has_head);
+            for (k, s) in solids_of(&self.pose, radii).enumerate().skip(skip_head) {
+                self.solids.push(s);
+                self.solid_albedo.push(if k == 0 { SKIN } else { CLOTH });
+            }
         }
-        self.map.set_occluders(&self.solids);
+        let mesh = match character {
+            Some(ch) => OccluderMesh {
+                positions: &self.character.positions,
+                triangles: &ch.triangles,
+            },
+            None => OccluderMesh::EMPTY,
+        };
+        self.map.set_occluders_with_mesh(&self.solids, mesh);
     }
 
     /// Places the camera once the hair has settled: the fixed camera, or the head-following
@@ -485,6 +575,46 @@ impl Engine {
     }
 }
 
+/// The hairstyle an [`Engine`] grows on `motion`'s character: when the character has a head
+/// mesh, the head ellipsoid takes the half extents of that mesh's box (pose metres, clamped to
+/// the valid range), so generated roots lie on the drawn head instead of floating above a
+/// flat one or hiding under a wide one (RobotExpressive's head is 0.10 × 0.07 × 0.10 m after
+/// the fit against the presets' 0.076 × 0.098 × 0.094 m). Otherwise the style is unchanged.
+pub fn fit_style_to_character(style: &Hairstyle, motion: &Motion) -> Hairstyle {
+    let mut style = style.clone();
+    if let Some(half) = motion.head_half_extents_m() {
+        let lo = crate::hairstyle::MIN_HEAD_RADIUS_M;
+        let r = half.clamp(Vec3::splat(lo), Vec3::ONE);
+        if r.is_finite() {
+            style.head.radii_m = r.to_array();
+        }
+    }
+    style
+}
+
+/// How far the roots of `style`'s guides, grown on `motion`'s character as an [`Engine`] grows
+/// them ([`fit_style_to_character`]), lie from the drawn head at t = 0
+/// ([`Motion::roots_on_head`], for the fitted head's mean radius); `None` without a head mesh.
+pub fn roots_on_head(style: &Hairstyle, motion: &Motion) -> Option<RootsOnHead> {
+    motion.character()?;
+    let style = fit_style_to_character(style, motion);
+    let (guides, _) = generate(&style);
+    roots_of_guides_on_head(&guides, &style, motion)
+}
+
+/// [`roots_on_head`] for guides made elsewhere (an imported groom placed on `style`'s head,
+/// which is used as given); `None` without a head mesh.
+pub fn roots_of_guides_on_head(
+    guides: &GuideSet,
+    style: &Hairstyle,
+    motion: &Motion,
+) -> Option<RootsOnHead> {
+    motion.character()?;
+    let roots: Vec<Vec3> = (0..guides.count()).map(|g| guides.guide(g)[0]).collect();
+    let [x, y, z] = style.head.radii_m;
+    motion.roots_on_head(&roots, (x * y * z).cbrt())
+}
+
 /// The map geometry an engine uses for `style` under `config`: `config.map_res` cells per axis
 /// over the span the hair needs, or sized from the scene (`MapGeometry::for_scene`).
 pub fn map_geometry(style: &Hairstyle, config: &EngineConfig) -> MapGeometry {
@@ -515,11 +645,7 @@ fn solids_of(pose: &Pose, head_radii_m: Vec3) -> impl Iterator<Item = Solid> + '
 }
 
 fn colliders_of(pose: &Pose, radii: Vec3) -> Colliders {
-    let mut c = Colliders {
-        head: pose.head,
-        head_radii_m: radii,
-        spheres: Vec::new(),
-    };
+    let mut c = Colliders::head_only(pose.head, radii);
     write_colliders(pose, radii, &mut c);
     c
 }
@@ -532,5 +658,12 @@ fn write_colliders(pose: &Pose, radii: Vec3, c: &mut Colliders) {
         .extend(pose.spheres.iter().map(|s| SphereCollider {
             center: s.center,
             radius_m: s.radius_m,
+        }));
+    c.capsules.clear();
+    c.capsules
+        .extend(pose.capsules.iter().map(|k| CapsuleCollider {
+            a: k.a,
+            b: k.b,
+            radius_m: k.radius_m,
         }));
 }

@@ -145,6 +145,24 @@ fn hostile_flags_exit_2_naming_the_flag() {
         (args("--threads 1025 render"), 2, "--threads"),
         (args("render --no-such-flag"), 2, "--no-such-flag"),
         (args("render --head-joint 3"), 2, "--animation"),
+        (args("render --head-scale 1"), 2, "--head-offset"),
+        (args("render --head-offset 0,0,0"), 2, "--head-scale"),
+        (
+            args("render --head-scale -1 --head-offset 0,0,0"),
+            2,
+            "--head-scale",
+        ),
+        (
+            args("render --head-offset 0,nan,0 --head-scale 1"),
+            2,
+            "--head-offset",
+        ),
+        // A fit half a metre above the mannequin's head joint: the roots float off its head.
+        (
+            args("render --head-scale 1 --head-offset 0,0.5,0 --frames 1 --width 32 --height 32"),
+            2,
+            "do not lie on the head mesh",
+        ),
         (args("bench --threads-list 1,100000"), 2, "--threads-list"),
         (args("bench --threads-list 1,200"), 2, "per core"),
         (args("fiber tables --eta -1"), 2, "--eta"),

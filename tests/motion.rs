@@ -299,7 +299,8 @@ fn still_is_still() {
         m.sample(0.0),
         Pose {
             head,
-            spheres: vec![]
+            spheres: vec![],
+            capsules: vec![]
         }
     );
     assert_eq!(m.sample(12.3).head, head);
@@ -313,10 +314,18 @@ fn embedded_dance_plays_and_loops_seamlessly() {
     assert_eq!(m.clip_name(), "Dance");
     assert!((m.duration_s() - 8.0).abs() < 1e-4);
     assert_eq!(m.head_joint().1, "Head");
-    // HeadTop_End is 0.18 m above Head (examples/make_dance.rs): radius 0.09 m, scale 1.
-    assert_eq!(m.fit_method(), FitMethod::HeadChild);
+    // The mannequin's head (examples/make_dance/mannequin.rs) is an ellipsoid of geometric
+    // mean radius 0.09 m centred 0.09 m above Head: scale 1, as HeadTop_End gave before.
+    assert!(
+        matches!(m.fit_method(), FitMethod::MeshBounds { .. }),
+        "{:?}",
+        m.fit_method()
+    );
     assert!((m.fit().scale - 1.0).abs() < 1e-4, "{:?}", m.fit());
-    assert_eq!(m.sample(0.0).spheres.len(), 4, "neck, chest, two shoulders");
+    assert!((m.fit().offset_m - Vec3::new(0.0, 0.09, 0.0)).length() < 1e-4);
+    // The mesh's capsules replace the default body spheres.
+    assert!(m.sample(0.0).spheres.is_empty());
+    assert!(m.sample(0.0).capsules.len() >= 10);
 
     let p0 = m.sample(0.0).head;
     let (mut max_move_m, mut max_turn_rad) = (0.0f32, 0.0f32);
@@ -332,8 +341,8 @@ fn embedded_dance_plays_and_loops_seamlessly() {
     let end = m.sample(m.duration_s() - 1e-3);
     assert!((end.head.translation - p0.translation).length() < 1e-4);
     assert!(angle_between(&end.head, &p0) < 1e-3);
-    for (a, b) in end.spheres.iter().zip(&m.sample(0.0).spheres) {
-        assert!((a.center - b.center).length() < 1e-4);
+    for (a, b) in end.capsules.iter().zip(&m.sample(0.0).capsules) {
+        assert!((a.a - b.a).length() < 1e-4 && (a.b - b.b).length() < 1e-4);
     }
 }
 

@@ -21,7 +21,7 @@ use wisp::budget::{Budget, RunPlan};
 use wisp::fiber::ShadingMode;
 use wisp::frame::{Engine, EngineConfig};
 use wisp::hairstyle::{Hairstyle, HairstyleError};
-use wisp::motion::{JointRef, Motion, MotionError, MotionOptions};
+use wisp::motion::{Fit, JointRef, Motion, MotionError, MotionOptions};
 
 /// Most worker threads per core. More only slows wisp down, and faster than linearly: on 2
 /// cores, 2 frames at 160×120 took 0.25 s with 2 threads, 1.0 s with 256, 4.8 s with 512 and
@@ -130,6 +130,14 @@ pub struct SceneArgs {
     /// Head joint: a node name or index (default: the joint whose name contains "head").
     #[arg(long)]
     pub head_joint: Option<String>,
+    /// Head fit: model head size over the hairstyle's 0.09 m head, > 0 (default: from the head
+    /// mesh's box, else the skeleton). Needs --head-offset.
+    #[arg(long, value_parser = parse_positive_f32, requires = "head_offset")]
+    pub head_scale: Option<f32>,
+    /// Head fit: the hairstyle head's centre X,Y,Z in the head joint's frame, model metres
+    /// (rest-pose world axes). Needs --head-scale.
+    #[arg(long, value_parser = view_args::parse_point, allow_hyphen_values = true, requires = "head_scale")]
+    pub head_offset: Option<Vec3>,
     /// Playback speed of the motion (1 = real time), in (0, 1000].
     #[arg(long, default_value_t = 1.0, value_parser = parse_speed, allow_hyphen_values = true)]
     pub speed: f32,
@@ -173,7 +181,6 @@ impl SceneArgs {
     /// Loads the hairstyle (and an imported groom's hair) and motion and builds the engine
     /// configuration.
     pub fn resolve(&self) -> Result<(Hairstyle, ImportedHair, Motion, EngineConfig), AppError> {
-        let (style, hair) = self.load_hair()?;
         let motion = if self.still {
             Motion::still(glam::Affine3A::IDENTITY)
         } else {
@@ -187,6 +194,10 @@ impl SceneArgs {
                         Err(_) => JointRef::Name(s.to_string()),
                     }),
                 speed: self.speed,
+                fit: self
+                    .head_scale
+                    .zip(self.head_offset)
+                    .map(|(scale, offset_m)| Fit { scale, offset_m }),
                 ..MotionOptions::default()
             };
             match &self.animation {
@@ -201,6 +212,7 @@ impl SceneArgs {
                 }
             }
         };
+        let (style, hair) = self.load_hair(&motion)?;
         let mut config = EngineConfig {
             width: self.width,
             height: self.height,
@@ -214,12 +226,15 @@ impl SceneArgs {
         config.self_collision = !self.no_self_collision;
         config.simulate = !self.no_sim;
         self.view.apply(&mut config)?;
+        self.check_roots_on_head(&style, &hair, &motion)?;
         Ok((style, hair, motion, config))
     }
 
     /// The hairstyle, and the hair of an imported groom when `--hairstyle` names strand files
     /// (the import's figures go to stderr).
-    fn load_hair(&self) -> Result<(Hairstyle, ImportedHair), AppError> {
+    /// An imported groom is placed on the hairstyle's head fitted to the character's head mesh
+    /// (`frame::fit_style_to_character`), so it sits on the drawn head.
+    fn load_hair(&self, motion: &Motion) -> Result<(Hairstyle, ImportedHair), AppError> {
         let (files, styles): (Vec<&String>, Vec<&String>) = self
             .hairstyle
             .iter()
@@ -234,6 +249,7 @@ impl SceneArgs {
         if files.is_empty() {
             return Ok((base, None));
         }
+        let base = wisp::frame::fit_style_to_character(&base, motion);
         let opts = wisp::groom::GroomOptions {
             wisps: self.groom_wisps.map(|w| w as usize),
             yaw_rad: self.groom_turn_deg.map(f32::to_radians),
@@ -267,6 +283,51 @@ impl SceneArgs {
             r.rest_distance_max_m * 1e3,
         );
         Ok((groom.style, Some((groom.guides, groom.layout))))
+    }
+
+    /// Refuses (exit code 2) a groom whose roots do not lie on the character's head mesh
+    /// (`wisp::motion::scalp`), naming the fit and the flags that change it.
+    fn check_roots_on_head(
+        &self,
+        style: &Hairstyle,
+        hair: &ImportedHair,
+        motion: &Motion,
+    ) -> Result<(), AppError> {
+        let roots = match hair {
+            Some((guides, _)) => wisp::frame::roots_of_guides_on_head(guides, style, motion),
+            None => wisp::frame::roots_on_head(style, motion),
+        };
+        let Some(r) = roots else {
+            return Ok(());
+        };
+        if r.on_head() {
+            return Ok(());
+        }
+        let fit = motion.fit();
+        let animation = self
+            .animation
+            .as_ref()
+            .map_or("the embedded dance".to_string(), |p| {
+                p.display().to_string()
+            });
+        Err(AppError::input(anyhow::anyhow!(
+            "{}: the hairstyle's roots do not lie on the head mesh of {}: the median root is \
+             {:.3} m from it, the farthest {:.3} m ({} of {} roots within the tolerance of \
+             {:.3} m); the head was fitted by {:?} (scale {}, offset \
+             {},{},{} m); give the fit with --head-scale S --head-offset X,Y,Z",
+            printable(&self.hairstyle.join(",")),
+            animation,
+            r.median_m,
+            r.worst_m,
+            r.near,
+            r.roots,
+            r.tolerance_m,
+            motion.fit_method(),
+            fit.scale,
+            fit.offset_m.x,
+            fit.offset_m.y,
+            fit.offset_m.z,
+        )))
     }
 
     /// A motion error, with the flag that fixes it when there is one.

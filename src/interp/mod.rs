@@ -14,12 +14,19 @@
 //! An imported groom adds each strand's own rest offset from its wisp's blend ([`offset`]),
 //! in a frame carried by the guides, before any curl.
 //!
+//! Given the frame's colliders, render points that the blend puts inside the head or body are
+//! moved to their surface ([`solids`]).
+//!
 //! Output buffers are reused between frames; strands are independent, so the work is split
 //! over rayon in fixed chunks and the result does not depend on the thread count.
 
+pub mod solids;
+
 use crate::hairstyle::{CurlSpec, GuideSet, StrandLayout};
+use crate::sim::Colliders;
 use glam::Vec3;
 use rayon::prelude::*;
+use solids::SolidsView;
 
 mod offset;
 pub use offset::{apply_rest_offsets, rest_offsets_of};
@@ -63,6 +70,19 @@ pub fn interpolate(
     guide_pos: &[Vec3],
     out: &mut StrandGeometry,
 ) {
+    interpolate_among(guides, layout, curl, guide_pos, None, out);
+}
+
+/// [`interpolate`], keeping render points out of `colliders` when given (see [`solids`]).
+pub fn interpolate_among(
+    guides: &GuideSet,
+    layout: &StrandLayout,
+    curl: &CurlSpec,
+    guide_pos: &[Vec3],
+    colliders: Option<&Colliders>,
+    out: &mut StrandGeometry,
+) {
+    let view = colliders.map(SolidsView::new);
     let n = layout.points_per_strand;
     let total = layout.count() * n;
     out.points_per_strand = n;
@@ -94,6 +114,9 @@ pub fn interpolate(
             }
             if curl.radius_m > 0.0 {
                 add_curl(pos, reference, curl, layout.strand_phase[s]);
+            }
+            if let Some(v) = &view {
+                v.push_out(pos, len);
             }
             tangents_and_lengths(pos, tan, len);
             tip_taper(layout.tip_taper, pos, share, len);

@@ -257,6 +257,18 @@ impl LightMap {
         let (extent, skipped) = extent;
         let filled_entries = entries.len() - entries.iter().filter(|e| e.col == u32::MAX).count();
         self.first_slice = if filled_entries > 0 { extent.lo[0] } else { 0 };
+        // Where the hair is, unwrapped: a lookup outside it must not read hair that the
+        // modulo indexing aliases there (a dancer's body reaches far beyond the hair's span).
+        self.hair_lo = if filled_entries > 0 {
+            extent.lo
+        } else {
+            [i64::MAX; 3]
+        };
+        self.hair_hi = if filled_entries > 0 {
+            extent.hi
+        } else {
+            [i64::MIN; 3]
+        };
         let overflow = filled_entries > 0
             && (extent.hi[0] - extent.lo[0] >= n
                 || (1..3).any(|a| extent.hi[a] - extent.lo[a] >= ncol));

@@ -40,6 +40,11 @@ impl LightMap {
     /// before the hair read as unshadowed. `crossings_behind` is each column's total crossings
     /// minus those in front of the point, blended the same way: the hair further along the
     /// light that can scatter light back to the point (Zinke's local back-scatter).
+    ///
+    /// Only the hair's own extent is read: a column outside it holds no hair (whatever the
+    /// modulo indexing would alias there), and a point beyond the hair's last slice receives
+    /// its column's whole sums. Inside a map whose span holds the hair (no overflow) this is
+    /// exactly the unaliased answer, also for points far from the hair (a character's feet).
     pub fn light_at(&self, p: Vec3) -> LightAtPoint {
         self.light_with_taps(p, &[(1.0, 0.0)])
     }
@@ -109,9 +114,13 @@ impl LightMap {
         let (j0, k0) = (yj.floor(), zk.floor());
         let (wy, wz) = (yj - j0, zk - k0);
         let (j0, k0) = (j0 as i64, k0 as i64);
+        // Beyond the hair's last slice a point receives its column's whole sums (what the
+        // modulo indexing holds further on is other slices' hair).
+        let last = self.hair_hi[0].saturating_sub(self.first_slice);
         let depth = |x: f32| {
             let i = x.floor();
-            (i as i64 - self.first_slice, x - i)
+            let d = i as i64 - self.first_slice;
+            if d > last { (last, 1.0) } else { (d, x - i) }
         };
         let here = depth(c.x);
         let (mut direct, mut tf, mut var, mut behind) = (0.0f32, Vec3::ZERO, Vec3::ZERO, 0.0f32);
@@ -121,7 +130,15 @@ impl LightMap {
                 if w == 0.0 {
                     continue;
                 }
-                let col = self.column(j0 + dj, k0 + dk);
+                let (j, k) = (j0 + dj, k0 + dk);
+                let in_hair = (self.hair_lo[1]..=self.hair_hi[1]).contains(&j)
+                    && (self.hair_lo[2]..=self.hair_hi[2]).contains(&k);
+                if !in_hair {
+                    direct += w;
+                    tf += Vec3::splat(w);
+                    continue;
+                }
+                let col = self.column(j, k);
                 let s = self.sums_at(col, here.0, here.1);
                 let (n, loss) = if taps.len() == 1 && taps[0].1 == 0.0 {
                     (s.n, s.loss)

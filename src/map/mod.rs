@@ -58,7 +58,8 @@
 //!
 //! ## Opaque solids
 //! The head and body are occluders in the same light frame ([`OccluderGrid`]: entry depth per
-//! texel of a quarter cell), so they shadow the hair as the hair shadows them.
+//! texel of a quarter cell), so they shadow the hair as the hair shadows them. A character's
+//! skinned mesh is rasterised into the same grid.
 //!
 //! ## Measuring it
 //! [`exact`] shoots rays through explicit fibre cylinders (no grid, no statistics), and
@@ -72,7 +73,7 @@ mod lookup;
 pub(crate) mod occluders;
 
 pub use build::{CountModel, MapBuildInput, MapStats};
-pub use occluders::{OccluderGrid, Solid};
+pub use occluders::{OccluderGrid, OccluderMesh, Solid};
 
 use glam::Vec3;
 
@@ -264,6 +265,10 @@ pub struct LightMap {
     model: CountModel,
     /// Unwrapped index ⌊x/ds⌋ of the first slice in light order.
     first_slice: i64,
+    /// Unwrapped cell indices (slice, column j, column k) of the filled cells' bounding box
+    /// (`lo > hi` when the map is empty).
+    hair_lo: [i64; 3],
+    hair_hi: [i64; 3],
     /// Column offsets into `cells` (N² + 1 entries; column c = j·N + k).
     col_start: Vec<u32>,
     /// Filled cells grouped by column, each column sorted by relative slice.
@@ -296,6 +301,8 @@ impl LightMap {
             ),
             model,
             first_slice: 0,
+            hair_lo: [i64::MAX; 3],
+            hair_hi: [i64::MIN; 3],
             col_start: vec![0; cols + 1],
             cells: Vec::new(),
             slot_start: vec![0; cols + 1],
@@ -320,8 +327,14 @@ impl LightMap {
     /// [`LightMap::build`], which sets the frame): they shadow whatever lies behind them along
     /// the light, hair and skin alike. Texels are a quarter of a cell.
     pub fn set_occluders(&mut self, solids: &[Solid]) {
+        self.set_occluders_with_mesh(solids, OccluderMesh::EMPTY);
+    }
+
+    /// [`LightMap::set_occluders`] with an opaque triangle mesh too (a character's body).
+    pub fn set_occluders_with_mesh(&mut self, solids: &[Solid], mesh: OccluderMesh) {
         let texel = OCCLUDER_TEXEL_CELLS * self.geom.ds_m;
-        self.occluders.build(&self.frame, texel, solids);
+        self.occluders
+            .build_with_mesh(&self.frame, texel, solids, mesh);
     }
 
     /// How far a point on an occluder's surface should be moved along its normal before a

@@ -9,8 +9,13 @@
 //! How, and why this way:
 //! - Solids are given by their geometry (the same ellipsoids the raster draws), and each texel's
 //!   entry depth is computed exactly by ray casting: O(texels in the solids' shadow × solids),
-//!   a few thousand texels for a head. A mesh would fill the same grid by rasterising its
-//!   triangles (min depth); nothing downstream changes.
+//!   a few thousand texels for a head.
+//! - A triangle mesh (a character's body, [`OccluderMesh`]) fills the same grid by rasterising
+//!   its triangles across the light: each texel centre inside a triangle's (y, z) projection
+//!   takes the depth of the triangle's plane there, and the texel keeps the smallest depth of
+//!   all solids and triangles (the entry point; front and back faces alike, so the mesh need
+//!   not be closed or consistently wound). O(texels covered × layers), in triangle order; the
+//!   minimum does not depend on the order, so the grid is the same for any thread count.
 //! - The texel is a quarter of a map cell, so the head's shadow on the hair has an edge about
 //!   2 mm wide at the default resolution instead of a map cell's 7 mm stair-steps.
 //! - Reading: where the four texels around the point all hit a solid, the entry depth is
@@ -36,6 +41,21 @@ pub struct Solid {
     pub unit_sphere_to_world: Affine3A,
 }
 
+/// An opaque triangle mesh in world space (vertex positions, and triangles as vertex indices).
+#[derive(Clone, Copy, Debug)]
+pub struct OccluderMesh<'a> {
+    pub positions: &'a [Vec3],
+    pub triangles: &'a [[u32; 3]],
+}
+
+impl OccluderMesh<'_> {
+    /// No triangles.
+    pub const EMPTY: OccluderMesh<'static> = OccluderMesh {
+        positions: &[],
+        triangles: &[],
+    };
+}
+
 /// Entry depths of the solids across the light (see the module doc).
 #[derive(Clone, Debug, Default)]
 pub struct OccluderGrid {
@@ -45,12 +65,26 @@ pub struct OccluderGrid {
     dims: [usize; 2],
     /// Entry depth along L per texel (row-major in y), metres; +∞ where no solid.
     depth: Vec<f32>,
+    /// Scratch: the mesh's vertices in light-frame coordinates.
+    mesh_light: Vec<Vec3>,
 }
 
 impl OccluderGrid {
     /// Recomputes the grid for `solids` in light frame `frame`, with texels of `texel_m`.
     /// Reuses its allocation. Degenerate or non-finite solids are skipped.
     pub fn build(&mut self, frame: &LightFrame, texel_m: f32, solids: &[Solid]) {
+        self.build_with_mesh(frame, texel_m, solids, OccluderMesh::EMPTY);
+    }
+
+    /// [`OccluderGrid::build`] with a triangle mesh as well (see the module doc). Triangles
+    /// with an index out of range or a non-finite corner are skipped.
+    pub fn build_with_mesh(
+        &mut self,
+        frame: &LightFrame,
+        texel_m: f32,
+        solids: &[Solid],
+        mesh: OccluderMesh,
+    ) {
         // Each solid in light-frame coordinates, with its lateral bounding box.
         let solids: Vec<(Affine3A, Vec2, Vec2)> = solids
             .iter()
@@ -72,14 +106,30 @@ impl OccluderGrid {
             })
             .collect();
         self.depth.clear();
-        if solids.is_empty() || !texel_m.is_finite() || texel_m <= 0.0 {
-            self.dims = [0, 0];
-            return;
-        }
-        let (lo, hi) = solids.iter().fold(
+        self.mesh_light.clear();
+        self.mesh_light
+            .extend(mesh.positions.iter().map(|p| frame.to_map(*p)));
+        let (mut lo, mut hi) = solids.iter().fold(
             (Vec2::splat(f32::MAX), Vec2::splat(f32::MIN)),
             |(lo, hi), s| (lo.min(s.1), hi.max(s.2)),
         );
+        let mut any_triangle = false;
+        for t in mesh.triangles {
+            let Some(c) = self.corners(t) else { continue };
+            for p in c {
+                lo = lo.min(Vec2::new(p.y, p.z));
+                hi = hi.max(Vec2::new(p.y, p.z));
+            }
+            any_triangle = true;
+        }
+        if (solids.is_empty() && !any_triangle)
+            || texel_m.is_nan()
+            || texel_m <= 0.0
+            || !texel_m.is_finite()
+        {
+            self.dims = [0, 0];
+            return;
+        }
         let extent = hi - lo;
         let texel = texel_m.max(extent.max_element() / (MAX_TEXELS as f32 - 2.0));
         let dims = [
@@ -104,6 +154,55 @@ impl OccluderGrid {
                         .fold(f32::INFINITY, f32::min);
                 }
             });
+        for t in mesh.triangles {
+            if let Some(c) = self.corners(t) {
+                self.rasterise(c);
+            }
+        }
+    }
+
+    /// A triangle's corners in light-frame coordinates, if its indices are in range and its
+    /// corners finite.
+    fn corners(&self, t: &[u32; 3]) -> Option<[Vec3; 3]> {
+        let c = [
+            *self.mesh_light.get(t[0] as usize)?,
+            *self.mesh_light.get(t[1] as usize)?,
+            *self.mesh_light.get(t[2] as usize)?,
+        ];
+        c.iter().all(|p| p.is_finite()).then_some(c)
+    }
+
+    /// Lowers each texel whose centre lies inside the triangle's projection across the light to
+    /// the depth of the triangle's plane there.
+    fn rasterise(&mut self, c: [Vec3; 3]) {
+        let q = c.map(|p| (Vec2::new(p.y, p.z) - self.origin) / self.texel_m - 0.5);
+        let area2 = (q[1] - q[0]).perp_dot(q[2] - q[0]);
+        // Edge-on to the light: no area to cover (its neighbours cover the silhouette).
+        if area2.is_nan() || area2.abs() <= 1e-9 {
+            return;
+        }
+        let inv = 1.0 / area2;
+        let lo = q[0].min(q[1]).min(q[2]).ceil().max(Vec2::ZERO);
+        let hi = q[0].max(q[1]).max(q[2]).floor();
+        let (i1, j1) = (
+            (hi.x.min(self.dims[0] as f32 - 1.0)) as i64,
+            (hi.y.min(self.dims[1] as f32 - 1.0)) as i64,
+        );
+        for i in lo.x as i64..=i1 {
+            for j in lo.y as i64..=j1 {
+                let p = Vec2::new(i as f32, j as f32);
+                let l = [
+                    (q[1] - p).perp_dot(q[2] - p) * inv,
+                    (q[2] - p).perp_dot(q[0] - p) * inv,
+                    (q[0] - p).perp_dot(q[1] - p) * inv,
+                ];
+                if l[0] >= 0.0 && l[1] >= 0.0 && l[2] >= 0.0 {
+                    let d = l[0] * c[0].x + l[1] * c[1].x + l[2] * c[2].x;
+                    let texel = &mut self.depth[i as usize * self.dims[1] + j as usize];
+                    *texel = texel.min(d);
+                }
+            }
+        }
     }
 
     /// Whether any solid is in the grid.

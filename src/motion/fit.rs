@@ -33,7 +33,7 @@ use glam::{Affine3A, Mat4, Vec3};
 use gltf::Semantic;
 
 use super::gltf_io::{Loaded, read_accessor};
-use super::load::Skeleton;
+use super::skeleton::Skeleton;
 use super::{Fit, HAIRSTYLE_HEAD_RADIUS_M};
 
 /// Where a [`Fit`] came from.
@@ -67,7 +67,6 @@ pub const MIN_SPHERE_RADIUS_M: f32 = 0.01;
 
 /// Estimates the fit (see the module doc).
 pub(crate) fn estimate(loaded: &Loaded, skel: &Skeleton, head: usize) -> (Fit, FitMethod) {
-    let origin = skel.rest_world(head).translation;
     let in_head = skel.subtree(head);
     let verts = head_vertices(loaded, skel, &in_head);
     if verts.len() >= 4 {
@@ -76,25 +75,42 @@ pub(crate) fn estimate(loaded: &Loaded, skel: &Skeleton, head: usize) -> (Fit, F
             lo = lo.min(*v);
             hi = hi.max(*v);
         }
-        let half = (hi - lo) * 0.5;
-        let radius = if half.min_element() > 1e-6 * half.max_element() {
-            (half.x * half.y * half.z).cbrt()
-        } else {
-            (half.x + half.y + half.z) / 3.0
-        };
-        if radius.is_finite() && radius > 0.0 {
-            let fit = Fit {
-                scale: radius / HAIRSTYLE_HEAD_RADIUS_M,
-                offset_m: (lo + hi) * 0.5 - Vec3::from(origin),
-            };
-            return (
-                fit,
-                FitMethod::MeshBounds {
-                    vertices: verts.len(),
-                },
-            );
-        }
+        return from_box(lo, hi, verts.len(), skel, head);
     }
+    estimate_without_mesh(skel, head)
+}
+
+/// The fit from the head mesh's rest-pose bounding box `lo`–`hi` (model metres, world axes)
+/// of `vertices` vertices ([`FitMethod::MeshBounds`]), or from the skeleton when the box is
+/// degenerate.
+pub(crate) fn from_box(
+    lo: Vec3,
+    hi: Vec3,
+    vertices: usize,
+    skel: &Skeleton,
+    head: usize,
+) -> (Fit, FitMethod) {
+    let origin = skel.rest_world(head).translation;
+    let half = (hi - lo) * 0.5;
+    let radius = if half.min_element() > 1e-6 * half.max_element() {
+        (half.x * half.y * half.z).cbrt()
+    } else {
+        (half.x + half.y + half.z) / 3.0
+    };
+    if radius.is_finite() && radius > 0.0 {
+        let fit = Fit {
+            scale: radius / HAIRSTYLE_HEAD_RADIUS_M,
+            offset_m: (lo + hi) * 0.5 - Vec3::from(origin),
+        };
+        return (fit, FitMethod::MeshBounds { vertices });
+    }
+    estimate_without_mesh(skel, head)
+}
+
+/// The fit from the skeleton alone: head child, neck length, or identity.
+pub(crate) fn estimate_without_mesh(skel: &Skeleton, head: usize) -> (Fit, FitMethod) {
+    let origin = skel.rest_world(head).translation;
+    let in_head = skel.subtree(head);
     let farthest = (0..skel.names.len())
         .filter(|&i| i != head && in_head[i])
         .map(|i| Vec3::from(skel.rest_world(i).translation - origin))

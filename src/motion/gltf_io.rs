@@ -39,6 +39,8 @@ const MAX_LISTED: usize = 8;
 /// Buffer contents and the parsed document.
 pub(crate) struct Loaded {
     pub(crate) doc: gltf::Document,
+    /// Folder of the file, for relative URIs (images); `None` for bytes given in memory.
+    pub(crate) base_dir: Option<std::path::PathBuf>,
     pub(crate) buffers: Vec<Vec<u8>>,
     /// Accessor values that may still be decoded in this load (see [`MAX_DECODED_VALUES`]).
     pub(crate) decoded_left: std::cell::Cell<usize>,
@@ -287,6 +289,7 @@ pub(crate) fn parse(
     }
     Ok(Loaded {
         doc,
+        base_dir: base_dir.map(Path::to_path_buf),
         buffers,
         decoded_left: std::cell::Cell::new(MAX_DECODED_VALUES),
     })
@@ -294,7 +297,7 @@ pub(crate) fn parse(
 
 /// Bytes of a buffer URI: `data:...;base64,...` or a relative path next to the file (at most
 /// `limit` bytes).
-fn read_uri(uri: &str, base_dir: Option<&Path>, limit: u64) -> Result<Vec<u8>, String> {
+pub(crate) fn read_uri(uri: &str, base_dir: Option<&Path>, limit: u64) -> Result<Vec<u8>, String> {
     if let Some(rest) = uri.strip_prefix("data:") {
         let (meta, payload) = rest
             .split_once(',')

@@ -4,180 +4,16 @@
 
 use std::path::Path;
 
-use glam::{Affine3A, Mat4, Quat, Vec3, Vec4};
+use glam::{Affine3A, Quat, Vec3, Vec4};
 use gltf::animation::{Interpolation as GltfInterpolation, Property};
 
+use super::capsules;
 use super::fit::{self, FitMethod};
-use super::gltf_io::{Loaded, invalid, parse, read_accessor, short_list};
+use super::gltf_io::{Loaded, parse, read_accessor};
 use super::sampler::{Interpolation, Track};
-use super::{ChainNode, JointChain, JointRef, Motion, MotionError, MotionOptions};
-
-/// Node hierarchy of the file at rest (node default transforms). Acyclic (checked when built),
-/// and every per-node quantity is computed once in O(nodes): a file may have a million nodes
-/// in one chain, where walking each node's chain would cost a million squared.
-pub(crate) struct Skeleton {
-    pub(crate) names: Vec<String>,
-    pub(crate) parents: Vec<Option<usize>>,
-    /// Node is a joint of some skin (all true when the file has no skin).
-    pub(crate) is_joint: Vec<bool>,
-    /// World matrix of each node at rest.
-    rest_world: Vec<Affine3A>,
-    /// All nodes, every parent before its children.
-    order: Vec<usize>,
-}
-
-impl Skeleton {
-    /// Node indices from the root to `node` (inclusive).
-    pub(crate) fn chain(&self, node: usize) -> Vec<usize> {
-        let mut chain = vec![node];
-        let mut at = node;
-        while let Some(p) = self.parents[at] {
-            chain.push(p);
-            at = p;
-        }
-        chain.reverse();
-        chain
-    }
-
-    /// World matrix of `node` at rest.
-    pub(crate) fn rest_world(&self, node: usize) -> Affine3A {
-        self.rest_world[node]
-    }
-
-    /// Which nodes are `root` or lie below it.
-    pub(crate) fn subtree(&self, root: usize) -> Vec<bool> {
-        let mut inside = vec![false; self.names.len()];
-        for &i in &self.order {
-            inside[i] = i == root || self.parents[i].is_some_and(|p| inside[p]);
-        }
-        inside
-    }
-
-    /// "index name" list of the joints, for error messages (the first few of a long list).
-    fn joint_list(&self) -> String {
-        let joints: Vec<String> = (0..self.names.len())
-            .filter(|&i| self.is_joint[i])
-            .map(|i| format!("{i} {}", self.names[i]))
-            .collect();
-        short_list(joints.into_iter(), ", ")
-    }
-}
-
-/// All nodes of the forest given by `parents`, every parent before its children (sorted by
-/// depth), or a node on a cycle. O(nodes): each node is walked once.
-fn parent_first_order(parents: &[Option<usize>]) -> Result<Vec<usize>, usize> {
-    let n = parents.len();
-    let mut depth: Vec<Option<usize>> = vec![None; n];
-    let mut on_path = vec![false; n];
-    let mut path = Vec::new();
-    for start in 0..n {
-        // Walk up to a node of known depth or to a root...
-        let mut at = start;
-        while depth[at].is_none() {
-            if on_path[at] {
-                return Err(at);
-            }
-            on_path[at] = true;
-            path.push(at);
-            match parents[at] {
-                Some(p) => at = p,
-                None => break,
-            }
-        }
-        // ...then give the walked nodes their depths, top down.
-        while let Some(node) = path.pop() {
-            on_path[node] = false;
-            depth[node] = Some(parents[node].map_or(0, |p| depth[p].map_or(0, |d| d + 1)));
-        }
-    }
-    let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by_key(|&i| depth[i]);
-    Ok(order)
-}
-
-fn rest_trs(node: &gltf::Node) -> (Vec3, Quat, Vec3, Affine3A) {
-    match node.transform() {
-        gltf::scene::Transform::Decomposed {
-            translation,
-            rotation,
-            scale,
-        } => {
-            let (t, r, s) = (
-                Vec3::from(translation),
-                Quat::from_array(rotation).normalize(),
-                Vec3::from(scale),
-            );
-            (t, r, s, Affine3A::from_scale_rotation_translation(s, r, t))
-        }
-        gltf::scene::Transform::Matrix { matrix } => {
-            let m = Affine3A::from_mat4(Mat4::from_cols_array_2d(&matrix));
-            let (s, r, t) = m.to_scale_rotation_translation();
-            (t, r, s, m)
-        }
-    }
-}
-
-fn build_skeleton(doc: &gltf::Document, file: &str) -> Result<Skeleton, MotionError> {
-    let n = doc.nodes().len();
-    let mut parents = vec![None; n];
-    for node in doc.nodes() {
-        for child in node.children() {
-            if parents[child.index()].is_some() {
-                return Err(invalid(
-                    file,
-                    format!("node {} has two parents", child.index()),
-                ));
-            }
-            parents[child.index()] = Some(node.index());
-        }
-    }
-    let mut is_joint = vec![doc.skins().len() == 0; n];
-    for skin in doc.skins() {
-        for j in skin.joints() {
-            is_joint[j.index()] = true;
-        }
-    }
-    let names: Vec<String> = doc
-        .nodes()
-        .map(|nd| {
-            nd.name()
-                .map_or_else(|| format!("#{}", nd.index()), str::to_string)
-        })
-        .collect();
-    let mut rest_local = Vec::with_capacity(n);
-    for nd in doc.nodes() {
-        let (t, r, s, m) = rest_trs(&nd);
-        // A zero quaternion normalises to NaN, and JSON numbers beyond f32 arrive as inf.
-        if !(t.is_finite() && r.is_finite() && s.is_finite() && m.is_finite()) {
-            return Err(invalid(
-                file,
-                format!(
-                    "node {} ({:?}): its rest transform is not finite (translation, scale and matrix must be finite numbers, rotation a non-zero quaternion)",
-                    nd.index(),
-                    names[nd.index()]
-                ),
-            ));
-        }
-        rest_local.push(m);
-    }
-    let order = parent_first_order(&parents).map_err(|node| {
-        invalid(
-            file,
-            format!("the node hierarchy has a cycle through node {node}"),
-        )
-    })?;
-    let mut rest_world = vec![Affine3A::IDENTITY; n];
-    for &i in &order {
-        rest_world[i] = parents[i].map_or(Affine3A::IDENTITY, |p| rest_world[p]) * rest_local[i];
-    }
-    Ok(Skeleton {
-        names,
-        parents,
-        is_joint,
-        rest_world,
-        order,
-    })
-}
+use super::skeleton::{Skeleton, build_skeleton, rest_trs};
+use super::skin::load_character;
+use super::{CapsuleSpec, ChainNode, JointChain, JointRef, Motion, MotionError, MotionOptions};
 
 /// Resolves a [`JointRef`]: exact name, then case-insensitive; joints before other nodes.
 fn resolve_joint(
@@ -392,6 +228,68 @@ pub(crate) fn from_bytes(
     };
     let (mut tracks, start_s, end_s) = read_clip(&anim, &loaded, file, &clip_name)?;
 
+    // Evaluated nodes: the union of the chains, each node once, parents first.
+    let mut nodes: Vec<ChainNode> = Vec::new();
+    let mut slot_of: Vec<Option<usize>> = vec![None; skel.names.len()];
+    let mut make_chain = |joint: usize| -> JointChain {
+        let chain = skel.chain(joint);
+        let mut idx: Vec<usize> = Vec::with_capacity(chain.len());
+        for &n in &chain {
+            let parent = idx.last().copied();
+            let slot = *slot_of[n].get_or_insert_with(|| {
+                let [t, r, s] = tracks.remove(&n).unwrap_or_default();
+                let nd = doc.nodes().nth(n);
+                let (rt, rr, rs, m) = nd.as_ref().map_or(
+                    (Vec3::ZERO, Quat::IDENTITY, Vec3::ONE, Affine3A::IDENTITY),
+                    rest_trs,
+                );
+                let is_matrix = nd.is_some_and(|nd| {
+                    matches!(nd.transform(), gltf::scene::Transform::Matrix { .. })
+                });
+                let animated = t.is_some() || r.is_some() || s.is_some();
+                nodes.push(ChainNode {
+                    parent,
+                    rest_matrix: (is_matrix && !animated).then_some(m),
+                    rest_t: rt,
+                    rest_r: rr,
+                    rest_s: rs,
+                    translation: t,
+                    rotation: r,
+                    scale: s,
+                });
+                nodes.len() - 1
+            });
+            idx.push(slot);
+        }
+        JointChain {
+            chain: idx,
+            rest_align: super::rigid_rotation(&skel.rest_world(joint)).inverse(),
+        }
+    };
+
+    let in_head = skel.subtree(head);
+    let character = if opts.meshes {
+        let mut bone_slot = |node: usize| make_chain(node).chain.last().copied().unwrap_or(0);
+        load_character(&loaded, &skel, &in_head, file, &mut bone_slot)?
+    } else {
+        None
+    };
+    // The head mesh's box at rest (model metres, rest world axes): the character's vertices
+    // whose strongest bone is in the head's subtree.
+    let head_box = character.as_ref().and_then(|ch| {
+        let (mut lo, mut hi, mut n) = (
+            Vec3::splat(f32::INFINITY),
+            Vec3::splat(f32::NEG_INFINITY),
+            0,
+        );
+        for v in (0..ch.vertex_count()).filter(|&v| ch.is_head_vertex(v)) {
+            lo = lo.min(ch.rest_model[v]);
+            hi = hi.max(ch.rest_model[v]);
+            n += 1;
+        }
+        (n >= 4).then_some((lo, hi, n))
+    });
+
     let (fit, fit_method) = match opts.fit {
         Some(f) => {
             if !(f.scale.is_finite() && f.scale > 0.0 && f.offset_m.is_finite()) {
@@ -401,10 +299,17 @@ pub(crate) fn from_bytes(
             }
             (f, FitMethod::Given)
         }
-        None => fit::estimate(&loaded, &skel, head),
+        None => match head_box {
+            Some((lo, hi, n)) => fit::from_box(lo, hi, n, &skel, head),
+            // Meshes read above had no head: the fit must not decode them again.
+            None if character.is_some() => fit::estimate_without_mesh(&skel, head),
+            None => fit::estimate(&loaded, &skel, head),
+        },
     };
+    let head_half_extents_m = head_box.map(|(lo, hi, _)| (hi - lo) * 0.5 / fit.scale);
 
     let sphere_specs: Vec<(usize, Vec3, f32)> = match &opts.body_spheres {
+        None if character.is_some() && opts.body_capsules => Vec::new(),
         None => fit::default_spheres(&skel, head, &fit),
         Some(specs) => {
             let mut out = Vec::with_capacity(specs.len());
@@ -424,47 +329,74 @@ pub(crate) fn from_bytes(
         }
     };
 
-    // Evaluated nodes: the union of the chains, each node once.
-    let mut nodes: Vec<ChainNode> = Vec::new();
-    let mut slot_of: Vec<Option<usize>> = vec![None; skel.names.len()];
-    let mut make_chain = |joint: usize| -> JointChain {
-        let chain = skel.chain(joint);
-        let mut idx = Vec::with_capacity(chain.len());
-        for &n in &chain {
-            let slot = *slot_of[n].get_or_insert_with(|| {
-                let [t, r, s] = tracks.remove(&n).unwrap_or_default();
-                let nd = doc.nodes().nth(n);
-                let (rt, rr, rs, m) = nd.as_ref().map_or(
-                    (Vec3::ZERO, Quat::IDENTITY, Vec3::ONE, Affine3A::IDENTITY),
-                    rest_trs,
-                );
-                let is_matrix = nd.is_some_and(|nd| {
-                    matches!(nd.transform(), gltf::scene::Transform::Matrix { .. })
-                });
-                let animated = t.is_some() || r.is_some() || s.is_some();
-                nodes.push(ChainNode {
-                    rest_matrix: (is_matrix && !animated).then_some(m),
-                    rest_t: rt,
-                    rest_r: rr,
-                    rest_s: rs,
-                    translation: t,
-                    rotation: r,
-                    scale: s,
-                });
-                nodes.len() - 1
-            });
-            idx.push(slot);
-        }
-        JointChain {
-            chain: idx,
-            rest_align: super::rigid_rotation(&skel.rest_world(joint)).inverse(),
-        }
-    };
     let head_chain = make_chain(head);
     let spheres: Vec<(JointChain, Vec3, f32)> = sphere_specs
         .into_iter()
         .map(|(j, off, r)| (make_chain(j), off, r))
         .collect();
+    let capsules: Vec<CapsuleSpec> = match &character {
+        Some(ch) if opts.body_capsules => {
+            // The head ellipsoid at rest in model space: the mesh's box, or the fitted
+            // 0.09 m head.
+            let centre = Vec3::from(skel.rest_world(head).translation) + fit.offset_m;
+            let radii = head_half_extents_m
+                .map_or(Vec3::splat(super::HAIRSTYLE_HEAD_RADIUS_M), |h| h)
+                * fit.scale;
+            let head_ellipsoid =
+                Affine3A::from_scale_rotation_translation(radii, Quat::IDENTITY, centre);
+            let bone_of: Vec<usize> = (0..ch.vertex_count())
+                .map(|v| ch.joints[v][super::skin::dominant(&ch.weights[v])] as usize)
+                .collect();
+            // Each bone's direction at rest: from its node to the mean of its children.
+            let mut child_sum = vec![(Vec3::ZERO, 0u32); skel.names.len()];
+            for (i, p) in skel.parents.iter().enumerate() {
+                if let Some(p) = *p {
+                    child_sum[p].0 += Vec3::from(skel.rest_world(i).translation);
+                    child_sum[p].1 += 1;
+                }
+            }
+            let bone_dir: Vec<Vec3> = ch
+                .bones
+                .iter()
+                .map(|b| {
+                    let (sum, n) = child_sum[b.node];
+                    if n == 0 {
+                        return Vec3::ZERO;
+                    }
+                    let d = sum / n as f32 - Vec3::from(skel.rest_world(b.node).translation);
+                    // Shorter than a millimetre at the fitted scale: no direction.
+                    if d.length() > 1e-3 * fit.scale {
+                        d
+                    } else {
+                        Vec3::ZERO
+                    }
+                })
+                .collect();
+            capsules::fit(
+                &ch.rest_model,
+                &bone_of,
+                &ch.bone_in_head,
+                &bone_dir,
+                head_ellipsoid,
+                capsules::HEAD_DEPTH_M * fit.scale,
+                capsules::MIN_RADIUS_M * fit.scale,
+            )
+            .into_iter()
+            .map(|c| {
+                let bone = &ch.bones[c.bone];
+                let to_bind = (skel.rest_world(bone.node) * bone.bind).inverse();
+                CapsuleSpec {
+                    chain: make_chain(bone.node),
+                    bind: bone.bind,
+                    a: to_bind.transform_point3(c.a),
+                    b: to_bind.transform_point3(c.b),
+                    radius_m: c.radius / fit.scale,
+                }
+            })
+            .collect()
+        }
+        _ => Vec::new(),
+    };
 
     let motion = Motion {
         clip_name,
@@ -476,6 +408,9 @@ pub(crate) fn from_bytes(
         nodes,
         head: head_chain,
         spheres,
+        capsules,
+        character,
+        head_half_extents_m,
         head_joint_name: skel.names[head].clone(),
         head_joint_index: head,
     };

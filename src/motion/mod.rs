@@ -36,13 +36,21 @@
 //! (`rem_euclid`), so `sample(t) == sample(t + duration / speed)`; a seamless clip has equal
 //! poses at both ends. Morph-target `weights` channels are ignored.
 
+mod capsules;
 pub mod dance;
 pub mod fit;
 mod gltf_io;
 mod load;
 pub mod sampler;
+pub mod scalp;
+mod skeleton;
+pub mod skin;
+pub mod texture;
 
 pub use gltf_io::{MAX_BUFFER_BYTES, MAX_DECODED_VALUES, MAX_FILE_BYTES, MAX_JSON_CONTAINERS};
+pub use scalp::RootsOnHead;
+pub use skin::{Character, CharacterPose, Material};
+pub use texture::Texture;
 
 use std::path::Path;
 
@@ -71,6 +79,17 @@ pub struct Sphere {
     pub radius_m: f32,
 }
 
+/// A body collision capsule in the pose world: the points within `radius_m` of the segment
+/// from `a` to `b`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Capsule {
+    /// Segment ends, pose metres.
+    pub a: Vec3,
+    pub b: Vec3,
+    /// Radius in metres.
+    pub radius_m: f32,
+}
+
 /// Where the head and the body colliders are at one instant.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pose {
@@ -79,6 +98,8 @@ pub struct Pose {
     pub head: Affine3A,
     /// Body colliders in the pose world (metres).
     pub spheres: Vec<Sphere>,
+    /// Body capsules fitted to the character's mesh, pose world (see [`MotionOptions`]).
+    pub capsules: Vec<Capsule>,
 }
 
 impl Default for Pose {
@@ -86,6 +107,7 @@ impl Default for Pose {
         Self {
             head: Affine3A::IDENTITY,
             spheres: Vec::new(),
+            capsules: Vec::new(),
         }
     }
 }
@@ -142,8 +164,15 @@ pub struct MotionOptions {
     /// Hairstyle-to-joint fit. Default (`None`): automatic, see [`fit`].
     pub fit: Option<Fit>,
     /// Body colliders. `None` = a default set on joints named like neck, chest/torso/spine and
-    /// shoulders when found (radii and rules in [`fit`]); `Some(vec![])` = none.
+    /// shoulders when found (radii and rules in [`fit`]), but only for a file without meshes
+    /// (a character's capsules replace them); `Some(vec![])` = none.
     pub body_spheres: Option<Vec<SphereSpec>>,
+    /// Fit a collision capsule to each bone of the character's mesh (default true; see
+    /// `capsules.rs`). Without a mesh there are none.
+    pub body_capsules: bool,
+    /// Load the character's meshes (default true). Without them the head ellipsoid and the
+    /// body spheres are drawn, as for a file that has none.
+    pub meshes: bool,
     /// Playback rate (1 = real time; negative plays backwards). Must be finite.
     pub speed: f32,
 }
@@ -155,6 +184,8 @@ impl Default for MotionOptions {
             head_joint: None,
             fit: None,
             body_spheres: None,
+            body_capsules: true,
+            meshes: true,
             speed: 1.0,
         }
     }
@@ -257,6 +288,9 @@ pub enum MotionError {
 /// Rest transform of one node on an evaluated chain, with the clip's tracks for it.
 #[derive(Clone, Debug)]
 pub(crate) struct ChainNode {
+    /// Index of the parent node in `Motion::nodes` (always smaller: nodes are stored parent
+    /// first), `None` for a root.
+    pub(crate) parent: Option<usize>,
     /// Rest local transform when the node has a matrix that no channel overrides.
     pub(crate) rest_matrix: Option<Affine3A>,
     pub(crate) rest_t: Vec3,
@@ -288,6 +322,16 @@ impl ChainNode {
     }
 }
 
+/// A capsule collider on a bone (see `Motion::capsules`).
+#[derive(Clone, Debug)]
+pub(crate) struct CapsuleSpec {
+    pub(crate) chain: JointChain,
+    pub(crate) bind: Affine3A,
+    pub(crate) a: Vec3,
+    pub(crate) b: Vec3,
+    pub(crate) radius_m: f32,
+}
+
 /// A joint whose frame is evaluated: its root-to-joint chain and the rest-pose alignment.
 #[derive(Clone, Debug)]
 pub(crate) struct JointChain {
@@ -310,6 +354,14 @@ pub struct Motion {
     pub(crate) head: JointChain,
     /// Body spheres: joint, offset (pose metres, joint frame), radius (pose metres).
     pub(crate) spheres: Vec<(JointChain, Vec3, f32)>,
+    /// Body capsules: the bone's chain and bind matrix, the segment ends in bind space (model
+    /// units) and the radius in pose metres.
+    pub(crate) capsules: Vec<CapsuleSpec>,
+    /// The character's meshes, if the file has any (and they were asked for).
+    pub(crate) character: Option<Character>,
+    /// Half extents of the head mesh's bounding box in the head joint frame, pose metres
+    /// (`None` without a head mesh).
+    pub(crate) head_half_extents_m: Option<Vec3>,
     pub(crate) head_joint_name: String,
     pub(crate) head_joint_index: usize,
 }
@@ -355,6 +407,7 @@ impl Motion {
             fit: Fit::IDENTITY,
             fit_method: fit::FitMethod::Given,
             nodes: vec![ChainNode {
+                parent: None,
                 rest_matrix: Some(head),
                 rest_t: Vec3::ZERO,
                 rest_r: Quat::IDENTITY,
@@ -368,6 +421,9 @@ impl Motion {
                 rest_align: Quat::IDENTITY,
             },
             spheres: Vec::new(),
+            capsules: Vec::new(),
+            character: None,
+            head_half_extents_m: None,
             head_joint_name: "still".to_string(),
             head_joint_index: 0,
         }
@@ -382,7 +438,49 @@ impl Motion {
             .flatten()
             .map(|t| t.held_bytes())
             .sum::<u64>();
-        tracks + (self.nodes.len() * size_of::<ChainNode>()) as u64
+        let character = self
+            .character
+            .as_ref()
+            .map_or(0, |c| c.held_bytes() + c.pose_bytes(self.nodes.len()));
+        tracks + (self.nodes.len() * size_of::<ChainNode>()) as u64 + character
+    }
+
+    /// The character's meshes (bind space), if the motion has any.
+    pub fn character(&self) -> Option<&Character> {
+        self.character.as_ref()
+    }
+
+    /// Half extents of the head mesh's bounding box in the head joint frame (rest-pose world
+    /// axes), pose metres; `None` when the file has no head mesh.
+    pub fn head_half_extents_m(&self) -> Option<Vec3> {
+        self.head_half_extents_m
+    }
+
+    /// Poses the character at wall time `t_s` (looped) into `out`: positions and normals in
+    /// the pose world. Allocation-free once `out` has held this character. Does nothing
+    /// without a character.
+    pub fn pose_character(&self, t_s: f32, out: &mut CharacterPose) {
+        let Some(ch) = &self.character else {
+            return;
+        };
+        let clip_t = self.clip_time_s(t_s);
+        out.node_worlds.clear();
+        for node in &self.nodes {
+            let local = node.local(clip_t);
+            let world = match node.parent {
+                Some(p) => out.node_worlds[p] * local,
+                None => local,
+            };
+            out.node_worlds.push(world);
+        }
+        let to_pose = Affine3A::from_scale(Vec3::splat(1.0 / self.fit.scale));
+        out.bone_mats.clear();
+        out.bone_mats.extend(
+            ch.bones
+                .iter()
+                .map(|b| to_pose * out.node_worlds[b.slot] * b.bind),
+        );
+        ch.skin(out);
     }
 
     /// Clip length in seconds of clip time (last key − first key; 0 for [`Motion::still`]).
@@ -430,6 +528,7 @@ impl Motion {
         let mut pose = Pose {
             head: Affine3A::IDENTITY,
             spheres: Vec::with_capacity(self.spheres.len()),
+            capsules: Vec::with_capacity(self.capsules.len()),
         };
         self.sample_into(t_s, &mut pose);
         pose
@@ -457,6 +556,15 @@ impl Motion {
             pose.spheres.push(Sphere {
                 center: center.into(),
                 radius_m: *radius_m,
+            });
+        }
+        pose.capsules.clear();
+        for c in &self.capsules {
+            let m = self.world(&c.chain, clip_t) * c.bind;
+            pose.capsules.push(Capsule {
+                a: m.transform_point3(c.a) * inv_scale,
+                b: m.transform_point3(c.b) * inv_scale,
+                radius_m: c.radius_m,
             });
         }
     }
@@ -490,6 +598,14 @@ impl Motion {
                     "at clip time {clip_t} s the head is at {head} (pose metres, after the fit); \
                      it must stay finite and within {MAX_POSE_DISTANCE_M} m of the origin, where \
                      f32 positions still resolve the 1 mm collision margin"
+                ));
+            }
+            if let Some(c) = pose.capsules.iter().find(|c| far(c.a) || far(c.b)) {
+                return Err(format!(
+                    "at clip time {clip_t} s a body capsule reaches {} (pose metres, after the \
+                     fit); colliders must stay finite and within {MAX_POSE_DISTANCE_M} m of \
+                     the origin",
+                    if far(c.a) { c.a } else { c.b }
                 ));
             }
             if let Some(s) = pose

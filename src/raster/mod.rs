@@ -6,12 +6,15 @@
 //! - [`framebuffer`]: linear-RGB colour + depth, conversion to 8-bit sRGB at the edge.
 //! - [`solid`]: opaque ellipsoids by per-pixel ray casting (exact screen box, anti-aliased
 //!   silhouette); draw these first, they fill the depth buffer.
+//! - [`mesh`]: opaque triangle meshes (a character), depth-tested with four visibility samples
+//!   per pixel and shaded once per pixel; drawn with the solids, before the lines.
 //! - [`lines`]: anti-aliased polylines, depth-tested against the opaque depth, composited back
 //!   to front per band of rows, in parallel and bit-identical for any thread count;
 //!   `segment` clips and projects each segment (near plane in view space, then a screen guard
 //!   rectangle in float, before anything becomes an index).
 //!
-//! A frame: [`Framebuffer::clear`], [`draw_ellipsoid`] for each solid, then [`draw_polylines`]
+//! A frame: [`Framebuffer::clear`], [`draw_ellipsoid`] for each solid and [`draw_mesh`] for a
+//! mesh, then [`draw_polylines`]
 //! with a [`LineScratch`] kept across frames.
 
 // `!(a > b)` is used on purpose throughout: unlike `a <= b` it is also true for NaN, so one
@@ -22,6 +25,7 @@ mod budget;
 pub mod camera;
 pub mod framebuffer;
 pub mod lines;
+pub mod mesh;
 pub mod polyline;
 mod segment;
 pub mod solid;
@@ -29,5 +33,6 @@ pub mod solid;
 pub use camera::{Camera, DEFAULT_NEAR_M, View};
 pub use framebuffer::Framebuffer;
 pub use lines::{LineScratch, MAX_SEGMENTS, draw_polylines};
+pub use mesh::{Mesh, MeshScratch, Surface, Texture, draw_mesh};
 pub use polyline::{LineStyle, LineWidth, MAX_WIDTH_PX, Polylines};
 pub use solid::draw_ellipsoid;

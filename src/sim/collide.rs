@@ -37,6 +37,8 @@
 
 use glam::{Affine3A, Vec3, Vec3A};
 
+use super::capsule::CapsuleCollider;
+
 /// Extra clearance in metres that collisions push particles to, beyond the true surface: it
 /// absorbs the residual penetration left by the final length projection. 1 mm is below the
 /// visible scale of a wisp (≈ 9 mm radius) and above the residuals measured in the tests.
@@ -63,6 +65,8 @@ pub struct Colliders {
     pub head_radii_m: Vec3,
     /// Body spheres (neck, shoulders, ...), world.
     pub spheres: Vec<SphereCollider>,
+    /// Body capsules (a character's limbs and torso), world; see `capsule.rs`.
+    pub capsules: Vec<CapsuleCollider>,
 }
 
 impl Colliders {
@@ -72,6 +76,7 @@ impl Colliders {
             head,
             head_radii_m,
             spheres: Vec::new(),
+            capsules: Vec::new(),
         }
     }
 
@@ -86,6 +91,9 @@ impl Colliders {
         let mut depth = ((1.0 - s) * r.max_element()).max(0.0);
         for sp in &self.spheres {
             depth = depth.max(sp.radius_m - (p - sp.center).length());
+        }
+        for c in &self.capsules {
+            depth = depth.max(c.penetration_m(Vec3A::from(p)));
         }
         depth.max(0.0)
     }
@@ -106,6 +114,7 @@ pub(crate) struct CollisionScene<'a> {
     /// Largest true semi-axis (for the conservative penetration estimate).
     radius_max: f32,
     spheres: &'a [SphereCollider],
+    capsules: &'a [CapsuleCollider],
 }
 
 impl<'a> CollisionScene<'a> {
@@ -119,6 +128,7 @@ impl<'a> CollisionScene<'a> {
             inv_radii_out: (radii + Vec3A::splat(COLLISION_MARGIN_M)).recip(),
             radius_max: radii.max_element(),
             spheres: &c.spheres,
+            capsules: &c.capsules,
         }
     }
 
@@ -170,6 +180,12 @@ impl<'a> CollisionScene<'a> {
                     moved = true;
                 }
             }
+            for c in self.capsules {
+                if let Some(q) = c.push_out(prev, p, link_m, fallback_dir) {
+                    p = q;
+                    moved = true;
+                }
+            }
             if !moved {
                 break;
             }
@@ -195,7 +211,35 @@ impl<'a> CollisionScene<'a> {
                 depth = depth.max(r - d2.sqrt());
             }
         }
+        for c in self.capsules {
+            depth = depth.max(c.penetration_m(p));
+        }
         depth
+    }
+}
+
+impl CapsuleCollider {
+    /// `p` moved out of the capsule inflated by the collision margin, at `link_m` from `prev`,
+    /// or `None` when it is already outside (see the module doc).
+    #[inline]
+    pub(crate) fn push_out(
+        &self,
+        prev: Vec3A,
+        p: Vec3A,
+        link_m: f32,
+        fallback_dir: Vec3A,
+    ) -> Option<Vec3A> {
+        if !self.usable() {
+            return None;
+        }
+        let c = self.nearest(p);
+        let ro = self.radius_m + COLLISION_MARGIN_M;
+        if (p - c).length_squared() >= ro * ro {
+            return None;
+        }
+        let out = circle_exit(prev, p, link_m, c, ro, fallback_dir)
+            .unwrap_or_else(|| c + (p - c).normalize_or(fallback_dir) * ro);
+        Some(prev + (out - prev).normalize_or(fallback_dir) * link_m)
     }
 }
 
@@ -213,7 +257,7 @@ impl<'a> CollisionScene<'a> {
 /// away from the circle point: hair resting on a sphere jumped between the two every few
 /// steps and never came to rest (issue 11; measured 2e-2 m/s on curly hair at the nape).
 #[inline]
-fn circle_exit(
+pub(crate) fn circle_exit(
     prev: Vec3A,
     p: Vec3A,
     link: f32,
@@ -257,6 +301,7 @@ mod tests {
                 center: Vec3::new(0.1, 1.3, -0.2),
                 radius_m: 0.12,
             }],
+            capsules: Vec::new(),
         }
     }
 

@@ -30,6 +30,7 @@
 
 mod bend;
 mod budget;
+pub mod capsule;
 pub mod collide;
 pub mod dance;
 pub mod density;
@@ -37,6 +38,7 @@ pub mod state;
 pub mod step;
 
 pub use bend::bending_frequency_rad_s;
+pub use capsule::CapsuleCollider;
 pub use collide::{COLLISION_MARGIN_M, Colliders, SphereCollider};
 pub use density::MAX_NODES as DENSITY_GRID_MAX_NODES;
 pub use state::SimState;

@@ -894,6 +894,7 @@ mod tests {
                 center: Vec3::new(0.01, 1.6 - 0.17, 0.0),
                 radius_m: 0.05,
             }],
+            capsules: Vec::new(),
         };
         let state = SimState::at_rest(&guides, &colliders, 0.0);
         for p in &state.positions[2..] {

@@ -61,3 +61,111 @@ pub fn robot_expressive_glb() -> Option<std::path::PathBuf> {
         None
     }
 }
+
+/// The point of triangle `abc` nearest `p` and its barycentric weights (Ericson, Real-Time
+/// Collision Detection §5.1.5: by Voronoi region).
+pub fn closest_on_triangle(p: Vec3, a: Vec3, b: Vec3, c: Vec3) -> (Vec3, [f32; 3]) {
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return (a, [1.0, 0.0, 0.0]);
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return (b, [0.0, 1.0, 0.0]);
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        let v = d1 / (d1 - d3);
+        return (a + ab * v, [1.0 - v, v, 0.0]);
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return (c, [0.0, 0.0, 1.0]);
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        let w = d2 / (d2 - d6);
+        return (a + ac * w, [1.0 - w, 0.0, w]);
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return (b + (c - b) * w, [0.0, 1.0 - w, w]);
+    }
+    let denom = 1.0 / (va + vb + vc);
+    let (v, w) = (vb * denom, vc * denom);
+    (a + ab * v + ac * w, [1.0 - v - w, v, w])
+}
+
+/// Deepest penetration (metres) of `points` under a mesh's surface, looked for within
+/// `SEARCH_M` of it: a point is under the surface when it lies behind the nearest triangle,
+/// judged by the vertex normals interpolated at the nearest point (right for smooth closed
+/// surfaces; where parts of a mesh interpenetrate, a point inside one part near another's
+/// surface counts by that surface). Triangles are binned in a uniform grid of `SEARCH_M`
+/// cells, so the cost is linear in points and triangles.
+pub fn mesh_penetration_m(
+    positions: &[Vec3],
+    normals: &[Vec3],
+    triangles: &[[u32; 3]],
+    points: &[Vec3],
+) -> f32 {
+    mesh_penetrations_m(positions, normals, triangles, points)
+        .into_iter()
+        .fold(0.0, f32::max)
+}
+
+/// [`mesh_penetration_m`] point by point.
+pub fn mesh_penetrations_m(
+    positions: &[Vec3],
+    normals: &[Vec3],
+    triangles: &[[u32; 3]],
+    points: &[Vec3],
+) -> Vec<f32> {
+    const SEARCH_M: f32 = 0.03;
+    use std::collections::HashMap;
+    let cell = |p: Vec3| (p / SEARCH_M).floor().as_ivec3();
+    let mut grid: HashMap<glam::IVec3, Vec<u32>> = HashMap::new();
+    for (t, tri) in triangles.iter().enumerate() {
+        let [a, b, c] = tri.map(|i| positions[i as usize]);
+        let (lo, hi) = (
+            cell(a.min(b).min(c) - SEARCH_M),
+            cell(a.max(b).max(c) + SEARCH_M),
+        );
+        for x in lo.x..=hi.x {
+            for y in lo.y..=hi.y {
+                for z in lo.z..=hi.z {
+                    grid.entry(glam::IVec3::new(x, y, z))
+                        .or_default()
+                        .push(t as u32);
+                }
+            }
+        }
+    }
+    let mut out = vec![0.0f32; points.len()];
+    for (p, o) in points.iter().zip(&mut out) {
+        let Some(list) = grid.get(&cell(*p)) else {
+            continue;
+        };
+        let mut best = (SEARCH_M, 0.0f32);
+        for &t in list {
+            let tri = triangles[t as usize];
+            let [a, b, c] = tri.map(|i| positions[i as usize]);
+            let (q, w) = closest_on_triangle(*p, a, b, c);
+            let d = (*p - q).length();
+            if d < best.0 {
+                let n = tri
+                    .iter()
+                    .zip(w)
+                    .map(|(&i, wi)| normals[i as usize] * wi)
+                    .sum::<Vec3>();
+                let behind = (*p - q).dot(n) < 0.0;
+                best = (d, if behind { d } else { 0.0 });
+            }
+        }
+        *o = best.1;
+    }
+    out
+}
