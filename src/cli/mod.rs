@@ -232,9 +232,11 @@ impl SceneArgs {
 
     /// The hairstyle, and the hair of an imported groom when `--hairstyle` names strand files
     /// (the import's figures go to stderr).
-    /// An imported groom is placed on the hairstyle's head fitted to the character's head mesh
-    /// (`frame::fit_style_to_character`), so it sits on the drawn head.
-    fn load_hair(&self, motion: &Motion) -> Result<(Hairstyle, ImportedHair), AppError> {
+    /// An imported groom is placed on the hairstyle's own head ellipsoid, not on one fitted to a
+    /// character's head mesh: a mesh's bounding box is a poor scalp for a human groom (the
+    /// TressFX ponytail on RobotExpressive's boxy head: 19% of roots over 30 mm off). The roots
+    /// are then checked on the drawn head mesh (`check_roots_on_head`).
+    fn load_hair(&self, _motion: &Motion) -> Result<(Hairstyle, ImportedHair), AppError> {
         let (files, styles): (Vec<&String>, Vec<&String>) = self
             .hairstyle
             .iter()
@@ -249,7 +251,6 @@ impl SceneArgs {
         if files.is_empty() {
             return Ok((base, None));
         }
-        let base = wisp::frame::fit_style_to_character(&base, motion);
         let opts = wisp::groom::GroomOptions {
             wisps: self.groom_wisps.map(|w| w as usize),
             yaw_rad: self.groom_turn_deg.map(f32::to_radians),
