@@ -405,32 +405,9 @@ impl<'a> ExactReference<'a> {
                 }
             }
             Footprint::Fibres { rays } => {
-                let f_count = self.fibres_per_strand;
-                let present = (0..f_count)
-                    .filter(|&f| self.fibre_present(vertex, f))
-                    .count();
-                let per_fibre = (rays.max(1) as usize).div_ceil(present.max(1));
-                for f in (0..f_count).filter(|&f| self.fibre_present(vertex, f)) {
-                    let base = (strand * f_count + f) * ppl;
-                    let pts = &self.fibre_points[base..base + ppl];
-                    let own = Exclude {
-                        strand: strand as u32,
-                        fibre: Some(f as u32),
-                        segs: (k as i64 - 2, k as i64 + 1),
-                    };
-                    for j in 0..per_fibre {
-                        // Stratified along the piece: parameter in (−½, ½) segments around k.
-                        let t = (j as f32 + 0.5) / per_fibre as f32 - 0.5;
-                        let o = if t < 0.0 && k > 0 {
-                            pts[k].lerp(pts[k - 1], -t)
-                        } else if t >= 0.0 && k + 1 < ppl {
-                            pts[k].lerp(pts[k + 1], t)
-                        } else {
-                            pts[k]
-                        };
-                        acc.add(self.trace(o, Some(own)));
-                    }
-                }
+                self.for_each_fibre_origin(vertex, rays, |o, own| {
+                    acc.add(self.trace(o, Some(own)));
+                });
             }
             Footprint::Ball { radius_m, rays } => {
                 let centre = self.fibre_points[strand * self.fibres_per_strand * ppl + k];
@@ -536,16 +513,40 @@ impl<'a> ExactReference<'a> {
     /// opposition effect the map models in `LightMap::light_at_seen`.
     pub fn seen_and_lit(&self, view: &ExactReference, vertex: usize, rays: u32) -> (f32, f32) {
         let ppl = self.points_per_strand;
-        let (strand, k) = (vertex / ppl, vertex % ppl);
-        let f_count = self.fibres_per_strand;
-        if (strand + 1) * f_count * ppl > self.fibre_points.len() {
+        let strand = vertex / ppl;
+        if (strand + 1) * self.fibres_per_strand * ppl > self.fibre_points.len() {
             return (0.0, 0.0);
         }
+        let (mut n, mut seen, mut both) = (0u32, 0u32, 0u32);
+        self.for_each_fibre_origin(vertex, rays, |o, own| {
+            let o_view = view.frame.to_map(self.frame.to_world(o));
+            let is_seen = view.trace(o_view, Some(own)).0 == 0;
+            let is_lit = self.trace(o, Some(own)).0 == 0;
+            n += 1;
+            seen += is_seen as u32;
+            both += (is_seen && is_lit) as u32;
+        });
+        let inv = 1.0 / n.max(1) as f32;
+        (seen as f32 * inv, both as f32 * inv)
+    }
+
+    /// The ray origins of [`Footprint::Fibres`] for render-strand point `vertex`: `rays` spread
+    /// over the fibres present there, stratified along the piece of fibre the point stands for
+    /// (parameter in (−½, ½) segments around it), each with the fibre's own nearby segments
+    /// excluded. Origins are in the map frame.
+    fn for_each_fibre_origin(
+        &self,
+        vertex: usize,
+        rays: u32,
+        mut visit: impl FnMut(Vec3, Exclude),
+    ) {
+        let ppl = self.points_per_strand;
+        let (strand, k) = (vertex / ppl, vertex % ppl);
+        let f_count = self.fibres_per_strand;
         let present = (0..f_count)
             .filter(|&f| self.fibre_present(vertex, f))
             .count();
         let per_fibre = (rays.max(1) as usize).div_ceil(present.max(1));
-        let (mut n, mut seen, mut both) = (0u32, 0u32, 0u32);
         for f in (0..f_count).filter(|&f| self.fibre_present(vertex, f)) {
             let base = (strand * f_count + f) * ppl;
             let pts = &self.fibre_points[base..base + ppl];
@@ -563,16 +564,9 @@ impl<'a> ExactReference<'a> {
                 } else {
                     pts[k]
                 };
-                let o_view = view.frame.to_map(self.frame.to_world(o));
-                let is_seen = view.trace(o_view, Some(own)).0 == 0;
-                let is_lit = self.trace(o, Some(own)).0 == 0;
-                n += 1;
-                seen += is_seen as u32;
-                both += (is_seen && is_lit) as u32;
+                visit(o, own);
             }
         }
-        let inv = 1.0 / n.max(1) as f32;
-        (seen as f32 * inv, both as f32 * inv)
     }
 
     /// The light reaching world point `p` over a disc across the light of `radius_m` with
