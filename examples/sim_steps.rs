@@ -27,9 +27,10 @@
 
 use glam::Vec3;
 use std::time::Instant;
+use wisp::frame::write_colliders;
 use wisp::hairstyle::{Hairstyle, generate};
-use wisp::motion::{Motion, Pose};
-use wisp::sim::{Colliders, SimState, Simulator, SphereCollider};
+use wisp::motion::Motion;
+use wisp::sim::{Colliders, SimState, Simulator};
 
 const FPS: f64 = 30.0;
 const SETTLE_S: f64 = 2.0;
@@ -119,17 +120,6 @@ fn parse() -> Result<Args, String> {
         i += skip;
     }
     Ok(a)
-}
-
-fn write_colliders(pose: &Pose, radii: Vec3, c: &mut Colliders) {
-    c.head = pose.head;
-    c.head_radii_m = radii;
-    c.spheres.clear();
-    c.spheres
-        .extend(pose.spheres.iter().map(|s| SphereCollider {
-            center: s.center,
-            radius_m: s.radius_m,
-        }));
 }
 
 /// Guide tips at every frame, and the median simulation time per frame (ms).

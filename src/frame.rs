@@ -650,7 +650,9 @@ fn colliders_of(pose: &Pose, radii: Vec3) -> Colliders {
     c
 }
 
-fn write_colliders(pose: &Pose, radii: Vec3, c: &mut Colliders) {
+/// Writes `pose`'s colliders (head ellipsoid of `radii`, body spheres and capsules) into `c`,
+/// reusing its buffers: what the engine's simulation and interpolation are kept out of.
+pub fn write_colliders(pose: &Pose, radii: Vec3, c: &mut Colliders) {
     c.head = pose.head;
     c.head_radii_m = radii;
     c.spheres.clear();
