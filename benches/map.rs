@@ -36,7 +36,7 @@ fn bench_map(c: &mut Criterion) {
                 tangents: &geo.tangents,
                 lengths_m: &geo.lengths_m,
                 fibers_per_strand: style.strands.fibers_per_strand,
-                light_dir: light,
+                light: light.into(),
                 fiber: &fiber,
             };
             c.bench_function(

@@ -9,8 +9,8 @@ use crate::frame::Engine;
 use crate::hairstyle::Hairstyle;
 use crate::map::accuracy::{BIN_EDGES, Comparison, sample_vertices};
 use crate::map::exact::{ExactInput, ExactReference, Footprint};
-use crate::map::{CountModel, LightMap, MapBuildInput, MapGeometry};
-use crate::shade::shade_vertices_with;
+use crate::map::{CountModel, LightMap, MapBuildInput, MapGeometry, MapLight};
+use crate::shade::{Lighting, shade_vertices_with};
 use glam::Vec3;
 use std::time::Instant;
 
@@ -54,7 +54,9 @@ pub fn measure_map(
 ) -> (Vec<Row>, f64) {
     let style = &engine.style;
     let strands = &engine.strands;
-    let light_dir = engine.config.lighting.light_dir;
+    // The key light (the first): its map is the one measured.
+    let key = engine.config.lighting.lights[0];
+    let light = MapLight::of(&key, glam::Vec3::from(engine.pose().head.translation));
     let t0 = Instant::now();
     let reference = ExactReference::build(
         &ExactInput {
@@ -63,7 +65,7 @@ pub fn measure_map(
             fibers_per_strand: style.strands.fibers_per_strand.round().max(1.0) as u32,
             bundle_radius_m: 0.5 * style.strand_spacing_m(),
             fibre_share: &strands.fibre_share,
-            light_dir,
+            light,
             fiber: &engine.fiber,
         },
         0.5 * style.strand_spacing_m(),
@@ -87,7 +89,10 @@ pub fn measure_map(
     let pos: Vec<Vec3> = verts.iter().map(|&v| strands.positions[v]).collect();
     let tan: Vec<Vec3> = verts.iter().map(|&v| strands.tangents[v]).collect();
     let eye = engine.camera().eye();
-    let lighting = &engine.config.lighting;
+    let lighting = &Lighting {
+        lights: vec![key],
+        ..engine.config.lighting.clone()
+    };
     let lum = |c: &Vec3| c.dot(Vec3::new(0.2126, 0.7152, 0.0722)) as f64;
     let mut ref_colors = Vec::new();
     shade_vertices_with(
@@ -96,7 +101,7 @@ pub fn measure_map(
         eye,
         &pos,
         &tan,
-        |i, _| truth[i],
+        |_, i, _| truth[i],
         &mut ref_colors,
     );
     let ref_mean = ref_colors.iter().map(lum).sum::<f64>() / ref_colors.len().max(1) as f64;
@@ -108,7 +113,7 @@ pub fn measure_map(
         tangents: &strands.tangents,
         lengths_m: &strands.lengths_m,
         fibers_per_strand: style.strands.fibers_per_strand,
-        light_dir,
+        light,
         fiber: &engine.fiber,
     };
     let mut rows = Vec::new();
@@ -135,7 +140,7 @@ pub fn measure_map(
             eye,
             &pos,
             &tan,
-            |i, _| estimate[i],
+            |_, i, _| estimate[i],
             &mut colors,
         );
         let rms = (colors

@@ -7,8 +7,9 @@
 //!                                                simulator's own density grid, Bertails §4.1)
 //! interp      interpolate(guides, colliders)  -> render strands (positions, tangents), kept
 //!                                                out of the head and body
-//! map         map.build(strands, light)       -> Tf, σ̄f², direct fraction per cell
-//! shading     shade_vertices(map, fiber)      -> vertex colours
+//! map         map.build(strands, light)       -> Tf, σ̄f², direct fraction per cell, one map
+//!                                                per light, built side by side
+//! shading     shade_vertices(maps, fiber)     -> vertex colours, summed over the lights
 //! raster      character mesh (or the head and   -> framebuffer
 //!             body spheres), hair lines
 //! ```
@@ -30,6 +31,7 @@ use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};
 use crate::shade::{Lighting, shade_skin, shade_vertices};
 use crate::sim::{CapsuleCollider, Colliders, SimState, Simulator, SphereCollider, StepStats};
 use glam::{Affine3A, Vec3};
+use rayon::prelude::*;
 use std::time::Instant;
 
 /// Seconds spent in each stage of one frame.
@@ -138,6 +140,26 @@ impl Default for EngineConfig {
     }
 }
 
+impl EngineConfig {
+    /// This configuration with the image size, camera, lights, ambient, background and solids
+    /// of a validated scene.
+    pub fn with_scene(self, scene: &crate::scene::Scene) -> Self {
+        Self {
+            width: scene.width,
+            height: scene.height,
+            lighting: Lighting {
+                lights: scene.lights.clone(),
+                ambient: scene.ambient,
+                ..self.lighting
+            },
+            background: scene.background,
+            camera: scene.camera,
+            draw_solids: scene.draw_solids,
+            ..self
+        }
+    }
+}
+
 /// Skin albedo of the head and the body spheres.
 const SKIN: Vec3 = Vec3::new(0.55, 0.38, 0.30);
 const CLOTH: Vec3 = Vec3::new(0.10, 0.14, 0.22);
@@ -157,7 +179,8 @@ pub struct Engine {
     frame_colliders: Colliders,
     sim: Simulator,
     pub state: SimState,
-    map: LightMap,
+    /// One light-oriented map per light of `config.lighting`, in its order.
+    maps: Vec<LightMap>,
     pub strands: StrandGeometry,
     colors: Vec<Vec3>,
     /// Physical width of each render-strand point in metres (fibres per strand × diameter).
@@ -288,7 +311,10 @@ impl Engine {
             pose,
             sim,
             state,
-            map: LightMap::new(geom, CountModel::Poisson),
+            maps: vec![
+                LightMap::new(geom, CountModel::Poisson);
+                config.lighting.lights.len().max(1)
+            ],
             strands: StrandGeometry::default(),
             colors: Vec::new(),
             widths_m: Vec::new(),
@@ -311,14 +337,19 @@ impl Engine {
 
     /// Map geometry in use.
     pub fn map_geometry(&self) -> MapGeometry {
-        self.map.geometry()
+        self.maps[0].geometry()
     }
     /// Figures of the last map build.
     pub fn map_stats(&self) -> &MapStats {
-        self.map.stats()
+        self.maps[0].stats()
     }
+    /// The first light's map (the key light's).
     pub fn map(&self) -> &LightMap {
-        &self.map
+        &self.maps[0]
+    }
+    /// Every light's map, in the order of `config.lighting.lights`.
+    pub fn maps(&self) -> &[LightMap] {
+        &self.maps
     }
     pub fn camera(&self) -> &Camera {
         &self.camera
@@ -427,7 +458,7 @@ impl Engine {
         let eye = self.camera.eye();
         shade_vertices(
             &self.fiber,
-            &self.map,
+            &self.maps,
             &self.config.lighting,
             eye,
             &self.strands.positions,
@@ -471,13 +502,13 @@ impl Engine {
     /// The character's mesh (or the head and the body spheres), opaque, lit through the hair's
     /// shadow.
     fn draw_solids(&mut self) {
-        let (map, lighting) = (&self.map, &self.config.lighting);
+        let (maps, lighting) = (&self.maps[..], &self.config.lighting);
         for (s, albedo) in self.solids.iter().zip(&self.solid_albedo) {
             draw_ellipsoid(
                 &mut self.fb,
                 &self.camera,
                 s.unit_sphere_to_world,
-                |p, n| shade_skin(map, lighting, *albedo, p, n),
+                |p, n| shade_skin(maps, lighting, *albedo, p, n),
             );
         }
         if let Some(ch) = self.motion.character() {
@@ -494,7 +525,7 @@ impl Engine {
                 &mut self.fb,
                 &self.camera,
                 &mesh,
-                |p, n, albedo| shade_skin(map, lighting, albedo, p, n),
+                |p, n, albedo| shade_skin(maps, lighting, albedo, p, n),
                 &mut self.mesh_scratch,
             );
         }
@@ -510,14 +541,29 @@ impl Engine {
     /// body solids as opaque occluders (they shadow the hair as the hair shadows them). With
     /// `draw_solids` off there are no solids at all: no invisible head casts a shadow.
     pub fn build_map(&mut self) {
-        self.map.build(&crate::map::MapBuildInput {
+        // One map per light, built side by side (each build is itself parallel and its
+        // result does not depend on the thread count).
+        let lights = &self.config.lighting.lights;
+        if self.maps.len() != lights.len() {
+            let geom = self.maps[0].geometry();
+            self.maps.resize(
+                lights.len().max(1),
+                LightMap::new(geom, CountModel::Poisson),
+            );
+        }
+        let aim_m = Vec3::from(self.pose.head.translation);
+        let input = |light| crate::map::MapBuildInput {
             positions: &self.strands.positions,
             tangents: &self.strands.tangents,
             lengths_m: &self.strands.lengths_m,
             fibers_per_strand: self.style.strands.fibers_per_strand,
-            light_dir: self.config.lighting.light_dir,
+            light: crate::map::MapLight::of(light, aim_m),
             fiber: &self.fiber,
-        });
+        };
+        self.maps
+            .par_iter_mut()
+            .zip(lights.par_iter())
+            .for_each(|(map, light)| map.build(&input(light)));
         self.solids.clear();
         self.solid_albedo.clear();
         let character = self.motion.character().filter(|_| self.config.draw_solids);
@@ -537,7 +583,9 @@ impl Engine {
             },
             None => OccluderMesh::EMPTY,
         };
-        self.map.set_occluders_with_mesh(&self.solids, mesh);
+        for map in &mut self.maps {
+            map.set_occluders_with_mesh(&self.solids, mesh);
+        }
     }
 
     /// Places the camera once the hair has settled: the fixed camera, or the head-following

@@ -37,6 +37,7 @@ pub mod groom;
 pub mod hairstyle;
 pub mod input;
 pub mod interp;
+pub mod light;
 pub mod map;
 pub mod motion;
 pub mod output;

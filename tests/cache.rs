@@ -124,7 +124,10 @@ fn frames_from_a_cache_are_the_bytes_of_a_single_run() {
 #[test]
 fn a_cache_relit_is_the_bytes_of_a_single_run_in_the_new_light() {
     let mut relit = small_config();
-    relit.lighting.light_dir = glam::Vec3::new(1.0, -0.5, -0.3).normalize();
+    relit.lighting.lights = vec![
+        wisp::light::Light::directional(glam::Vec3::new(1.0, -0.5, -0.3), glam::Vec3::splat(6.0))
+            .unwrap(),
+    ];
     relit.map_res = Some(48);
     check_cached_frames_match_a_single_run(small_config(), relit, "cache-relit");
 }

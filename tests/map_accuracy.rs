@@ -218,7 +218,7 @@ fn fibres_the_camera_sees_near_the_light_are_lit_as_the_exact_rays_say() {
             fibers_per_strand: 1,
             bundle_radius_m: 0.0,
             fibre_share: &strands.fibre_share,
-            light_dir: dir,
+            light: dir.into(),
             fiber: &engine.fiber,
         };
         let bin = 0.5 * style.strand_spacing_m();
@@ -238,7 +238,7 @@ fn fibres_the_camera_sees_near_the_light_are_lit_as_the_exact_rays_say() {
             tangents: &strands.tangents,
             lengths_m: &strands.lengths_m,
             fibers_per_strand: 1.0,
-            light_dir: light,
+            light: light.into(),
             fiber: &engine.fiber,
         });
         let r = engine.fiber.params().radius_m;

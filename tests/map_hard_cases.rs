@@ -26,7 +26,7 @@ fn build(
         tangents: tan,
         lengths_m: len,
         fibers_per_strand: fibers,
-        light_dir: light,
+        light: light.into(),
         fiber,
     });
     map

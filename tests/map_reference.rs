@@ -68,7 +68,7 @@ fn poisson_average_matches_ray_shooting_and_mean_count_does_not() {
             tangents: &geo.tangents,
             lengths_m: &geo.lengths_m,
             fibers_per_strand: 1.0,
-            light_dir: light,
+            light: light.into(),
             fiber: &fiber,
         });
         map

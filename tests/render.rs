@@ -12,7 +12,8 @@ fn still_engine(style: Hairstyle, light: Vec3, size: u32) -> Engine {
         height: size,
         ..Default::default()
     };
-    config.lighting.light_dir = light.normalize();
+    config.lighting.lights =
+        vec![wisp::light::Light::directional(light, glam::Vec3::splat(6.0)).unwrap()];
     Engine::new(style, Motion::still(Affine3A::IDENTITY), config)
 }
 

@@ -140,16 +140,25 @@ fn no_solids_over_black_gives_premultiplied_hair_only() {
 fn irradiance_and_ambient_are_settable() {
     let mut config = small();
     config.lighting.ambient = Vec3::ZERO;
-    config.lighting.irradiance = Vec3::ONE;
+    config.lighting.lights = vec![
+        wisp::light::Light::directional(wisp::light::DEFAULT_LIGHT_TRAVEL.into(), Vec3::ONE)
+            .unwrap(),
+    ];
     let mut one = engine(config.clone());
     one.frame(0.0);
-    config.lighting.irradiance = Vec3::splat(2.0);
+    config.lighting.lights = vec![
+        wisp::light::Light::directional(wisp::light::DEFAULT_LIGHT_TRAVEL.into(), Vec3::splat(2.0))
+            .unwrap(),
+    ];
     let mut two = engine(config.clone());
     two.frame(0.0);
     for (a, b) in one.colors().iter().zip(two.colors()) {
         assert!((*b - 2.0 * *a).abs().max_element() <= 1e-6 * b.max_element().max(1e-3));
     }
-    config.lighting.irradiance = Vec3::ZERO;
+    config.lighting.lights = vec![
+        wisp::light::Light::directional(wisp::light::DEFAULT_LIGHT_TRAVEL.into(), Vec3::ZERO)
+            .unwrap(),
+    ];
     let mut dark = engine(config);
     dark.frame(0.0);
     assert!(dark.colors().iter().all(|c| *c == Vec3::ZERO));

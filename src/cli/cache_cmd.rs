@@ -117,7 +117,12 @@ pub fn simulate(args: SimulateArgs) -> Result<(), AppError> {
         settle_s: config.settle_s,
         hairstyle_digest: expected.hairstyle_digest,
         motion_digest: expected.motion_digest,
-        light_dir: config.lighting.light_dir.normalize_or(glam::Vec3::NEG_Y),
+        light_dir: config
+            .lighting
+            .lights
+            .first()
+            .and_then(|l| l.travel())
+            .unwrap_or(glam::Vec3::NEG_Y),
         map_res: wisp::frame::map_geometry(&style, &config).n,
         simulated: config.simulate,
         self_collision: config.self_collision,

@@ -22,6 +22,8 @@ use wisp::fiber::ShadingMode;
 use wisp::frame::{Engine, EngineConfig};
 use wisp::hairstyle::{Hairstyle, HairstyleError};
 use wisp::motion::{Fit, JointRef, Motion, MotionError, MotionOptions};
+use wisp::scene::file::LightJson;
+use wisp::scene::{Scene, SceneFile};
 
 /// Most worker threads per core. More only slows wisp down, and faster than linearly: on 2
 /// cores, 2 frames at 160×120 took 0.25 s with 2 threads, 1.0 s with 256, 4.8 s with 512 and
@@ -147,15 +149,20 @@ pub struct SceneArgs {
     /// Do not simulate: hair stays in its rest pose riding on the head.
     #[arg(long)]
     pub no_sim: bool,
-    /// Direction the light travels, X,Y,Z (world, Y up; need not be normalised).
+    /// Scene file (JSON: camera, lights, ambient, background, exposure, image size; see
+    /// README "Scene files"). The scene flags below override its fields.
+    #[arg(long, value_name = "FILE.json")]
+    pub scene: Option<PathBuf>,
+    /// Direction the first light travels, X,Y,Z (world, Y up; need not be normalised; scene
+    /// `lights[0].direction`, a directional light).
     #[arg(long, value_parser = parse_direction, allow_hyphen_values = true)]
     pub light_dir: Option<Vec3>,
-    /// Image width in pixels.
-    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(16..=8192))]
-    pub width: u32,
-    /// Image height in pixels.
-    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(16..=8192))]
-    pub height: u32,
+    /// Image width in pixels, 16..=8192 (default 800; scene `image.width`).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(16..=8192))]
+    pub width: Option<u32>,
+    /// Image height in pixels, 16..=8192 (default 800; scene `image.height`).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(16..=8192))]
+    pub height: Option<u32>,
     /// Map cells per axis (default: sized from the hairstyle's strand spacing).
     #[arg(long, value_parser = clap::value_parser!(u32).range(4..=1024))]
     pub map_res: Option<u32>,
@@ -213,21 +220,60 @@ impl SceneArgs {
             }
         };
         let (style, hair) = self.load_hair(&motion)?;
+        let (file, scene) = self.scene_file()?;
+        let head = Vec3::from(motion.sample(0.0).head.translation);
+        let reach = style.max_length_m() + style.head.radii_m.iter().copied().fold(0.0, f32::max);
+        wisp::scene::file::check_point_lights_outside(&scene.lights, head, reach)
+            .map_err(|(field, rule)| AppError::input(anyhow::anyhow!("{file}: {field}: {rule}")))?;
         let mut config = EngineConfig {
-            width: self.width,
-            height: self.height,
             map_res: self.map_res,
             ..Default::default()
-        };
-        if let Some(l) = self.light_dir {
-            config.lighting.light_dir = l;
         }
+        .with_scene(&scene);
         config.lighting.mode = self.shading.into();
         config.self_collision = !self.no_self_collision;
         config.simulate = !self.no_sim;
-        self.view.apply(&mut config)?;
+        self.view.apply(&mut config);
         self.check_roots_on_head(&style, &hair, &motion)?;
         Ok((style, hair, motion, config))
+    }
+
+    /// The effective scene: the scene file (or the default scene) with the scene flags
+    /// written over it (`--print-scene` prints it). Errors name the file, the field and the rule.
+    pub fn effective_scene(&self) -> Result<(String, SceneFile), AppError> {
+        let (name, mut file) = match &self.scene {
+            Some(path) => {
+                let name = path.display().to_string();
+                let (file, _) = SceneFile::load(path).map_err(AppError::input)?;
+                (name, file)
+            }
+            None => ("scene flags".to_string(), SceneFile::default()),
+        };
+        if let Some(w) = self.width {
+            file.image.width = w;
+        }
+        if let Some(h) = self.height {
+            file.image.height = h;
+        }
+        if let Some(l) = self.light_dir {
+            match file.lights.first_mut() {
+                Some(LightJson::Directional { direction, .. }) => *direction = l.to_array(),
+                _ => {
+                    return Err(AppError::input(anyhow::anyhow!(
+                        "--light-dir sets the first light's direction, and the first light of {name} is not a directional light"
+                    )));
+                }
+            }
+        }
+        self.view.apply_to_scene(&mut file)?;
+        Ok((name, file))
+    }
+
+    /// [`Self::effective_scene`], validated.
+    fn scene_file(&self) -> Result<(String, Scene), AppError> {
+        let (name, file) = self.effective_scene()?;
+        let scene = file.validate(&name).map_err(AppError::input)?;
+        Ok((name, scene))
     }
 
     /// The hairstyle, and the hair of an imported groom when `--hairstyle` names strand files

@@ -76,9 +76,11 @@ pub fn run(args: PlayArgs) -> Result<(), AppError> {
         }
         for (key, angle) in [(Key::Left, 0.05f32), (Key::Right, -0.05)] {
             if window.is_key_down(key) {
-                let l = engine.config.lighting.light_dir;
-                engine.config.lighting.light_dir =
-                    (Quat::from_axis_angle(Vec3::Y, angle) * l).normalize();
+                let pivot = Vec3::from(engine.pose().head.translation);
+                engine
+                    .config
+                    .lighting
+                    .turn(Quat::from_axis_angle(Vec3::Y, angle), pivot);
             }
         }
         if window.is_key_pressed(Key::R, KeyRepeat::No) {

@@ -53,6 +53,10 @@ pub struct RenderArgs {
     /// Print only errors.
     #[arg(long)]
     pub quiet: bool,
+    /// Write the effective scene (scene file and scene flags merged) as JSON to stdout and
+    /// exit: a scene file to start from (`--scene` reads it back to the same frames).
+    #[arg(long)]
+    pub print_scene: bool,
 }
 
 /// A rendered frame on its way to the writer thread.
@@ -78,6 +82,12 @@ pub fn wrapped_start_s(start_s: f64, duration_s: f32, speed: f32) -> (f64, bool)
 
 /// A single run: simulate and render (`render --cache` goes to `cache_cmd::render_from_cache`).
 pub fn run(args: RenderArgs) -> Result<(), AppError> {
+    if args.print_scene {
+        let (name, file) = args.scene.effective_scene()?;
+        file.validate(&name).map_err(AppError::input)?;
+        println!("{}", file.to_json());
+        return Ok(());
+    }
     let (style, hair, motion, mut config) = args.scene.resolve()?;
     let still = args.scene.still;
     let frames = args.frames.unwrap_or_else(|| {

@@ -1,38 +1,45 @@
-//! Scene flags for comparisons with other renderers: a fixed camera, hair without the head and
-//! body, the light's irradiance, the ambient term and the narrowest hair line. Flattened into
-//! `SceneArgs`, so `render`, `play`, `bench` and `export` all take them. Degrees stop here.
+//! Scene flags: shortcuts for fields of the scene file (`--scene`, `wisp::scene::file`), applied
+//! on top of it, plus the narrowest hair line. Flattened into `SceneArgs`, so `render`, `play`,
+//! `bench` and `export` all take them. Degrees stop here.
 
 use super::{AppError, parse_finite_f32, parse_positive_f32};
 use glam::Vec3;
 use wisp::frame::EngineConfig;
 use wisp::raster::LineWidth;
-use wisp::scene::{CameraSetup, CameraSpec};
+use wisp::scene::SceneFile;
+use wisp::scene::file::{CameraJson, LightJson};
 
 #[derive(clap::Args, Debug, Clone)]
 pub struct ViewArgs {
-    /// Fixed camera eye X,Y,Z in world metres (needs --camera-target). Default: frame the hair
-    /// from three-quarters front and follow the head.
+    /// Fixed camera eye X,Y,Z in world metres (needs --camera-target; scene `camera.position_m`).
+    /// Default: frame the hair from three-quarters front and follow the head.
     #[arg(long, value_parser = parse_point, allow_hyphen_values = true, requires = "camera_target")]
     pub camera_eye: Option<Vec3>,
-    /// Fixed camera target X,Y,Z in world metres (needs --camera-eye).
+    /// Fixed camera target X,Y,Z in world metres (needs --camera-eye; scene `camera.target_m`).
     #[arg(long, value_parser = parse_point, allow_hyphen_values = true, requires = "camera_eye")]
     pub camera_target: Option<Vec3>,
-    /// Fixed camera up hint X,Y,Z (default 0,1,0; needs --camera-eye).
+    /// Fixed camera up hint X,Y,Z (default 0,1,0; needs --camera-eye; scene `camera.up`).
     #[arg(long, value_parser = parse_point, allow_hyphen_values = true, requires = "camera_eye")]
     pub camera_up: Option<Vec3>,
     /// Vertical field of view of the fixed camera in degrees, in (0, 180) (default 30; needs
-    /// --camera-eye).
+    /// --camera-eye; scene `camera.fov_y_deg`).
     #[arg(long, value_parser = parse_positive_f32, requires = "camera_eye")]
     pub fov_deg: Option<f32>,
-    /// Draw hair only: no head, no body spheres.
+    /// Draw hair only: no head, no body (scene `draw_solids: false`).
     #[arg(long)]
     pub no_solids: bool,
-    /// Irradiance of the light on a surface facing it: E or R,G,B, linear, >= 0 (default 6).
+    /// Irradiance of the first light (a directional one) on a surface facing it: E or R,G,B,
+    /// linear, >= 0 (default 6; scene `lights[0].irradiance`).
     #[arg(long, value_parser = parse_rgb)]
     pub irradiance: Option<Vec3>,
-    /// Ambient (sky) radiance: L or R,G,B, linear, >= 0 (default 0.035,0.04,0.05).
+    /// Ambient (sky) radiance: L or R,G,B, linear, >= 0 (default 0.035,0.04,0.05; scene
+    /// `ambient`).
     #[arg(long, value_parser = parse_rgb)]
     pub ambient: Option<Vec3>,
+    /// Exposure in stops: the image's radiance times 2^stops, in [-20, 20] (default 0; scene
+    /// `exposure_stops`).
+    #[arg(long, value_parser = parse_finite_f32, allow_hyphen_values = true)]
+    pub exposure_stops: Option<f32>,
     /// Narrowest hair line in pixels (default 1); thinner strands are drawn this wide at an
     /// opacity that conserves their coverage.
     #[arg(long, value_parser = parse_positive_f32)]
@@ -40,29 +47,43 @@ pub struct ViewArgs {
 }
 
 impl ViewArgs {
-    /// Applies the flags to `config`; a camera that fails validation is bad input.
-    pub fn apply(&self, config: &mut EngineConfig) -> Result<(), AppError> {
+    /// Writes the flags into `scene` (each is a shortcut for one of its fields).
+    pub fn apply_to_scene(&self, scene: &mut SceneFile) -> Result<(), AppError> {
         if let (Some(eye), Some(target)) = (self.camera_eye, self.camera_target) {
-            let up = self.camera_up.unwrap_or(Vec3::Y);
-            let fov_deg = self.fov_deg.unwrap_or(30.0);
-            let spec = CameraSpec::new(eye, target, up, fov_deg.to_radians()).map_err(|e| {
-                AppError::input(anyhow::anyhow!(
-                    "--camera-eye/--camera-target/--camera-up/--fov-deg: {e}"
-                ))
-            })?;
-            config.camera = CameraSetup::Fixed(spec);
+            scene.camera = CameraJson::Fixed {
+                position_m: eye.to_array(),
+                target_m: target.to_array(),
+                up: self.camera_up.unwrap_or(Vec3::Y).to_array(),
+                fov_y_deg: self.fov_deg.unwrap_or(30.0),
+            };
         }
-        config.draw_solids = !self.no_solids;
+        if self.no_solids {
+            scene.draw_solids = false;
+        }
         if let Some(e) = self.irradiance {
-            config.lighting.irradiance = e;
+            match scene.lights.first_mut() {
+                Some(LightJson::Directional { irradiance, .. }) => *irradiance = e.to_array(),
+                _ => {
+                    return Err(AppError::input(anyhow::anyhow!(
+                        "--irradiance sets the first light's irradiance, and the scene's first light is not a directional light"
+                    )));
+                }
+            }
         }
         if let Some(a) = self.ambient {
-            config.lighting.ambient = a;
+            scene.ambient = a.to_array();
         }
+        if let Some(x) = self.exposure_stops {
+            scene.exposure_stops = x;
+        }
+        Ok(())
+    }
+
+    /// The flags that are not part of the scene.
+    pub fn apply(&self, config: &mut EngineConfig) {
         if let Some(w) = self.min_line_width_px {
             config.line.width = LineWidth::Projected { min_px: w };
         }
-        Ok(())
     }
 }
 

@@ -119,6 +119,21 @@ impl ReferenceScene {
             .and_then(|t| serde_json::from_str::<serde_json::Value>(&t))
             .map_err(|e| e.to_string())?;
         let l = &engine.config.lighting;
+        // The reference scene (and tools/reference) has one directional light.
+        let (direction, irradiance) = match l.lights[..] {
+            [crate::light::Light::Directional { travel, irradiance }] => (travel.get(), irradiance),
+            _ => {
+                return Err(format!(
+                    "a reference scene has exactly one directional light; this one has {} light(s){}",
+                    l.lights.len(),
+                    if l.lights.iter().any(|x| x.travel().is_none()) {
+                        ", with a point light"
+                    } else {
+                        ""
+                    }
+                ));
+            }
+        };
         let fb = engine.framebuffer();
         Ok(ReferenceScene {
             format: SCENE_FORMAT.into(),
@@ -142,8 +157,8 @@ impl ReferenceScene {
                 fov_y_deg: spec.fov_y_rad().to_degrees(),
             },
             light: LightJson {
-                direction: l.light_dir.normalize_or_zero().to_array(),
-                irradiance: l.irradiance.to_array(),
+                direction: direction.to_array(),
+                irradiance: irradiance.to_array(),
             },
             ambient: l.ambient.to_array(),
             shading: format!("{:?}", l.mode),

@@ -33,10 +33,61 @@ pub struct MapBuildInput<'a> {
     pub lengths_m: &'a [f32],
     /// Real fibres per render strand.
     pub fibers_per_strand: f32,
-    /// Direction the light travels (need not be normalised).
-    pub light_dir: Vec3,
+    /// The light's geometry: the direction it travels, or where a point light is.
+    pub light: MapLight,
     /// The fibre (radius and forward-scattering statistics).
     pub fiber: &'a Fiber,
+}
+
+/// What the map needs to know of a light: where its rays go.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MapLight {
+    /// Parallel rays travelling along this direction (need not be normalised).
+    Directional(Vec3),
+    /// Rays from `position_m`; the map's axis points from it toward `aim_m` (the middle of
+    /// the hair: the head's centre).
+    Point { position_m: Vec3, aim_m: Vec3 },
+}
+
+impl From<Vec3> for MapLight {
+    fn from(travel: Vec3) -> Self {
+        MapLight::Directional(travel)
+    }
+}
+
+impl MapLight {
+    /// The map geometry of `light`, a point light aimed at `aim_m`.
+    pub fn of(light: &crate::light::Light, aim_m: Vec3) -> Self {
+        match *light {
+            crate::light::Light::Directional { travel, .. } => MapLight::Directional(travel.get()),
+            crate::light::Light::Point { position_m, .. } => MapLight::Point { position_m, aim_m },
+        }
+    }
+
+    /// The projection for a map of span `span_m`: for a point light, the reference plane is
+    /// where the map's span around the aim point begins (so no hair within the span is
+    /// magnified across the light, and the modulo map never overflows for it), at least a
+    /// quarter of the way from the light.
+    pub fn projection(&self, span_m: f32) -> super::Projection {
+        match *self {
+            MapLight::Directional(travel) => super::Projection::Parallel {
+                frame: LightFrame::new(travel),
+            },
+            MapLight::Point { position_m, aim_m } => {
+                let axis = aim_m - position_m;
+                let dist = axis.length();
+                let frame = LightFrame::new(if dist > 0.0 { axis } else { Vec3::NEG_Y });
+                let ref_depth_m = (dist - 0.5 * span_m)
+                    .max(0.25 * dist)
+                    .max(super::CENTRAL_MIN_DEPTH_M);
+                super::Projection::Central {
+                    frame,
+                    origin: position_m,
+                    ref_depth_m,
+                }
+            }
+        }
+    }
 }
 
 /// Figures of the last build.
@@ -123,7 +174,7 @@ const MAX_CELL_COORD: f32 = 1.0e12;
 impl LightMap {
     /// Rebuilds the map for `input` (fill + sweep). Allocation-free once warmed up.
     pub fn build(&mut self, input: &MapBuildInput) {
-        self.frame = LightFrame::new(input.light_dir);
+        self.proj = input.light.projection(self.geom.n as f32 * self.geom.ds_m);
         let n = self.geom.n as i64;
         let ncol = self.geom.columns_per_axis() as i64;
         let ds = self.geom.ds_m;
@@ -138,11 +189,10 @@ impl LightMap {
             .len()
             .min(input.tangents.len())
             .min(input.lengths_m.len());
-        let frame = self.frame;
+        let proj = self.proj;
         let inv_cell = self.inv_cell;
         let model = self.model;
         let fiber = input.fiber;
-        let to_light = -frame.x;
 
         // 1. Fill. A sample stands for a piece of strand of length ℓ along its tangent; when ℓ
         // exceeds a cell, it is split into `pieces` equal parts spread along the tangent,
@@ -170,7 +220,8 @@ impl LightMap {
             .map(|(s, out)| {
                 let u = input.tangents[s];
                 let len_total = input.lengths_m[s];
-                let p0 = frame.to_map(input.positions[s]) * inv_cell;
+                let p = input.positions[s];
+                let p0 = proj.point(p) * inv_cell;
                 if !(p0.abs().max_element() < MAX_CELL_COORD
                     && u.is_finite()
                     && len_total.is_finite()
@@ -179,11 +230,12 @@ impl LightMap {
                     out.iter_mut().for_each(|e| e.col = u32::MAX);
                     return (Extent::EMPTY, 1usize);
                 }
-                let cos_psi = u.dot(frame.x).clamp(-1.0, 1.0);
-                let sin_psi = (1.0 - cos_psi * cos_psi).max(0.0).sqrt();
+                // The strand's image in map coordinates; for a point light its crossing and
+                // volume weights carry the lateral scale (see `Projection::strand`).
+                let (u_map, across, volume_weight) = proj.strand(p, u);
                 let len = len_total / pieces as f32;
-                let crossings = crossing_scale * len * sin_psi;
-                let fs = fiber.forward_scatter(u.dot(to_light).clamp(-1.0, 1.0));
+                let crossings = crossing_scale * len * across;
+                let fs = fiber.forward_scatter(u.dot(proj.toward_light(p)).clamp(-1.0, 1.0));
                 let a = fs.a_f.clamp(Vec3::ZERO, Vec3::ONE);
                 let loss = match model {
                     CountModel::Poisson => Vec3::ONE - a,
@@ -193,10 +245,10 @@ impl LightMap {
                     n_sum: crossings,
                     loss: (loss * crossings).to_array(),
                     sigma2: (fs.beta_f2 * crossings).to_array(),
-                    volume_fraction: volume_scale * len,
+                    volume_fraction: volume_scale * len * volume_weight,
                     ..Cell::default()
                 };
-                let u_cells = frame.to_map(u) * inv_cell;
+                let u_cells = u_map * inv_cell;
                 // Half the depth a piece spans along the light, in cells.
                 let half_depth = 0.5 * (u_cells.x * len).abs();
                 let mut ext = Extent::EMPTY;

@@ -71,7 +71,7 @@ impl LightMap {
         tangent: Vec3,
         fibre_radius_m: f32,
     ) -> LightAtPoint {
-        let to_light = -self.frame.x;
+        let to_light = self.proj.toward_light(p);
         let v = to_eye.normalize_or_zero();
         let cos_g = v.dot(to_light);
         // Across the light: the direction in which the view ray leaves the light ray, and the
@@ -104,7 +104,7 @@ impl LightMap {
     /// toward the light in cells); `crossings_behind` from the point itself.
     #[inline]
     fn light_with_taps(&self, p: Vec3, taps: &[(f32, f32)]) -> LightAtPoint {
-        let m = self.frame.to_map(p);
+        let m = self.proj.point(p);
         let c = m * self.inv_cell;
         if !c.is_finite() || c.abs().max_element() >= 1.0e12 {
             return LightAtPoint::UNSHADOWED;
@@ -217,7 +217,7 @@ impl LightMap {
         let rel = d.rem_euclid(self.geom.n as i64) as u32;
         let k = self.last_at_or_before(self.column(f.y as i64, f.z as i64), rel)?;
         let cell = Some(&self.cells[k]).filter(|c| c.slice == rel)?;
-        let centre = self.frame.to_world((f + Vec3::splat(0.5)) / self.inv_cell);
+        let centre = self.proj.to_world((f + Vec3::splat(0.5)) / self.inv_cell);
         Some((cell.volume_fraction, centre))
     }
 }

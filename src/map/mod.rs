@@ -72,7 +72,7 @@ pub mod exact;
 mod lookup;
 pub(crate) mod occluders;
 
-pub use build::{CountModel, MapBuildInput, MapStats};
+pub use build::{CountModel, MapBuildInput, MapLight, MapStats};
 pub use occluders::{OccluderGrid, OccluderMesh, Solid};
 
 use glam::Vec3;
@@ -196,6 +196,125 @@ impl LightFrame {
     }
 }
 
+/// Closest depth along a point light's axis at which the map places anything, metres: nearer
+/// points (and those behind the light) are not in the map (skipped when filling, unshadowed
+/// when read).
+pub const CENTRAL_MIN_DEPTH_M: f32 = 1e-4;
+
+/// How world points become map coordinates (metres): X along the light's rays, Y and Z across
+/// them, so that every ray of the light is a line of constant (Y, Z).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    /// A directional light: parallel rays along `frame.x`; map coordinates are the frame's.
+    Parallel { frame: LightFrame },
+    /// A point light at `origin` (Bertails 2005 §6: a light-oriented map for a point source
+    /// is angular). Depth is the distance along the axis `frame.x` (from the light toward the
+    /// hair); across the axis a point's offset is scaled by `ref_depth_m / depth`, its
+    /// central projection onto the plane at `ref_depth_m`. Rays from the light are then lines
+    /// of constant (Y, Z), and the whole map (fill, sweep, lookup) works unchanged. A strand
+    /// piece keeps its crossing count: its length across the rays and its fibres' width both
+    /// shrink by that scale while a column stands for a cone whose cross-section grows with
+    /// depth² (see `LightMap::build`).
+    Central {
+        frame: LightFrame,
+        origin: Vec3,
+        ref_depth_m: f32,
+    },
+}
+
+impl Projection {
+    /// The light frame (its X is the light's direction, or a point light's axis).
+    #[inline]
+    pub fn frame(&self) -> LightFrame {
+        match *self {
+            Projection::Parallel { frame } | Projection::Central { frame, .. } => frame,
+        }
+    }
+
+    /// Map coordinates of world point `p`, metres (non-finite for a point not in front of a
+    /// point light).
+    #[inline]
+    pub fn point(&self, p: Vec3) -> Vec3 {
+        match *self {
+            Projection::Parallel { frame } => frame.to_map(p),
+            Projection::Central {
+                frame,
+                origin,
+                ref_depth_m,
+            } => {
+                let q = frame.to_map(p - origin);
+                if q.x > CENTRAL_MIN_DEPTH_M {
+                    let s = ref_depth_m / q.x;
+                    Vec3::new(q.x, q.y * s, q.z * s)
+                } else {
+                    Vec3::NAN
+                }
+            }
+        }
+    }
+
+    /// World point of map coordinates `m` (the inverse of [`Projection::point`]).
+    pub fn to_world(&self, m: Vec3) -> Vec3 {
+        match *self {
+            Projection::Parallel { frame } => frame.to_world(m),
+            Projection::Central {
+                frame,
+                origin,
+                ref_depth_m,
+            } => {
+                let s = m.x / ref_depth_m;
+                origin + frame.to_world(Vec3::new(m.x, m.y * s, m.z * s))
+            }
+        }
+    }
+
+    /// Unit direction from world point `p` toward the light.
+    #[inline]
+    pub fn toward_light(&self, p: Vec3) -> Vec3 {
+        match *self {
+            Projection::Parallel { frame } => -frame.x,
+            Projection::Central { frame, origin, .. } => (origin - p).normalize_or(-frame.x),
+        }
+    }
+
+    /// A strand of unit tangent `u` at world point `p`, in map coordinates: the image of `u`
+    /// (the map displacement per metre along the strand), the share of a metre of strand that
+    /// crosses the light's rays (sin ψ for parallel light; the lateral length of the image
+    /// times the width scale for a point light: its fibres' width shrinks with the lateral
+    /// scale too), and the factor of its fibre volume per map volume (1, or the lateral
+    /// scale²).
+    #[inline]
+    pub fn strand(&self, p: Vec3, u: Vec3) -> (Vec3, f32, f32) {
+        match *self {
+            Projection::Parallel { frame } => {
+                let cos_psi = u.dot(frame.x).clamp(-1.0, 1.0);
+                let sin_psi = (1.0 - cos_psi * cos_psi).max(0.0).sqrt();
+                (frame.to_map(u), sin_psi, 1.0)
+            }
+            Projection::Central {
+                frame,
+                origin,
+                ref_depth_m,
+            } => {
+                let q = frame.to_map(p - origin);
+                if q.x <= CENTRAL_MIN_DEPTH_M {
+                    return (Vec3::NAN, 0.0, 0.0);
+                }
+                let s = ref_depth_m / q.x;
+                let v = frame.to_map(u);
+                // d(s·y)/dt = s·(v.y − (y/x)·v.x): the derivative of the central projection.
+                let img = Vec3::new(
+                    v.x,
+                    s * (v.y - q.y / q.x * v.x),
+                    s * (v.z - q.z / q.x * v.x),
+                );
+                let lateral = (img.y * img.y + img.z * img.z).sqrt();
+                (img, lateral * s, s * s)
+            }
+        }
+    }
+}
+
 /// Sub-slices along the light in which a cell records where its hair lies (see
 /// [`Cell::depth_cdf`]).
 pub(crate) const DEPTH_BINS: usize = 8;
@@ -258,7 +377,9 @@ impl Cell {
 #[derive(Clone, Debug)]
 pub struct LightMap {
     geom: MapGeometry,
-    frame: LightFrame,
+    /// World -> map coordinates (the light frame, and for a point light its central
+    /// projection).
+    proj: Projection,
     inv_ds: f32,
     /// Map metres to cells along X and to columns along Y, Z.
     inv_cell: Vec3,
@@ -292,7 +413,9 @@ impl LightMap {
         let cols = geom.columns_per_axis() as usize * geom.columns_per_axis() as usize;
         Self {
             geom,
-            frame: LightFrame::new(Vec3::NEG_Y),
+            proj: Projection::Parallel {
+                frame: LightFrame::new(Vec3::NEG_Y),
+            },
             inv_ds: 1.0 / geom.ds_m,
             inv_cell: Vec3::new(
                 1.0 / geom.ds_m,
@@ -317,7 +440,11 @@ impl LightMap {
         self.geom
     }
     pub fn frame(&self) -> LightFrame {
-        self.frame
+        self.proj.frame()
+    }
+    /// World -> map coordinates of the last build.
+    pub fn projection(&self) -> Projection {
+        self.proj
     }
     pub fn stats(&self) -> &MapStats {
         &self.stats
@@ -334,7 +461,7 @@ impl LightMap {
     pub fn set_occluders_with_mesh(&mut self, solids: &[Solid], mesh: OccluderMesh) {
         let texel = OCCLUDER_TEXEL_CELLS * self.geom.ds_m;
         self.occluders
-            .build_with_mesh(&self.frame, texel, solids, mesh);
+            .build_with_mesh(&self.proj, texel, solids, mesh);
     }
 
     /// How far a point on an occluder's surface should be moved along its normal before a
@@ -347,7 +474,7 @@ impl LightMap {
     /// point.
     #[inline]
     fn cell_coords(&self, p: Vec3) -> Vec3 {
-        self.frame.to_map(p) * self.inv_cell
+        self.proj.point(p) * self.inv_cell
     }
 
     /// Column index of unwrapped (j, k).

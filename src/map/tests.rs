@@ -25,7 +25,7 @@ fn build(points: &[Vec3], len: f32, n: u32, ds: f32) -> LightMap {
         tangents: &tangents,
         lengths_m: &lengths,
         fibers_per_strand: 10.0,
-        light_dir: Vec3::X,
+        light: Vec3::X.into(),
         fiber: &f,
     });
     map
@@ -135,7 +135,7 @@ fn every_column_is_monotonic_exactly() {
         tangents: &geo.tangents,
         lengths_m: &geo.lengths_m,
         fibers_per_strand: style.strands.fibers_per_strand,
-        light_dir: Vec3::new(-0.5, -0.7, 0.5),
+        light: Vec3::new(-0.5, -0.7, 0.5).into(),
         fiber: &f,
     });
     let cols = (map.geom.n * map.geom.n) as usize;

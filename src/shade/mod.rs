@@ -10,17 +10,17 @@
 //! result does not depend on the thread count.
 
 use crate::fiber::{Fiber, LightAtPoint, ShadingMode};
+use crate::light::{Light, default_light};
 use crate::map::LightMap;
 use glam::Vec3;
 use rayon::prelude::*;
 
-/// Lighting of a frame.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// Lighting of a frame: any number of lights (each with its own map), an ambient term and the
+/// fibre shader.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Lighting {
-    /// Direction the light travels (unit).
-    pub light_dir: Vec3,
-    /// Irradiance of the directional light on a surface facing it, linear RGB (1 = white).
-    pub irradiance: Vec3,
+    /// The lights, validated ([`Light`]); the engine builds one map per light, in this order.
+    pub lights: Vec<Light>,
     /// Ambient (sky) radiance, linear RGB.
     pub ambient: Vec3,
     /// Fibre shader.
@@ -30,10 +30,26 @@ pub struct Lighting {
 impl Default for Lighting {
     fn default() -> Self {
         Self {
-            light_dir: Vec3::new(-0.75, -0.55, -0.35).normalize(),
-            irradiance: Vec3::splat(6.0),
+            lights: vec![default_light()],
             ambient: Vec3::new(0.035, 0.04, 0.05),
             mode: ShadingMode::DualScattering,
+        }
+    }
+}
+
+impl Lighting {
+    /// One light, with the default ambient and shader.
+    pub fn single(light: Light) -> Self {
+        Self {
+            lights: vec![light],
+            ..Self::default()
+        }
+    }
+
+    /// Turns every light by `rotation` about `pivot` ([`Light::turned`]).
+    pub fn turn(&mut self, rotation: glam::Quat, pivot: Vec3) {
+        for l in &mut self.lights {
+            *l = l.turned(rotation, pivot);
         }
     }
 }
@@ -44,34 +60,38 @@ pub fn fibre_tint(fiber: &Fiber) -> Vec3 {
     (-2.0 * Vec3::from(fiber.params().sigma_a)).exp()
 }
 
-/// Shades every vertex: `colors[i]` is the linear RGB radiance of vertex `i` seen from `eye`.
-/// The light a vertex receives is the map's, given that the camera sees it
-/// ([`LightMap::light_at_seen`]: with the light near the camera the view and light rays cross
-/// the same fibres, so a fibre that is seen is lit more often than the average). Non-finite
-/// results (which the fibre model must never produce) are replaced by black, so nothing invalid
-/// can reach a pixel.
+/// Shades every vertex: `colors[i]` is the linear RGB radiance of vertex `i` seen from `eye`,
+/// summed over the lights (`maps[k]` is light `k`'s map). The light a vertex receives is the
+/// map's, given that the camera sees it ([`LightMap::light_at_seen`]: with the light near the
+/// camera the view and light rays cross the same fibres, so a fibre that is seen is lit more
+/// often than the average). Non-finite results (which the fibre model must never produce) are
+/// replaced by black, so nothing invalid can reach a pixel.
 pub fn shade_vertices(
     fiber: &Fiber,
-    map: &LightMap,
+    maps: &[LightMap],
     lighting: &Lighting,
     eye: Vec3,
     positions: &[Vec3],
     tangents: &[Vec3],
     colors: &mut Vec<Vec3>,
 ) {
+    let r = fiber.params().radius_m;
     shade_vertices_with(
         fiber,
         lighting,
         eye,
         positions,
         tangents,
-        |i, p| map.light_at_seen(p, eye - p, tangents[i], fiber.params().radius_m),
+        |k, i, p| match maps.get(k) {
+            Some(map) => map.light_at_seen(p, eye - p, tangents[i], r),
+            None => LightAtPoint::UNSHADOWED,
+        },
         colors,
     );
 }
 
-/// [`shade_vertices`] with the light statistics of vertex `i` at `p` given by `light(i, p)`
-/// (the map, or a reference for measuring the map's error).
+/// [`shade_vertices`] with the light statistics of vertex `i` at `p` from light `k` given by
+/// `light(k, i, p)` (the maps, or a reference for measuring a map's error).
 pub fn shade_vertices_with<L>(
     fiber: &Fiber,
     lighting: &Lighting,
@@ -81,21 +101,26 @@ pub fn shade_vertices_with<L>(
     light: L,
     colors: &mut Vec<Vec3>,
 ) where
-    L: Fn(usize, Vec3) -> LightAtPoint + Sync,
+    L: Fn(usize, usize, Vec3) -> LightAtPoint + Sync,
 {
     const CHUNK: usize = 4096;
     colors.resize(positions.len(), Vec3::ZERO);
-    let wi = -lighting.light_dir.normalize_or(Vec3::NEG_Y);
     let ambient = lighting.ambient * fibre_tint(fiber);
+    let lights = &lighting.lights[..];
     colors
         .par_chunks_mut(CHUNK)
         .zip(positions.par_chunks(CHUNK).zip(tangents.par_chunks(CHUNK)))
         .enumerate()
         .for_each(|(chunk, (out, (pos, tan)))| {
             for (k, ((c, p), u)) in out.iter_mut().zip(pos).zip(tan).enumerate() {
-                let l = light(chunk * CHUNK + k, *p);
-                let wo = (eye - *p).normalize_or(wi);
-                let v = lighting.irradiance * fiber.shade(lighting.mode, *u, wi, wo, &l) + ambient;
+                let i = chunk * CHUNK + k;
+                let mut v = Vec3::ZERO;
+                for (li, l) in lights.iter().enumerate() {
+                    let (wi, irradiance) = l.toward_and_irradiance(*p);
+                    let wo = (eye - *p).normalize_or(wi);
+                    v += irradiance * fiber.shade(lighting.mode, *u, wi, wo, &light(li, i, *p));
+                }
+                let v = v + ambient;
                 *c = if v.is_finite() {
                     v.max(Vec3::ZERO)
                 } else {
@@ -105,28 +130,29 @@ pub fn shade_vertices_with<L>(
         });
 }
 
-/// Skin: Lambertian with albedo `albedo`, lit through the hair and past the other solids (the
-/// map's T_f at the skin point: hair casts its shadow on the head, the head on the body), plus
-/// ambient. The lookup point is moved off the surface along its normal by
+/// Skin: Lambertian with albedo `albedo`, lit through the hair and past the other solids (each
+/// light's map gives T_f at the skin point: hair casts its shadow on the head, the head on the
+/// body), plus ambient. The lookup point is moved off the surface along its normal by
 /// [`LightMap::surface_offset_m`] ("normal offset" shadow mapping), so that near the terminator,
 /// where the light grazes the surface, the solid does not shadow itself through the finite
 /// resolution of the occluder grid.
 #[inline]
 pub fn shade_skin(
-    map: &LightMap,
+    maps: &[LightMap],
     lighting: &Lighting,
     albedo: Vec3,
     p: Vec3,
     normal: Vec3,
 ) -> Vec3 {
-    let wi = -lighting.light_dir;
-    let cos = normal.dot(wi).max(0.0);
-    let light = if cos > 0.0 {
-        map.light_at(p + normal * map.surface_offset_m())
-    } else {
-        LightAtPoint::UNSHADOWED
-    };
-    let v = albedo
-        * (lighting.irradiance * light.tf * cos * std::f32::consts::FRAC_1_PI + lighting.ambient);
+    let mut lit = Vec3::ZERO;
+    for (l, map) in lighting.lights.iter().zip(maps) {
+        let (wi, irradiance) = l.toward_and_irradiance(p);
+        let cos = normal.dot(wi).max(0.0);
+        if cos > 0.0 {
+            let light = map.light_at(p + normal * map.surface_offset_m());
+            lit += irradiance * light.tf * cos * std::f32::consts::FRAC_1_PI;
+        }
+    }
+    let v = albedo * (lit + lighting.ambient);
     if v.is_finite() { v } else { Vec3::ZERO }
 }

@@ -33,7 +33,7 @@ pub fn build_map(
         tangents: &geo.tangents,
         lengths_m: &geo.lengths_m,
         fibers_per_strand: fibers,
-        light_dir: light,
+        light: light.into(),
         fiber,
     });
     map

@@ -67,7 +67,9 @@ pub fn simulate_to(
         settle_s: config.settle_s,
         hairstyle_digest: e.hairstyle_digest,
         motion_digest: e.motion_digest,
-        light_dir: config.lighting.light_dir.normalize(),
+        light_dir: config.lighting.lights[0]
+            .travel()
+            .unwrap_or(glam::Vec3::NEG_Y),
         map_res: wisp::frame::map_geometry(&style, &config).n,
         simulated: config.simulate,
         self_collision: config.self_collision,

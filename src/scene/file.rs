@@ -1,0 +1,473 @@
+//! The scene file (`--scene FILE.json`): what a frame is looked at with and lit by, as JSON.
+//!
+//! Every field has a default, so `{}` is the engine's default scene, and `wisp render
+//! --print-scene` writes the effective scene (defaults, file and flags merged) for a user to
+//! start from. Units are in the names (`_m` metres, `_deg` degrees, `_stops` powers of two);
+//! colours are linear RGB.
+//!
+//! ```json
+//! {
+//!   "image": { "width": 800, "height": 800 },
+//!   "camera": { "type": "follow_head" },
+//!   "lights": [
+//!     { "type": "directional", "direction": [-0.75, -0.55, -0.35], "irradiance": [6, 6, 6] },
+//!     { "type": "point", "position_m": [0.6, 1.9, 0.8], "intensity": [2, 1.8, 1.5] }
+//!   ],
+//!   "ambient": [0.035, 0.04, 0.05],
+//!   "background": [0.012, 0.014, 0.018],
+//!   "exposure_stops": 0,
+//!   "draw_solids": true
+//! }
+//! ```
+//!
+//! - `camera`: `{"type": "follow_head"}` (frames the settled hair from three-quarters front and
+//!   follows the head), or `{"type": "fixed", "position_m": [x, y, z], "target_m": [x, y, z],
+//!   "up": [0, 1, 0], "fov_y_deg": 30}` (`up` and `fov_y_deg` optional).
+//! - `lights`: one or more (at most [`MAX_LIGHTS`]); each gets its own map. `directional`:
+//!   `direction` the light travels (any non-zero vector, world, Y up) and `irradiance` on a
+//!   surface facing it. `point`: `position_m` and radiant `intensity` (irradiance I/d² at
+//!   distance d); it must lie outside the hair (checked against the hairstyle,
+//!   [`check_point_lights_outside`]).
+//! - `exposure_stops`: the image's radiance is scaled by 2^stops (lights, ambient and
+//!   background alike), in [−20, 20].
+//! - `draw_solids`: draw the head and body (or the character's mesh); without them, hair alone.
+//!
+//! Parsing is strict ([`crate::input::json::from_str`]) and [`SceneFile::validate`] checks every
+//! rule, naming the field (`lights[1].intensity`) and the rule.
+
+use super::camera::{CameraError, CameraSetup, CameraSpec};
+use crate::light::{Light, LightError};
+use glam::Vec3;
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+/// Most lights a scene may have (each one is a map built every frame).
+pub const MAX_LIGHTS: usize = 16;
+/// Image sides wisp renders, pixels.
+pub const MIN_IMAGE_SIDE: u32 = 16;
+pub const MAX_IMAGE_SIDE: u32 = 8192;
+
+/// A scene file as written.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SceneFile {
+    pub image: ImageSize,
+    pub camera: CameraJson,
+    pub lights: Vec<LightJson>,
+    pub ambient: [f32; 3],
+    pub background: [f32; 3],
+    pub exposure_stops: f32,
+    pub draw_solids: bool,
+}
+
+/// Image size in pixels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ImageSize {
+    pub width: u32,
+    pub height: u32,
+}
+
+/// The camera as written.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum CameraJson {
+    /// Frame the settled hair and follow the head (the default).
+    FollowHead,
+    /// Fixed in the world.
+    Fixed {
+        position_m: [f32; 3],
+        target_m: [f32; 3],
+        #[serde(default = "default_up")]
+        up: [f32; 3],
+        #[serde(default = "default_fov_deg")]
+        fov_y_deg: f32,
+    },
+}
+
+fn default_up() -> [f32; 3] {
+    [0.0, 1.0, 0.0]
+}
+fn default_fov_deg() -> f32 {
+    30.0
+}
+
+/// A light as written.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum LightJson {
+    Directional {
+        direction: [f32; 3],
+        irradiance: [f32; 3],
+    },
+    Point {
+        position_m: [f32; 3],
+        intensity: [f32; 3],
+    },
+}
+
+impl Default for SceneFile {
+    /// The engine's default scene (the same frame as `wisp render` with no scene flags).
+    fn default() -> Self {
+        Self {
+            image: ImageSize {
+                width: 800,
+                height: 800,
+            },
+            camera: CameraJson::FollowHead,
+            lights: vec![LightJson::Directional {
+                direction: crate::light::DEFAULT_LIGHT_TRAVEL,
+                irradiance: [6.0; 3],
+            }],
+            ambient: [0.035, 0.04, 0.05],
+            background: [0.012, 0.014, 0.018],
+            exposure_stops: 0.0,
+            draw_solids: true,
+        }
+    }
+}
+
+impl Default for ImageSize {
+    fn default() -> Self {
+        SceneFile::default().image
+    }
+}
+
+impl Default for CameraJson {
+    fn default() -> Self {
+        CameraJson::FollowHead
+    }
+}
+
+/// Why a scene file was refused.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum SceneError {
+    #[error("{file}: {message}")]
+    Io { file: String, message: String },
+    #[error("{file}: {field}: {message}")]
+    Parse {
+        file: String,
+        field: String,
+        message: String,
+    },
+    #[error("{file}: {field}: {rule}")]
+    Invalid {
+        file: String,
+        field: String,
+        rule: String,
+    },
+}
+
+/// A validated scene: what the engine takes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    pub width: u32,
+    pub height: u32,
+    pub camera: CameraSetup,
+    /// Lights with the exposure applied.
+    pub lights: Vec<Light>,
+    /// Ambient radiance and background, exposure applied, linear RGB.
+    pub ambient: Vec3,
+    pub background: Vec3,
+    pub draw_solids: bool,
+}
+
+fn colour(field: String, c: [f32; 3]) -> Result<Vec3, (String, String)> {
+    let v = Vec3::from(c);
+    if v.is_finite() && v.min_element() >= 0.0 {
+        Ok(v)
+    } else {
+        Err((
+            field,
+            format!("must be three finite numbers >= 0 (got {v})"),
+        ))
+    }
+}
+
+/// Largest scene file read, bytes (a scene is a few hundred bytes; this only stops a wrong file
+/// from being read whole).
+pub const MAX_SCENE_FILE_BYTES: u64 = 1 << 20;
+
+impl SceneFile {
+    /// Reads, parses and validates a scene file.
+    pub fn load(path: &std::path::Path) -> Result<(SceneFile, Scene), SceneError> {
+        let file = path.display().to_string();
+        let bytes =
+            crate::input::read_capped(path, MAX_SCENE_FILE_BYTES, "a scene file").map_err(|e| {
+                SceneError::Io {
+                    file: file.clone(),
+                    message: e.to_string(),
+                }
+            })?;
+        let text = crate::input::json::decode_text(&bytes).map_err(|e| SceneError::Parse {
+            file: file.clone(),
+            field: e.field,
+            message: e.message,
+        })?;
+        Self::from_json(text, &file)
+    }
+
+    /// Parses and validates JSON text; `file` names the source in errors.
+    pub fn from_json(text: &str, file: &str) -> Result<(SceneFile, Scene), SceneError> {
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        let parsed: SceneFile =
+            crate::input::json::from_str(text).map_err(|e| SceneError::Parse {
+                file: file.to_string(),
+                field: e.field,
+                message: e.message,
+            })?;
+        let scene = parsed.validate(file)?;
+        Ok((parsed, scene))
+    }
+
+    /// The file as pretty JSON (what `--print-scene` writes; reading it back gives this file).
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
+    }
+
+    /// Checks every rule; the error names `file`, the field and the rule.
+    pub fn validate(&self, file: &str) -> Result<Scene, SceneError> {
+        self.check().map_err(|(field, rule)| SceneError::Invalid {
+            file: file.to_string(),
+            field,
+            rule,
+        })
+    }
+
+    fn check(&self) -> Result<Scene, (String, String)> {
+        for (field, side) in [
+            ("image.width", self.image.width),
+            ("image.height", self.image.height),
+        ] {
+            if !(MIN_IMAGE_SIDE..=MAX_IMAGE_SIDE).contains(&side) {
+                return Err((
+                    field.into(),
+                    format!("must be in {MIN_IMAGE_SIDE}..={MAX_IMAGE_SIDE} pixels (got {side})"),
+                ));
+            }
+        }
+        let camera = match self.camera {
+            CameraJson::FollowHead => CameraSetup::HeadFollowing,
+            CameraJson::Fixed {
+                position_m,
+                target_m,
+                up,
+                fov_y_deg,
+            } => {
+                let spec = CameraSpec::new(
+                    Vec3::from(position_m),
+                    Vec3::from(target_m),
+                    Vec3::from(up),
+                    fov_y_deg.to_radians(),
+                )
+                .map_err(|e| {
+                    let field = match e {
+                        CameraError::NonFinite { field: "eye", .. }
+                        | CameraError::EyeAtTarget(_) => "camera.position_m",
+                        CameraError::NonFinite {
+                            field: "target", ..
+                        } => "camera.target_m",
+                        CameraError::NonFinite { .. } | CameraError::UpAlongView { .. } => {
+                            "camera.up"
+                        }
+                        CameraError::FieldOfView { .. } => "camera.fov_y_deg",
+                    };
+                    (field.to_string(), e.to_string())
+                })?;
+                CameraSetup::Fixed(spec)
+            }
+        };
+        if !(self.exposure_stops.is_finite() && self.exposure_stops.abs() <= 20.0) {
+            return Err((
+                "exposure_stops".into(),
+                format!("must be in [-20, 20] (got {})", self.exposure_stops),
+            ));
+        }
+        let gain = self.exposure_stops.exp2();
+        if self.lights.is_empty() {
+            return Err((
+                "lights".into(),
+                "needs at least one light (a directional or a point light)".into(),
+            ));
+        }
+        if self.lights.len() > MAX_LIGHTS {
+            return Err((
+                "lights".into(),
+                format!(
+                    "at most {MAX_LIGHTS} lights (got {}): each light is a map built every frame",
+                    self.lights.len()
+                ),
+            ));
+        }
+        let mut lights = Vec::with_capacity(self.lights.len());
+        for (i, l) in self.lights.iter().enumerate() {
+            let field = |name: &str| format!("lights[{i}].{name}");
+            let light = match *l {
+                LightJson::Directional {
+                    direction,
+                    irradiance,
+                } => {
+                    let e = colour(field("irradiance"), irradiance)?;
+                    Light::directional(Vec3::from(direction), e * gain).map_err(|err| {
+                        let name = match err {
+                            LightError::Direction(_) => "direction",
+                            _ => "irradiance",
+                        };
+                        (field(name), err.to_string())
+                    })?
+                }
+                LightJson::Point {
+                    position_m,
+                    intensity,
+                } => {
+                    let i_rgb = colour(field("intensity"), intensity)?;
+                    Light::point(Vec3::from(position_m), i_rgb * gain).map_err(|err| {
+                        let name = match err {
+                            LightError::Position(_) => "position_m",
+                            _ => "intensity",
+                        };
+                        (field(name), err.to_string())
+                    })?
+                }
+            };
+            lights.push(light);
+        }
+        let ambient = colour("ambient".into(), self.ambient)? * gain;
+        let background = colour("background".into(), self.background)? * gain;
+        Ok(Scene {
+            width: self.image.width,
+            height: self.image.height,
+            camera,
+            lights,
+            ambient,
+            background,
+            draw_solids: self.draw_solids,
+        })
+    }
+}
+
+/// Refuses a point light inside the hair: within `reach_m` (the hair's reach: its longest
+/// strand plus the head's largest radius) of the head centre `head_m` (world metres, first
+/// pose). The map of a point light looks from the light at the hair; from inside it, hair lies
+/// on every side and the map cannot hold it. The error is (field, rule).
+pub fn check_point_lights_outside(
+    lights: &[Light],
+    head_m: Vec3,
+    reach_m: f32,
+) -> Result<(), (String, String)> {
+    for (i, l) in lights.iter().enumerate() {
+        if let Light::Point { position_m, .. } = l {
+            let d = (*position_m - head_m).length();
+            if !(d > reach_m) {
+                return Err((
+                    format!("lights[{i}].position_m"),
+                    format!(
+                        "the point light at {position_m} m is {d:.3} m from the head centre \
+                         {head_m}, inside the hair, which reaches {reach_m:.3} m from it; put it \
+                         farther away"
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn refused(text: &str) -> (String, String) {
+        match SceneFile::from_json(text, "s.json") {
+            Err(SceneError::Invalid { field, rule, .. }) => (field, rule),
+            Err(SceneError::Parse { field, message, .. }) => (field, message),
+            Err(e @ SceneError::Io { .. }) => panic!("{e}"),
+            Ok(s) => panic!("accepted {text}: {s:?}"),
+        }
+    }
+
+    #[test]
+    fn an_empty_object_is_the_default_scene_and_printing_round_trips() {
+        let (file, scene) = SceneFile::from_json("{}", "s.json").unwrap();
+        assert_eq!(file, SceneFile::default());
+        assert_eq!(scene.lights.len(), 1);
+        let (again, scene2) = SceneFile::from_json(&file.to_json(), "s.json").unwrap();
+        assert_eq!(again, file);
+        assert_eq!(scene2, scene);
+    }
+
+    #[test]
+    fn two_lights_and_a_fixed_camera_parse() {
+        let text = r#"{"camera": {"type": "fixed", "position_m": [0, 1.6, 1], "target_m": [0, 1.6, 0]},
+            "lights": [{"type": "directional", "direction": [0, -1, 0], "irradiance": [1, 1, 1]},
+                       {"type": "point", "position_m": [1, 2, 1], "intensity": [4, 4, 4]}],
+            "exposure_stops": 1}"#;
+        let (_, scene) = SceneFile::from_json(text, "s.json").unwrap();
+        assert!(matches!(scene.camera, CameraSetup::Fixed(_)));
+        // Exposure +1 stop doubles every light and the ambient.
+        match scene.lights[1] {
+            Light::Point { intensity, .. } => assert_eq!(intensity, Vec3::splat(8.0)),
+            _ => panic!("not a point light"),
+        }
+        assert_eq!(scene.ambient, Vec3::new(0.07, 0.08, 0.1));
+    }
+
+    #[test]
+    fn bad_fields_are_named() {
+        let cases = [
+            (r#"{"lights": []}"#, "lights"),
+            (
+                r#"{"lights": [{"type": "point", "position_m": [0, 0, 0]}]}"#,
+                "lights[0]",
+            ),
+            (
+                r#"{"lights": [{"type": "directional", "direction": [0, 0, 0], "irradiance": [1, 1, 1]}]}"#,
+                "lights[0].direction",
+            ),
+            (
+                r#"{"lights": [{"type": "directional", "direction": [0, -1, 0], "irradiance": [1, -1, 1]}]}"#,
+                "lights[0].irradiance",
+            ),
+            (
+                r#"{"lights": [{"type": "spot", "direction": [0, -1, 0]}]}"#,
+                "lights[0]",
+            ),
+            (r#"{"image": {"width": 8, "height": 800}}"#, "image.width"),
+            (
+                r#"{"image": {"width": "big", "height": 800}}"#,
+                "image.width",
+            ),
+            (r#"{"ambient": [1e39, 0, 0]}"#, "ambient"),
+            (r#"{"exposure_stops": 99}"#, "exposure_stops"),
+            (
+                r#"{"camera": {"type": "fixed", "position_m": [0, 0, 0], "target_m": [0, 0, 0]}}"#,
+                "camera.position_m",
+            ),
+            (
+                r#"{"camera": {"type": "fixed", "position_m": [0, 0, 1], "target_m": [0, 0, 0], "fov_y_deg": 180}}"#,
+                "camera.fov_y_deg",
+            ),
+            (r#"{"colour": [1, 1, 1]}"#, "(top level)"),
+            (r#"{"ambient": NaN}"#, "ambient"),
+        ];
+        for (text, field) in cases {
+            let (got, rule) = refused(text);
+            assert!(
+                got.starts_with(field),
+                "{text}: field {got} ({rule}), want {field}"
+            );
+            assert!(!rule.is_empty());
+        }
+    }
+
+    #[test]
+    fn a_point_light_inside_the_hair_is_refused() {
+        let inside = [Light::point(Vec3::new(0.1, 1.6, 0.0), Vec3::ONE).unwrap()];
+        let head = Vec3::new(0.0, 1.6, 0.0);
+        let (field, rule) = check_point_lights_outside(&inside, head, 0.4).unwrap_err();
+        assert_eq!(field, "lights[0].position_m");
+        assert!(rule.contains("inside the hair"), "{rule}");
+        let outside = [Light::point(Vec3::new(1.0, 1.6, 0.0), Vec3::ONE).unwrap()];
+        assert!(check_point_lights_outside(&outside, head, 0.4).is_ok());
+    }
+}
