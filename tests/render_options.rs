@@ -2,6 +2,8 @@
 //! coverage channel, and the guarantee that the pre-issue-14 configuration still renders
 //! byte for byte what it rendered before.
 
+mod common;
+
 use glam::{Affine3A, Vec3};
 use wisp::frame::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
@@ -25,17 +27,6 @@ fn small() -> EngineConfig {
     }
 }
 
-fn decode_png(path: &std::path::Path) -> (u32, u32, Vec<u8>) {
-    let decoder = png::Decoder::new(std::io::BufReader::new(
-        std::fs::File::open(path).expect("golden image"),
-    ));
-    let mut reader = decoder.read_info().expect("png header");
-    let mut buf = vec![0; reader.output_buffer_size().expect("size")];
-    let info = reader.next_frame(&mut buf).expect("png data");
-    buf.truncate(info.buffer_size());
-    (info.width, info.height, buf)
-}
-
 /// `tests/golden/default_still_160.png` is `wisp render --still --frames 1 --width 160
 /// --height 160` from main at 6039f6e/7d94265, before issue 14. The options added since
 /// (camera setup, solids switch, coverage channel, EXR output) must not change a single byte
@@ -46,38 +37,11 @@ fn decode_png(path: &std::path::Path) -> (u32, u32, Vec<u8>) {
 /// commit.
 #[test]
 fn pre_issue_14_configuration_renders_byte_identical_png() {
-    let golden =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden/default_still_160.png");
     let mut config = small();
     config.line = LineStyle::pixels(1.0, 0.85);
     let mut e = engine(config);
     let rgb = e.frame(0.0).to_srgb8();
-    if std::env::var_os("WISP_UPDATE_GOLDEN").is_some() {
-        wisp::output::write_png_rgb8(&golden, 160, 160, &rgb).unwrap();
-        println!("updated {}", golden.display());
-        return;
-    }
-    let (w, h, want) = decode_png(&golden);
-    assert_eq!((w, h), (160, 160));
-    if rgb != want {
-        let diff: Vec<u8> = rgb
-            .iter()
-            .zip(&want)
-            .map(|(a, b)| a.abs_diff(*b).saturating_mul(16))
-            .collect();
-        let out =
-            std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("default_still_160_diff.png");
-        wisp::output::write_png_rgb8(&out, w, h, &diff).unwrap();
-        let n = rgb
-            .chunks(3)
-            .zip(want.chunks(3))
-            .filter(|(a, b)| a != b)
-            .count();
-        panic!(
-            "{n} pixels differ from the golden image; diff in {}",
-            out.display()
-        );
-    }
+    common::golden::assert_golden("default_still_160.png", 160, 160, &rgb, 0);
 }
 
 /// A fixed camera placed exactly where the head-following one is renders the same bytes: the

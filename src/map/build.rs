@@ -64,11 +64,13 @@ impl MapLight {
         }
     }
 
-    /// The projection for a map of span `span_m`: for a point light, the reference plane is
-    /// where the map's span around the aim point begins (so no hair within the span is
-    /// magnified across the light, and the modulo map never overflows for it), at least a
-    /// quarter of the way from the light.
-    pub fn projection(&self, span_m: f32) -> super::Projection {
+    /// The projection for hair at `positions`: for a point light, the reference plane is at
+    /// the nearest hair along the axis, so no hair is magnified across the light (the modulo
+    /// map cannot overflow for it) and the nearest hair keeps the map's full resolution. The
+    /// plane is at least a tenth of the way to the aim point (a light inside the hair, which
+    /// scene files refuse, would otherwise put it at the light). The minimum is exact, so the
+    /// projection does not depend on the thread count.
+    pub fn projection(&self, positions: &[Vec3]) -> super::Projection {
         match *self {
             MapLight::Directional(travel) => super::Projection::Parallel {
                 frame: LightFrame::new(travel),
@@ -77,8 +79,15 @@ impl MapLight {
                 let axis = aim_m - position_m;
                 let dist = axis.length();
                 let frame = LightFrame::new(if dist > 0.0 { axis } else { Vec3::NEG_Y });
-                let ref_depth_m = (dist - 0.5 * span_m)
-                    .max(0.25 * dist)
+                let nearest = positions
+                    .par_iter()
+                    .with_min_len(4096)
+                    .map(|p| frame.x.dot(*p - position_m))
+                    .filter(|d| d.is_finite())
+                    .reduce(|| f32::INFINITY, f32::min);
+                let ref_depth_m = nearest
+                    .min(dist)
+                    .max(0.1 * dist)
                     .max(super::CENTRAL_MIN_DEPTH_M);
                 super::Projection::Central {
                     frame,
@@ -174,7 +183,7 @@ const MAX_CELL_COORD: f32 = 1.0e12;
 impl LightMap {
     /// Rebuilds the map for `input` (fill + sweep). Allocation-free once warmed up.
     pub fn build(&mut self, input: &MapBuildInput) {
-        self.proj = input.light.projection(self.geom.n as f32 * self.geom.ds_m);
+        self.proj = input.light.projection(input.positions);
         let n = self.geom.n as i64;
         let ncol = self.geom.columns_per_axis() as i64;
         let ds = self.geom.ds_m;

@@ -229,16 +229,7 @@ impl<'a> ExactReference<'a> {
     pub fn build(input: &ExactInput<'a>, bin_m: f32) -> Self {
         // A point light's projection puts its reference plane at the nearest hair, so no fibre
         // is magnified across the light (the bins' padding by r then holds).
-        let reach = match input.light {
-            MapLight::Directional(_) => 0.0,
-            MapLight::Point { aim_m, .. } => input
-                .positions
-                .iter()
-                .filter(|p| p.is_finite())
-                .map(|p| (*p - aim_m).length())
-                .fold(0.0f32, f32::max),
-        };
-        let proj = input.light.projection(2.0 * reach);
+        let proj = input.light.projection(input.positions);
         let ppl = input.points_per_strand.max(1);
         let strands = input.positions.len() / ppl;
         let f_count = input.fibers_per_strand.max(1) as usize;

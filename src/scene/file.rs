@@ -69,10 +69,11 @@ pub struct ImageSize {
 }
 
 /// The camera as written.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum CameraJson {
     /// Frame the settled hair and follow the head (the default).
+    #[default]
     FollowHead,
     /// Fixed in the world.
     Fixed {
@@ -130,12 +131,6 @@ impl Default for SceneFile {
 impl Default for ImageSize {
     fn default() -> Self {
         SceneFile::default().image
-    }
-}
-
-impl Default for CameraJson {
-    fn default() -> Self {
-        CameraJson::FollowHead
     }
 }
 
@@ -358,7 +353,8 @@ pub fn check_point_lights_outside(
     for (i, l) in lights.iter().enumerate() {
         if let Light::Point { position_m, .. } = l {
             let d = (*position_m - head_m).length();
-            if !(d > reach_m) {
+            // Also refuses a NaN distance.
+            if d.is_nan() || d <= reach_m {
                 return Err((
                     format!("lights[{i}].position_m"),
                     format!(
@@ -447,7 +443,7 @@ mod tests {
                 r#"{"camera": {"type": "fixed", "position_m": [0, 0, 1], "target_m": [0, 0, 0], "fov_y_deg": 180}}"#,
                 "camera.fov_y_deg",
             ),
-            (r#"{"colour": [1, 1, 1]}"#, "(top level)"),
+            (r#"{"colour": [1, 1, 1]}"#, "colour"),
             (r#"{"ambient": NaN}"#, "ambient"),
         ];
         for (text, field) in cases {

@@ -1,6 +1,8 @@
 //! Helpers shared by integration tests.
 #![allow(dead_code)]
 
+pub mod golden;
+
 use glam::Vec3;
 use wisp::fiber::{Fiber, FiberParams};
 use wisp::hairstyle::{Hairstyle, generate};
