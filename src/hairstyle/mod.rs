@@ -5,6 +5,7 @@
 //! `wisps.count`) and the rule that failed. Sizes are bounded so that a hostile file cannot make
 //! the engine allocate gigabytes.
 
+pub mod dynamics;
 mod generate;
 mod model;
 
@@ -13,7 +14,7 @@ pub use model::{GuideSet, StrandLayout};
 
 use crate::fiber::FiberParams;
 use crate::input::{self, ReadError};
-use crate::sim::SimParams;
+pub use dynamics::SimParams;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
