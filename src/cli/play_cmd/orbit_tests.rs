@@ -153,6 +153,31 @@ fn zoom_stops_short_of_the_target_and_far_away() {
     );
 }
 
+/// Found by the property test below: zoomed far out with a wide lens, a few long pans carried
+/// the target kilometres away, where f32 positions are too coarse for a 5 cm view after
+/// zooming back in. Pans stop at MAX_PAN_M, so the camera stays valid.
+#[test]
+fn long_pans_stop_where_positions_are_still_fine() {
+    let cam = Camera::look_at(
+        Vec3::ZERO,
+        Vec3::new(0.0, -0.58, 0.0),
+        Vec3::Z,
+        1.96,
+        64,
+        48,
+    );
+    let mut o = Orbit::from_camera(&cam, Vec3::ZERO);
+    o.zoom(-1e3);
+    for _ in 0..100 {
+        o.pan(-1857.0, 1000.0, 48);
+    }
+    assert_eq!(o.target.abs().max_element(), MAX_PAN_M);
+    o.zoom(1e3);
+    let s = o.spec(Vec3::ZERO).unwrap();
+    let d = (s.eye() - s.target()).length();
+    assert!((d - MIN_DISTANCE_M).abs() < 1e-3, "{d}");
+}
+
 #[test]
 fn bad_input_leaves_a_usable_camera() {
     let nan = Vec3::splat(f32::NAN);
