@@ -611,6 +611,14 @@ impl Engine {
         }
     }
 
+    /// Sets where the camera is (`config.camera`) and places it at once: a fixed camera as
+    /// given, a head-following one framed anew on the current hair and pose. The window's
+    /// mouse camera uses it.
+    pub fn set_camera(&mut self, setup: CameraSetup) {
+        self.config.camera = setup;
+        self.place_camera();
+    }
+
     /// Moves a head-following camera with the head's translation (a fixed one stays).
     fn follow_head(&mut self) {
         if let Some(rig) = &self.follow {
