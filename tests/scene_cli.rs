@@ -186,3 +186,28 @@ fn bad_scene_files_exit_2_naming_file_field_and_rule() {
         assert!(text(&o.stderr).contains(path.to_str().unwrap()));
     }
 }
+
+/// `export` writes a path tracer's scene, which has one directional light: a scene with a
+/// point light is refused up front (exit 2), before any frame is rendered.
+#[test]
+fn export_refuses_scenes_it_cannot_describe() {
+    let dir = tmp("scene-cli-export");
+    let scene = dir.join("s.json");
+    std::fs::write(
+        &scene,
+        r#"{"lights": [{"type": "point", "position_m": [2, 0, 0], "intensity": [1, 1, 1]}]}"#,
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let o = wisp(&[
+        "export",
+        "--still",
+        "--scene",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o.stderr));
+    assert!(text(&o.stderr).contains("one directional light"));
+    assert!(!out.join("scene.json").exists());
+}
