@@ -67,7 +67,7 @@ pub enum FrameDefect {
         height: u32,
     },
     /// It decodes, in another layout (bit depth, colour type).
-    #[error("is {got}, this run writes {want}")]
+    #[error("is {got}; this run writes {want} frames")]
     WrongKind { got: String, want: &'static str },
 }
 
@@ -137,8 +137,15 @@ fn check_png(
     let got = (info.bit_depth, info.color_type);
     size(got_width, got_height)?;
     if got != want {
+        let colour = match got.1 {
+            png::ColorType::Grayscale => "grey",
+            png::ColorType::Rgb => "RGB",
+            png::ColorType::Indexed => "palette",
+            png::ColorType::GrayscaleAlpha => "grey and alpha",
+            png::ColorType::Rgba => "RGBA",
+        };
         return Err(FrameDefect::WrongKind {
-            got: format!("a {}-bit {:?} PNG", got.0 as u8, got.1),
+            got: format!("a PNG of {}-bit {colour}", got.0 as u8),
             want: want_words,
         });
     }
