@@ -478,7 +478,7 @@ pub fn export_frames(
         }
         bar.inc(1);
         let done = bar.position();
-        if !quiet && bar.is_hidden() && done % 30 == 0 {
+        if !quiet && bar.is_hidden() && done.is_multiple_of(30) {
             eprintln!("wisp: frame {done}/{frames} (t = {t:.2} s)");
         }
     }
