@@ -107,6 +107,20 @@ pub fn check_frame(
             check_png(path, want, format.describe(), size)
         }
         FrameFormat::Exr => {
+            // The header first: the reader allocates the pixels its header announces.
+            let meta = exr::meta::MetaData::read_from_file(path, false)
+                .map_err(|e| FrameDefect::Undecodable(format!("OpenEXR: {e}")))?;
+            let Some(header) = meta.headers.first() else {
+                return Err(FrameDefect::Undecodable("OpenEXR: no layer".into()));
+            };
+            let announced = header.layer_size;
+            size(announced.width() as u32, announced.height() as u32)?;
+            if meta.headers.len() != 1 {
+                return Err(FrameDefect::WrongKind {
+                    got: format!("an OpenEXR file of {} layers", meta.headers.len()),
+                    want: format.describe(),
+                });
+            }
             let (w, h, _, _) = super::read_exr_rgba_f32(path).map_err(|e| match e {
                 super::OutputError::Encode { message, .. } => FrameDefect::Undecodable(message),
                 e => FrameDefect::Undecodable(e.to_string()),
@@ -221,6 +235,27 @@ mod tests {
         assert!(matches!(
             check_frame(&dir, Png8, w, h),
             Err(FrameDefect::Undecodable(_))
+        ));
+        // A header announcing 100,000 x 100,000 pixels (40 GB as f32 RGBA) is refused from the
+        // header, before the reader allocates them.
+        let huge = dir.join("huge.exr");
+        let mut bytes = std::fs::read(&pexr).unwrap();
+        let window = b"dataWindow\0box2i\0";
+        let at = bytes
+            .windows(window.len())
+            .position(|x| x == window)
+            .unwrap()
+            + window.len()
+            + 4;
+        bytes[at + 8..at + 16].copy_from_slice(&[0x9f, 0x86, 1, 0, 0x9f, 0x86, 1, 0]);
+        std::fs::write(&huge, &bytes).unwrap();
+        assert!(matches!(
+            check_frame(&huge, Exr, w, h),
+            Err(FrameDefect::WrongSize {
+                got_width: 100_000,
+                got_height: 100_000,
+                ..
+            })
         ));
         let cut = dir.join("cut");
         for (src, format) in [(&p8, Png8), (&p16, Png16), (&pexr, Exr)] {
