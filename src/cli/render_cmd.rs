@@ -347,10 +347,19 @@ pub fn plan_frames(
         );
         return plan;
     }
-    let through = if kept_n > 0 && !output.independent_frames {
-        " (the simulation runs through the kept frames before the last one to render)"
+    let last = plan.last_to_render();
+    let simulated_through = plan
+        .indices
+        .clone()
+        .zip(&plan.kept)
+        .filter(|(i, k)| **k && Some(*i) < last)
+        .count();
+    let through = if simulated_through > 0 && !output.independent_frames {
+        format!(
+            " (the simulation runs through the {simulated_through} kept frames before the last one to render)"
+        )
     } else {
-        ""
+        String::new()
     };
     eprintln!(
         "wisp: --resume: {kept_n} of {n} frames are already complete in {} and kept; rendering {} ({} of them again){through}",
@@ -435,6 +444,7 @@ pub fn export_frames(
     bar.set_position(free as u64);
     bar.reset_eta();
     let (mut rendered, mut simulated_only) = (0u32, 0u32);
+    let mut simulated_only_s = 0.0;
     let mut failed = None;
     let mut hair_error = None;
     for (i, &kept) in plan.indices.clone().zip(&plan.kept) {
@@ -451,6 +461,9 @@ pub fn export_frames(
         bar.set_message(format!("t = {t:.2} s"));
         if kept {
             simulated_only += 1;
+            simulated_only_s += engine.timings.animation_s
+                + engine.timings.simulation_s
+                + engine.timings.interpolation_s;
             bar.inc(1);
             continue;
         }
@@ -516,7 +529,10 @@ pub fn export_frames(
             eprintln!("wisp: wrote {rendered} frames{range} to {shown}");
         } else {
             let through = if simulated_only > 0 {
-                format!(" ({simulated_only} of them simulated through)")
+                format!(
+                    " ({simulated_only} of them simulated through, {:.1} ms each)",
+                    simulated_only_s * 1e3 / f64::from(simulated_only)
+                )
             } else {
                 String::new()
             };
