@@ -1,9 +1,9 @@
 //! The output directory of an export: made ready before the first frame (created, checked
 //! writable, what an earlier export left tidied away), and, with `--resume`, searched for the
 //! frames already complete on disk (`wisp::output::check_frame`: decoded whole, not trusted by
-//! name).
+//! name), which gives the run's [`FramePlan`].
 
-use super::AppError;
+use super::{AppError, FrameOutput};
 use anyhow::Context;
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
@@ -165,7 +165,7 @@ pub fn frame_path(dir: &Path, format: FrameFormat, index: u32) -> PathBuf {
 
 /// The frames of `indices` in `dir`, each with whether it is complete (`Ok`) or why not
 /// (missing, cut short, corrupt, another size or format), checked in parallel.
-pub fn find_complete_frames(
+fn find_complete_frames(
     dir: &Path,
     indices: std::ops::Range<u32>,
     format: FrameFormat,
@@ -176,6 +176,115 @@ pub fn find_complete_frames(
         .into_par_iter()
         .map(|i| check_frame(&frame_path(dir, format, i), format, width, height))
         .collect()
+}
+
+/// The frames of a run and which of them `--resume` keeps.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FramePlan {
+    /// The run's frames, by number.
+    pub indices: std::ops::Range<u32>,
+    /// Per frame of `indices`: already complete on disk, kept.
+    pub kept: Vec<bool>,
+}
+
+impl FramePlan {
+    /// Frames to render.
+    pub fn to_render(&self) -> usize {
+        self.kept.iter().filter(|k| !**k).count()
+    }
+
+    /// Every frame is kept.
+    pub fn nothing_to_render(&self) -> bool {
+        self.to_render() == 0
+    }
+
+    /// The last frame to render (no frame after it needs the simulation).
+    pub(super) fn last_to_render(&self) -> Option<u32> {
+        self.indices
+            .clone()
+            .zip(&self.kept)
+            .rev()
+            .find(|(_, k)| !**k)
+            .map(|(i, _)| i)
+    }
+}
+
+/// Most frames whose defect `--resume` names one by one.
+const DEFECTS_NAMED: usize = 10;
+
+/// The frames of `indices` to render: all of them, or with `--resume` those not already
+/// complete in the output directory (`width` x `height`, the output's format). Says on stderr
+/// which frames on disk are kept, and which are rendered again and why (cut short, corrupt,
+/// another size or format), unless quiet.
+pub fn plan_frames(
+    output: &FrameOutput,
+    indices: std::ops::Range<u32>,
+    width: u32,
+    height: u32,
+) -> FramePlan {
+    let n = indices.len();
+    if !output.resume {
+        return FramePlan {
+            indices,
+            kept: vec![false; n],
+        };
+    }
+    let checks = find_complete_frames(&output.dir, indices.clone(), output.format, width, height);
+    let kept: Vec<bool> = checks.iter().map(Result::is_ok).collect();
+    let plan = FramePlan { indices, kept };
+    if output.quiet {
+        return plan;
+    }
+    let defective: Vec<(u32, &FrameDefect)> = plan
+        .indices
+        .clone()
+        .zip(&checks)
+        .filter_map(|(i, c)| match c {
+            Err(FrameDefect::Missing) | Ok(()) => None,
+            Err(d) => Some((i, d)),
+        })
+        .collect();
+    for (i, d) in defective.iter().take(DEFECTS_NAMED) {
+        eprintln!(
+            "wisp: --resume: {} {d}; rendering it again",
+            output.format.file_name(*i)
+        );
+    }
+    if defective.len() > DEFECTS_NAMED {
+        eprintln!(
+            "wisp: --resume: and {} more frames to render again",
+            defective.len() - DEFECTS_NAMED
+        );
+    }
+    let kept_n = n - plan.to_render();
+    if plan.nothing_to_render() {
+        eprintln!(
+            "wisp: --resume: all {n} frames are already complete in {}; nothing to render",
+            output.dir.display()
+        );
+        return plan;
+    }
+    let last = plan.last_to_render();
+    let simulated_through = plan
+        .indices
+        .clone()
+        .zip(&plan.kept)
+        .filter(|(i, k)| **k && Some(*i) < last)
+        .count();
+    let through = if simulated_through > 0 && !output.independent_frames {
+        format!(
+            " (the simulation runs through the {simulated_through} kept frames before the last one to render)"
+        )
+    } else {
+        String::new()
+    };
+    eprintln!(
+        "wisp: --resume: {kept_n} of {n} frames are already complete in {} and kept; rendering {} ({} of them again){through}",
+        output.dir.display(),
+        plan.to_render(),
+        defective.len()
+    );
+    plan
 }
 
 #[cfg(test)]
