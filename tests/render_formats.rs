@@ -109,7 +109,8 @@ fn copy_dir(from: &Path, to: &Path) {
 /// premultiplied colour composited the same way (`rgb + (1 − a)·B`) gives it within one level
 /// too. B is the engine's default background, which `render` draws over.
 ///
-/// stderr is a pipe here, so the progress bar must be hidden (no carriage returns or escape
+/// png16 and exr frames are byte-identical on 1 and 2 threads. stderr is a pipe here, so the
+/// progress bar must be hidden (no carriage returns or escape
 /// sequences) while the summary stays; `--quiet` prints nothing.
 #[test]
 fn png16_and_exr_carry_the_8_bit_frame_and_its_coverage() {
@@ -117,7 +118,8 @@ fn png16_and_exr_carry_the_8_bit_frame_and_its_coverage() {
     let dirs = ["png", "png16", "exr"].map(|f| {
         let d = root.join(f);
         let err = ok(&[
-            &["render", "--no-solids", "--format", f, "--out", s(&d)],
+            &["--threads", "2", "render", "--no-solids", "--format", f],
+            &["--out", s(&d)][..],
             &SMALL[..],
         ]
         .concat());
@@ -128,6 +130,17 @@ fn png16_and_exr_carry_the_8_bit_frame_and_its_coverage() {
         assert!(err.contains("per frame (ms)"), "{err}");
         d
     });
+    // The conversions are per pixel: the same bytes on 1 thread as on 2.
+    for (f, d) in [("png16", &dirs[1]), ("exr", &dirs[2])] {
+        let one = root.join(format!("{f}-1-thread"));
+        ok(&[
+            &["--threads", "1", "render", "--no-solids", "--format", f],
+            &["--out", s(&one)][..],
+            &SMALL[..],
+        ]
+        .concat());
+        assert!(contents(&one) == contents(d), "{f}: 1 and 2 threads differ");
+    }
     let quiet = root.join("quiet");
     let o = wisp(&[&["render", "--quiet", "--out", s(&quiet)], &SMALL[..]].concat());
     assert!(o.status.success());
