@@ -110,8 +110,8 @@ fn copy_dir(from: &Path, to: &Path) {
 /// too. B is the engine's default background, which `render` draws over.
 ///
 /// png16 and exr frames are byte-identical on 1 and 2 threads. stderr is a pipe here, so the
-/// progress bar must be hidden (no carriage returns or escape
-/// sequences) while the summary stays; `--quiet` prints nothing.
+/// progress bar must be hidden (no carriage returns or escape sequences) while the summary
+/// stays; `--quiet` prints nothing.
 #[test]
 fn png16_and_exr_carry_the_8_bit_frame_and_its_coverage() {
     let root = tmp("formats");
