@@ -9,7 +9,9 @@
 //! gives the frames a single run with those flags would. Each frame's guide state is written
 //! as soon as it exists.
 
-use super::render_cmd::{MAX_FRAMES, RenderArgs, Tidy, export_frames, prepare_output_dir};
+use super::render_cmd::{
+    FrameOutput, MAX_FRAMES, RenderArgs, Tidy, export_frames, plan_frames, prepare_output_dir,
+};
 use super::shard::Shard;
 use super::{AppError, SceneArgs, printable};
 use std::path::PathBuf;
@@ -264,7 +266,12 @@ pub fn render_from_cache(args: RenderArgs) -> Result<(), AppError> {
             stale_from: None,
         },
     };
-    prepare_output_dir(&args.out, &tidy, args.quiet)?;
+    let output = FrameOutput::of(&args);
+    prepare_output_dir(&args.out, &tidy, output.format, args.quiet)?;
+    let todo = plan_frames(&output, part.clone(), config.width, config.height);
+    if todo.nothing_to_render() {
+        return Ok(());
+    }
     let started = Instant::now();
     let settled = reader.read_settled(&motion).map_err(cache_error)?.to_vec();
     let mut engine = Engine::from_settled(style, motion, config, &settled);
@@ -291,17 +298,10 @@ pub fn render_from_cache(args: RenderArgs) -> Result<(), AppError> {
             started.elapsed().as_secs_f64()
         );
     }
-    export_frames(
-        &mut engine,
-        part,
-        &args.out,
-        args.quiet,
-        started,
-        |engine, i| {
-            let t = header.frame_time_s(i);
-            let positions = reader.read_frame(i, &engine.motion).map_err(cache_error)?;
-            engine.set_guide_state(t, positions);
-            Ok(t)
-        },
-    )
+    export_frames(&mut engine, &todo, &output, started, |engine, i| {
+        let t = header.frame_time_s(i);
+        let positions = reader.read_frame(i, &engine.motion).map_err(cache_error)?;
+        engine.set_guide_state(t, positions);
+        Ok(t)
+    })
 }

@@ -1,23 +1,60 @@
-//! `wisp render`: the dance (or a still pose) rendered frame by frame to PNG files.
+//! `wisp render`: the dance (or a still pose) rendered frame by frame to image files.
 //!
-//! Frames are rendered on the calling thread (each stage parallel inside) and handed through a
-//! bounded crossbeam channel to a writer thread that encodes and writes them (temporary name,
-//! then rename: an interrupted export leaves complete frames only). Pixel buffers travel back
-//! on a second channel, so the export allocates nothing per frame once running.
+//! Frames are rendered on the calling thread (each stage parallel inside), converted there to
+//! the output format (8-bit sRGB, 16-bit sRGB RGBA, or linear premultiplied RGBA: see
+//! [`FormatArg`]), and handed through a bounded crossbeam channel to a writer thread that
+//! encodes and writes them (temporary name, then rename: an interrupted export leaves complete
+//! frames only). Pixel buffers travel back on a second channel, so the export allocates nothing
+//! per frame once running.
 //!
 //! Before anything large is allocated, the run is checked against the memory and work budget
-//! (`wisp::budget`), and the output directory is prepared: it must be a writable directory,
-//! and what an earlier export left there (temporary files of a killed run, frames beyond this
-//! run's count) is removed, so the folder holds exactly this run's frames.
+//! (`wisp::budget`), and the output directory is prepared ([`out_dir`]): it must be a writable
+//! directory, and what an earlier export left there (temporary files of a killed run, frames
+//! beyond this run's count) is removed, so the folder holds exactly this run's frames.
+//!
+//! `--resume` keeps the frames already complete on disk (decoded whole, at the run's size and
+//! format) and renders the rest. The hair of frame n depends on every frame before it, so
+//! without a cache the simulation still runs through the kept frames (up to the last frame to
+//! render, not beyond); only their map, shading, raster and encoding are saved. Frames of a
+//! cache are independent, and kept ones cost nothing. A progress bar (indicatif) shows frames
+//! done, frames per second and the time left on a terminal; it is hidden with `--quiet` and
+//! when stderr is not a terminal, where a line every 30 frames stands in for it.
+
+mod out_dir;
 
 use super::{AppError, SceneArgs};
-use anyhow::Context;
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 use wisp::budget::RunPlan;
 use wisp::frame::{Engine, StageTimings};
-use wisp::output::write_png_rgb8;
+use wisp::output::{FrameFormat, OutputError};
+use wisp::raster::Framebuffer;
 
 pub use super::shard::MAX_FRAMES;
+pub use out_dir::{FramePlan, Tidy, frame_path, plan_frames, prepare_output_dir};
+
+/// `--format`: the file format of the frames.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum FormatArg {
+    /// 8-bit sRGB RGB PNG, the picture over the background (frame_NNNNN.png).
+    Png,
+    /// 16-bit RGBA PNG: sRGB colour with straight (not premultiplied) alpha = the hair's and
+    /// solids' coverage; transparent black where nothing was drawn (frame_NNNNN.png).
+    Png16,
+    /// OpenEXR, linear RGBA 32-bit float, colour premultiplied by alpha = coverage
+    /// (frame_NNNNN.exr).
+    Exr,
+}
+
+impl From<FormatArg> for FrameFormat {
+    fn from(f: FormatArg) -> Self {
+        match f {
+            FormatArg::Png => FrameFormat::Png8,
+            FormatArg::Png16 => FrameFormat::Png16,
+            FormatArg::Exr => FrameFormat::Exr,
+        }
+    }
+}
 
 #[derive(clap::Args, Debug)]
 pub struct RenderArgs {
@@ -36,8 +73,17 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 0.0, value_parser = super::parse_finite_f64, allow_hyphen_values = true, conflicts_with = "cache")]
     pub start_s: f64,
     /// Output directory (created if missing); frames are frame_00000.png, frame_00001.png, ...
+    /// (.exr with --format exr).
     #[arg(long, default_value = "frames")]
     pub out: PathBuf,
+    /// Frame file format.
+    #[arg(long, value_enum, default_value_t = FormatArg::Png)]
+    pub format: FormatArg,
+    /// Keep the frames already complete in --out (each decoded whole, at this size and
+    /// format) and render only the others. Without --cache the simulation still runs through
+    /// the kept frames, which saves their map, shading, raster and encoding.
+    #[arg(long)]
+    pub resume: bool,
     /// Render the guide states of a simulation cache (`wisp simulate`) instead of simulating:
     /// any scene, shader or size, with the hairstyle and motion the cache was made for. With
     /// --frames, that many frames from --first-frame (default: all of them).
@@ -50,7 +96,7 @@ pub struct RenderArgs {
     /// file names a whole run writes: one job of a Slurm array or a Kubernetes Indexed Job.
     #[arg(long, value_name = "I/N", requires = "cache", value_parser = super::shard::parse_shard)]
     pub shard: Option<super::shard::Shard>,
-    /// Print only errors.
+    /// Print only errors (no progress bar).
     #[arg(long)]
     pub quiet: bool,
     /// Write the effective scene (scene file and scene flags merged) as JSON to stdout and
@@ -59,12 +105,78 @@ pub struct RenderArgs {
     pub print_scene: bool,
 }
 
+/// Where and how an export writes its frames.
+#[derive(Clone, Debug)]
+pub struct FrameOutput {
+    /// The output directory.
+    pub dir: PathBuf,
+    pub format: FrameFormat,
+    /// Keep the frames already complete in `dir`.
+    pub resume: bool,
+    /// Each frame is rendered from its own stored state (a cache), so a kept frame needs no
+    /// work at all; otherwise the simulation must run through it.
+    pub independent_frames: bool,
+    /// Print only errors.
+    pub quiet: bool,
+}
+
+impl FrameOutput {
+    pub fn of(args: &RenderArgs) -> Self {
+        Self {
+            dir: args.out.clone(),
+            format: args.format.into(),
+            resume: args.resume,
+            independent_frames: args.cache.is_some(),
+            quiet: args.quiet,
+        }
+    }
+}
+
+/// A converted frame, in the layout its format's writer takes.
+enum Pixels {
+    /// 8-bit sRGB RGB.
+    Rgb8(Vec<u8>),
+    /// 16-bit sRGB RGBA, straight alpha.
+    Rgba16(Vec<u16>),
+    /// Linear RGB premultiplied by alpha, and alpha.
+    Premultiplied(Vec<glam::Vec3>, Vec<f32>),
+}
+
+impl Pixels {
+    fn empty(format: FrameFormat) -> Self {
+        match format {
+            FrameFormat::Png8 => Pixels::Rgb8(Vec::new()),
+            FrameFormat::Png16 => Pixels::Rgba16(Vec::new()),
+            FrameFormat::Exr => Pixels::Premultiplied(Vec::new(), Vec::new()),
+        }
+    }
+
+    /// Fills the buffers from `fb`, drawn over `background`.
+    fn convert(&mut self, fb: &Framebuffer, background: glam::Vec3) {
+        match self {
+            Pixels::Rgb8(rgb) => fb.to_srgb8_into(rgb),
+            Pixels::Rgba16(rgba) => fb.to_srgb16_rgba_into(background, rgba),
+            Pixels::Premultiplied(rgb, alpha) => fb.premultiplied_into(background, rgb, alpha),
+        }
+    }
+
+    fn write(&self, path: &Path, width: u32, height: u32) -> Result<(), OutputError> {
+        match self {
+            Pixels::Rgb8(rgb) => wisp::output::write_png_rgb8(path, width, height, rgb),
+            Pixels::Rgba16(rgba) => wisp::output::write_png_rgba16(path, width, height, rgba),
+            Pixels::Premultiplied(rgb, alpha) => {
+                wisp::output::write_exr_rgba_f32(path, width, height, rgb, alpha)
+            }
+        }
+    }
+}
+
 /// A rendered frame on its way to the writer thread.
 struct Job {
     index: u32,
     width: u32,
     height: u32,
-    rgb: Vec<u8>,
+    pixels: Pixels,
 }
 
 /// The first frame's time in seconds, wrapped into one loop of the motion (`duration_s /
@@ -117,9 +229,19 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
     };
     args.scene
         .check_budget(&style, &motion, &mut config, &plan)?;
-    prepare_output_dir(&args.out, &Tidy::whole_run(frames), args.quiet)?;
+    let output = FrameOutput::of(&args);
+    prepare_output_dir(
+        &args.out,
+        &Tidy::whole_run(frames),
+        output.format,
+        args.quiet,
+    )?;
+    let todo = plan_frames(&output, 0..frames, config.width, config.height);
+    if todo.nothing_to_render() {
+        return Ok(());
+    }
     let name = style.name.clone();
-    let started = std::time::Instant::now();
+    let started = Instant::now();
     let mut engine = super::engine(style, hair, motion, config);
     engine.run_up_to(start_s);
     let setup_s = started.elapsed().as_secs_f64();
@@ -141,51 +263,94 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
         );
     }
     let fps = args.fps as f64;
-    export_frames(
-        &mut engine,
-        0..frames,
-        &args.out,
-        args.quiet,
-        started,
-        |engine, i| {
-            let t = start_s + i as f64 / fps;
-            engine.advance(t);
-            Ok(t)
-        },
-    )
+    export_frames(&mut engine, &todo, &output, started, |engine, i| {
+        let t = start_s + i as f64 / fps;
+        engine.advance(t);
+        Ok(t)
+    })
 }
 
-/// Renders frames `indices` and writes them to `out` as `frame_NNNNN.png` (numbered by
-/// index) through a writer thread. `hair_at(engine, i)` puts the hair of frame `i` in place
-/// (simulated, or read from a cache) and returns its time; the engine renders it.
+/// The progress bar of an export of `len` frames, on stderr: hidden when quiet, and by
+/// indicatif when stderr is not a terminal.
+fn progress_bar(len: usize, quiet: bool) -> indicatif::ProgressBar {
+    if quiet {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(len as u64);
+    let style = indicatif::ProgressStyle::with_template(
+        "wisp: {pos}/{len} frames, {fps} frames/s, ETA {eta}, {msg} [{wide_bar}]",
+    )
+    .map(|s| {
+        s.progress_chars("=> ").with_key(
+            "fps",
+            |state: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
+                let _ = write!(w, "{:.2}", state.per_sec());
+            },
+        )
+    });
+    if let Ok(style) = style {
+        bar.set_style(style);
+    }
+    bar
+}
+
+/// Renders the frames of `plan` not kept and writes them to `output` as `frame_NNNNN.EXT`
+/// (numbered by index) through a writer thread. `hair_at(engine, i)` puts the hair of frame
+/// `i` in place (simulated, or read from a cache) and returns its time; the engine renders
+/// it. Kept frames go through `hair_at` too, up to the last frame to render, unless the
+/// output's frames are independent.
 pub fn export_frames(
     engine: &mut Engine,
-    indices: std::ops::Range<u32>,
-    out: &Path,
-    quiet: bool,
-    started: std::time::Instant,
+    plan: &FramePlan,
+    output: &FrameOutput,
+    started: Instant,
     mut hair_at: impl FnMut(&mut Engine, u32) -> Result<f64, AppError>,
 ) -> Result<(), AppError> {
+    let format = output.format;
+    let quiet = output.quiet;
     let (to_writer, jobs) = crossbeam_channel::bounded::<Job>(2);
-    let (to_renderer, spare) = crossbeam_channel::bounded::<Vec<u8>>(3);
+    let (to_renderer, spare) = crossbeam_channel::bounded::<Pixels>(3);
     for _ in 0..3 {
-        let _ = to_renderer.send(Vec::new());
+        let _ = to_renderer.send(Pixels::empty(format));
     }
-    let out_dir = out.to_path_buf();
-    let writer = std::thread::spawn(move || -> Result<(), wisp::output::OutputError> {
+    let out_dir = output.dir.clone();
+    let writer = std::thread::spawn(move || -> Result<f64, OutputError> {
+        let mut write_s = 0.0;
         for job in jobs {
-            let path = frame_path(&out_dir, job.index);
-            write_png_rgb8(&path, job.width, job.height, &job.rgb)?;
-            let _ = to_renderer.send(job.rgb);
+            let path = frame_path(&out_dir, format, job.index);
+            let t0 = Instant::now();
+            job.pixels.write(&path, job.width, job.height)?;
+            write_s += t0.elapsed().as_secs_f64();
+            let _ = to_renderer.send(job.pixels);
         }
-        Ok(())
+        Ok(write_s)
     });
     let mut total = StageTimings::default();
+    let mut convert_s = 0.0;
     let (width, height) = (engine.config.width, engine.config.height);
-    let frames = indices.len() as u32;
+    let background = engine.config.background;
+    let frames = plan.indices.len();
+    let last = plan.last_to_render();
+    // Kept frames that need no work: all of them when frames are independent, else those
+    // after the last frame to render (the simulation stops there).
+    let passed_freely = |i: u32, kept: bool| kept && (output.independent_frames || Some(i) > last);
+    let free = plan
+        .indices
+        .clone()
+        .zip(&plan.kept)
+        .filter(|(i, k)| passed_freely(*i, **k))
+        .count();
+    let bar = progress_bar(frames, quiet);
+    bar.set_position(free as u64);
+    bar.reset_eta();
+    let (mut rendered, mut simulated_only) = (0u32, 0u32);
+    let mut simulated_only_s = 0.0;
     let mut failed = None;
     let mut hair_error = None;
-    for (n, i) in indices.clone().enumerate() {
+    for (i, &kept) in plan.indices.clone().zip(&plan.kept) {
+        if passed_freely(i, kept) {
+            continue;
+        }
         let t = match hair_at(engine, i) {
             Ok(t) => t,
             Err(e) => {
@@ -193,17 +358,29 @@ pub fn export_frames(
                 break;
             }
         };
-        engine.render();
-        if n == 0 {
-            warn_about_first_frame(engine);
+        bar.set_message(format!("t = {t:.2} s"));
+        if kept {
+            simulated_only += 1;
+            simulated_only_s += engine.timings.animation_s
+                + engine.timings.simulation_s
+                + engine.timings.interpolation_s;
+            bar.inc(1);
+            continue;
         }
-        let mut rgb = spare.recv().unwrap_or_default();
-        engine.framebuffer().to_srgb8_into(&mut rgb);
+        engine.render();
+        if rendered == 0 {
+            bar.suspend(|| warn_about_first_frame(engine));
+        }
+        rendered += 1;
+        let t0 = Instant::now();
+        let mut pixels = spare.recv().unwrap_or_else(|_| Pixels::empty(format));
+        pixels.convert(engine.framebuffer(), background);
+        convert_s += t0.elapsed().as_secs_f64();
         total.add(&engine.timings);
         if to_writer
             .send(Job {
                 index: i,
-                rgb,
+                pixels,
                 width,
                 height,
             })
@@ -212,33 +389,55 @@ pub fn export_frames(
             failed = Some(i);
             break;
         }
-        if !quiet && (n + 1) % 30 == 0 {
-            eprintln!("wisp: frame {}/{} (t = {:.2} s)", n + 1, frames, t);
+        bar.inc(1);
+        let done = bar.position();
+        if !quiet && bar.is_hidden() && done.is_multiple_of(30) {
+            eprintln!("wisp: frame {done}/{frames} (t = {t:.2} s)");
         }
     }
+    bar.finish_and_clear();
     drop(to_writer);
-    let written = writer
+    let write_s = writer
         .join()
-        .map_err(|_| AppError::other(anyhow::anyhow!("the PNG writer thread panicked")))?;
-    written.map_err(AppError::other)?;
+        .map_err(|_| AppError::other(anyhow::anyhow!("the frame writer thread panicked")))?
+        .map_err(AppError::other)?;
     if let Some(e) = hair_error {
         return Err(e);
     }
     if let Some(i) = failed {
         return Err(AppError::other(anyhow::anyhow!(
-            "frame {i}: the PNG writer stopped"
+            "frame {i}: the frame writer stopped"
         )));
     }
     if !quiet {
-        print_timings(&total, frames, started.elapsed().as_secs_f64());
-        let shown = out.display();
-        if indices.start == 0 {
-            eprintln!("wisp: wrote {frames} frames to {shown}");
+        print_timings(&total, rendered, started.elapsed().as_secs_f64());
+        let per_frame_ms = |s: f64| s * 1e3 / f64::from(rendered.max(1));
+        eprintln!(
+            "wisp: output ({}, ms per frame): conversion {:.1}, encoding and writing {:.1} (on the writer thread, beside the next frame)",
+            format.describe(),
+            per_frame_ms(convert_s),
+            per_frame_ms(write_s)
+        );
+        let shown = output.dir.display();
+        let range = if plan.indices.start == 0 {
+            String::new()
         } else {
+            format!(" ({} to {})", plan.indices.start, plan.indices.end - 1)
+        };
+        let kept = frames - rendered as usize;
+        if kept == 0 {
+            eprintln!("wisp: wrote {rendered} frames{range} to {shown}");
+        } else {
+            let through = if simulated_only > 0 {
+                format!(
+                    " ({simulated_only} of them simulated through, {:.1} ms each)",
+                    simulated_only_s * 1e3 / f64::from(simulated_only)
+                )
+            } else {
+                String::new()
+            };
             eprintln!(
-                "wisp: wrote {frames} frames ({} to {}) to {shown}",
-                indices.start,
-                indices.end - 1
+                "wisp: wrote {rendered} frames and kept {kept} complete ones{through} of {frames}{range} in {shown}"
             );
         }
     }
@@ -274,128 +473,6 @@ pub fn warn_about_first_frame(engine: &Engine) {
     }
 }
 
-/// What an export may remove from its output directory before it starts.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Tidy {
-    /// The frames this run writes: their temporary files (of an interrupted run) are removed,
-    /// and a non-file in the way of one is an error.
-    pub own: std::ops::Range<u32>,
-    /// Temporary files of any frame are removed (false when other processes may be writing
-    /// frames into the same directory: shards).
-    pub all_temporaries: bool,
-    /// Frames numbered this or more are removed (no run of this sequence writes them).
-    pub stale_from: Option<u32>,
-}
-
-impl Tidy {
-    /// A run that writes frames 0 to `frames − 1` alone: the folder ends up holding exactly
-    /// its frames.
-    pub fn whole_run(frames: u32) -> Self {
-        Self {
-            own: 0..frames,
-            all_temporaries: true,
-            stale_from: Some(frames),
-        }
-    }
-}
-
-/// Makes `dir` ready for a run's frames: creates it, checks that files can be written there,
-/// and removes what an earlier export left, as `tidy` allows: `frame_NNNNN.png.tmp` files of
-/// an interrupted run and `frame_NNNNN.png` files beyond the sequence (which this run would not
-/// overwrite). Only files named exactly like wisp's frames are touched, and a file another
-/// process removed first is not an error (shards tidy the same folder at once).
-pub fn prepare_output_dir(dir: &Path, tidy: &Tidy, quiet: bool) -> Result<(), AppError> {
-    let shown = dir.display();
-    if dir.exists() && !dir.is_dir() {
-        return Err(AppError::input(anyhow::anyhow!(
-            "--out {shown}: exists and is not a directory"
-        )));
-    }
-    std::fs::create_dir_all(dir)
-        .with_context(|| format!("--out {shown}: cannot create the output directory"))
-        .map_err(AppError::input)?;
-    let probe = dir.join(format!(
-        ".wisp-write-test-{}-{}",
-        std::process::id(),
-        tidy.own.start
-    ));
-    std::fs::write(&probe, b"")
-        .with_context(|| format!("--out {shown}: cannot write files into the directory"))
-        .map_err(AppError::input)?;
-    let _ = std::fs::remove_file(&probe);
-    let entries = std::fs::read_dir(dir)
-        .with_context(|| format!("--out {shown}: cannot list the directory"))
-        .map_err(AppError::input)?;
-    let (mut temporaries, mut stale) = (0usize, 0usize);
-    for entry in entries.flatten() {
-        let name = entry.file_name();
-        let Some(name) = name.to_str() else { continue };
-        let Some((index, temporary)) = frame_index(name) else {
-            continue;
-        };
-        let is_file = entry.file_type().is_ok_and(|t| t.is_file());
-        let own = tidy.own.contains(&index);
-        if !temporary && own {
-            if !is_file && !entry.path().is_file() {
-                return Err(AppError::input(anyhow::anyhow!(
-                    "--out {shown}: {name} is in the way (not a file, so this run cannot replace it)"
-                )));
-            }
-            continue;
-        }
-        let remove = if temporary {
-            own || tidy.all_temporaries
-        } else {
-            tidy.stale_from.is_some_and(|from| index >= from)
-        };
-        if !is_file || !remove {
-            continue;
-        }
-        match std::fs::remove_file(entry.path()) {
-            Ok(()) => {}
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => continue,
-            Err(e) => {
-                return Err(AppError::input(anyhow::anyhow!(
-                    "{}: cannot remove it: {e}",
-                    entry.path().display()
-                )));
-            }
-        }
-        if temporary {
-            temporaries += 1;
-        } else {
-            stale += 1;
-        }
-    }
-    if !quiet && temporaries + stale > 0 {
-        let beyond = tidy
-            .stale_from
-            .map_or(String::new(), |f| format!(" numbered {f} or more"));
-        eprintln!(
-            "wisp: removed from {shown} what an earlier export left: {stale} frames{beyond}, {temporaries} temporary files"
-        );
-    }
-    Ok(())
-}
-
-/// `frame_00012.png` -> (12, false); `frame_00012.png.tmp` -> (12, true); anything else -> None.
-fn frame_index(name: &str) -> Option<(u32, bool)> {
-    let rest = name.strip_prefix("frame_")?;
-    let (digits, temporary) = match rest.strip_suffix(".png.tmp") {
-        Some(d) => (d, true),
-        None => (rest.strip_suffix(".png")?, false),
-    };
-    if digits.len() < 5 || !digits.bytes().all(|b| b.is_ascii_digit()) {
-        return None;
-    }
-    digits.parse().ok().map(|i| (i, temporary))
-}
-
-/// `DIR/frame_00012.png`.
-pub fn frame_path(dir: &Path, index: u32) -> PathBuf {
-    dir.join(format!("frame_{index:05}.png"))
-}
-
 /// Mean per-stage milliseconds per frame, on stderr.
 pub fn print_timings(total: &StageTimings, frames: u32, wall_s: f64) {
     let mean = total.scaled(1.0 / frames.max(1) as f64);
@@ -416,17 +493,6 @@ pub fn print_timings(total: &StageTimings, frames: u32, wall_s: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn frame_names_are_recognised_exactly() {
-        assert_eq!(frame_index("frame_00012.png"), Some((12, false)));
-        assert_eq!(frame_index("frame_00012.png.tmp"), Some((12, true)));
-        assert_eq!(frame_index("frame_123456.png"), Some((123_456, false)));
-        assert_eq!(frame_index("frame_0012.png"), None);
-        assert_eq!(frame_index("frame_00012.PNG"), None);
-        assert_eq!(frame_index("my_frame_00012.png"), None);
-        assert_eq!(frame_index("frame_000a2.png"), None);
-    }
 
     #[test]
     fn start_wraps_into_one_loop() {

@@ -17,6 +17,11 @@
 //! Rejected: calling `linear_to_srgb8` (one `powf` per channel) per pixel, 19 ms per
 //! 1280x720 frame in `benches/raster.rs`, as long as drawing the hair.
 //!
+//! For compositing elsewhere, [`Framebuffer::premultiplied_into`] takes the background's share
+//! back out of the colour with that identity (linear, premultiplied: what OpenEXR stores), and
+//! [`Framebuffer::to_srgb16_rgba_into`] divides by the coverage (sRGB, straight alpha: what
+//! PNG stores).
+//!
 //! Why `f32` linear colour: hair is many layers of low-coverage blends; doing them in 8-bit
 //! sRGB would band and darken. The conversion to sRGB happens once, at the edge. The drawing
 //! functions check that `color` and `depth` hold `width * height` entries (the fields are
@@ -27,7 +32,7 @@ use std::sync::OnceLock;
 use glam::Vec3;
 use rayon::prelude::*;
 
-use crate::output::linear_to_srgb8;
+use crate::output::{linear_to_srgb8, linear_to_srgb16};
 
 /// Pixels per parallel task of the 8-bit conversions.
 const CONVERT_CHUNK: usize = 16 * 1024;
@@ -173,6 +178,58 @@ impl Framebuffer {
             });
     }
 
+    /// Linear colour premultiplied by coverage, and the coverage: `rgb = colour − (1 −
+    /// coverage)·background` (the module doc's identity, so a pixel nothing covers is exactly
+    /// 0), into reused buffers. Composited "over" any background `B` as `rgb + (1 − alpha)·B`,
+    /// it gives this frame's colour when `B` is `background`. What an RGBA OpenEXR stores.
+    /// NaN becomes 0; values are clamped to [0, f32::MAX] (rounding may leave −1e-9) and the
+    /// coverage to [0, 1].
+    pub fn premultiplied_into(&self, background: Vec3, rgb: &mut Vec<Vec3>, alpha: &mut Vec<f32>) {
+        rgb.clear();
+        rgb.resize(self.color.len(), Vec3::ZERO);
+        alpha.clear();
+        alpha.resize(self.color.len(), 0.0);
+        rgb.par_chunks_mut(CONVERT_CHUNK)
+            .zip(alpha.par_chunks_mut(CONVERT_CHUNK))
+            .zip(self.color.par_chunks(CONVERT_CHUNK))
+            .zip(self.coverage.par_chunks(CONVERT_CHUNK))
+            .for_each(|(((rgb, alpha), color), coverage)| {
+                for (((o, oa), c), a) in rgb.iter_mut().zip(alpha).zip(color).zip(coverage) {
+                    let a = unit(*a);
+                    *o = premultiplied(*c, a, background);
+                    *oa = a;
+                }
+            });
+    }
+
+    /// 16-bit RGBA, 4 samples per pixel, rows top to bottom (what `write_png_rgba16` takes):
+    /// sRGB-encoded colour with straight (not premultiplied) alpha = coverage, the PNG
+    /// convention. The colour is [`Framebuffer::premultiplied_into`]'s divided by the
+    /// coverage, so `alpha·colour + (1 − alpha)·background` (in linear) gives this frame's
+    /// colour again; a pixel whose alpha rounds to 0 is written (0, 0, 0, 0). Straight colour
+    /// above 1 (a bright highlight on a partly covered pixel) is clamped like the 8-bit
+    /// conversion's: such a pixel composites darker than the frame shows.
+    pub fn to_srgb16_rgba_into(&self, background: Vec3, out: &mut Vec<u16>) {
+        out.clear();
+        out.resize(4 * self.color.len(), 0);
+        out.par_chunks_mut(4 * CONVERT_CHUNK)
+            .zip(self.color.par_chunks(CONVERT_CHUNK))
+            .zip(self.coverage.par_chunks(CONVERT_CHUNK))
+            .for_each(|((out, color), coverage)| {
+                for ((o, c), a) in out.chunks_exact_mut(4).zip(color).zip(coverage) {
+                    let a = unit(*a);
+                    let a16 = (a * 65535.0 + 0.5) as u16;
+                    if a16 == 0 {
+                        o.copy_from_slice(&[0; 4]);
+                        continue;
+                    }
+                    let s = premultiplied(*c, a, background) / a;
+                    let e = linear_to_srgb16;
+                    o.copy_from_slice(&[e(s.x), e(s.y), e(s.z), a16]);
+                }
+            });
+    }
+
     /// `0x00RRGGBB` sRGB per pixel (the layout a minifb window takes), into a reused buffer.
     pub fn to_argb_u32_into(&self, out: &mut Vec<u32>) {
         let t = Srgb8Table::get();
@@ -187,6 +244,21 @@ impl Framebuffer {
                 }
             });
     }
+}
+
+/// A coverage in [0, 1] (NaN to 0).
+#[inline]
+fn unit(a: f32) -> f32 {
+    if a >= 0.0 { a.min(1.0) } else { 0.0 }
+}
+
+/// What was drawn at a pixel of colour `c` and coverage `a`, premultiplied: `c − (1 −
+/// a)·background`, NaN to 0, within [0, f32::MAX].
+#[inline]
+fn premultiplied(c: Vec3, a: f32, background: Vec3) -> Vec3 {
+    let p = c - (1.0 - a) * background;
+    // glam's `max` is `if x > y { x } else { y }`: NaN gives 0.
+    p.max(Vec3::ZERO).min(Vec3::splat(f32::MAX))
 }
 
 #[cfg(test)]
@@ -264,6 +336,82 @@ mod tests {
             check(v);
         }
         check(f32::NEG_INFINITY);
+    }
+
+    /// Layers composited with "over" by hand (colour and coverage, as the raster does) come
+    /// back out: premultiplied = Σ of what was drawn, straight = that over the coverage, and
+    /// the straight sRGB16 colour composited over the background again gives the frame's
+    /// colour.
+    #[test]
+    fn premultiplied_and_straight_alpha_undo_the_background() {
+        let bg = Vec3::new(0.012, 0.014, 0.018);
+        let mut fb = Framebuffer::new(4, 1, bg);
+        let layers = [
+            (Vec3::new(0.5, 0.25, 0.125), 0.6),
+            (Vec3::new(0.9, 0.3, 0.05), 0.3),
+        ];
+        // Pixel 0: two layers; 1: nothing; 2: fully covered; 3: NaN colour, coverage 1e-6.
+        let (mut p, mut a) = (Vec3::ZERO, 0.0f32);
+        for (src, alpha) in layers {
+            let c = fb.color[0];
+            fb.color[0] = c + (src - c) * alpha;
+            fb.coverage[0] += (1.0 - fb.coverage[0]) * alpha;
+            p = p * (1.0 - alpha) + src * alpha;
+            a += (1.0 - a) * alpha;
+        }
+        fb.color[2] = Vec3::new(0.2, 0.4, 0.8);
+        fb.coverage[2] = 1.0;
+        fb.color[3] = Vec3::new(f32::NAN, 0.5, 0.5);
+        fb.coverage[3] = 1e-6;
+        let (mut rgb, mut alpha) = (Vec::new(), Vec::new());
+        fb.premultiplied_into(bg, &mut rgb, &mut alpha);
+        assert!((rgb[0] - p).abs().max_element() < 1e-6, "{} vs {p}", rgb[0]);
+        assert_eq!(alpha[0], a);
+        assert_eq!((rgb[1], alpha[1]), (Vec3::ZERO, 0.0));
+        assert_eq!((rgb[2], alpha[2]), (fb.color[2], 1.0));
+        assert_eq!(rgb[3].x, 0.0);
+        let mut rgba = Vec::new();
+        fb.to_srgb16_rgba_into(bg, &mut rgba);
+        assert_eq!(rgba.len(), 16);
+        let straight = p / a;
+        assert_eq!(
+            &rgba[0..4],
+            &[
+                linear_to_srgb16(straight.x),
+                linear_to_srgb16(straight.y),
+                linear_to_srgb16(straight.z),
+                (a * 65535.0).round() as u16
+            ]
+        );
+        assert_eq!(&rgba[4..8], &[0; 4]);
+        assert_eq!(
+            rgba[8..12],
+            [
+                linear_to_srgb16(0.2),
+                linear_to_srgb16(0.4),
+                linear_to_srgb16(0.8),
+                65535
+            ]
+        );
+        // 1e-6 × 65535 rounds to alpha 0: transparent black, whatever the colour.
+        assert_eq!(&rgba[12..16], &[0; 4]);
+        // Decoded (sRGB -> linear) and composited over the background: the frame's colour.
+        let decode = |v: u16| {
+            let s = v as f64 / 65535.0;
+            if s <= 0.04045 {
+                s / 12.92
+            } else {
+                ((s + 0.055) / 1.055).powf(2.4)
+            }
+        };
+        let a16 = rgba[3] as f64 / 65535.0;
+        for k in 0..3 {
+            let back = a16 * decode(rgba[k]) + (1.0 - a16) * bg[k] as f64;
+            assert!(
+                (back - fb.color[0][k] as f64).abs() < 1e-4,
+                "channel {k}: {back}"
+            );
+        }
     }
 
     #[test]
