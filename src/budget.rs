@@ -418,12 +418,13 @@ pub fn estimate(
         });
     }
     if plan.export_png {
-        // Three sRGB buffers in flight between the renderer and the writer, and the PNG
-        // encoder's filtered copy of the one being written.
+        // Three frame buffers in flight between the renderer and the writer, and the
+        // encoder's copy of the one being written, counted at the widest format's 16 B a
+        // pixel (linear RGBA f32 for EXR; 8-bit PNG needs 3, 16-bit PNG 8).
         memory.push(MemoryPart {
-            what: "PNG export",
-            product: format!("4 × {}×{} pixels × 3 B", config.width, config.height),
-            bytes: 4 * 3 * pixels,
+            what: "frame export",
+            product: format!("4 × {}×{} pixels × 16 B", config.width, config.height),
+            bytes: 4 * 16 * pixels,
             set_by: "--width × --height",
         });
     }

@@ -30,6 +30,7 @@
 pub mod accuracy;
 pub mod budget;
 pub mod cache;
+pub mod colour;
 pub mod export;
 pub mod fiber;
 pub mod frame;

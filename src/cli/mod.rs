@@ -59,7 +59,8 @@ pub struct Cli {
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// Render the dance (default: the embedded dance and the `smooth` hairstyle) to PNG frames.
+    /// Render the dance (default: the embedded dance and the `smooth` hairstyle) to image
+    /// frames: 8-bit PNG, 16-bit RGBA PNG or linear RGBA OpenEXR.
     #[command(allow_negative_numbers = true)]
     Render(render_cmd::RenderArgs),
     /// Simulate the hair once and write every frame's guide state to a cache file, for

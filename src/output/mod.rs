@@ -12,7 +12,7 @@ mod png_file;
 
 pub use exr_file::{read_exr_rgba_f32, write_exr_rgba_f32};
 pub use frames::{FrameDefect, FrameFormat, check_frame};
-pub use png_file::{
-    OutputError, linear_to_srgb8, linear_to_srgb16, write_atomically, write_png_rgb8,
-    write_png_rgba16,
-};
+pub use png_file::{OutputError, write_atomically, write_png_rgb8, write_png_rgba16};
+
+/// The sRGB encodings, where the output writers have always offered them.
+pub use crate::colour::{linear_to_srgb8, linear_to_srgb16};

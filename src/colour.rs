@@ -1,0 +1,63 @@
+//! Colour encodings shared by the stages that turn linear radiance into pixels (the raster's
+//! conversions, the output files): the sRGB transfer curve of IEC 61966-2-1.
+
+/// Linear [0, 1] -> sRGB-encoded [0, 1] (IEC 61966-2-1); NaN maps to 0 and values outside
+/// [0, 1] are clamped, so no invalid value reaches a pixel.
+#[inline]
+fn srgb_encode(v: f32) -> f32 {
+    let v = if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
+    if v <= 0.003_130_8 {
+        12.92 * v
+    } else {
+        1.055 * v.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// Linear [0, 1] -> 8-bit sRGB, rounding to nearest ([`srgb_encode`]).
+#[inline]
+pub fn linear_to_srgb8(v: f32) -> u8 {
+    (srgb_encode(v) * 255.0 + 0.5) as u8
+}
+
+/// Linear [0, 1] -> 16-bit sRGB (the same curve as [`linear_to_srgb8`], scaled to 65535),
+/// rounding to nearest.
+#[inline]
+pub fn linear_to_srgb16(v: f32) -> u16 {
+    (srgb_encode(v) * 65535.0 + 0.5) as u16
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn srgb_endpoints_and_midpoint() {
+        assert_eq!(linear_to_srgb8(0.0), 0);
+        assert_eq!(linear_to_srgb8(1.0), 255);
+        // sRGB(0.5 linear) = 1.055 * 0.5^(1/2.4) - 0.055 = 0.7354 -> 187.5 -> 188
+        assert_eq!(linear_to_srgb8(0.5), 188);
+        assert_eq!(linear_to_srgb8(f32::NAN), 0);
+        assert_eq!(linear_to_srgb8(f32::INFINITY), 255);
+        assert_eq!(linear_to_srgb8(-3.0), 0);
+    }
+
+    #[test]
+    fn srgb16_endpoints_and_agreement_with_8_bit() {
+        assert_eq!(linear_to_srgb16(0.0), 0);
+        assert_eq!(linear_to_srgb16(1.0), 65535);
+        // 1.055 * 0.5^(1/2.4) - 0.055 = 0.735357 (to 6 places), × 65535 = 48191.6 -> 48192
+        assert_eq!(linear_to_srgb16(0.5), 48192);
+        assert_eq!(linear_to_srgb16(f32::NAN), 0);
+        assert_eq!(linear_to_srgb16(f32::INFINITY), 65535);
+        assert_eq!(linear_to_srgb16(-3.0), 0);
+        // The same curve: rescaled to 8 bits, within half a level of the 8-bit value.
+        for i in 0..=10_000 {
+            let v = i as f32 / 10_000.0;
+            let s16 = linear_to_srgb16(v) as f32 * 255.0 / 65535.0;
+            assert!(
+                (s16 - linear_to_srgb8(v) as f32).abs() <= 0.5 + 1e-3,
+                "v = {v}"
+            );
+        }
+    }
+}
