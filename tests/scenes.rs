@@ -231,3 +231,29 @@ fn point_lights_near_and_far_keep_pixels_finite() {
     assert!(fb.color.iter().all(|c| c.is_finite()));
     assert!(fb.color.iter().any(|c| c.max_element() > 0.05));
 }
+
+/// The maps are kept when nothing they are made of changed (`frame::map_reuse`): on a still
+/// head whose hair is at rest the second frame reuses them, and every frame is byte-identical
+/// to a fresh engine's (which builds its maps), also after the light moved (the maps rebuild).
+#[test]
+fn reused_maps_give_the_same_frames_as_rebuilt_ones() {
+    let mut e = still_engine(small());
+    let first = e.frame(0.0).to_srgb8();
+    assert!(!e.map_reused());
+    let second = e.frame(1.0 / 30.0).to_srgb8();
+    assert!(e.map_reused(), "the hair at rest did not move");
+    assert!(first == second);
+    let mut fresh = still_engine(small());
+    fresh.run_up_to(1.0 / 30.0);
+    assert!(fresh.frame(1.0 / 30.0).to_srgb8() == second);
+    // Move the light: the maps must rebuild, and match a fresh engine lit that way.
+    let turned = Light::directional(Vec3::new(0.5, -0.6, -0.4), Vec3::splat(6.0)).unwrap();
+    e.config.lighting.lights = vec![turned];
+    let relit = e.frame(2.0 / 30.0).to_srgb8();
+    assert!(!e.map_reused());
+    let mut config = small();
+    config.lighting.lights = vec![turned];
+    let mut fresh = still_engine(config);
+    fresh.run_up_to(2.0 / 30.0);
+    assert!(fresh.frame(2.0 / 30.0).to_srgb8() == relit);
+}

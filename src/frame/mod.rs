@@ -18,6 +18,8 @@
 //! plain function of explicit inputs (see the modules); the engine only sequences them and
 //! times them.
 
+mod map_reuse;
+
 use crate::fiber::Fiber;
 use crate::hairstyle::{GuideSet, Hairstyle, StrandLayout, generate};
 use crate::interp::{StrandGeometry, interpolate_among};
@@ -31,6 +33,7 @@ use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};
 use crate::shade::{Lighting, shade_skin, shade_vertices};
 use crate::sim::{CapsuleCollider, Colliders, SimState, Simulator, SphereCollider, StepStats};
 use glam::{Affine3A, Vec3};
+use map_reuse::{MapInputs, MapInputsView};
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -181,6 +184,9 @@ pub struct Engine {
     pub state: SimState,
     /// One light-oriented map per light of `config.lighting`, in its order.
     maps: Vec<LightMap>,
+    /// What the maps were last built from, and whether the last build kept them.
+    map_inputs: MapInputs,
+    map_reused: bool,
     pub strands: StrandGeometry,
     colors: Vec<Vec3>,
     /// Physical width of each render-strand point in metres (fibres per strand × diameter).
@@ -315,6 +321,8 @@ impl Engine {
                 LightMap::new(geom, CountModel::Poisson);
                 config.lighting.lights.len().max(1)
             ],
+            map_inputs: MapInputs::default(),
+            map_reused: false,
             strands: StrandGeometry::default(),
             colors: Vec::new(),
             widths_m: Vec::new(),
@@ -541,29 +549,6 @@ impl Engine {
     /// body solids as opaque occluders (they shadow the hair as the hair shadows them). With
     /// `draw_solids` off there are no solids at all: no invisible head casts a shadow.
     pub fn build_map(&mut self) {
-        // One map per light, built side by side (each build is itself parallel and its
-        // result does not depend on the thread count).
-        let lights = &self.config.lighting.lights;
-        if self.maps.len() != lights.len() {
-            let geom = self.maps[0].geometry();
-            self.maps.resize(
-                lights.len().max(1),
-                LightMap::new(geom, CountModel::Poisson),
-            );
-        }
-        let aim_m = Vec3::from(self.pose.head.translation);
-        let input = |light| crate::map::MapBuildInput {
-            positions: &self.strands.positions,
-            tangents: &self.strands.tangents,
-            lengths_m: &self.strands.lengths_m,
-            fibers_per_strand: self.style.strands.fibers_per_strand,
-            light: crate::map::MapLight::of(light, aim_m),
-            fiber: &self.fiber,
-        };
-        self.maps
-            .par_iter_mut()
-            .zip(lights.par_iter())
-            .for_each(|(map, light)| map.build(&input(light)));
         self.solids.clear();
         self.solid_albedo.clear();
         let character = self.motion.character().filter(|_| self.config.draw_solids);
@@ -576,6 +561,46 @@ impl Engine {
                 self.solid_albedo.push(if k == 0 { SKIN } else { CLOTH });
             }
         }
+        let lights = &self.config.lighting.lights;
+        let aim_m = Vec3::from(self.pose.head.translation);
+        let mesh_positions: &[Vec3] = match character {
+            Some(_) => &self.character.positions,
+            None => &[],
+        };
+        // Nothing the maps are made of changed: they would be rebuilt to the same bits.
+        self.map_reused = self.map_inputs.unchanged_or_record(&MapInputsView {
+            positions: &self.strands.positions,
+            tangents: &self.strands.tangents,
+            lengths_m: &self.strands.lengths_m,
+            lights,
+            aim_m,
+            solids: &self.solids,
+            mesh: mesh_positions,
+        }) && self.maps.len() == lights.len().max(1);
+        if self.map_reused {
+            return;
+        }
+        // One map per light, built side by side (each build is itself parallel and its
+        // result does not depend on the thread count).
+        if self.maps.len() != lights.len() {
+            let geom = self.maps[0].geometry();
+            self.maps.resize(
+                lights.len().max(1),
+                LightMap::new(geom, CountModel::Poisson),
+            );
+        }
+        let input = |light| crate::map::MapBuildInput {
+            positions: &self.strands.positions,
+            tangents: &self.strands.tangents,
+            lengths_m: &self.strands.lengths_m,
+            fibers_per_strand: self.style.strands.fibers_per_strand,
+            light: crate::map::MapLight::of(light, aim_m),
+            fiber: &self.fiber,
+        };
+        self.maps
+            .par_iter_mut()
+            .zip(lights.par_iter())
+            .for_each(|(map, light)| map.build(&input(light)));
         let mesh = match character {
             Some(ch) => OccluderMesh {
                 positions: &self.character.positions,
@@ -586,6 +611,12 @@ impl Engine {
         for map in &mut self.maps {
             map.set_occluders_with_mesh(&self.solids, mesh);
         }
+    }
+
+    /// Whether the last [`Engine::build_map`] kept the maps it had (nothing they are made of
+    /// had changed; see `frame::map_reuse`).
+    pub fn map_reused(&self) -> bool {
+        self.map_reused
     }
 
     /// Places the camera once the hair has settled: the fixed camera, or the head-following
