@@ -22,7 +22,8 @@ impl MapGeometry {
 
     /// Upper bound, in bytes, of what a map of this geometry holds once built from `samples`
     /// render-strand samples split into `pieces` each:
-    /// - `col_start`, `slot_start` (N² + 1 `u32` each) and the scratch `col_count` (N²);
+    /// - `col_start`, `slot_start` (N² + 1 `u32` each) and the scratch `col_count` (N², or
+    ///   one set per chunk of the parallel sort: at most the entries' count, `sort_chunks`);
     /// - the scratch `entries` (one per piece and column it is splatted to, `SPLAT` = 4);
     /// - `cells` (one per entry at most);
     /// - the occluder grid (at most `MAX_TEXELS`² depths);
@@ -41,7 +42,7 @@ impl MapGeometry {
         let offsets = (3 * columns + 2) * u32_bytes;
         let slots = 2 * entries.saturating_mul(SLOT_SPAN_PER_CELL as u64) * u32_bytes;
         offsets
-            .saturating_add(entries.saturating_mul(entry_bytes + cell_bytes))
+            .saturating_add(entries.saturating_mul(entry_bytes + cell_bytes + u32_bytes))
             .saturating_add(slots)
             .saturating_add(occluders)
     }

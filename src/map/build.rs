@@ -316,7 +316,7 @@ impl LightMap {
                 |a, b| (Extent::union(a.0, b.0), a.1 + b.1),
             );
         let (extent, skipped) = extent;
-        let filled_entries = entries.len() - entries.iter().filter(|e| e.col == u32::MAX).count();
+        let filled_entries = entries.par_iter().filter(|e| e.col != u32::MAX).count();
         self.first_slice = if filled_entries > 0 { extent.lo[0] } else { 0 };
         // Where the hair is, unwrapped: a lookup outside it must not read hair that the
         // modulo indexing aliases there (a dancer's body reaches far beyond the hair's span).
@@ -335,35 +335,61 @@ impl LightMap {
                 || (1..3).any(|a| extent.hi[a] - extent.lo[a] >= ncol));
         let samples = count - skipped;
 
-        // 2. Counting sort by column.
+        // 2. Counting sort by column, in parallel over fixed chunks of the entries: each chunk
+        // counts its entries per column, the counts become per-chunk write cursors (chunk k
+        // writes after chunks 0..k in every column), and the chunks scatter side by side into
+        // disjoint places. Within a column the entries keep their order, so the result is the
+        // sequential sort's whatever the chunking or the thread count.
         let cols = (ncol * ncol) as usize;
+        let chunks = sort_chunks(entries.len(), cols);
+        let chunk_len = entries.len().div_ceil(chunks).max(1);
         let col_count = &mut self.scratch.col_count;
         col_count.clear();
-        col_count.resize(cols, 0);
-        for e in entries.iter().filter(|e| e.col != u32::MAX) {
-            col_count[e.col as usize] += 1;
-        }
+        col_count.resize(cols * chunks, 0);
+        col_count
+            .par_chunks_mut(cols)
+            .zip(entries.par_chunks(chunk_len))
+            .for_each(|(count, part)| {
+                for e in part.iter().filter(|e| e.col != u32::MAX) {
+                    count[e.col as usize] += 1;
+                }
+            });
         let mut acc = 0u32;
-        for (start, count) in self.col_start.iter_mut().zip(col_count.iter_mut()) {
-            *start = acc;
-            acc += *count;
-            *count = *start; // becomes the write cursor
+        for c in 0..cols {
+            self.col_start[c] = acc;
+            for k in 0..chunks {
+                let count = &mut col_count[k * cols + c];
+                let n_k = *count;
+                *count = acc; // becomes chunk k's write cursor in column c
+                acc += n_k;
+            }
         }
         self.col_start[cols] = acc;
         self.cells
             .reserve_exact(filled_entries.saturating_sub(self.cells.len()));
         self.cells.resize(filled_entries, Cell::default());
         let first = self.first_slice;
-        for e in entries.iter().filter(|e| e.col != u32::MAX) {
-            let at = col_count[e.col as usize] as usize;
-            col_count[e.col as usize] += 1;
-            let mut cell = e.cell;
-            // Relative slice, wrapping modulo N (Bertails Figure 3); the sample index moves to
-            // the sort key below.
-            cell.slice = (e.slice - first).rem_euclid(n) as u32;
-            cell.col = e.col;
-            self.cells[at] = cell;
-        }
+        let out = SharedCells(self.cells.as_mut_ptr());
+        let out = &out;
+        col_count
+            .par_chunks_mut(cols)
+            .zip(entries.par_chunks(chunk_len))
+            .for_each(|(cursor, part)| {
+                for e in part.iter().filter(|e| e.col != u32::MAX) {
+                    let at = cursor[e.col as usize] as usize;
+                    cursor[e.col as usize] += 1;
+                    let mut cell = e.cell;
+                    // Relative slice, wrapping modulo N (Bertails Figure 3); the sample index
+                    // moves to the sort key below.
+                    cell.slice = (e.slice - first).rem_euclid(n) as u32;
+                    cell.col = e.col;
+                    // SAFETY: `at` < filled_entries (the cursors partition 0..filled_entries:
+                    // chunk k's cursor in column c runs over its own count of places after the
+                    // column's start and the earlier chunks' counts), so every place is written
+                    // by exactly one chunk, once, and `cells` is not otherwise touched here.
+                    unsafe { out.0.add(at).write(cell) };
+                }
+            });
 
         // 3. Per column: sort, merge, sweep. The key (slice, sample index) is unique, so an
         // unstable (allocation-free) sort gives one order whatever the thread count.
@@ -407,10 +433,13 @@ impl LightMap {
         }
         self.slot_start[cols] = self.slots.len() as u32;
 
-        let mut peak = 0.0f32;
-        for c in self.cells.iter().filter(|c| c.slice != u32::MAX) {
-            peak = peak.max(c.volume_fraction);
-        }
+        // A maximum does not depend on the order of the reduction.
+        let peak = self
+            .cells
+            .par_iter()
+            .filter(|c| c.slice != u32::MAX)
+            .map(|c| c.volume_fraction)
+            .reduce(|| 0.0f32, f32::max);
         self.stats = MapStats {
             samples,
             skipped: count - samples,
@@ -422,6 +451,22 @@ impl LightMap {
         };
     }
 }
+
+/// Chunks of the counting sort: as many as fit with their per-column counters in no more memory
+/// than the entries' own count (so a huge sparse map sorts in one chunk, as before), at most 8.
+/// The result does not depend on it.
+fn sort_chunks(entries: usize, cols: usize) -> usize {
+    (entries / cols.max(1)).clamp(1, MAX_SORT_CHUNKS)
+}
+
+/// Most chunks of the parallel counting sort.
+pub(super) const MAX_SORT_CHUNKS: usize = 8;
+
+/// The map's cells as a raw pointer that the sort's chunks write through, each to its own
+/// places (see the SAFETY note at the write).
+struct SharedCells(*mut Cell);
+// SAFETY: the chunks write disjoint places of one live allocation, which outlives the scope.
+unsafe impl Sync for SharedCells {}
 
 /// Merges the cells of one column (sorted by slice) and sweeps them from the light (Bertails
 /// Eq. 3 with the dual-scattering quantities). Returns the number of distinct cells.
