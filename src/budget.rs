@@ -313,6 +313,7 @@ pub fn estimate(
         + 2.0 * style.curl.radius_m as f64;
     let geom = map_geometry(style, config);
     let pieces = geom.pieces_for(sample_len_m as f32);
+    let lights = config.lighting.lights.len().max(1) as u64;
     // Rows a segment covers: the camera frames about the hair's extent, lmax + hmax.
     let px_per_m = config.height as f64 / (style.max_length_m() + style.head_size_m()) as f64;
 
@@ -363,14 +364,25 @@ pub fn estimate(
             set_by: "wisps.count × wisps.strands_per_wisp × strands.points",
         },
         MemoryPart {
-            what: "light map",
+            what: "map inputs kept for reuse",
             product: format!(
-                "{} render points × {pieces} pieces in a {}³ map",
+                "{} render points × {} B (position, tangent, length)",
+                grouped(points),
+                2 * size_of::<Vec3>() + size_of::<f32>()
+            ),
+            bytes: points * b(2 * size_of::<Vec3>() + size_of::<f32>()),
+            set_by: "wisps.count × wisps.strands_per_wisp × strands.points",
+        },
+        MemoryPart {
+            what: "light maps",
+            product: format!(
+                "{} light(s) × {} render points × {pieces} pieces in a {}³ map",
+                lights,
                 grouped(points),
                 geom.n
             ),
-            bytes: geom.estimated_bytes(points, pieces),
-            set_by: "wisps.count × wisps.strands_per_wisp × strands.points, and --map-res",
+            bytes: geom.estimated_bytes(points, pieces).saturating_mul(lights),
+            set_by: "wisps.count × wisps.strands_per_wisp × strands.points, --map-res and the lights",
         },
         MemoryPart {
             what: "framebuffer",
@@ -412,8 +424,9 @@ pub fn estimate(
                 grouped(triangles),
                 grouped(ch.vertex_count() as u64)
             ),
+            // The posed vertices, and their copy kept for the map's reuse check.
             bytes: MeshScratch::estimated_bytes(config.width, config.height, triangles)
-                + b(ch.vertex_count() * size_of::<Vec3>()),
+                + b(2 * ch.vertex_count() * size_of::<Vec3>()),
             set_by: "--width × --height, and the glTF's meshes",
         });
     }
