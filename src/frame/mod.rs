@@ -18,150 +18,32 @@
 //! plain function of explicit inputs (see the modules); the engine only sequences them and
 //! times them.
 
+mod config;
 mod map_reuse;
+mod setup;
+
+pub use config::{DEFAULT_MIN_LINE_WIDTH_PX, EngineConfig, StageTimings};
+use setup::{colliders_of, solids_of};
+pub use setup::{
+    fit_style_to_character, map_geometry, roots_of_guides_on_head, roots_on_head, write_colliders,
+};
 
 use crate::fiber::Fiber;
 use crate::hairstyle::{GuideSet, Hairstyle, StrandLayout, generate};
 use crate::interp::{StrandGeometry, interpolate_among};
 use crate::map::{CountModel, LightMap, MapGeometry, MapStats, OccluderMesh, Solid};
-use crate::motion::{CharacterPose, Motion, Pose, RootsOnHead};
+use crate::motion::{CharacterPose, Motion, Pose};
 use crate::raster::{
-    Camera, Framebuffer, LineScratch, LineStyle, Mesh, MeshScratch, Polylines, Surface, Texture,
+    Camera, Framebuffer, LineScratch, Mesh, MeshScratch, Polylines, Surface, Texture,
     draw_ellipsoid, draw_mesh, draw_polylines,
 };
 use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};
-use crate::shade::{Lighting, shade_skin, shade_vertices};
-use crate::sim::{CapsuleCollider, Colliders, SimState, Simulator, SphereCollider, StepStats};
-use glam::{Affine3A, Vec3};
+use crate::shade::{shade_skin, shade_vertices};
+use crate::sim::{Colliders, SimState, Simulator, StepStats};
+use glam::Vec3;
 use map_reuse::{MapInputs, MapInputsView};
 use rayon::prelude::*;
 use std::time::Instant;
-
-/// Seconds spent in each stage of one frame.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct StageTimings {
-    pub animation_s: f64,
-    pub simulation_s: f64,
-    pub interpolation_s: f64,
-    pub map_s: f64,
-    pub shading_s: f64,
-    pub raster_s: f64,
-}
-
-impl StageTimings {
-    pub const NAMES: [&'static str; 6] = [
-        "animation",
-        "simulation",
-        "interpolation",
-        "map",
-        "shading",
-        "raster",
-    ];
-
-    pub fn as_array(&self) -> [f64; 6] {
-        [
-            self.animation_s,
-            self.simulation_s,
-            self.interpolation_s,
-            self.map_s,
-            self.shading_s,
-            self.raster_s,
-        ]
-    }
-    pub fn total_s(&self) -> f64 {
-        self.as_array().iter().sum()
-    }
-    pub fn add(&mut self, o: &StageTimings) {
-        self.animation_s += o.animation_s;
-        self.simulation_s += o.simulation_s;
-        self.interpolation_s += o.interpolation_s;
-        self.map_s += o.map_s;
-        self.shading_s += o.shading_s;
-        self.raster_s += o.raster_s;
-    }
-    pub fn scaled(&self, k: f64) -> StageTimings {
-        let a = self.as_array().map(|v| v * k);
-        StageTimings {
-            animation_s: a[0],
-            simulation_s: a[1],
-            interpolation_s: a[2],
-            map_s: a[3],
-            shading_s: a[4],
-            raster_s: a[5],
-        }
-    }
-}
-
-/// Everything about a run that is not the hairstyle or the motion.
-#[derive(Clone, Debug)]
-pub struct EngineConfig {
-    /// Image size in pixels.
-    pub width: u32,
-    pub height: u32,
-    /// Light and shader.
-    pub lighting: Lighting,
-    /// Map cells per axis; `None` sizes the map from the scene (`MapGeometry::for_scene`).
-    pub map_res: Option<u32>,
-    /// Density-based self-collision (Bertails §4.1).
-    pub self_collision: bool,
-    /// Simulate the guides; `false` keeps them in their rest pose riding on the head.
-    pub simulate: bool,
-    /// Seconds of simulated time with the head held at the first pose before frame 0, so the
-    /// hair starts settled.
-    pub settle_s: f64,
-    /// How hair lines are drawn: by default each render strand's physical width (fibres per
-    /// strand × fibre diameter) projected per segment, at least
-    /// [`DEFAULT_MIN_LINE_WIDTH_PX`] wide with its opacity lowered to conserve coverage.
-    pub line: LineStyle,
-    /// Background colour (linear RGB).
-    pub background: Vec3,
-    /// Where the camera is (default: framing the hair and following the head).
-    pub camera: CameraSetup,
-    /// Draw the head and the body spheres (default true); without them hair behind the head
-    /// shows, as in a scene of hair alone.
-    pub draw_solids: bool,
-}
-
-/// Narrowest drawn hair line in pixels; thinner strands are drawn this wide at lower opacity.
-pub const DEFAULT_MIN_LINE_WIDTH_PX: f32 = 1.0;
-
-impl Default for EngineConfig {
-    fn default() -> Self {
-        Self {
-            width: 800,
-            height: 800,
-            lighting: Lighting::default(),
-            map_res: None,
-            self_collision: true,
-            simulate: true,
-            settle_s: 2.0,
-            line: LineStyle::projected(DEFAULT_MIN_LINE_WIDTH_PX),
-            background: Vec3::new(0.012, 0.014, 0.018),
-            camera: CameraSetup::HeadFollowing,
-            draw_solids: true,
-        }
-    }
-}
-
-impl EngineConfig {
-    /// This configuration with the image size, camera, lights, ambient, background and solids
-    /// of a validated scene.
-    pub fn with_scene(self, scene: &crate::scene::Scene) -> Self {
-        Self {
-            width: scene.width,
-            height: scene.height,
-            lighting: Lighting {
-                lights: scene.lights.clone(),
-                ambient: scene.ambient,
-                ..self.lighting
-            },
-            background: scene.background,
-            camera: scene.camera,
-            draw_solids: scene.draw_solids,
-            ..self
-        }
-    }
-}
 
 /// Skin albedo of the head and the body spheres.
 const SKIN: Vec3 = Vec3::new(0.55, 0.38, 0.30);
@@ -660,99 +542,4 @@ impl Engine {
             );
         }
     }
-}
-
-/// The hairstyle an [`Engine`] grows on `motion`'s character: when the character has a head
-/// mesh, the head ellipsoid takes the half extents of that mesh's box (pose metres, clamped to
-/// the valid range), so generated roots lie on the drawn head instead of floating above a
-/// flat one or hiding under a wide one (RobotExpressive's head is 0.10 × 0.07 × 0.10 m after
-/// the fit against the presets' 0.076 × 0.098 × 0.094 m). Otherwise the style is unchanged.
-pub fn fit_style_to_character(style: &Hairstyle, motion: &Motion) -> Hairstyle {
-    let mut style = style.clone();
-    if let Some(half) = motion.head_half_extents_m() {
-        let lo = crate::hairstyle::MIN_HEAD_RADIUS_M;
-        let r = half.clamp(Vec3::splat(lo), Vec3::ONE);
-        if r.is_finite() {
-            style.head.radii_m = r.to_array();
-        }
-    }
-    style
-}
-
-/// How far the roots of `style`'s guides, grown on `motion`'s character as an [`Engine`] grows
-/// them ([`fit_style_to_character`]), lie from the drawn head at t = 0
-/// ([`Motion::roots_on_head`], for the fitted head's mean radius); `None` without a head mesh.
-pub fn roots_on_head(style: &Hairstyle, motion: &Motion) -> Option<RootsOnHead> {
-    motion.character()?;
-    let style = fit_style_to_character(style, motion);
-    let (guides, _) = generate(&style);
-    roots_of_guides_on_head(&guides, &style, motion)
-}
-
-/// [`roots_on_head`] for guides made elsewhere (an imported groom placed on `style`'s head,
-/// which is used as given); `None` without a head mesh.
-pub fn roots_of_guides_on_head(
-    guides: &GuideSet,
-    style: &Hairstyle,
-    motion: &Motion,
-) -> Option<RootsOnHead> {
-    motion.character()?;
-    let roots: Vec<Vec3> = (0..guides.count()).map(|g| guides.guide(g)[0]).collect();
-    let [x, y, z] = style.head.radii_m;
-    motion.roots_on_head(&roots, (x * y * z).cbrt())
-}
-
-/// The map geometry an engine uses for `style` under `config`: `config.map_res` cells per axis
-/// over the span the hair needs, or sized from the scene (`MapGeometry::for_scene`).
-pub fn map_geometry(style: &Hairstyle, config: &EngineConfig) -> MapGeometry {
-    let span = MapGeometry::span_m(style.max_length_m(), style.head_size_m());
-    match config.map_res {
-        Some(n) => MapGeometry::with_resolution(span, n),
-        None => MapGeometry::for_scene(
-            style.max_length_m(),
-            style.head_size_m(),
-            style.strand_spacing_m(),
-            style.strands.fibers_per_strand,
-        ),
-    }
-}
-
-/// The opaque solids of a pose: the head ellipsoid first, then the body spheres.
-fn solids_of(pose: &Pose, head_radii_m: Vec3) -> impl Iterator<Item = Solid> + '_ {
-    let head = Solid {
-        unit_sphere_to_world: pose.head * Affine3A::from_scale(head_radii_m),
-    };
-    std::iter::once(head).chain(pose.spheres.iter().map(|s| Solid {
-        unit_sphere_to_world: Affine3A::from_scale_rotation_translation(
-            Vec3::splat(s.radius_m),
-            glam::Quat::IDENTITY,
-            s.center,
-        ),
-    }))
-}
-
-fn colliders_of(pose: &Pose, radii: Vec3) -> Colliders {
-    let mut c = Colliders::head_only(pose.head, radii);
-    write_colliders(pose, radii, &mut c);
-    c
-}
-
-/// Writes `pose`'s colliders (head ellipsoid of `radii`, body spheres and capsules) into `c`,
-/// reusing its buffers: what the engine's simulation and interpolation are kept out of.
-pub fn write_colliders(pose: &Pose, radii: Vec3, c: &mut Colliders) {
-    c.head = pose.head;
-    c.head_radii_m = radii;
-    c.spheres.clear();
-    c.spheres
-        .extend(pose.spheres.iter().map(|s| SphereCollider {
-            center: s.center,
-            radius_m: s.radius_m,
-        }));
-    c.capsules.clear();
-    c.capsules
-        .extend(pose.capsules.iter().map(|k| CapsuleCollider {
-            a: k.a,
-            b: k.b,
-            radius_m: k.radius_m,
-        }));
 }

@@ -1,0 +1,133 @@
+//! What a run is configured with (everything that is not the hairstyle or the motion) and the
+//! per-stage timings of a frame.
+
+use crate::raster::LineStyle;
+use crate::scene::CameraSetup;
+use crate::shade::Lighting;
+use glam::Vec3;
+
+/// Seconds spent in each stage of one frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StageTimings {
+    pub animation_s: f64,
+    pub simulation_s: f64,
+    pub interpolation_s: f64,
+    pub map_s: f64,
+    pub shading_s: f64,
+    pub raster_s: f64,
+}
+
+impl StageTimings {
+    pub const NAMES: [&'static str; 6] = [
+        "animation",
+        "simulation",
+        "interpolation",
+        "map",
+        "shading",
+        "raster",
+    ];
+
+    pub fn as_array(&self) -> [f64; 6] {
+        [
+            self.animation_s,
+            self.simulation_s,
+            self.interpolation_s,
+            self.map_s,
+            self.shading_s,
+            self.raster_s,
+        ]
+    }
+    pub fn total_s(&self) -> f64 {
+        self.as_array().iter().sum()
+    }
+    pub fn add(&mut self, o: &StageTimings) {
+        self.animation_s += o.animation_s;
+        self.simulation_s += o.simulation_s;
+        self.interpolation_s += o.interpolation_s;
+        self.map_s += o.map_s;
+        self.shading_s += o.shading_s;
+        self.raster_s += o.raster_s;
+    }
+    pub fn scaled(&self, k: f64) -> StageTimings {
+        let a = self.as_array().map(|v| v * k);
+        StageTimings {
+            animation_s: a[0],
+            simulation_s: a[1],
+            interpolation_s: a[2],
+            map_s: a[3],
+            shading_s: a[4],
+            raster_s: a[5],
+        }
+    }
+}
+
+/// Everything about a run that is not the hairstyle or the motion.
+#[derive(Clone, Debug)]
+pub struct EngineConfig {
+    /// Image size in pixels.
+    pub width: u32,
+    pub height: u32,
+    /// Light and shader.
+    pub lighting: Lighting,
+    /// Map cells per axis; `None` sizes the map from the scene (`MapGeometry::for_scene`).
+    pub map_res: Option<u32>,
+    /// Density-based self-collision (Bertails §4.1).
+    pub self_collision: bool,
+    /// Simulate the guides; `false` keeps them in their rest pose riding on the head.
+    pub simulate: bool,
+    /// Seconds of simulated time with the head held at the first pose before frame 0, so the
+    /// hair starts settled.
+    pub settle_s: f64,
+    /// How hair lines are drawn: by default each render strand's physical width (fibres per
+    /// strand × fibre diameter) projected per segment, at least
+    /// [`DEFAULT_MIN_LINE_WIDTH_PX`] wide with its opacity lowered to conserve coverage.
+    pub line: LineStyle,
+    /// Background colour (linear RGB).
+    pub background: Vec3,
+    /// Where the camera is (default: framing the hair and following the head).
+    pub camera: CameraSetup,
+    /// Draw the head and the body spheres (default true); without them hair behind the head
+    /// shows, as in a scene of hair alone.
+    pub draw_solids: bool,
+}
+
+/// Narrowest drawn hair line in pixels; thinner strands are drawn this wide at lower opacity.
+pub const DEFAULT_MIN_LINE_WIDTH_PX: f32 = 1.0;
+
+impl Default for EngineConfig {
+    fn default() -> Self {
+        Self {
+            width: 800,
+            height: 800,
+            lighting: Lighting::default(),
+            map_res: None,
+            self_collision: true,
+            simulate: true,
+            settle_s: 2.0,
+            line: LineStyle::projected(DEFAULT_MIN_LINE_WIDTH_PX),
+            background: Vec3::new(0.012, 0.014, 0.018),
+            camera: CameraSetup::HeadFollowing,
+            draw_solids: true,
+        }
+    }
+}
+
+impl EngineConfig {
+    /// This configuration with the image size, camera, lights, ambient, background and solids
+    /// of a validated scene.
+    pub fn with_scene(self, scene: &crate::scene::Scene) -> Self {
+        Self {
+            width: scene.width,
+            height: scene.height,
+            lighting: Lighting {
+                lights: scene.lights.clone(),
+                ambient: scene.ambient,
+                ..self.lighting
+            },
+            background: scene.background,
+            camera: scene.camera,
+            draw_solids: scene.draw_solids,
+            ..self
+        }
+    }
+}
