@@ -374,7 +374,7 @@ pub fn estimate(
             set_by: "wisps.count × wisps.strands_per_wisp × strands.points",
         },
         MemoryPart {
-            what: "light maps",
+            what: "light map",
             product: format!(
                 "{} light(s) × {} render points × {pieces} pieces in a {}³ map",
                 lights,
