@@ -41,6 +41,11 @@ pub enum OutputError {
 
 /// Writes an 8-bit RGB image (`rgb.len() == 3 * width * height`, rows top to bottom) to
 /// `path`, through a temporary file in the same directory renamed into place on success.
+///
+/// Compressed with the png crate's `Fast` setting: on the writer thread the default `Balanced`
+/// took about 40 ms a frame at 800×800 and competed with the renderer for the two cores; `Fast`
+/// takes 4 ms, and a 20-frame export of the dance runs 5–9% faster (whole-process medians) for
+/// files about 20% larger (158 against 132 KB). The pixels are the same (decoded).
 pub fn write_png_rgb8(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Result<(), OutputError> {
     let expected = 3 * width as usize * height as usize;
     if rgb.len() != expected || width == 0 || height == 0 {
@@ -59,6 +64,7 @@ pub fn write_png_rgb8(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Resul
             let mut enc = png::Encoder::new(&mut w, width, height);
             enc.set_color(png::ColorType::Rgb);
             enc.set_depth(png::BitDepth::Eight);
+            enc.set_compression(png::Compression::Fast);
             enc.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
             let enc_err = |e: png::EncodingError| OutputError::Encode {
                 path: path.into(),
