@@ -26,21 +26,9 @@ pub struct ExportArgs {
 
 pub fn run(args: ExportArgs) -> Result<(), AppError> {
     let (style, hair, motion, mut config) = args.scene.resolve()?;
-    // A path tracer's reference scene has one directional light (tools/reference).
-    if !matches!(
-        config.lighting.lights[..],
-        [wisp::light::Light::Directional { .. }]
-    ) {
-        return Err(AppError::input(anyhow::anyhow!(
-            "export writes a reference scene with one directional light; the scene has {} light(s){}",
-            config.lighting.lights.len(),
-            if config.lighting.lights.iter().any(|l| l.travel().is_none()) {
-                ", a point light among them"
-            } else {
-                ""
-            }
-        )));
-    }
+    // A path tracer's reference scene has one directional light: refused before any work.
+    wisp::export::reference_light(&config.lighting.lights)
+        .map_err(|e| AppError::input(anyhow::anyhow!("export: {e}")))?;
     config.background = Vec3::ZERO;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("{}: cannot create the output directory", args.out.display()))

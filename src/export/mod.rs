@@ -108,6 +108,25 @@ pub const SCENE_FILE: &str = "scene.json";
 pub const WISP_EXR: &str = "wisp.exr";
 pub const WISP_PNG: &str = "wisp.png";
 
+/// The one directional light a reference scene describes (tools/reference renders exactly
+/// that): its direction of travel and irradiance, or why `lights` is not such a scene.
+pub fn reference_light(lights: &[crate::light::Light]) -> Result<(glam::Vec3, glam::Vec3), String> {
+    match lights {
+        [crate::light::Light::Directional { travel, irradiance }] => {
+            Ok((travel.get(), *irradiance))
+        }
+        _ => Err(format!(
+            "a reference scene has exactly one directional light; this scene has {} light(s){}",
+            lights.len(),
+            if lights.iter().any(|x| x.travel().is_none()) {
+                ", a point light among them"
+            } else {
+                ""
+            }
+        )),
+    }
+}
+
 impl ReferenceScene {
     /// The description of `engine`'s last rendered frame at time `time_s`.
     pub fn of_engine(engine: &Engine, time_s: f64) -> Result<ReferenceScene, String> {
@@ -119,21 +138,7 @@ impl ReferenceScene {
             .and_then(|t| serde_json::from_str::<serde_json::Value>(&t))
             .map_err(|e| e.to_string())?;
         let l = &engine.config.lighting;
-        // The reference scene (and tools/reference) has one directional light.
-        let (direction, irradiance) = match l.lights[..] {
-            [crate::light::Light::Directional { travel, irradiance }] => (travel.get(), irradiance),
-            _ => {
-                return Err(format!(
-                    "a reference scene has exactly one directional light; this one has {} light(s){}",
-                    l.lights.len(),
-                    if l.lights.iter().any(|x| x.travel().is_none()) {
-                        ", with a point light"
-                    } else {
-                        ""
-                    }
-                ));
-            }
-        };
+        let (direction, irradiance) = reference_light(&l.lights)?;
         let fb = engine.framebuffer();
         Ok(ReferenceScene {
             format: SCENE_FORMAT.into(),

@@ -237,18 +237,26 @@ impl Projection {
     pub fn point(&self, p: Vec3) -> Vec3 {
         match *self {
             Projection::Parallel { frame } => frame.to_map(p),
+            Projection::Central { .. } => match self.central(p) {
+                Some((q, s)) => Vec3::new(q.x, q.y * s, q.z * s),
+                None => Vec3::NAN,
+            },
+        }
+    }
+
+    /// For a point light: `p` in the light's frame relative to the light, and the lateral
+    /// scale ref/depth there; `None` for parallel light or a point not in front of the light.
+    #[inline]
+    fn central(&self, p: Vec3) -> Option<(Vec3, f32)> {
+        match *self {
+            Projection::Parallel { .. } => None,
             Projection::Central {
                 frame,
                 origin,
                 ref_depth_m,
             } => {
                 let q = frame.to_map(p - origin);
-                if q.x > CENTRAL_MIN_DEPTH_M {
-                    let s = ref_depth_m / q.x;
-                    Vec3::new(q.x, q.y * s, q.z * s)
-                } else {
-                    Vec3::NAN
-                }
+                (q.x > CENTRAL_MIN_DEPTH_M).then(|| (q, ref_depth_m / q.x))
             }
         }
     }
@@ -291,16 +299,10 @@ impl Projection {
                 let sin_psi = (1.0 - cos_psi * cos_psi).max(0.0).sqrt();
                 (frame.to_map(u), sin_psi, 1.0)
             }
-            Projection::Central {
-                frame,
-                origin,
-                ref_depth_m,
-            } => {
-                let q = frame.to_map(p - origin);
-                if q.x <= CENTRAL_MIN_DEPTH_M {
+            Projection::Central { frame, .. } => {
+                let Some((q, s)) = self.central(p) else {
                     return (Vec3::NAN, 0.0, 0.0);
-                }
-                let s = ref_depth_m / q.x;
+                };
                 let v = frame.to_map(u);
                 // d(s·y)/dt = s·(v.y − (y/x)·v.x): the derivative of the central projection.
                 let img = Vec3::new(
@@ -441,10 +443,6 @@ impl LightMap {
     }
     pub fn frame(&self) -> LightFrame {
         self.proj.frame()
-    }
-    /// World -> map coordinates of the last build.
-    pub fn projection(&self) -> Projection {
-        self.proj
     }
     pub fn stats(&self) -> &MapStats {
         &self.stats

@@ -38,14 +38,6 @@ impl Default for Lighting {
 }
 
 impl Lighting {
-    /// One light, with the default ambient and shader.
-    pub fn single(light: Light) -> Self {
-        Self {
-            lights: vec![light],
-            ..Self::default()
-        }
-    }
-
     /// Turns every light by `rotation` about `pivot` ([`Light::turned`]).
     pub fn turn(&mut self, rotation: glam::Quat, pivot: Vec3) {
         for l in &mut self.lights {
@@ -115,9 +107,12 @@ pub fn shade_vertices_with<L>(
             for (k, ((c, p), u)) in out.iter_mut().zip(pos).zip(tan).enumerate() {
                 let i = chunk * CHUNK + k;
                 let mut v = Vec3::ZERO;
+                // Toward the eye, once per vertex (zero only for a vertex at the eye, where
+                // each light's ωi stands in).
+                let to_eye = (eye - *p).normalize_or_zero();
                 for (li, l) in lights.iter().enumerate() {
                     let (wi, irradiance) = l.toward_and_irradiance(*p);
-                    let wo = (eye - *p).normalize_or(wi);
+                    let wo = if to_eye == Vec3::ZERO { wi } else { to_eye };
                     v += irradiance * fiber.shade(lighting.mode, *u, wi, wo, &light(li, i, *p));
                 }
                 let v = v + ambient;
