@@ -38,9 +38,20 @@ pub struct BenchArgs {
     /// Timed repetitions per map resolution.
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub repeats: u32,
+    /// Parts to run, comma separated: `scaling` (per-stage timings over thread counts),
+    /// `self-collision`, `accuracy` (speed against error).
+    #[arg(long, default_value = "scaling,self-collision,accuracy", value_delimiter = ',')]
+    pub parts: Vec<BenchPart>,
     /// Also write the results as JSON to this file.
     #[arg(long)]
     pub json: Option<PathBuf>,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BenchPart {
+    Scaling,
+    SelfCollision,
+    Accuracy,
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -101,6 +112,35 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
     );
 
     // 1. Scaling over threads.
+    if args.parts.contains(&BenchPart::Scaling) {
+        scaling_part(&args, &style, &hair, &motion, &config, &mut json)?;
+    }
+    if args.parts.contains(&BenchPart::SelfCollision) {
+        self_collision_part(&args, &style, &hair, &motion, &config, &mut json);
+    }
+    if args.parts.contains(&BenchPart::Accuracy) {
+        accuracy_part(&args, at_s, &style, &hair, &motion, &config, &mut json);
+    }
+    json.insert("hairstyle".into(), style.name.clone().into());
+    if let Some(path) = &args.json {
+        let text = serde_json::to_string_pretty(&serde_json::Value::Object(json))
+            .map_err(AppError::other)?;
+        std::fs::write(path, text)
+            .map_err(|e| AppError::input(anyhow::anyhow!("--json {}: {e}", path.display())))?;
+    }
+    Ok(())
+}
+
+type Json = serde_json::Map<String, serde_json::Value>;
+
+fn scaling_part(
+    args: &BenchArgs,
+    style: &wisp::hairstyle::Hairstyle,
+    hair: &super::ImportedHair,
+    motion: &wisp::motion::Motion,
+    config: &wisp::frame::EngineConfig,
+    json: &mut Json,
+) -> Result<(), AppError> {
     println!("\nper-stage median ms per frame:");
     println!(
         "threads  {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}  speed-up",
@@ -152,8 +192,18 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         scaling.push(serde_json::Value::Object(row));
     }
     json.insert("scaling".into(), scaling.into());
+    Ok(())
+}
 
-    // 2. Self-collision (Bertails §4.1): the same dance with and without density repulsion.
+/// Self-collision (Bertails §4.1): the same dance with and without density repulsion.
+fn self_collision_part(
+    args: &BenchArgs,
+    style: &wisp::hairstyle::Hairstyle,
+    hair: &super::ImportedHair,
+    motion: &wisp::motion::Motion,
+    config: &wisp::frame::EngineConfig,
+    json: &mut Json,
+) {
     println!(
         "\nself-collision over {} frames (mean of per-frame figures):",
         args.frames
@@ -197,8 +247,18 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
     );
     json.insert("self_collision".into(), sc.into());
     json.insert("self_collision_share".into(), share.into());
+}
 
-    // 3. Speed against error over map resolutions, against the exact reference.
+/// Speed against error over map resolutions, against the exact reference.
+fn accuracy_part(
+    args: &BenchArgs,
+    at_s: f64,
+    style: &wisp::hairstyle::Hairstyle,
+    hair: &super::ImportedHair,
+    motion: &wisp::motion::Motion,
+    config: &wisp::frame::EngineConfig,
+    json: &mut Json,
+) {
     let mut engine = super::engine(style.clone(), hair.clone(), motion.clone(), config.clone());
     engine.run_up_to(at_s);
     engine.frame(at_s);
@@ -230,12 +290,4 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         .collect();
     json.insert("speed_vs_error".into(), rows.into());
     json.insert("reference_ms".into(), reference_ms.into());
-    json.insert("hairstyle".into(), style.name.clone().into());
-    if let Some(path) = &args.json {
-        let text = serde_json::to_string_pretty(&serde_json::Value::Object(json))
-            .map_err(AppError::other)?;
-        std::fs::write(path, text)
-            .map_err(|e| AppError::input(anyhow::anyhow!("--json {}: {e}", path.display())))?;
-    }
-    Ok(())
 }

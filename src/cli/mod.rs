@@ -40,7 +40,7 @@ pub const MAX_SPEED: f32 = 1000.0;
 /// Highest `--fps`.
 pub const MAX_FPS: f32 = 1000.0;
 /// Embedded hairstyle presets, by `--hairstyle` name.
-pub const PRESETS: [&str; 2] = ["smooth", "curly"];
+pub const PRESETS: [&str; 3] = ["smooth", "curly", "dense"];
 
 #[derive(Parser, Debug)]
 #[command(
@@ -111,7 +111,7 @@ impl From<ShadingArg> for ShadingMode {
 /// What is rendered: hairstyle, motion, light, image and map settings.
 #[derive(clap::Args, Debug, Clone)]
 pub struct SceneArgs {
-    /// Hairstyle: a JSON file, or the name of an embedded preset (`smooth`, `curly`); or a
+    /// Hairstyle: a JSON file, or the name of an embedded preset (`smooth`, `curly`, `dense`); or a
     /// captured groom: one or more TressFX `.tfx` / cyHair `.hair` files forming one groom
     /// (comma-separated or the flag repeated), optionally with one preset or JSON file whose
     /// head, fibre and dynamics it takes (default `smooth`).
@@ -458,6 +458,7 @@ pub fn load_hairstyle(arg: &str) -> Result<Hairstyle, AppError> {
     match arg {
         "smooth" => return Ok(Hairstyle::default_smooth()),
         "curly" => return Ok(Hairstyle::default_curly()),
+        "dense" => return Ok(Hairstyle::dense()),
         _ => {}
     }
     let path = std::path::Path::new(arg);

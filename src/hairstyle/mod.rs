@@ -219,6 +219,22 @@ impl Hairstyle {
         Self::from_json(SMOOTH_JSON, "<embedded smooth.json>").expect("embedded hairstyle is valid")
     }
 
+    /// The `dense` preset, generated from `smooth` (no file): Bertails 2005's scale of one
+    /// fibre per render strand, 653 render strands per wisp (87,502 strands) of 14 points
+    /// (1.14 M segments). The heavy scene of the speed benchmarks (issue 12).
+    pub fn dense() -> Self {
+        let mut style = Self::default_smooth();
+        style.name = "dense".into();
+        style.wisps.strands_per_wisp = 653;
+        style.strands.points = 14;
+        style.strands.fibers_per_strand = 1.0;
+        style
+            .validate()
+            .map_err(|(field, rule)| format!("{field}: {rule}"))
+            .expect("the dense preset is valid");
+        style
+    }
+
     /// The embedded `curly` preset.
     pub fn default_curly() -> Self {
         Self::from_json(CURLY_JSON, "<embedded curly.json>").expect("embedded hairstyle is valid")
