@@ -114,7 +114,39 @@ pub(crate) struct CollisionScene<'a> {
     /// Largest true semi-axis (for the conservative penetration estimate).
     radius_max: f32,
     spheres: &'a [SphereCollider],
-    capsules: &'a [CapsuleCollider],
+    /// The usable capsules (finite, positive radius) with a bounding sphere of each inflated
+    /// capsule: most particles are far from most limbs, and one distance to the bound's
+    /// centre skips a capsule that could not touch the particle (the skipped test would have
+    /// answered "outside", so results are unchanged to the bit).
+    capsules: Vec<BoundedCapsule<'a>>,
+}
+
+/// A capsule with a conservative bounding sphere of its inflated shape.
+struct BoundedCapsule<'a> {
+    capsule: &'a CapsuleCollider,
+    centre: Vec3A,
+    /// Squared bound radius: (half the axis + radius + margin), widened by 1e-4 relative and
+    /// 1 µm so rounding can never skip a capsule the exact test would catch.
+    reach2: f32,
+}
+
+impl<'a> BoundedCapsule<'a> {
+    fn new(capsule: &'a CapsuleCollider) -> Self {
+        let (a, b) = (Vec3A::from(capsule.a), Vec3A::from(capsule.b));
+        let reach = 0.5 * (b - a).length() + capsule.radius_m + COLLISION_MARGIN_M;
+        let reach = reach * (1.0 + 1e-4) + 1e-6;
+        Self {
+            capsule,
+            centre: 0.5 * (a + b),
+            reach2: reach * reach,
+        }
+    }
+
+    /// Whether `p` may be inside the inflated capsule (false: certainly outside).
+    #[inline]
+    fn may_touch(&self, p: Vec3A) -> bool {
+        (p - self.centre).length_squared() < self.reach2
+    }
 }
 
 impl<'a> CollisionScene<'a> {
@@ -128,7 +160,12 @@ impl<'a> CollisionScene<'a> {
             inv_radii_out: (radii + Vec3A::splat(COLLISION_MARGIN_M)).recip(),
             radius_max: radii.max_element(),
             spheres: &c.spheres,
-            capsules: &c.capsules,
+            capsules: c
+                .capsules
+                .iter()
+                .filter(|c| c.usable())
+                .map(BoundedCapsule::new)
+                .collect(),
         }
     }
 
@@ -180,8 +217,11 @@ impl<'a> CollisionScene<'a> {
                     moved = true;
                 }
             }
-            for c in self.capsules {
-                if let Some(q) = c.push_out(prev, p, link_m, fallback_dir) {
+            for c in &self.capsules {
+                if !c.may_touch(p) {
+                    continue;
+                }
+                if let Some(q) = c.capsule.push_out_usable(prev, p, link_m, fallback_dir) {
                     p = q;
                     moved = true;
                 }
@@ -211,8 +251,10 @@ impl<'a> CollisionScene<'a> {
                 depth = depth.max(r - d2.sqrt());
             }
         }
-        for c in self.capsules {
-            depth = depth.max(c.penetration_m(p));
+        for c in &self.capsules {
+            if c.may_touch(p) {
+                depth = depth.max(c.capsule.penetration_m(p));
+            }
         }
         depth
     }
@@ -221,7 +263,7 @@ impl<'a> CollisionScene<'a> {
 impl CapsuleCollider {
     /// `p` moved out of the capsule inflated by the collision margin, at `link_m` from `prev`,
     /// or `None` when it is already outside (see the module doc).
-    #[inline]
+    #[cfg(test)]
     pub(crate) fn push_out(
         &self,
         prev: Vec3A,
@@ -232,6 +274,18 @@ impl CapsuleCollider {
         if !self.usable() {
             return None;
         }
+        self.push_out_usable(prev, p, link_m, fallback_dir)
+    }
+
+    /// [`Self::push_out`] for a capsule known to be usable.
+    #[inline]
+    pub(crate) fn push_out_usable(
+        &self,
+        prev: Vec3A,
+        p: Vec3A,
+        link_m: f32,
+        fallback_dir: Vec3A,
+    ) -> Option<Vec3A> {
         let c = self.nearest(p);
         let ro = self.radius_m + COLLISION_MARGIN_M;
         if (p - c).length_squared() >= ro * ro {
