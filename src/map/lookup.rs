@@ -31,6 +31,39 @@ impl From<&Cell> for Sums {
     }
 }
 
+/// What a column has crossed around one cell: the same sums at every depth (an empty cell),
+/// or the sums entering and leaving a filled cell, its depth CDF telling how they grow inside.
+enum Span<'a> {
+    Whole(Sums),
+    Inside {
+        entering: Sums,
+        leaving: Sums,
+        cell: &'a Cell,
+    },
+}
+
+impl Span<'_> {
+    /// The sums at depth `lambda` (cell units from the light-side face) inside the cell.
+    #[inline]
+    fn at(&self, lambda: f32) -> Sums {
+        match *self {
+            Span::Whole(s) => s,
+            Span::Inside {
+                entering,
+                leaving,
+                cell,
+            } => {
+                let share = cell.share_before(lambda);
+                Sums {
+                    n: entering.n + (leaving.n - entering.n) * share,
+                    loss: entering.loss + (leaving.loss - entering.loss) * share,
+                    var: entering.var + (leaving.var - entering.var) * share,
+                }
+            }
+        }
+    }
+}
+
 impl LightMap {
     /// Light reaching world point `p`. Along X, each column gives exactly what has been
     /// crossed up to the point's depth: the sums entering the point's cell plus the share of
@@ -139,14 +172,21 @@ impl LightMap {
                     continue;
                 }
                 let col = self.column(j, k);
-                let s = self.sums_at(col, here.0, here.1);
+                // The point's cell is found once; taps inside it (the common case: shifts
+                // are a fraction of a cell) only re-read its depth CDF.
+                let span = self.span_at(col, here.0);
+                let s = span.at(here.1);
                 let (n, loss) = if taps.len() == 1 && taps[0].1 == 0.0 {
                     (s.n, s.loss)
                 } else {
                     taps.iter()
                         .fold((0.0, Vec3::ZERO), |(n, loss), (tw, shift)| {
                             let (d, lambda) = depth(c.x - shift);
-                            let t = self.sums_at(col, d, lambda);
+                            let t = if d == here.0 {
+                                span.at(lambda)
+                            } else {
+                                self.span_at(col, d).at(lambda)
+                            };
                             (n + tw * t.n, loss + *tw * t.loss)
                         })
                 };
@@ -171,21 +211,21 @@ impl LightMap {
         self.last_cell(col).map_or(0.0, |k| self.cells[k].n_sum)
     }
 
-    /// What column `col` has crossed up to depth `lambda` (cell units) inside the cell at
-    /// unwrapped distance `d` slices from the first slice.
+    /// What column `col` has crossed around the cell at unwrapped distance `d` slices from
+    /// the first slice: read at a depth inside that cell with [`Span::at`].
     #[inline]
-    fn sums_at(&self, col: usize, d: i64, lambda: f32) -> Sums {
+    fn span_at(&self, col: usize, d: i64) -> Span<'_> {
         if d < 0 {
-            return NOTHING;
+            return Span::Whole(NOTHING);
         }
         let rel = d.rem_euclid(self.geom.n as i64) as u32;
         let Some(k) = self.last_at_or_before(col, rel) else {
-            return NOTHING;
+            return Span::Whole(NOTHING);
         };
         let cell = &self.cells[k];
         let leaving = Sums::from(cell);
         if cell.slice != rel {
-            return leaving;
+            return Span::Whole(leaving);
         }
         // The cell itself is filled: the light entering it left the previous filled cell of
         // the column (if any, and not across the wrap).
@@ -194,11 +234,10 @@ impl LightMap {
         } else {
             NOTHING
         };
-        let share = cell.share_before(lambda);
-        Sums {
-            n: entering.n + (leaving.n - entering.n) * share,
-            loss: entering.loss + (leaving.loss - entering.loss) * share,
-            var: entering.var + (leaving.var - entering.var) * share,
+        Span::Inside {
+            entering,
+            leaving,
+            cell,
         }
     }
 
