@@ -397,7 +397,7 @@ impl LightMap {
             .cells
             .par_chunk_by_mut(|a, b| a.col == b.col)
             .map(|col| {
-                col.sort_unstable_by_key(|c| (c.slice, c.seq));
+                sort_column(col);
                 (sweep_column(col), 1usize)
             })
             .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
@@ -470,6 +470,55 @@ unsafe impl Sync for SharedCells {}
 
 /// Merges the cells of one column (sorted by slice) and sweeps them from the light (Bertails
 /// Eq. 3 with the dual-scattering quantities). Returns the number of distinct cells.
+/// Sorts one column's cells by (slice, sample index). The counting sort by column keeps each
+/// column in sample order, so a stable sort by slice alone gives that order: short columns
+/// by insertion, longer ones by counting slices into a per-thread buffer, O(length + span)
+/// and allocation-free once the buffers have grown. (Measured: the general unstable sort on
+/// the pair key was a quarter of the build.)
+fn sort_column(col: &mut [Cell]) {
+    debug_assert!(col.windows(2).all(|w| w[0].seq < w[1].seq));
+    if col.len() <= 16 {
+        for i in 1..col.len() {
+            let mut j = i;
+            while j > 0 && col[j - 1].slice > col[j].slice {
+                col.swap(j - 1, j);
+                j -= 1;
+            }
+        }
+        return;
+    }
+    let (lo, hi) = col
+        .iter()
+        .fold((u32::MAX, 0u32), |(lo, hi), c| (lo.min(c.slice), hi.max(c.slice)));
+    if lo == hi {
+        return;
+    }
+    thread_local! {
+        static BUFFERS: std::cell::RefCell<(Vec<u32>, Vec<Cell>)> =
+            const { std::cell::RefCell::new((Vec::new(), Vec::new())) };
+    }
+    BUFFERS.with_borrow_mut(|(count, copy)| {
+        count.clear();
+        count.resize((hi - lo) as usize + 1, 0);
+        for c in col.iter() {
+            count[(c.slice - lo) as usize] += 1;
+        }
+        let mut acc = 0u32;
+        for k in count.iter_mut() {
+            let n = *k;
+            *k = acc;
+            acc += n;
+        }
+        copy.clear();
+        copy.extend_from_slice(col);
+        for c in copy.iter() {
+            let at = &mut count[(c.slice - lo) as usize];
+            col[*at as usize] = *c;
+            *at += 1;
+        }
+    });
+}
+
 fn sweep_column(col: &mut [Cell]) -> usize {
     // Merge runs of equal slice into the front of the slice, accumulating where along the
     // light each run's crossings lie (a histogram over DEPTH_BINS sub-slices).
