@@ -38,7 +38,7 @@ use crate::raster::{
     draw_ellipsoid, draw_mesh, draw_polylines,
 };
 use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};
-use crate::shade::{shade_skin, shade_vertices};
+use crate::shade::{ShadeScratch, shade_skin, shade_vertices};
 use crate::sim::{Colliders, SimState, Simulator, StepStats};
 use glam::Vec3;
 use map_reuse::{MapInputs, MapInputsView};
@@ -71,6 +71,7 @@ pub struct Engine {
     map_reused: bool,
     pub strands: StrandGeometry,
     colors: Vec<Vec3>,
+    shade_scratch: ShadeScratch,
     /// Physical width of each render-strand point in metres (fibres per strand × diameter).
     widths_m: Vec<f32>,
     camera: Camera,
@@ -207,6 +208,7 @@ impl Engine {
             map_reused: false,
             strands: StrandGeometry::default(),
             colors: Vec::new(),
+            shade_scratch: ShadeScratch::default(),
             widths_m: Vec::new(),
             camera,
             follow: None,
@@ -354,6 +356,7 @@ impl Engine {
             &self.strands.positions,
             &self.strands.tangents,
             &mut self.colors,
+            &mut self.shade_scratch,
         );
         let t2 = Instant::now();
         self.fb.clear(self.config.background);

@@ -52,12 +52,27 @@ pub fn fibre_tint(fiber: &Fiber) -> Vec3 {
     (-2.0 * Vec3::from(fiber.params().sigma_a)).exp()
 }
 
+/// Reusable buffers of [`shade_vertices`]: the vertices in map order and their colours in
+/// that order. Allocation-free once warmed up.
+#[derive(Clone, Debug, Default)]
+pub struct ShadeScratch {
+    keyed: Vec<(u32, u32)>,
+    shaded: Vec<Vec3>,
+}
+
 /// Shades every vertex: `colors[i]` is the linear RGB radiance of vertex `i` seen from `eye`,
 /// summed over the lights (`maps[k]` is light `k`'s map). The light a vertex receives is the
 /// map's, given that the camera sees it ([`LightMap::light_at_seen`]: with the light near the
 /// camera the view and light rays cross the same fibres, so a fibre that is seen is lit more
 /// often than the average). Non-finite results (which the fibre model must never produce) are
 /// replaced by black, so nothing invalid can reach a pixel.
+///
+/// Vertices are shaded in the order of the first map's columns
+/// ([`LightMap::lookup_order_key`], ties by index), so that neighbouring lookups read
+/// neighbouring memory, and the colours are then put back in vertex order. Each vertex's
+/// colour does not depend on the order: only the time does (measured on smooth, one thread:
+/// the lookups of every vertex 50 ms in strand order, 36 ms in map order with the sort).
+#[allow(clippy::too_many_arguments)]
 pub fn shade_vertices(
     fiber: &Fiber,
     maps: &[LightMap],
@@ -66,24 +81,90 @@ pub fn shade_vertices(
     positions: &[Vec3],
     tangents: &[Vec3],
     colors: &mut Vec<Vec3>,
+    scratch: &mut ShadeScratch,
 ) {
     let r = fiber.params().radius_m;
-    shade_vertices_with(
-        fiber,
-        lighting,
-        eye,
-        positions,
-        tangents,
-        |k, i, p| match maps.get(k) {
-            Some(map) => map.light_at_seen(p, eye - p, tangents[i], r),
-            None => LightAtPoint::UNSHADOWED,
-        },
-        colors,
+    let Some(first) = maps.first() else {
+        shade_vertices_with(
+            fiber,
+            lighting,
+            eye,
+            positions,
+            tangents,
+            |_, _, _| LightAtPoint::UNSHADOWED,
+            colors,
+        );
+        return;
+    };
+    let n = positions.len().min(tangents.len());
+    let keyed = &mut scratch.keyed;
+    keyed.clear();
+    keyed.par_extend(
+        positions[..n]
+            .par_iter()
+            .enumerate()
+            .map(|(i, p)| (first.lookup_order_key(*p), i as u32)),
     );
+    keyed.par_sort_unstable();
+    let shaded = &mut scratch.shaded;
+    shaded.clear();
+    shaded.resize(n, Vec3::ZERO);
+    let ambient = lighting.ambient * fibre_tint(fiber);
+    shaded
+        .par_chunks_mut(CHUNK)
+        .zip(keyed.par_chunks(CHUNK))
+        .for_each(|(out, keys)| {
+            for (c, &(_, i)) in out.iter_mut().zip(keys) {
+                let i = i as usize;
+                *c = shade_one(fiber, lighting, ambient, eye, positions[i], tangents[i], |k, p| {
+                    match maps.get(k) {
+                        Some(map) => map.light_at_seen(p, eye - p, tangents[i], r),
+                        None => LightAtPoint::UNSHADOWED,
+                    }
+                });
+            }
+        });
+    colors.clear();
+    colors.resize(positions.len(), Vec3::ZERO);
+    for (c, &(_, i)) in shaded.iter().zip(keyed.iter()) {
+        colors[i as usize] = *c;
+    }
+}
+
+/// Vertices per parallel work item.
+const CHUNK: usize = 4096;
+
+/// The colour of one vertex at `p` with tangent `u`: every light's contribution (its
+/// statistics from `light(k, p)`) plus ambient, clamped at 0, black if not finite.
+#[inline]
+fn shade_one(
+    fiber: &Fiber,
+    lighting: &Lighting,
+    ambient: Vec3,
+    eye: Vec3,
+    p: Vec3,
+    u: Vec3,
+    light: impl Fn(usize, Vec3) -> LightAtPoint,
+) -> Vec3 {
+    let mut v = Vec3::ZERO;
+    // Toward the eye, once per vertex (zero only for a vertex at the eye, where each light's
+    // ωi stands in).
+    let to_eye = (eye - p).normalize_or_zero();
+    for (li, l) in lighting.lights.iter().enumerate() {
+        let (wi, irradiance) = l.toward_and_irradiance(p);
+        let wo = if to_eye == Vec3::ZERO { wi } else { to_eye };
+        v += irradiance * fiber.shade(lighting.mode, u, wi, wo, &light(li, p));
+    }
+    let v = v + ambient;
+    if v.is_finite() {
+        v.max(Vec3::ZERO)
+    } else {
+        Vec3::ZERO
+    }
 }
 
 /// [`shade_vertices`] with the light statistics of vertex `i` at `p` from light `k` given by
-/// `light(k, i, p)` (the maps, or a reference for measuring a map's error).
+/// `light(k, i, p)` (the maps, or a reference for measuring a map's error), in vertex order.
 pub fn shade_vertices_with<L>(
     fiber: &Fiber,
     lighting: &Lighting,
@@ -95,10 +176,8 @@ pub fn shade_vertices_with<L>(
 ) where
     L: Fn(usize, usize, Vec3) -> LightAtPoint + Sync,
 {
-    const CHUNK: usize = 4096;
     colors.resize(positions.len(), Vec3::ZERO);
     let ambient = lighting.ambient * fibre_tint(fiber);
-    let lights = &lighting.lights[..];
     colors
         .par_chunks_mut(CHUNK)
         .zip(positions.par_chunks(CHUNK).zip(tangents.par_chunks(CHUNK)))
@@ -106,21 +185,7 @@ pub fn shade_vertices_with<L>(
         .for_each(|(chunk, (out, (pos, tan)))| {
             for (k, ((c, p), u)) in out.iter_mut().zip(pos).zip(tan).enumerate() {
                 let i = chunk * CHUNK + k;
-                let mut v = Vec3::ZERO;
-                // Toward the eye, once per vertex (zero only for a vertex at the eye, where
-                // each light's ωi stands in).
-                let to_eye = (eye - *p).normalize_or_zero();
-                for (li, l) in lights.iter().enumerate() {
-                    let (wi, irradiance) = l.toward_and_irradiance(*p);
-                    let wo = if to_eye == Vec3::ZERO { wi } else { to_eye };
-                    v += irradiance * fiber.shade(lighting.mode, *u, wi, wo, &light(li, i, *p));
-                }
-                let v = v + ambient;
-                *c = if v.is_finite() {
-                    v.max(Vec3::ZERO)
-                } else {
-                    Vec3::ZERO
-                };
+                *c = shade_one(fiber, lighting, ambient, eye, *p, *u, |li, p| light(li, i, p));
             }
         });
 }
