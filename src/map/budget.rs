@@ -4,7 +4,7 @@
 //! `tests/hostile_budget.rs` measures a real build against it.
 
 use super::MapGeometry;
-use super::build::{Entry, MAX_PIECES, SLOT_SPAN_PER_CELL, SPLAT};
+use super::build::{Entry, MAX_PIECES, PieceStats, SLOT_SPAN_PER_CELL, SPLAT};
 use super::{Cell, OccluderGrid, occluders::MAX_TEXELS};
 
 impl MapGeometry {
@@ -24,7 +24,8 @@ impl MapGeometry {
     /// render-strand samples split into `pieces` each:
     /// - `col_start`, `slot_start` (N² + 1 `u32` each) and the scratch `col_count` (N², or
     ///   one set per chunk of the parallel sort: at most the entries' count, `sort_chunks`);
-    /// - the scratch `entries` (one per piece and column it is splatted to, `SPLAT` = 4);
+    /// - the scratch `entries` (one per piece and column it is splatted to, `SPLAT` = 4) and
+    ///   `sorted` (the same entries grouped by column), and `stats` (one per sample);
     /// - `cells` (one per entry at most);
     /// - the occluder grid (at most `MAX_TEXELS`² depths);
     /// - `slots`: at most `SLOT_SPAN_PER_CELL` per filled cell (sparser columns have none), so
@@ -40,9 +41,11 @@ impl MapGeometry {
             (MAX_TEXELS * MAX_TEXELS * size_of::<f32>()) as u64 + size_of::<OccluderGrid>() as u64;
         let cell_bytes = size_of::<Cell>() as u64;
         let offsets = (3 * columns + 2) * u32_bytes;
+        let stats = samples.saturating_mul(size_of::<PieceStats>() as u64);
         let slots = 2 * entries.saturating_mul(SLOT_SPAN_PER_CELL as u64) * u32_bytes;
         offsets
-            .saturating_add(entries.saturating_mul(entry_bytes + cell_bytes + u32_bytes))
+            .saturating_add(entries.saturating_mul(2 * entry_bytes + cell_bytes + u32_bytes))
+            .saturating_add(stats)
             .saturating_add(slots)
             .saturating_add(occluders)
     }

@@ -118,14 +118,33 @@ pub struct MapStats {
     pub overflow: bool,
 }
 
-/// A sample piece before sorting.
+/// A sample piece's share of one column, before sorting: where it is and with what weight;
+/// what it carries is its sample's [`PieceStats`] times `weight` (24 bytes, so the sort moves
+/// a third of what whole cells would be).
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Entry {
-    /// Column index, or `u32::MAX` for a skipped (non-finite) sample.
-    col: u32,
-    /// Unwrapped slice ⌊x/ds⌋.
+    /// Unwrapped slice ⌊x/ds⌋ after the fill; the slice relative to the first slice (0..N)
+    /// after the counting sort.
     slice: i64,
-    cell: Cell,
+    /// Column index, or `u32::MAX` for a skipped (non-finite) sample or a zero share.
+    col: u32,
+    /// The sample the piece belongs to (index into the per-sample statistics).
+    sample: u32,
+    /// Bilinear share of the column, (0, 1].
+    weight: f32,
+    /// The depth range along the light that the piece spans inside its cell, in 1/65535 of a
+    /// cell from the light-side face.
+    depth: [u16; 2],
+}
+
+/// What one piece of a sample carries into a cell before its bilinear share: expected
+/// crossings, their losses Σ n(1 − ā_f) and variance Σ n β̄_f², and hair volume fraction.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct PieceStats {
+    n: f32,
+    loss: [f32; 3],
+    sigma2: [f32; 3],
+    volume_fraction: f32,
 }
 
 /// Bounding box of filled cells in unwrapped cell indices (x, y, z).
@@ -163,7 +182,12 @@ impl Extent {
 /// Reusable buffers: after the first frame, a build allocates nothing.
 #[derive(Clone, Debug, Default)]
 pub(super) struct Scratch {
+    /// Per sample: what each of its pieces carries.
+    stats: Vec<PieceStats>,
+    /// Per sample piece and column: the fill's output, in sample order.
     entries: Vec<Entry>,
+    /// The filled entries grouped by column (counting sort), each column in sample order.
+    sorted: Vec<Entry>,
     col_count: Vec<u32>,
 }
 
@@ -214,19 +238,23 @@ impl LightMap {
             .fold(0.0f32, f32::max);
         let pieces = ((max_len / ds).ceil() as usize).clamp(1, MAX_PIECES);
         let entries = &mut self.scratch.entries;
+        let stats = &mut self.scratch.stats;
         let per_sample = pieces * SPLAT;
         // Exact reservations: a vector that grows by `resize` may double its capacity, which
         // the memory budget would have to count twice.
         entries.reserve_exact((count * per_sample).saturating_sub(entries.len()));
         entries.resize(count * per_sample, Entry::default());
+        stats.reserve_exact(count.saturating_sub(stats.len()));
+        stats.resize(count, PieceStats::default());
         // Per sample: the fibre's per-crossing statistics once, then its pieces. The extent of
         // the filled cells (first slice, overflow check) comes from an exact min/max reduce,
         // so the reduction order does not matter.
         let extent = entries
             .par_chunks_mut(per_sample)
+            .zip(stats.par_iter_mut())
             .enumerate()
             .with_min_len(512)
-            .map(|(s, out)| {
+            .map(|(s, (out, stat))| {
                 let u = input.tangents[s];
                 let len_total = input.lengths_m[s];
                 let p = input.positions[s];
@@ -250,12 +278,11 @@ impl LightMap {
                     CountModel::Poisson => Vec3::ONE - a,
                     CountModel::MeanCount => -a.max(Vec3::splat(1e-30)).ln(),
                 };
-                let cell = Cell {
-                    n_sum: crossings,
+                *stat = PieceStats {
+                    n: crossings,
                     loss: (loss * crossings).to_array(),
                     sigma2: (fs.beta_f2 * crossings).to_array(),
                     volume_fraction: volume_scale * len * volume_weight,
-                    ..Cell::default()
                 };
                 let u_cells = u_map * inv_cell;
                 // Half the depth a piece spans along the light, in cells.
@@ -292,20 +319,16 @@ impl LightMap {
                             * if dk == 0 { 1.0 - w.y } else { w.y };
                         let (j, k) = (j0 + dj, k0 + dk);
                         // A share of exactly 0 (a piece on a column centre line) makes no cell.
-                        e.col = if wt > 0.0 {
-                            (j.rem_euclid(ncol) * ncol + k.rem_euclid(ncol)) as u32
-                        } else {
-                            u32::MAX
-                        };
-                        e.slice = i;
-                        e.cell = Cell {
-                            seq: ((s * pieces + q) * SPLAT + t) as u32,
+                        *e = Entry {
+                            slice: i,
+                            col: if wt > 0.0 {
+                                (j.rem_euclid(ncol) * ncol + k.rem_euclid(ncol)) as u32
+                            } else {
+                                u32::MAX
+                            },
+                            sample: s as u32,
+                            weight: wt,
                             depth,
-                            n_sum: cell.n_sum * wt,
-                            loss: (Vec3::from(cell.loss) * wt).to_array(),
-                            sigma2: (Vec3::from(cell.sigma2) * wt).to_array(),
-                            volume_fraction: cell.volume_fraction * wt,
-                            ..cell
                         };
                     }
                 }
@@ -356,7 +379,6 @@ impl LightMap {
             });
         let mut acc = 0u32;
         for c in 0..cols {
-            self.col_start[c] = acc;
             for k in 0..chunks {
                 let count = &mut col_count[k * cols + c];
                 let n_k = *count;
@@ -364,12 +386,11 @@ impl LightMap {
                 acc += n_k;
             }
         }
-        self.col_start[cols] = acc;
-        self.cells
-            .reserve_exact(filled_entries.saturating_sub(self.cells.len()));
-        self.cells.resize(filled_entries, Cell::default());
+        let sorted = &mut self.scratch.sorted;
+        sorted.reserve_exact(filled_entries.saturating_sub(sorted.len()));
+        sorted.resize(filled_entries, Entry::default());
         let first = self.first_slice;
-        let out = SharedCells(self.cells.as_mut_ptr());
+        let out = SharedSlice(sorted.as_mut_ptr());
         let out = &out;
         col_count
             .par_chunks_mut(cols)
@@ -378,29 +399,62 @@ impl LightMap {
                 for e in part.iter().filter(|e| e.col != u32::MAX) {
                     let at = cursor[e.col as usize] as usize;
                     cursor[e.col as usize] += 1;
-                    let mut cell = e.cell;
-                    // Relative slice, wrapping modulo N (Bertails Figure 3); the sample index
-                    // moves to the sort key below.
-                    cell.slice = (e.slice - first).rem_euclid(n) as u32;
-                    cell.col = e.col;
+                    // Relative slice, wrapping modulo N (Bertails Figure 3).
+                    let rel = Entry {
+                        slice: (e.slice - first).rem_euclid(n),
+                        ..*e
+                    };
                     // SAFETY: `at` < filled_entries (the cursors partition 0..filled_entries:
                     // chunk k's cursor in column c runs over its own count of places after the
                     // column's start and the earlier chunks' counts), so every place is written
-                    // by exactly one chunk, once, and `cells` is not otherwise touched here.
-                    unsafe { out.0.add(at).write(cell) };
+                    // by exactly one chunk, once, and `sorted` is not otherwise touched here.
+                    unsafe { out.0.add(at).write(rel) };
                 }
             });
 
-        // 3. Per column: sort, merge, sweep. The key (slice, sample index) is unique, so an
-        // unstable (allocation-free) sort gives one order whatever the thread count.
-        let (filled, ncols) = self
-            .cells
+        // 3. Per column: sort along the light (ties by sample index, so the float sums below
+        // always add in the same order whatever the thread count) and count its cells; the
+        // cells are laid out column after column, then each column merges its entries into
+        // its cells and sweeps them.
+        // The cursors are spent: the first N² counters now take each column's cell count.
+        let col_cells = &mut col_count[..cols];
+        col_cells.fill(0);
+        let counts_out = SharedSlice(col_cells.as_mut_ptr());
+        let counts_out = &counts_out;
+        let ncols = sorted
             .par_chunk_by_mut(|a, b| a.col == b.col)
             .map(|col| {
                 sort_column(col);
-                (sweep_column(col), 1usize)
+                let cells = 1 + col.windows(2).filter(|w| w[0].slice != w[1].slice).count();
+                // SAFETY: each column is one chunk, so every counter is written at most once,
+                // and `col_count` is not otherwise touched here.
+                unsafe { counts_out.0.add(col[0].col as usize).write(cells as u32) };
+                1usize
             })
-            .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+            .sum::<usize>();
+        let mut acc = 0u32;
+        for (c, cells) in col_cells.iter().enumerate() {
+            self.col_start[c] = acc;
+            acc += cells;
+        }
+        self.col_start[cols] = acc;
+        let filled = acc as usize;
+        self.cells
+            .reserve_exact(filled.saturating_sub(self.cells.len()));
+        self.cells.resize(filled, Cell::default());
+        let cells_out = SharedSlice(self.cells.as_mut_ptr());
+        let cells_out = &cells_out;
+        let col_start = &self.col_start;
+        let stats = &self.scratch.stats;
+        sorted.par_chunk_by(|a, b| a.col == b.col).for_each(|col| {
+            let c = col[0].col as usize;
+            let (a, b) = (col_start[c] as usize, col_start[c + 1] as usize);
+            // SAFETY: columns own disjoint ranges a..b of `cells` (the prefix sums of
+            // their cell counts above), each column is one chunk, and `cells` is not
+            // otherwise touched here.
+            let cells = unsafe { std::slice::from_raw_parts_mut(cells_out.0.add(a), b - a) };
+            merge_and_sweep(col, stats, cells);
+        });
 
         // Slot tables: per column, the last filled cell at or before each slice of its span.
         // A sparse column (span over SLOT_SPAN_PER_CELL slices per filled cell) gets none and is
@@ -412,18 +466,14 @@ impl LightMap {
             if a == b {
                 continue;
             }
-            let live = self.cells[a..b].partition_point(|x| x.slice != u32::MAX);
-            let span = (self.cells[a + live - 1].slice - self.cells[a].slice) as usize + 1;
-            if span > SLOT_SPAN_PER_CELL * live {
+            let span = (self.cells[b - 1].slice - self.cells[a].slice) as usize + 1;
+            if span > SLOT_SPAN_PER_CELL * (b - a) {
                 continue;
             }
             let base = self.cells[a].slice;
             let mut idx = a;
             for cell in a..b {
                 let s = self.cells[cell].slice;
-                if s == u32::MAX {
-                    break;
-                }
                 while (self.slots.len() - self.slot_start[c] as usize) < (s - base) as usize {
                     self.slots.push(idx as u32);
                 }
@@ -437,7 +487,6 @@ impl LightMap {
         let peak = self
             .cells
             .par_iter()
-            .filter(|c| c.slice != u32::MAX)
             .map(|c| c.volume_fraction)
             .reduce(|| 0.0f32, f32::max);
         self.stats = MapStats {
@@ -462,21 +511,19 @@ fn sort_chunks(entries: usize, cols: usize) -> usize {
 /// Most chunks of the parallel counting sort.
 pub(super) const MAX_SORT_CHUNKS: usize = 8;
 
-/// The map's cells as a raw pointer that the sort's chunks write through, each to its own
-/// places (see the SAFETY note at the write).
-struct SharedCells(*mut Cell);
+/// A buffer as a raw pointer that parallel chunks write through, each to its own places (see
+/// the SAFETY notes at the writes).
+struct SharedSlice<T>(*mut T);
 // SAFETY: the chunks write disjoint places of one live allocation, which outlives the scope.
-unsafe impl Sync for SharedCells {}
+unsafe impl<T: Send> Sync for SharedSlice<T> {}
 
-/// Merges the cells of one column (sorted by slice) and sweeps them from the light (Bertails
-/// Eq. 3 with the dual-scattering quantities). Returns the number of distinct cells.
-/// Sorts one column's cells by (slice, sample index). The counting sort by column keeps each
-/// column in sample order, so a stable sort by slice alone gives that order: short columns
-/// by insertion, longer ones by counting slices into a per-thread buffer, O(length + span)
-/// and allocation-free once the buffers have grown. (Measured: the general unstable sort on
-/// the pair key was a quarter of the build.)
-fn sort_column(col: &mut [Cell]) {
-    debug_assert!(col.windows(2).all(|w| w[0].seq < w[1].seq));
+/// Sorts one column's entries by (relative slice, sample). The counting sort by column keeps
+/// each column in sample order, so a stable sort by slice alone gives that order: short
+/// columns by insertion, longer ones by counting slices into a per-thread buffer,
+/// O(length + span) and allocation-free once the buffers have grown. (Measured: the general
+/// unstable sort on the pair key was a quarter of the build.)
+fn sort_column(col: &mut [Entry]) {
+    debug_assert!(col.windows(2).all(|w| w[0].sample <= w[1].sample));
     if col.len() <= 16 {
         for i in 1..col.len() {
             let mut j = i;
@@ -487,14 +534,14 @@ fn sort_column(col: &mut [Cell]) {
         }
         return;
     }
-    let (lo, hi) = col
-        .iter()
-        .fold((u32::MAX, 0u32), |(lo, hi), c| (lo.min(c.slice), hi.max(c.slice)));
+    let (lo, hi) = col.iter().fold((i64::MAX, i64::MIN), |(lo, hi), c| {
+        (lo.min(c.slice), hi.max(c.slice))
+    });
     if lo == hi {
         return;
     }
     thread_local! {
-        static BUFFERS: std::cell::RefCell<(Vec<u32>, Vec<Cell>)> =
+        static BUFFERS: std::cell::RefCell<(Vec<u32>, Vec<Entry>)> =
             const { std::cell::RefCell::new((Vec::new(), Vec::new())) };
     }
     BUFFERS.with_borrow_mut(|(count, copy)| {
@@ -519,41 +566,54 @@ fn sort_column(col: &mut [Cell]) {
     });
 }
 
-fn sweep_column(col: &mut [Cell]) -> usize {
-    // Merge runs of equal slice into the front of the slice, accumulating where along the
-    // light each run's crossings lie (a histogram over DEPTH_BINS sub-slices).
+/// Merges the entries of one column (sorted by slice) into its `cells` (one per distinct
+/// slice), each piece carrying its sample's statistics times its share, and sweeps them from
+/// the light (Bertails Eq. 3 with the dual-scattering quantities).
+fn merge_and_sweep(col: &[Entry], stats: &[PieceStats], cells: &mut [Cell]) {
+    // Merge runs of equal slice, accumulating where along the light each run's crossings lie
+    // (a histogram over DEPTH_BINS sub-slices).
     let mut w = 0usize;
     let mut hist = [0.0f32; DEPTH_BINS];
-    for r in 0..col.len() {
-        let c = col[r];
-        if r > 0 && c.slice == col[w - 1].slice {
-            let m = &mut col[w - 1];
-            m.n_sum += c.n_sum;
-            m.volume_fraction += c.volume_fraction;
+    for (r, e) in col.iter().enumerate() {
+        let st = &stats[e.sample as usize];
+        let wt = e.weight;
+        let n = st.n * wt;
+        let loss = (Vec3::from(st.loss) * wt).to_array();
+        let sigma2 = (Vec3::from(st.sigma2) * wt).to_array();
+        let vf = st.volume_fraction * wt;
+        if r > 0 && e.slice == col[r - 1].slice {
+            let m = &mut cells[w - 1];
+            m.n_sum += n;
+            m.volume_fraction += vf;
             for ch in 0..3 {
-                m.loss[ch] += c.loss[ch];
-                m.sigma2[ch] += c.sigma2[ch];
+                m.loss[ch] += loss[ch];
+                m.sigma2[ch] += sigma2[ch];
             }
         } else {
             if w > 0 {
-                col[w - 1].depth_cdf = depth_cdf(&hist);
+                cells[w - 1].depth_cdf = depth_cdf(&hist);
             }
             hist = [0.0; DEPTH_BINS];
-            col[w] = c;
+            cells[w] = Cell {
+                slice: e.slice as u32,
+                n_sum: n,
+                loss,
+                sigma2,
+                volume_fraction: vf,
+                depth_cdf: [0; DEPTH_BINS - 1],
+            };
             w += 1;
         }
-        spread_depth(&mut hist, c.depth, c.n_sum);
+        spread_depth(&mut hist, e.depth, n);
     }
     if w > 0 {
-        col[w - 1].depth_cdf = depth_cdf(&hist);
+        cells[w - 1].depth_cdf = depth_cdf(&hist);
     }
-    for c in &mut col[w..] {
-        c.slice = u32::MAX;
-    }
+    debug_assert_eq!(w, cells.len());
     // Sweep: running sums of crossings, losses and variance; each cell then holds what has
     // been crossed up to its far face (the lookup takes exponentials).
     let (mut n_sum, mut loss, mut var) = (0.0f32, [0.0f32; 3], [0.0f32; 3]);
-    for c in &mut col[..w] {
+    for c in cells.iter_mut() {
         n_sum += c.n_sum;
         c.n_sum = n_sum;
         for ch in 0..3 {
@@ -563,7 +623,6 @@ fn sweep_column(col: &mut [Cell]) -> usize {
         c.loss = loss;
         c.sigma2 = var;
     }
-    w
 }
 
 /// Adds `n` crossings spread evenly over the depth range `depth` (1/65535 of a cell) to the

@@ -329,14 +329,10 @@ pub(crate) const DEPTH_BINS: usize = 8;
 /// crossings exactly (exp of an interpolated sum) before converting to transmittance.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Cell {
-    /// Slice index relative to the first slice (0..N); `u32::MAX` marks a merged-away entry.
+    /// Slice index relative to the first slice (0..N).
     pub slice: u32,
-    /// Column index (j·N + k).
-    pub col: u32,
-    /// Index of the (first) sample that made the cell: the tie-break of the sort.
-    pub seq: u32,
-    /// Expected crossings inside this cell (before the sweep), then Σ n up to the far face
-    /// (after): the direct fraction leaving the cell is exp(−n_sum).
+    /// Expected crossings inside this cell (while merging), then Σ n up to the far face
+    /// (after the sweep): the direct fraction leaving the cell is exp(−n_sum).
     pub n_sum: f32,
     /// Σ n·(1 − ā_f) (or Σ n·(−ln ā_f)) inside the cell, then up to the far face, RGB: T_f
     /// leaving the cell is exp(−loss).
@@ -345,9 +341,6 @@ pub(crate) struct Cell {
     pub sigma2: [f32; 3],
     /// Hair volume fraction of the cell (fibre volume / cell volume).
     pub volume_fraction: f32,
-    /// Before merging (one sample piece): the depth range along the light that the piece
-    /// spans inside its cell, in 1/65535 of a cell from the light-side face.
-    pub depth: [u16; 2],
     /// After merging: the share of the cell's crossings that lie before each inner sub-slice
     /// boundary k/DEPTH_BINS (k = 1..DEPTH_BINS−1), in 1/255. Between boundaries the share
     /// grows linearly. A point inside the cell receives the light entering it minus only the
@@ -493,7 +486,7 @@ impl LightMap {
         (j.rem_euclid(n) * n + k.rem_euclid(n)) as usize
     }
 
-    /// The filled cells of column `c`, sorted by slice (merged-away entries at the end).
+    /// The filled cells of column `c`, sorted by slice.
     #[inline]
     #[cfg(test)]
     fn column_cells(&self, c: usize) -> &[Cell] {
@@ -514,8 +507,7 @@ impl LightMap {
         }
         let (s0, s1) = (self.slot_start[c] as usize, self.slot_start[c + 1] as usize);
         if s0 == s1 {
-            // A sparse column without a slot table: binary search (merged-away entries, with
-            // slice u32::MAX, sort last and are never at or before `rel`).
+            // A sparse column without a slot table: binary search.
             let k = self.cells[a..b].partition_point(|x| x.slice <= rel);
             return Some(a + k - 1);
         }
@@ -527,14 +519,7 @@ impl LightMap {
     #[inline]
     fn last_cell(&self, c: usize) -> Option<usize> {
         let (a, b) = (self.col_start[c] as usize, self.col_start[c + 1] as usize);
-        if a == b {
-            return None;
-        }
-        let (s0, s1) = (self.slot_start[c] as usize, self.slot_start[c + 1] as usize);
-        if s0 < s1 {
-            return Some(self.slots[s1 - 1] as usize);
-        }
-        Some(a + self.cells[a..b].partition_point(|x| x.slice != u32::MAX) - 1)
+        (a < b).then_some(b - 1)
     }
 }
 
