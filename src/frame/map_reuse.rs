@@ -43,6 +43,11 @@ pub(crate) struct MapInputsView<'a> {
 }
 
 impl MapInputs {
+    /// Forgets the recorded inputs: the next build rebuilds whatever it is given.
+    pub fn forget(&mut self) {
+        self.recorded = false;
+    }
+
     /// True when `now` equals the recorded inputs; otherwise records `now` (reusing the
     /// buffers, so after the first frame this allocates nothing) and returns false.
     pub fn unchanged_or_record(&mut self, now: &MapInputsView) -> bool {

@@ -347,6 +347,19 @@ impl Engine {
         let t0 = Instant::now();
         self.build_map();
         let t1 = Instant::now();
+        self.shade();
+        let t2 = Instant::now();
+        self.draw();
+        let t3 = Instant::now();
+        self.timings.map_s = (t1 - t0).as_secs_f64();
+        self.timings.shading_s = (t2 - t1).as_secs_f64();
+        self.timings.raster_s = (t3 - t2).as_secs_f64();
+        &self.fb
+    }
+
+    /// The shading stage alone: every vertex's colour from the current maps (after
+    /// [`Engine::build_map`]), seen from the current camera.
+    pub fn shade(&mut self) {
         let eye = self.camera.eye();
         shade_vertices(
             &self.fiber,
@@ -358,7 +371,11 @@ impl Engine {
             &mut self.colors,
             &mut self.shade_scratch,
         );
-        let t2 = Instant::now();
+    }
+
+    /// The raster stage alone: clears the image, draws the solids (lit through the maps) and
+    /// the hair in its shaded colours (after [`Engine::shade`]).
+    pub fn draw(&mut self) -> &Framebuffer {
         self.fb.clear(self.config.background);
         if self.config.draw_solids {
             self.draw_solids();
@@ -385,10 +402,6 @@ impl Engine {
             &self.config.line,
             &mut self.scratch,
         );
-        let t3 = Instant::now();
-        self.timings.map_s = (t1 - t0).as_secs_f64();
-        self.timings.shading_s = (t2 - t1).as_secs_f64();
-        self.timings.raster_s = (t3 - t2).as_secs_f64();
         &self.fb
     }
 
@@ -502,6 +515,12 @@ impl Engine {
     /// had changed; see `frame::map_reuse`).
     pub fn map_reused(&self) -> bool {
         self.map_reused
+    }
+
+    /// Makes the next [`Engine::build_map`] rebuild the maps even if nothing they are made
+    /// of changed (a benchmark of the map stage on still hair).
+    pub fn invalidate_maps(&mut self) {
+        self.map_inputs.forget();
     }
 
     /// Places the camera once the hair has settled: the fixed camera, or the head-following
