@@ -40,7 +40,11 @@ pub struct BenchArgs {
     pub repeats: u32,
     /// Parts to run, comma separated: `scaling` (per-stage timings over thread counts),
     /// `self-collision`, `accuracy` (speed against error).
-    #[arg(long, default_value = "scaling,self-collision,accuracy", value_delimiter = ',')]
+    #[arg(
+        long,
+        default_value = "scaling,self-collision,accuracy",
+        value_delimiter = ','
+    )]
     pub parts: Vec<BenchPart>,
     /// Also write the results as JSON to this file.
     #[arg(long)]

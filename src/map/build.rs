@@ -8,7 +8,7 @@
 //!    below always add in the same order whatever the thread count), merge samples of one cell,
 //!    and sweep from the first slice accumulating Eq. 3 in its dual-scattering form.
 
-use super::{Cell, DEPTH_BINS, LightFrame, LightMap};
+use super::{Cell, ColumnIndex, DEPTH_BINS, LightFrame, LightMap};
 use crate::fiber::Fiber;
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -377,13 +377,25 @@ impl LightMap {
                     count[e.col as usize] += 1;
                 }
             });
+        // Per-chunk counts become write cursors, in passes that walk the counters in memory
+        // order (a column-major walk strides over the chunks' rows): column totals, their
+        // exclusive prefix, then each chunk's cursor after the earlier chunks' entries.
+        let col_base = &mut self.col_start[..cols];
+        col_base.fill(0);
+        for row in col_count.chunks_exact(cols) {
+            for (base, n) in col_base.iter_mut().zip(row) {
+                *base += n;
+            }
+        }
         let mut acc = 0u32;
-        for c in 0..cols {
-            for k in 0..chunks {
-                let count = &mut col_count[k * cols + c];
+        for base in col_base.iter_mut() {
+            (*base, acc) = (acc, acc + *base);
+        }
+        for row in col_count.chunks_exact_mut(cols) {
+            for (base, count) in col_base.iter_mut().zip(row) {
                 let n_k = *count;
-                *count = acc; // becomes chunk k's write cursor in column c
-                acc += n_k;
+                *count = *base; // becomes this chunk's write cursor in the column
+                *base += n_k;
             }
         }
         let sorted = &mut self.scratch.sorted;
@@ -482,6 +494,29 @@ impl LightMap {
             }
         }
         self.slot_start[cols] = self.slots.len() as u32;
+
+        // The lookup index: one record per column.
+        let (col_start, slot_start, cells) = (&self.col_start, &self.slot_start, &self.cells);
+        self.index.resize(cols, ColumnIndex::EMPTY);
+        self.index
+            .par_iter_mut()
+            .with_min_len(4096)
+            .enumerate()
+            .for_each(|(c, ix)| {
+                let (a, b) = (col_start[c], col_start[c + 1]);
+                *ix = if a == b {
+                    ColumnIndex::EMPTY
+                } else {
+                    ColumnIndex {
+                        start: a,
+                        len: b - a,
+                        slot_start: slot_start[c],
+                        slot_len: slot_start[c + 1] - slot_start[c],
+                        base: cells[a as usize].slice,
+                        total_n: cells[b as usize - 1].n_sum,
+                    }
+                };
+            });
 
         // A maximum does not depend on the order of the reduction.
         let peak = self

@@ -208,7 +208,7 @@ impl LightMap {
     /// the running sum of its last filled cell.
     #[inline]
     fn column_total(&self, col: usize) -> f32 {
-        self.last_cell(col).map_or(0.0, |k| self.cells[k].n_sum)
+        self.index[col].total_n
     }
 
     /// What column `col` has crossed around the cell at unwrapped distance `d` slices from
@@ -229,7 +229,7 @@ impl LightMap {
         }
         // The cell itself is filled: the light entering it left the previous filled cell of
         // the column (if any, and not across the wrap).
-        let entering = if rel > 0 && k > self.col_start[col] as usize {
+        let entering = if rel > 0 && k > self.index[col].start as usize {
             Sums::from(&self.cells[k - 1])
         } else {
             NOTHING

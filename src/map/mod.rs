@@ -396,6 +396,9 @@ pub struct LightMap {
     /// columns (span over 4 slices per filled cell) have none and are read by binary search,
     /// so the slots never exceed 4 per filled cell, whatever N is.
     slots: Vec<u32>,
+    /// Per column, what a lookup needs in one 32-byte record (one cache line holds two):
+    /// `col_start`, `slot_start`, the first slice and the column's total crossings.
+    index: Vec<ColumnIndex>,
     scratch: build::Scratch,
     stats: MapStats,
     /// Opaque solids (head, body) in the same light frame.
@@ -425,6 +428,7 @@ impl LightMap {
             cells: Vec::new(),
             slot_start: vec![0; cols + 1],
             slots: Vec::new(),
+            index: vec![ColumnIndex::EMPTY; cols],
             scratch: build::Scratch::default(),
             stats: MapStats::default(),
             occluders: OccluderGrid::default(),
@@ -497,30 +501,47 @@ impl LightMap {
     /// `rel`, or `None` when the column has no cell that early.
     #[inline]
     fn last_at_or_before(&self, c: usize, rel: u32) -> Option<usize> {
-        let (a, b) = (self.col_start[c] as usize, self.col_start[c + 1] as usize);
-        if a == b {
+        let col = &self.index[c];
+        if col.len == 0 || rel < col.base {
             return None;
         }
-        let base = self.cells[a].slice;
-        if rel < base {
-            return None;
-        }
-        let (s0, s1) = (self.slot_start[c] as usize, self.slot_start[c + 1] as usize);
-        if s0 == s1 {
+        let a = col.start as usize;
+        if col.slot_len == 0 {
             // A sparse column without a slot table: binary search.
-            let k = self.cells[a..b].partition_point(|x| x.slice <= rel);
+            let k = self.cells[a..a + col.len as usize].partition_point(|x| x.slice <= rel);
             return Some(a + k - 1);
         }
-        let off = (rel - base) as usize;
-        Some(self.slots[(s0 + off).min(s1 - 1)] as usize)
+        let off = ((rel - col.base) as usize).min(col.slot_len as usize - 1);
+        Some(self.slots[col.slot_start as usize + off] as usize)
     }
+}
 
-    /// Index in `cells` of the last filled cell of column `c`, or `None` when it is empty.
-    #[inline]
-    fn last_cell(&self, c: usize) -> Option<usize> {
-        let (a, b) = (self.col_start[c] as usize, self.col_start[c + 1] as usize);
-        (a < b).then_some(b - 1)
-    }
+/// One column's entry in the lookup index: where its cells and slot table are, its first
+/// slice, and the crossings of a ray through all of it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C, align(32))]
+pub(crate) struct ColumnIndex {
+    /// First cell in `cells`, and how many.
+    pub start: u32,
+    pub len: u32,
+    /// First slot in `slots`, and how many (0: no slot table, read by binary search).
+    pub slot_start: u32,
+    pub slot_len: u32,
+    /// Relative slice of the column's first cell.
+    pub base: u32,
+    /// Σ n of the whole column (the running sum of its last cell), 0 when empty.
+    pub total_n: f32,
+}
+
+impl ColumnIndex {
+    pub(crate) const EMPTY: ColumnIndex = ColumnIndex {
+        start: 0,
+        len: 0,
+        slot_start: 0,
+        slot_len: 0,
+        base: 0,
+        total_n: 0.0,
+    };
 }
 
 #[cfg(test)]

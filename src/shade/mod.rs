@@ -116,12 +116,18 @@ pub fn shade_vertices(
         .for_each(|(out, keys)| {
             for (c, &(_, i)) in out.iter_mut().zip(keys) {
                 let i = i as usize;
-                *c = shade_one(fiber, lighting, ambient, eye, positions[i], tangents[i], |k, p| {
-                    match maps.get(k) {
+                *c = shade_one(
+                    fiber,
+                    lighting,
+                    ambient,
+                    eye,
+                    positions[i],
+                    tangents[i],
+                    |k, p| match maps.get(k) {
                         Some(map) => map.light_at_seen(p, eye - p, tangents[i], r),
                         None => LightAtPoint::UNSHADOWED,
-                    }
-                });
+                    },
+                );
             }
         });
     colors.clear();
@@ -185,7 +191,9 @@ pub fn shade_vertices_with<L>(
         .for_each(|(chunk, (out, (pos, tan)))| {
             for (k, ((c, p), u)) in out.iter_mut().zip(pos).zip(tan).enumerate() {
                 let i = chunk * CHUNK + k;
-                *c = shade_one(fiber, lighting, ambient, eye, *p, *u, |li, p| light(li, i, p));
+                *c = shade_one(fiber, lighting, ambient, eye, *p, *u, |li, p| {
+                    light(li, i, p)
+                });
             }
         });
 }
