@@ -181,4 +181,27 @@ fn bench_runs_and_writes_json() {
     }
     let o = wisp(&["bench", "--threads-list", "0"]);
     assert_eq!(o.status.code(), Some(2));
+    // `--parts scaling`: the timings only.
+    let o = wisp(&[
+        "bench",
+        "--frames",
+        "1",
+        "--width",
+        "64",
+        "--height",
+        "64",
+        "--threads-list",
+        "1",
+        "--parts",
+        "scaling",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    assert_eq!(v["scaling"].as_array().unwrap().len(), 1);
+    assert!(v.get("speed_vs_error").is_none() && v.get("self_collision").is_none());
+    let o = wisp(&["bench", "--parts", "everything"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--parts"), "{}", stderr(&o));
 }

@@ -196,3 +196,21 @@ fn unreadable_file_is_an_io_error_naming_the_path() {
     assert!(matches!(e, HairstyleError::Io { .. }));
     assert!(e.to_string().contains("/no/such/dir/hair.json"));
 }
+
+/// The generated `dense` preset (issue 12's heavy scene) is smooth at Bertails 2005's scale:
+/// 134 wisps × 653 one-fibre strands of 14 points, 1.14 M segments, and valid.
+#[test]
+fn dense_preset_is_smooth_at_bertails_scale() {
+    let d = Hairstyle::dense();
+    let s = Hairstyle::from_json(SMOOTH_JSON, "smooth").expect("smooth");
+    assert_eq!(d.name, "dense");
+    let strands = d.wisps.count as u64 * d.wisps.strands_per_wisp as u64;
+    assert_eq!(strands, 87_502);
+    assert_eq!(strands * (d.strands.points as u64 - 1), 1_137_526);
+    assert_eq!(d.strands.fibers_per_strand, 1.0);
+    assert!(d.validate().is_ok());
+    // Everything else is smooth's.
+    assert_eq!(d.fiber, s.fiber);
+    assert_eq!(d.head.radii_m, s.head.radii_m);
+    assert_eq!(d.guides.length_m, s.guides.length_m);
+}

@@ -115,17 +115,23 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         motion.clip_name()
     );
 
+    let scene = BenchScene {
+        style,
+        hair,
+        motion,
+        config,
+    };
     // 1. Scaling over threads.
     if args.parts.contains(&BenchPart::Scaling) {
-        scaling_part(&args, &style, &hair, &motion, &config, &mut json)?;
+        scaling_part(&args, &scene, &mut json)?;
     }
     if args.parts.contains(&BenchPart::SelfCollision) {
-        self_collision_part(&args, &style, &hair, &motion, &config, &mut json);
+        self_collision_part(&args, &scene, &mut json);
     }
     if args.parts.contains(&BenchPart::Accuracy) {
-        accuracy_part(&args, at_s, &style, &hair, &motion, &config, &mut json);
+        accuracy_part(&args, at_s, &scene, &mut json);
     }
-    json.insert("hairstyle".into(), style.name.clone().into());
+    json.insert("hairstyle".into(), scene.style.name.clone().into());
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&serde_json::Value::Object(json))
             .map_err(AppError::other)?;
@@ -137,14 +143,31 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
 
 type Json = serde_json::Map<String, serde_json::Value>;
 
-fn scaling_part(
-    args: &BenchArgs,
-    style: &wisp::hairstyle::Hairstyle,
-    hair: &super::ImportedHair,
-    motion: &wisp::motion::Motion,
-    config: &wisp::frame::EngineConfig,
-    json: &mut Json,
-) -> Result<(), AppError> {
+/// What every part of the benchmark runs: the resolved hairstyle, hair, motion and engine
+/// configuration.
+struct BenchScene {
+    style: wisp::hairstyle::Hairstyle,
+    hair: super::ImportedHair,
+    motion: wisp::motion::Motion,
+    config: wisp::frame::EngineConfig,
+}
+
+impl BenchScene {
+    fn engine(&self) -> wisp::frame::Engine {
+        self.engine_with(self.config.clone())
+    }
+
+    fn engine_with(&self, config: wisp::frame::EngineConfig) -> wisp::frame::Engine {
+        super::engine(
+            self.style.clone(),
+            self.hair.clone(),
+            self.motion.clone(),
+            config,
+        )
+    }
+}
+
+fn scaling_part(args: &BenchArgs, scene: &BenchScene, json: &mut Json) -> Result<(), AppError> {
     println!("\nper-stage median ms per frame:");
     println!(
         "threads  {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}  speed-up",
@@ -158,8 +181,7 @@ fn scaling_part(
             .build()
             .map_err(AppError::other)?;
         let per_frame: Vec<StageTimings> = pool.install(|| {
-            let mut engine =
-                super::engine(style.clone(), hair.clone(), motion.clone(), config.clone());
+            let mut engine = scene.engine();
             (0..args.frames)
                 .map(|i| {
                     engine.frame(i as f64 / 30.0);
@@ -200,14 +222,7 @@ fn scaling_part(
 }
 
 /// Self-collision (Bertails §4.1): the same dance with and without density repulsion.
-fn self_collision_part(
-    args: &BenchArgs,
-    style: &wisp::hairstyle::Hairstyle,
-    hair: &super::ImportedHair,
-    motion: &wisp::motion::Motion,
-    config: &wisp::frame::EngineConfig,
-    json: &mut Json,
-) {
+fn self_collision_part(args: &BenchArgs, scene: &BenchScene, json: &mut Json) {
     println!(
         "\nself-collision over {} frames (mean of per-frame figures):",
         args.frames
@@ -220,9 +235,9 @@ fn self_collision_part(
     let mut sim_ms = [0.0f64; 2];
     let mut frame_ms = 0.0f64;
     for (k, on) in [false, true].into_iter().enumerate() {
-        let mut cfg = config.clone();
+        let mut cfg = scene.config.clone();
         cfg.self_collision = on;
-        let mut engine = super::engine(style.clone(), hair.clone(), motion.clone(), cfg);
+        let mut engine = scene.engine_with(cfg);
         let (mut peak, mut volume, mut sims, mut totals) = (0.0f64, 0.0f64, Vec::new(), Vec::new());
         for i in 0..args.frames {
             engine.frame(i as f64 / 30.0);
@@ -254,16 +269,8 @@ fn self_collision_part(
 }
 
 /// Speed against error over map resolutions, against the exact reference.
-fn accuracy_part(
-    args: &BenchArgs,
-    at_s: f64,
-    style: &wisp::hairstyle::Hairstyle,
-    hair: &super::ImportedHair,
-    motion: &wisp::motion::Motion,
-    config: &wisp::frame::EngineConfig,
-    json: &mut Json,
-) {
-    let mut engine = super::engine(style.clone(), hair.clone(), motion.clone(), config.clone());
+fn accuracy_part(args: &BenchArgs, at_s: f64, scene: &BenchScene, json: &mut Json) {
+    let mut engine = scene.engine();
     engine.run_up_to(at_s);
     engine.frame(at_s);
     let default_n = engine.map_geometry().n;
