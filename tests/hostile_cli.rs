@@ -308,7 +308,7 @@ fn hostile_files_are_refused_with_exit_2() {
         (
             quick("--hairstyle wavy", &out),
             2,
-            "not a preset (smooth, curly)",
+            "not a preset (smooth, curly, dense)",
         ),
         (quick("--hairstyle /no/such.json", &out), 2, "no such file"),
         (quick(&format!("--hairstyle {}", s(&bom)), &out), 0, ""),

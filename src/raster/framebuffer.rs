@@ -138,13 +138,21 @@ impl Framebuffer {
     /// Refills with `background`, infinite depth and zero coverage, keeping (and if needed
     /// fixing the size of) the allocations.
     pub fn clear(&mut self, background: Vec3) {
+        // 20 bytes a pixel (18 MB at 1280×720): filled in parallel stripes, not by one thread.
+        const STRIPE: usize = 1 << 14;
         let n = self.pixel_count();
-        self.color.clear();
         self.color.resize(n, background);
-        self.depth.clear();
         self.depth.resize(n, f32::INFINITY);
-        self.coverage.clear();
         self.coverage.resize(n, 0.0);
+        self.color
+            .par_chunks_mut(STRIPE)
+            .zip(self.depth.par_chunks_mut(STRIPE))
+            .zip(self.coverage.par_chunks_mut(STRIPE))
+            .for_each(|((c, d), a)| {
+                c.fill(background);
+                d.fill(f32::INFINITY);
+                a.fill(0.0);
+            });
     }
 
     /// Colour at pixel `(x, y)`, if inside.
