@@ -22,8 +22,9 @@ impl MapGeometry {
 
     /// Upper bound, in bytes, of what a map of this geometry holds once built from `samples`
     /// render-strand samples split into `pieces` each:
-    /// - `col_start`, `slot_start` (N² + 1 `u32` each), the lookup `index` (N² records) and the scratch `col_count` (N², or
-    ///   one set per chunk of the parallel sort: at most the entries' count, `sort_chunks`);
+    /// - `col_start` (N² + 1 `u32`), the lookup `index` (N² records) and the scratch
+    ///   `col_count` (N², or one set per chunk of the parallel sort: at most the entries'
+    ///   count, `sort_chunks`);
     /// - the scratch `entries` (one per piece and column it is splatted to, `SPLAT` = 4) and
     ///   `sorted` (the same entries grouped by column), and `stats` (one per sample);
     /// - `cells` (one per entry at most);
@@ -41,7 +42,7 @@ impl MapGeometry {
             (MAX_TEXELS * MAX_TEXELS * size_of::<f32>()) as u64 + size_of::<OccluderGrid>() as u64;
         let cell_bytes = size_of::<Cell>() as u64;
         let offsets =
-            (3 * columns + 2) * u32_bytes + columns * size_of::<super::ColumnIndex>() as u64;
+            (2 * columns + 1) * u32_bytes + columns * size_of::<super::ColumnIndex>() as u64;
         let stats = samples.saturating_mul(size_of::<PieceStats>() as u64);
         let slots = 2 * entries.saturating_mul(SLOT_SPAN_PER_CELL as u64) * u32_bytes;
         offsets

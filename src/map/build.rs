@@ -471,55 +471,41 @@ impl LightMap {
             merge_and_sweep(col, stats, cells);
         });
 
-        // Slot tables: per column, the last filled cell at or before each slice of its span.
-        // A sparse column (span over SLOT_SPAN_PER_CELL slices per filled cell) gets none and is
-        // read by binary search, so the tables never hold more than that many slots per cell.
+        // The lookup index, one record per column, and the slot tables: per column, the last
+        // filled cell at or before each slice of its span. A sparse column (span over
+        // SLOT_SPAN_PER_CELL slices per filled cell) gets none and is read by binary search,
+        // so the tables never hold more than that many slots per cell.
         self.slots.clear();
+        self.index.resize(cols, ColumnIndex::EMPTY);
         for c in 0..cols {
-            self.slot_start[c] = self.slots.len() as u32;
             let (a, b) = (self.col_start[c] as usize, self.col_start[c + 1] as usize);
             if a == b {
+                self.index[c] = ColumnIndex::EMPTY;
                 continue;
             }
-            let span = (self.cells[b - 1].slice - self.cells[a].slice) as usize + 1;
-            if span > SLOT_SPAN_PER_CELL * (b - a) {
-                continue;
-            }
+            let slot_start = self.slots.len();
             let base = self.cells[a].slice;
-            let mut idx = a;
-            for cell in a..b {
-                let s = self.cells[cell].slice;
-                while (self.slots.len() - self.slot_start[c] as usize) < (s - base) as usize {
-                    self.slots.push(idx as u32);
-                }
-                self.slots.push(cell as u32);
-                idx = cell;
-            }
-        }
-        self.slot_start[cols] = self.slots.len() as u32;
-
-        // The lookup index: one record per column.
-        let (col_start, slot_start, cells) = (&self.col_start, &self.slot_start, &self.cells);
-        self.index.resize(cols, ColumnIndex::EMPTY);
-        self.index
-            .par_iter_mut()
-            .with_min_len(4096)
-            .enumerate()
-            .for_each(|(c, ix)| {
-                let (a, b) = (col_start[c], col_start[c + 1]);
-                *ix = if a == b {
-                    ColumnIndex::EMPTY
-                } else {
-                    ColumnIndex {
-                        start: a,
-                        len: b - a,
-                        slot_start: slot_start[c],
-                        slot_len: slot_start[c + 1] - slot_start[c],
-                        base: cells[a as usize].slice,
-                        total_n: cells[b as usize - 1].n_sum,
+            let span = (self.cells[b - 1].slice - base) as usize + 1;
+            if span <= SLOT_SPAN_PER_CELL * (b - a) {
+                let mut idx = a;
+                for cell in a..b {
+                    let s = self.cells[cell].slice;
+                    while self.slots.len() - slot_start < (s - base) as usize {
+                        self.slots.push(idx as u32);
                     }
-                };
-            });
+                    self.slots.push(cell as u32);
+                    idx = cell;
+                }
+            }
+            self.index[c] = ColumnIndex {
+                start: a as u32,
+                len: (b - a) as u32,
+                slot_start: slot_start as u32,
+                slot_len: (self.slots.len() - slot_start) as u32,
+                base,
+                total_n: self.cells[b - 1].n_sum,
+            };
+        }
 
         // A maximum does not depend on the order of the reduction.
         let peak = self

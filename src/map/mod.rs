@@ -389,15 +389,13 @@ pub struct LightMap {
     col_start: Vec<u32>,
     /// Filled cells grouped by column, each column sorted by relative slice.
     cells: Vec<Cell>,
-    /// Per column, offsets into `slots` (N² + 1 entries).
-    slot_start: Vec<u32>,
     /// For each column, one slot per slice from its first to its last filled slice: the index
     /// in `cells` of the last filled cell at or before that slice. Makes a lookup O(1). Sparse
     /// columns (span over 4 slices per filled cell) have none and are read by binary search,
     /// so the slots never exceed 4 per filled cell, whatever N is.
     slots: Vec<u32>,
-    /// Per column, what a lookup needs in one 32-byte record (one cache line holds two):
-    /// `col_start`, `slot_start`, the first slice and the column's total crossings.
+    /// Per column, what a lookup needs in one 32-byte record (one cache line holds two): its
+    /// cells, its slot table, its first slice and its total crossings.
     index: Vec<ColumnIndex>,
     scratch: build::Scratch,
     stats: MapStats,
@@ -426,7 +424,6 @@ impl LightMap {
             hair_hi: [i64::MIN; 3],
             col_start: vec![0; cols + 1],
             cells: Vec::new(),
-            slot_start: vec![0; cols + 1],
             slots: Vec::new(),
             index: vec![ColumnIndex::EMPTY; cols],
             scratch: build::Scratch::default(),
