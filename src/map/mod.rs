@@ -68,6 +68,7 @@
 pub mod accuracy;
 mod budget;
 mod build;
+mod column;
 pub mod exact;
 mod lookup;
 pub(crate) mod occluders;
