@@ -13,7 +13,7 @@
 //! 4. Slot tables and the per-column lookup index.
 
 use super::column::{merge_and_sweep, sort_column};
-use super::{Cell, ColumnIndex, LightFrame, LightMap};
+use super::{Cell, ColumnIndex, LightFrame, LightMap, MAX_CELL_COORD};
 use crate::fiber::Fiber;
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -205,9 +205,6 @@ pub(super) const SPLAT: usize = 4;
 
 /// Most pieces a sample is split into (a sample longer than 8 cells still makes 8).
 pub(super) const MAX_PIECES: usize = 8;
-
-/// Coordinates beyond this many cells are treated as invalid (keeps `as i64` well defined).
-const MAX_CELL_COORD: f32 = 1.0e12;
 
 impl LightMap {
     /// Rebuilds the map for `input` (fill + sweep). Allocation-free once warmed up.

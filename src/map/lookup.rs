@@ -1,7 +1,7 @@
 //! Reading the map: the trilinear filter of Bertails 2005 §3.3 and the cell density used by
 //! self-collision (§4.1).
 
-use super::{Cell, LightMap};
+use super::{Cell, LightMap, on_map};
 use crate::fiber::LightAtPoint;
 use glam::Vec3;
 
@@ -139,7 +139,7 @@ impl LightMap {
     fn light_with_taps(&self, p: Vec3, taps: &[(f32, f32)]) -> LightAtPoint {
         let m = self.proj.point(p);
         let c = m * self.inv_cell;
-        if !c.is_finite() || c.abs().max_element() >= 1.0e12 {
+        if !on_map(c) {
             return LightAtPoint::UNSHADOWED;
         }
         let visible = self.occluders.visibility(m);
@@ -245,7 +245,7 @@ impl LightMap {
     /// or `None` when the cell is empty (Bertails §4.1 self-collision).
     pub fn cell_density(&self, p: Vec3) -> Option<(f32, Vec3)> {
         let c = self.cell_coords(p);
-        if !c.is_finite() || c.abs().max_element() >= 1.0e12 {
+        if !on_map(c) {
             return None;
         }
         let f = c.floor();

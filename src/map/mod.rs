@@ -161,6 +161,15 @@ impl MapGeometry {
     }
 }
 
+/// Coordinates beyond this many cells are treated as invalid (keeps `as i64` well defined).
+const MAX_CELL_COORD: f32 = 1.0e12;
+
+/// Whether map coordinates `c` (in cells) can be read: finite and within [`MAX_CELL_COORD`].
+#[inline]
+fn on_map(c: Vec3) -> bool {
+    c.is_finite() && c.abs().max_element() < MAX_CELL_COORD
+}
+
 /// Most columns per cell width across the light that [`MapGeometry::for_scene`] chooses.
 pub const MAX_LATERAL_COLUMNS: u32 = 4;
 
@@ -475,7 +484,7 @@ impl LightMap {
     /// points off the map. Any order gives the same lookups; this one only makes them faster.
     pub fn lookup_order_key(&self, p: Vec3) -> u32 {
         let c = self.cell_coords(p);
-        if !c.is_finite() || c.abs().max_element() >= 1.0e12 {
+        if !on_map(c) {
             return u32::MAX;
         }
         self.column((c.y - 0.5).floor() as i64, (c.z - 0.5).floor() as i64) as u32
