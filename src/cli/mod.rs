@@ -13,6 +13,9 @@ pub mod render_cmd;
 pub mod shard;
 pub mod view_args;
 
+mod parse;
+pub use parse::*;
+
 use clap::{Parser, Subcommand, ValueEnum};
 use glam::Vec3;
 use std::path::PathBuf;
@@ -499,102 +502,6 @@ pub fn printable(name: &str) -> String {
     name.chars()
         .map(|c| if c.is_control() { '?' } else { c })
         .collect()
-}
-
-/// A budget: a finite number > 0, at most 10⁶.
-pub fn parse_budget(s: &str) -> Result<f64, String> {
-    match s.trim().parse::<f64>() {
-        Ok(v) if v.is_finite() && v > 0.0 && v <= 1e6 => Ok(v),
-        Ok(v) => Err(format!("must be a number in (0, 1e6] (got {v})")),
-        Err(_) => Err(format!("`{s}` is not a number")),
-    }
-}
-
-/// A playback speed in (0, [`MAX_SPEED`]].
-pub fn parse_speed(s: &str) -> Result<f32, String> {
-    let v = parse_positive_f32(s)?;
-    if v > MAX_SPEED {
-        return Err(format!("must be at most {MAX_SPEED} (got {v})"));
-    }
-    Ok(v)
-}
-
-/// A frame rate in (0, [`MAX_FPS`]].
-pub fn parse_fps(s: &str) -> Result<f32, String> {
-    let v = parse_positive_f32(s)?;
-    if v > MAX_FPS {
-        return Err(format!("must be at most {MAX_FPS} (got {v})"));
-    }
-    Ok(v)
-}
-
-/// A finite f64 (times in seconds, which may exceed f32 precision).
-pub fn parse_finite_f64(s: &str) -> Result<f64, String> {
-    match s.trim().parse::<f64>() {
-        Ok(v) if v.is_finite() => Ok(v),
-        Ok(v) if v.is_infinite() && !s.trim().to_ascii_lowercase().contains("inf") => Err(format!(
-            "{} is outside the range of a 64-bit float (about ±1.8e308)",
-            s.trim()
-        )),
-        Ok(v) => Err(format!("must be finite (got {v})")),
-        Err(_) => Err(format!("`{s}` is not a number")),
-    }
-}
-
-/// A finite number > 0. Parsed as f64 first, so that 1e308 is reported as written, not as the
-/// infinity f32 would make of it.
-pub fn parse_positive_f32(s: &str) -> Result<f32, String> {
-    let v = parse_finite_f32(s)?;
-    if v > 0.0 {
-        Ok(v)
-    } else {
-        Err(format!("must be a finite number > 0 (got {v})"))
-    }
-}
-
-/// A number for a validator to judge (NaN and infinities pass through), refusing only a finite
-/// number f32 cannot hold, which would otherwise arrive as "inf".
-pub fn parse_f32_as_written(s: &str) -> Result<f32, String> {
-    match s.trim().parse::<f64>() {
-        Ok(v) if v.is_finite() && v.abs() > f32::MAX as f64 => Err(format!(
-            "{} is outside the range of a 32-bit float (about ±3.4e38)",
-            s.trim()
-        )),
-        Ok(v) => Ok(v as f32),
-        Err(_) => Err(format!("`{s}` is not a number")),
-    }
-}
-
-/// A finite number that f32 holds.
-pub fn parse_finite_f32(s: &str) -> Result<f32, String> {
-    match s.trim().parse::<f64>() {
-        Ok(v) if v.is_finite() && v.abs() <= f32::MAX as f64 => Ok(v as f32),
-        Ok(v) if v.is_finite() => Err(format!(
-            "{} is outside the range of a 32-bit float (about ±3.4e38)",
-            s.trim()
-        )),
-        Ok(v) => Err(format!("must be finite (got {v})")),
-        Err(_) => Err(format!("`{s}` is not a number")),
-    }
-}
-
-/// `X,Y,Z`: three finite numbers, not all zero.
-pub fn parse_direction(s: &str) -> Result<Vec3, String> {
-    let parts: Vec<&str> = s.split(',').collect();
-    if parts.len() != 3 {
-        return Err(format!("expected three numbers X,Y,Z (got `{s}`)"));
-    }
-    let mut v = [0.0f32; 3];
-    for (o, p) in v.iter_mut().zip(&parts) {
-        *o = parse_finite_f32(p)?;
-    }
-    let v = Vec3::from(v);
-    if v.length_squared() < 1e-12 {
-        return Err("the direction must not be zero".into());
-    }
-    // Scaled by its largest component first: 1e30,1e30,1e30 squares to infinity and
-    // normalised to zero.
-    Ok((v / v.abs().max_element()).normalize())
 }
 
 /// An error with its exit code: 2 for bad input, 1 otherwise.
