@@ -38,10 +38,6 @@ pub fn max_threads() -> usize {
     std::thread::available_parallelism().map_or(1, |n| n.get()) * THREADS_PER_CORE
 }
 
-/// Highest `--speed` (a clip played a thousand times faster is a blur).
-pub const MAX_SPEED: f32 = 1000.0;
-/// Highest `--fps`.
-pub const MAX_FPS: f32 = 1000.0;
 /// Embedded hairstyle presets, by `--hairstyle` name.
 pub const PRESETS: [&str; 3] = ["smooth", "curly", "dense"];
 

@@ -1,8 +1,12 @@
 //! Parsers of the command line's numbers and vectors: each refuses what the engine cannot
 //! take (non-finite, out of range) with a message clap prints after the flag's name.
 
-use super::{MAX_FPS, MAX_SPEED};
 use glam::Vec3;
+
+/// Highest `--speed` (a clip played a thousand times faster is a blur).
+pub const MAX_SPEED: f32 = 1000.0;
+/// Highest `--fps`.
+pub const MAX_FPS: f32 = 1000.0;
 
 /// A budget: a finite number > 0, at most 10⁶.
 pub fn parse_budget(s: &str) -> Result<f64, String> {

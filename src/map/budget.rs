@@ -4,7 +4,8 @@
 //! `tests/hostile_budget.rs` measures a real build against it.
 
 use super::MapGeometry;
-use super::build::{Entry, MAX_PIECES, PieceStats, SLOT_SPAN_PER_CELL, SPLAT};
+use super::build::{MAX_PIECES, SLOT_SPAN_PER_CELL, SPLAT};
+use super::column::{Entry, PieceStats};
 use super::{Cell, OccluderGrid, occluders::MAX_TEXELS};
 
 impl MapGeometry {

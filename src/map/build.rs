@@ -12,7 +12,7 @@
 //!    (`column.rs`).
 //! 4. Slot tables and the per-column lookup index.
 
-use super::column::{merge_and_sweep, sort_column};
+use super::column::{Entry, PieceStats, merge_and_sweep, sort_column};
 use super::{Cell, ColumnIndex, LightFrame, LightMap, MAX_CELL_COORD};
 use crate::fiber::Fiber;
 use glam::{Vec2, Vec3};
@@ -121,35 +121,6 @@ pub struct MapStats {
     /// True when the hair extends over more than N cells along an axis, so the modulo
     /// indexing aliases distant hair (the map is too small for the scene).
     pub overflow: bool,
-}
-
-/// A sample piece's share of one column, before sorting: where it is and with what weight;
-/// what it carries is its sample's [`PieceStats`] times `weight` (24 bytes, so the sort moves
-/// a third of what whole cells would be).
-#[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Entry {
-    /// Unwrapped slice ⌊x/ds⌋ after the fill; the slice relative to the first slice (0..N)
-    /// after the counting sort.
-    pub(super) slice: i64,
-    /// Column index, or `u32::MAX` for a skipped (non-finite) sample or a zero share.
-    pub(super) col: u32,
-    /// The sample the piece belongs to (index into the per-sample statistics).
-    pub(super) sample: u32,
-    /// Bilinear share of the column, (0, 1].
-    pub(super) weight: f32,
-    /// The depth range along the light that the piece spans inside its cell, in 1/65535 of a
-    /// cell from the light-side face.
-    pub(super) depth: [u16; 2],
-}
-
-/// What one piece of a sample carries into a cell before its bilinear share: expected
-/// crossings, their losses Σ n(1 − ā_f) and variance Σ n β̄_f², and hair volume fraction.
-#[derive(Clone, Copy, Debug, Default)]
-pub(super) struct PieceStats {
-    pub(super) n: f32,
-    pub(super) loss: [f32; 3],
-    pub(super) sigma2: [f32; 3],
-    pub(super) volume_fraction: f32,
 }
 
 /// Bounding box of filled cells in unwrapped cell indices (x, y, z).

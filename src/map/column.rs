@@ -2,9 +2,37 @@
 //! into cells with where their crossings lie in depth, and swept from the light (Bertails 2005
 //! Eq. 3 with the dual-scattering quantities).
 
-use super::build::{Entry, PieceStats};
 use super::{Cell, DEPTH_BINS};
 use glam::Vec3;
+
+/// A sample piece's share of one column, before sorting: where it is and with what weight;
+/// what it carries is its sample's [`PieceStats`] times `weight` (24 bytes, so the sort moves
+/// a third of what whole cells would be).
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Entry {
+    /// Unwrapped slice ⌊x/ds⌋ after the fill; the slice relative to the first slice (0..N)
+    /// after the counting sort.
+    pub(super) slice: i64,
+    /// Column index, or `u32::MAX` for a skipped (non-finite) sample or a zero share.
+    pub(super) col: u32,
+    /// The sample the piece belongs to (index into the per-sample statistics).
+    pub(super) sample: u32,
+    /// Bilinear share of the column, (0, 1].
+    pub(super) weight: f32,
+    /// The depth range along the light that the piece spans inside its cell, in 1/65535 of a
+    /// cell from the light-side face.
+    pub(super) depth: [u16; 2],
+}
+
+/// What one piece of a sample carries into a cell before its bilinear share: expected
+/// crossings, their losses Σ n(1 − ā_f) and variance Σ n β̄_f², and hair volume fraction.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct PieceStats {
+    pub(super) n: f32,
+    pub(super) loss: [f32; 3],
+    pub(super) sigma2: [f32; 3],
+    pub(super) volume_fraction: f32,
+}
 
 /// Sorts one column's entries by (relative slice, sample). The counting sort by column keeps
 /// each column in sample order, so a stable sort by slice alone gives that order: short
