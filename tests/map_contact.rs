@@ -1,0 +1,215 @@
+//! Contact shadows (`map::contact`): the exact light a one-fibre vertex receives from the fibres
+//! in a window in front of it. Checked against geometry (a fibre crossing a known share of the
+//! piece, the window's ends, the own-strand exclusion) and against the exact reference's ray
+//! average over the same piece (`map::exact`, `Footprint::Fibres`), which it must equal up to
+//! the reference's ray noise when the window holds everything.
+
+mod common;
+use common::*;
+use glam::Vec3;
+use proptest::prelude::*;
+use wisp::hairstyle::SplitMix64;
+use wisp::map::MapLight;
+use wisp::map::contact::{ContactInput, ContactScratch, ContactShadows};
+use wisp::map::exact::{ExactInput, ExactReference, Footprint};
+
+/// Contact shadows of `positions` (strands of `ppl` points) for light travelling along `light`.
+fn contact(
+    positions: &[Vec3],
+    ppl: usize,
+    light: Vec3,
+    window_m: f32,
+    fiber: &wisp::fiber::Fiber,
+) -> ContactShadows {
+    let proj = MapLight::Directional(light).projection(positions);
+    ContactShadows::build(
+        &ContactInput {
+            positions,
+            points_per_strand: ppl,
+            fibre_share: &[],
+            window_m,
+            fiber,
+        },
+        &proj,
+        0.002,
+    )
+}
+
+/// A receiving strand along world Z at depth x = 0.01 (light along +X: behind the occluder),
+/// 5 points 4 mm apart, and an occluder strand along Y at depth `x_occ` crossing the receiver's
+/// middle point's piece at z = `z_occ`.
+fn crossing(x_occ: f32, z_occ: f32) -> Vec<Vec3> {
+    let mut p: Vec<Vec3> = (0..5)
+        .map(|i| Vec3::new(0.01, 0.0, (i as f32 - 2.0) * 0.004))
+        .collect();
+    p.extend((0..5).map(|i| Vec3::new(x_occ, (i as f32 - 2.0) * 0.004 + 0.001, z_occ)));
+    p
+}
+
+#[test]
+fn a_crossing_fibre_shadows_its_width_of_the_piece() {
+    let fiber = default_fiber();
+    let r = fiber.params().radius_m;
+    let a_f = fiber.forward_scatter(0.0).a_f;
+    let beta = fiber.forward_scatter(0.0).beta_f2;
+    let mut scratch = ContactScratch::default();
+    // Vertex 2 stands for z ∈ [−2, 2] mm (4 mm of fibre); the occluder (2r wide) lies 5 mm in
+    // front, inside a 10 mm window: it shadows 2r / 4 mm of the piece.
+    let share = 2.0 * r / 0.004;
+    let c = contact(&crossing(0.005, 0.0005), 5, Vec3::X, 0.01, &fiber);
+    let l = c.near_light(2, 1.0, 0.0, &mut scratch);
+    println!("share {share}: direct {} tf {}", l.direct_fraction, l.tf);
+    assert!((1.0 - l.direct_fraction - share).abs() < 1e-4);
+    let expect = Vec3::splat(1.0 - share) + a_f * share;
+    assert!(
+        (l.tf - expect).abs().max_element() < 1e-4,
+        "{} vs {expect}",
+        l.tf
+    );
+    assert!((l.sigma_f2 - beta * share).abs().max_element() < 1e-5);
+    assert!((l.crossings - share).abs() < 1e-4);
+    // The piece of vertex 2 ends at z = ±2 mm: an occluder at z = 3 mm shadows vertex 3's
+    // piece, not vertex 2's.
+    let c = contact(&crossing(0.005, 0.003), 5, Vec3::X, 0.01, &fiber);
+    assert_eq!(c.near_light(2, 1.0, 0.0, &mut scratch).direct_fraction, 1.0);
+    assert!(c.near_light(3, 1.0, 0.0, &mut scratch).direct_fraction < 1.0);
+    // Outside the window (15 mm in front of a 10 mm window) or behind the vertex: no shadow.
+    for x in [-0.005, 0.02] {
+        let c = contact(&crossing(x, 0.0005), 5, Vec3::X, 0.01, &fiber);
+        assert_eq!(
+            c.near_light(2, 1.0, 0.0, &mut scratch),
+            wisp::map::contact::NearLight::CLEAR,
+            "{x}"
+        );
+    }
+}
+
+#[test]
+fn a_strand_does_not_shadow_itself_nearby_but_does_when_it_curls_back() {
+    let fiber = default_fiber();
+    let mut scratch = ContactScratch::default();
+    // A strand along Z at x = 0.01, then turning toward the light and back across its own
+    // first point's piece 6 mm in front: points 0..3 along Z, 4.. a hairpin in front.
+    let mut p: Vec<Vec3> = (0..4)
+        .map(|i| Vec3::new(0.01, 0.0, i as f32 * 0.004))
+        .collect();
+    p.push(Vec3::new(0.004, 0.0, 0.012));
+    p.push(Vec3::new(0.004, 0.0, 0.0005));
+    p.push(Vec3::new(0.004, 0.0, -0.010));
+    let c = contact(&p, p.len(), Vec3::X, 0.02, &fiber);
+    // Point 1's neighbours (segments 0..=2) are its own; segment 5 passes right in front of
+    // point 0 and 1 along their own line (the same y): it shadows them.
+    let l0 = c.near_light(0, 1.0, 0.0, &mut scratch);
+    assert!(l0.direct_fraction < 1.0, "{l0:?}");
+    // Point 3 is not crossed by the hairpin's later segments (they lie beside its piece), and
+    // its neighbouring segments are excluded: clear.
+    let l3 = c.near_light(3, 1.0, 0.0, &mut scratch);
+    assert_eq!(l3.direct_fraction, 1.0, "{l3:?}");
+}
+
+/// A random tangle of short one-fibre strands in a 6 mm box.
+fn tangle(seed: u64, strands: usize, ppl: usize) -> Vec<Vec3> {
+    let mut rng = SplitMix64::new(seed);
+    let mut u = || rng.unit() * 2.0 - 1.0;
+    let mut pts = Vec::new();
+    for _ in 0..strands {
+        let mut p = Vec3::new(u(), u(), u()) * 0.003;
+        let mut d = Vec3::new(u(), u(), u()).normalize_or(Vec3::Z) * 0.0015;
+        for _ in 0..ppl {
+            pts.push(p);
+            d = (d + Vec3::new(u(), u(), u()) * 0.0006).normalize_or(Vec3::Z) * 0.0015;
+            p += d;
+        }
+    }
+    pts
+}
+
+#[test]
+fn with_everything_in_the_window_it_is_the_exact_reference() {
+    // The reference averages 1024 rays along the same piece; contact shadows integrate the
+    // piece exactly. They must agree to the reference's stratified sampling error.
+    let fiber = default_fiber();
+    let light = Vec3::new(0.4, -1.0, 0.3);
+    let ppl = 8;
+    let pos = tangle(7, 300, ppl);
+    let c = contact(&pos, ppl, light, 1.0, &fiber);
+    let reference = ExactReference::build(
+        &ExactInput {
+            positions: &pos,
+            points_per_strand: ppl,
+            fibers_per_strand: 1,
+            bundle_radius_m: 0.0,
+            fibre_share: &[],
+            light: light.into(),
+            fiber: &fiber,
+        },
+        0.0005,
+    );
+    let mut scratch = ContactScratch::default();
+    let (mut worst, mut shadowed) = (0.0f32, 0);
+    for v in (0..pos.len()).step_by(3) {
+        let near = c.near_light(v, 1.0, 0.0, &mut scratch);
+        let truth = reference.light_at_vertex(v, &Footprint::Fibres { rays: 1024 });
+        assert!(near.tf.is_finite() && near.sigma_f2.is_finite());
+        worst = worst.max((near.tf - truth.tf).abs().max_element());
+        worst = worst.max((near.direct_fraction - truth.direct_fraction).abs());
+        shadowed += (truth.direct_fraction < 0.99) as usize;
+    }
+    println!("worst |Δ| {worst}, {shadowed} vertices shadowed");
+    assert!(shadowed > 50, "the tangle must shadow: {shadowed}");
+    assert!(worst < 0.01, "contact shadows vs exact reference: {worst}");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// A longer window takes more fibres: the light never grows, it stays in [0, 1] and
+    /// finite, and the direct fraction is at most T_f.
+    #[test]
+    fn light_falls_as_the_window_grows(seed in 0u64..1_000_000, lx in -1.0f32..1.0, lz in -1.0f32..1.0) {
+        let fiber = default_fiber();
+        let light = Vec3::new(lx, -1.0, lz);
+        let pos = tangle(seed, 60, 6);
+        let windows = [0.001f32, 0.003, 0.01];
+        let maps: Vec<_> = windows.iter().map(|w| contact(&pos, 6, light, *w, &fiber)).collect();
+        let mut scratch = ContactScratch::default();
+        for v in 0..pos.len() {
+            let l: Vec<_> = maps.iter().map(|m| m.near_light(v, 1.0, 0.0, &mut scratch)).collect();
+            for x in &l {
+                prop_assert!(x.tf.is_finite() && x.tf.min_element() >= 0.0 && x.tf.max_element() <= 1.0);
+                prop_assert!(x.direct_fraction <= x.tf.min_element() + 1e-6);
+            }
+            for w in l.windows(2) {
+                prop_assert!(w[1].direct_fraction <= w[0].direct_fraction + 1e-6);
+                prop_assert!(w[1].tf.cmple(w[0].tf + Vec3::splat(1e-6)).all());
+            }
+        }
+    }
+}
+
+#[test]
+fn degenerate_strands_read_clear_or_finite() {
+    let fiber = default_fiber();
+    let mut scratch = ContactScratch::default();
+    // A strand with coincident points, one along the light, one with a NaN point.
+    let pos = vec![
+        Vec3::ZERO,
+        Vec3::ZERO,
+        Vec3::ZERO,
+        Vec3::new(-0.01, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(0.01, 0.0, 0.0),
+        Vec3::new(0.0, f32::NAN, 0.0),
+        Vec3::new(0.0, 0.0, 0.001),
+        Vec3::new(0.0, 0.0, 0.002),
+    ];
+    let c = contact(&pos, 3, Vec3::X, 0.05, &fiber);
+    for v in 0..pos.len() + 3 {
+        let l = c.near_light(v, 1.0, 0.0, &mut scratch);
+        assert!(l.tf.is_finite() && l.direct_fraction.is_finite() && l.sigma_f2.is_finite());
+    }
+    assert_eq!(
+        c.near_light(7, 1.0, 0.0, &mut scratch),
+        wisp::map::contact::NearLight::CLEAR
+    );
+}
