@@ -5,13 +5,16 @@
 //! - [`measure_map`]: the light map at several resolutions against the exact reference
 //!   (`map::exact`, ray shooting through explicit fibres), per vertex and after shading.
 
+use crate::fiber::LightAtPoint;
 use crate::frame::Engine;
 use crate::hairstyle::Hairstyle;
 use crate::map::accuracy::{BIN_EDGES, Comparison, sample_vertices};
+use crate::map::contact::{ContactInput, ContactScratch};
 use crate::map::exact::{ExactInput, ExactReference, Footprint};
 use crate::map::{CountModel, LightMap, MapBuildInput, MapGeometry, MapLight};
 use crate::shade::{Lighting, shade_vertices_with};
 use glam::Vec3;
+use rayon::prelude::*;
 use std::time::Instant;
 
 /// One row of the table.
@@ -44,7 +47,8 @@ pub fn single_fibre_variant(style: &Hairstyle, k: u32) -> Hairstyle {
 /// Measures the map against the exact reference for an engine's current hair state, at the
 /// resolutions `ns`, at `vertices` vertices spread evenly over the strands. Returns the rows
 /// and the time the reference took (build + queries), ms. Time per row is the map build plus a
-/// lookup at every vertex of the hair, median of `repeats` runs.
+/// lookup at every vertex of the hair (with the contact shadows' build and queries when the
+/// engine uses them; lookups in parallel), median of `repeats` runs.
 pub fn measure_map(
     engine: &Engine,
     geometries: &[MapGeometry],
@@ -116,6 +120,29 @@ pub fn measure_map(
         light,
         fiber: &engine.fiber,
     };
+    // The engine's contact shadows when it uses them (one fibre per strand), read as the
+    // shader reads them but without the camera's opposition term (the reference has no
+    // camera): a view direction along the light's travel shares no fibres with the light ray.
+    let contact = engine
+        .config
+        .contact
+        .window_m(style.strands.fibers_per_strand)
+        .map(|window_m| ContactInput {
+            positions: &strands.positions,
+            points_per_strand: strands.points_per_strand,
+            fibre_share: &strands.fibre_share,
+            window_m,
+            fiber: &engine.fiber,
+        });
+    let read = |map: &LightMap, vertices: &mut dyn Iterator<Item = usize>| -> Vec<LightAtPoint> {
+        let away = map.frame().x;
+        let list: Vec<usize> = vertices.collect();
+        list.par_iter()
+            .map_init(ContactScratch::default, |scratch, &v| {
+                map.light_at_vertex_seen(v, strands.positions[v], away, Vec3::X, 0.0, scratch)
+            })
+            .collect()
+    };
     let mut rows = Vec::new();
     for &geom in geometries {
         let mut map = LightMap::new(geom, CountModel::Poisson);
@@ -123,16 +150,14 @@ pub fn measure_map(
             .map(|_| {
                 let t0 = Instant::now();
                 map.build(&input);
-                let mut sink = 0.0f32;
-                for p in &strands.positions {
-                    sink += map.light_at(*p).direct_fraction;
-                }
-                std::hint::black_box(sink);
+                map.build_contact(contact.as_ref());
+                let all = read(&map, &mut (0..strands.positions.len()));
+                std::hint::black_box(all);
                 t0.elapsed().as_secs_f64() * 1e3
             })
             .collect();
         times.sort_by(f64::total_cmp);
-        let estimate: Vec<_> = pos.iter().map(|p| map.light_at(*p)).collect();
+        let estimate = read(&map, &mut verts.iter().copied());
         let mut colors = Vec::new();
         shade_vertices_with(
             &engine.fiber,

@@ -385,6 +385,28 @@ pub fn estimate(
             set_by: "wisps.count × wisps.strands_per_wisp × strands.points, --map-res and the lights",
         },
         MemoryPart {
+            what: "contact shadows",
+            product: match config.contact.window_m(style.strands.fibers_per_strand) {
+                Some(_) => format!(
+                    "{} light(s) × {} render points, segments cut into parts of {:.2} mm",
+                    lights,
+                    grouped(points),
+                    geom.column_m() * crate::map::CONTACT_BIN_COLUMNS * 1e3
+                ),
+                None => "off (fibre bundles, or --contact-mm 0)".to_string(),
+            },
+            bytes: match config.contact.window_m(style.strands.fibers_per_strand) {
+                Some(_) => crate::map::contact::ContactShadows::estimated_bytes(
+                    points,
+                    sample_len_m as f32,
+                    geom.column_m() * crate::map::CONTACT_BIN_COLUMNS,
+                )
+                .saturating_mul(lights),
+                None => 0,
+            },
+            set_by: "one fibre per render strand: render points, --map-res and --contact-mm",
+        },
+        MemoryPart {
             what: "framebuffer",
             product: format!("{}×{} pixels", config.width, config.height),
             bytes: Framebuffer::estimated_bytes(config.width, config.height),

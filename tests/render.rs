@@ -152,6 +152,44 @@ fn frames_are_byte_identical_with_one_and_two_threads() {
 }
 
 #[test]
+fn one_fibre_hair_with_contact_shadows_is_byte_identical_with_one_and_two_threads() {
+    // Contact shadows (`map::contact`) are on for one fibre per strand: their binning (parallel
+    // collect, sorted bins) and per-vertex queries must not depend on the thread count; and
+    // they must change the picture (the test would pass vacuously if they were off).
+    let style = wisp::accuracy::single_fibre_variant(&Hairstyle::default_smooth(), 1);
+    let render = |threads: usize, contact: wisp::frame::ContactShadowing| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let config = EngineConfig {
+                width: 160,
+                height: 160,
+                contact,
+                ..Default::default()
+            };
+            let mut engine = Engine::new(style.clone(), Motion::default_dance(), config);
+            engine.frame(3.5).to_srgb8()
+        })
+    };
+    use wisp::frame::ContactShadowing::{Auto, Off};
+    let a = render(1, Auto);
+    let b = render(2, Auto);
+    assert!(
+        a == b,
+        "contact-shadowed frames differ between 1 and 2 threads"
+    );
+    let off = render(2, Off);
+    let changed = a.iter().zip(&off).filter(|(x, y)| x != y).count();
+    println!("{changed} of {} bytes change with contact shadows", a.len());
+    assert!(
+        changed > 500,
+        "contact shadows must change the frame: {changed} bytes"
+    );
+}
+
+#[test]
 fn curly_renders_without_non_finite_pixels_under_grazing_light() {
     // Light almost along the view and almost along the hair: grazing angles everywhere.
     let mut engine = still_engine(Hairstyle::default_curly(), Vec3::new(0.0, -1.0, 1e-4), 160);

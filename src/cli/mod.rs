@@ -166,6 +166,11 @@ pub struct SceneArgs {
     /// Map cells per axis (default: sized from the hairstyle's strand spacing).
     #[arg(long, value_parser = clap::value_parser!(u32).range(4..=1024))]
     pub map_res: Option<u32>,
+    /// Contact shadows for one-fibre-per-strand hair: the fibres within this many millimetres
+    /// in front of each vertex (toward the light) are taken exactly, the map gives the rest;
+    /// 0 turns them off (default 40 for one-fibre hair; bundles of fibres never use them).
+    #[arg(long, value_name = "MM", value_parser = parse_contact_mm, allow_hyphen_values = true)]
+    pub contact_mm: Option<f32>,
     /// Fibre shader.
     #[arg(long, value_enum, default_value = "dual")]
     pub shading: ShadingArg,
@@ -231,6 +236,13 @@ impl SceneArgs {
         }
         .with_scene(&scene);
         config.lighting.mode = self.shading.into();
+        if let Some(mm) = self.contact_mm {
+            config.contact = if mm == 0.0 {
+                wisp::frame::ContactShadowing::Off
+            } else {
+                wisp::frame::ContactShadowing::WindowM(mm * 1e-3)
+            };
+        }
         config.self_collision = !self.no_self_collision;
         config.simulate = !self.no_sim;
         self.view.apply(&mut config);

@@ -35,6 +35,19 @@ pub fn parse_fps(s: &str) -> Result<f32, String> {
     Ok(v)
 }
 
+/// Longest contact-shadow window, millimetres (a metre holds any head of hair whole).
+pub const MAX_CONTACT_MM: f32 = 1000.0;
+
+/// A contact-shadow window in millimetres: 0 (off) to [`MAX_CONTACT_MM`].
+pub fn parse_contact_mm(s: &str) -> Result<f32, String> {
+    let v = parse_finite_f32(s)?;
+    if (0.0..=MAX_CONTACT_MM).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("must be 0 (off) to {MAX_CONTACT_MM} mm (got {v})"))
+    }
+}
+
 /// A finite f64 (times in seconds, which may exceed f32 precision).
 pub fn parse_finite_f64(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {

@@ -22,7 +22,10 @@ mod config;
 mod map_reuse;
 mod setup;
 
-pub use config::{DEFAULT_MIN_LINE_WIDTH_PX, EngineConfig, StageTimings};
+pub use config::{
+    ContactShadowing, DEFAULT_CONTACT_WINDOW_M, DEFAULT_MIN_LINE_WIDTH_PX, EngineConfig,
+    StageTimings,
+};
 use setup::{colliders_of, solids_of};
 pub use setup::{
     fit_style_to_character, map_geometry, roots_of_guides_on_head, roots_on_head, write_colliders,
@@ -495,10 +498,24 @@ impl Engine {
             light: crate::map::MapLight::of(light, aim_m),
             fiber: &self.fiber,
         };
+        let contact = self
+            .config
+            .contact
+            .window_m(self.style.strands.fibers_per_strand)
+            .map(|window_m| crate::map::contact::ContactInput {
+                positions: &self.strands.positions,
+                points_per_strand: self.strands.points_per_strand,
+                fibre_share: &self.strands.fibre_share,
+                window_m,
+                fiber: &self.fiber,
+            });
         self.maps
             .par_iter_mut()
             .zip(lights.par_iter())
-            .for_each(|(map, light)| map.build(&input(light)));
+            .for_each(|(map, light)| {
+                map.build(&input(light));
+                map.build_contact(contact.as_ref());
+            });
         let mesh = match character {
             Some(ch) => OccluderMesh {
                 positions: &self.character.positions,

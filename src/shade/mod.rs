@@ -12,6 +12,7 @@
 use crate::fiber::{Fiber, LightAtPoint, ShadingMode};
 use crate::light::{Light, default_light};
 use crate::map::LightMap;
+use crate::map::contact::ContactScratch;
 use glam::Vec3;
 use rayon::prelude::*;
 
@@ -62,9 +63,10 @@ pub struct ShadeScratch {
 
 /// Shades every vertex: `colors[i]` is the linear RGB radiance of vertex `i` seen from `eye`,
 /// summed over the lights (`maps[k]` is light `k`'s map). The light a vertex receives is the
-/// map's, given that the camera sees it ([`LightMap::light_at_seen`]: with the light near the
-/// camera the view and light rays cross the same fibres, so a fibre that is seen is lit more
-/// often than the average). Non-finite results (which the fibre model must never produce) are
+/// map's, given that the camera sees it ([`LightMap::light_at_vertex_seen`]: with the light
+/// near the camera the view and light rays cross the same fibres, so a fibre that is seen is
+/// lit more often than the average), with the fibres just in front of it taken exactly when
+/// the map has contact shadows (one fibre per strand). Non-finite results (which the fibre model must never produce) are
 /// replaced by black, so nothing invalid can reach a pixel.
 ///
 /// Vertices are shaded in the order of the first map's columns
@@ -114,6 +116,7 @@ pub fn shade_vertices(
         .par_chunks_mut(CHUNK)
         .zip(keyed.par_chunks(CHUNK))
         .for_each(|(out, keys)| {
+            let mut contact = ContactScratch::default();
             for (c, &(_, i)) in out.iter_mut().zip(keys) {
                 let i = i as usize;
                 *c = shade_one(
@@ -124,7 +127,9 @@ pub fn shade_vertices(
                     positions[i],
                     tangents[i],
                     |k, p| match maps.get(k) {
-                        Some(map) => map.light_at_seen(p, eye - p, tangents[i], r),
+                        Some(map) => {
+                            map.light_at_vertex_seen(i, p, eye - p, tangents[i], r, &mut contact)
+                        }
                         None => LightAtPoint::UNSHADOWED,
                     },
                 );
@@ -150,7 +155,7 @@ fn shade_one(
     eye: Vec3,
     p: Vec3,
     u: Vec3,
-    light: impl Fn(usize, Vec3) -> LightAtPoint,
+    mut light: impl FnMut(usize, Vec3) -> LightAtPoint,
 ) -> Vec3 {
     let mut v = Vec3::ZERO;
     // Toward the eye, once per vertex (zero only for a vertex at the eye, where each light's
