@@ -1,6 +1,9 @@
 //! Times one stage (`shade`, `map` or `raster`) alone on a fixed hair state of smooth at
 //! 1280×720, for A/B runs of two builds (`farm-bench --vs`, or callgrind with
-//! `--toggle-collect`): `cargo run --release --example stage_loop -- [REPS] [STAGE]`.
+//! `--toggle-collect`): `cargo run --release --example stage_loop -- [REPS] [STAGE] [STYLE]
+//! [CONTACT_MM]`. STYLE: `smooth` (default), `curly`, `dense`, or `smoothxK` (smooth with K
+//! times the strands, one fibre each, as `wisp accuracy --single-fibre-strands K`);
+//! CONTACT_MM: the contact window (0 = off; default: the engine's).
 use wisp::frame::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
@@ -10,12 +13,28 @@ fn main() {
         .and_then(|a| a.parse().ok())
         .unwrap_or(20);
     let stage = std::env::args().nth(2).unwrap_or_else(|| "shade".into());
-    let config = EngineConfig {
+    let style_name = std::env::args().nth(3).unwrap_or_else(|| "smooth".into());
+    let style = match style_name.as_str() {
+        "curly" => Hairstyle::default_curly(),
+        "dense" => Hairstyle::dense(),
+        s => match s.strip_prefix("smoothx").and_then(|k| k.parse().ok()) {
+            Some(k) => wisp::accuracy::single_fibre_variant(&Hairstyle::default_smooth(), k),
+            None => Hairstyle::default_smooth(),
+        },
+    };
+    let mut config = EngineConfig {
         width: 1280,
         height: 720,
         ..EngineConfig::default()
     };
-    let mut e = Engine::new(Hairstyle::default_smooth(), Motion::default_dance(), config);
+    if let Some(mm) = std::env::args().nth(4).and_then(|a| a.parse::<f32>().ok()) {
+        config.contact = if mm > 0.0 {
+            wisp::frame::ContactShadowing::WindowM(mm * 1e-3)
+        } else {
+            wisp::frame::ContactShadowing::Off
+        };
+    }
+    let mut e = Engine::new(style, Motion::default_dance(), config);
     e.run_up_to(2.0);
     e.frame(2.0);
     let t = std::time::Instant::now();
