@@ -120,8 +120,16 @@ fn hostile_flags_exit_2_naming_the_flag() {
         (args("render --fps nan"), 2, "--fps"),
         (args("render --speed -inf"), 2, "must be finite"),
         (args("render --speed 0"), 2, "--speed"),
-        (args("render --contact-mm -1"), 2, "must be 0 (off) to 1000 mm"),
-        (args("render --contact-mm 5000"), 2, "must be 0 (off) to 1000 mm"),
+        (
+            args("render --contact-mm -1"),
+            2,
+            "must be 0 (off) to 1000 mm",
+        ),
+        (
+            args("render --contact-mm 5000"),
+            2,
+            "must be 0 (off) to 1000 mm",
+        ),
         (args("render --contact-mm nan"), 2, "--contact-mm"),
         (args("render --speed 2000"), 2, "at most 1000"),
         (

@@ -150,6 +150,23 @@ pub struct NearLight {
 }
 
 impl NearLight {
+    /// All zero: the start of a weighted sum.
+    const ZERO: Self = Self {
+        direct_fraction: 0.0,
+        tf: Vec3::ZERO,
+        sigma_f2: Vec3::ZERO,
+        crossings: 0.0,
+    };
+
+    /// Adds `w` × `other` (averages over parts of a piece).
+    #[inline]
+    fn add_weighted(&mut self, w: f32, other: &Self) {
+        self.direct_fraction += w * other.direct_fraction;
+        self.tf += w * other.tf;
+        self.sigma_f2 += w * other.sigma_f2;
+        self.crossings += w * other.crossings;
+    }
+
     /// Nothing in the window.
     pub const CLEAR: Self = Self {
         direct_fraction: 1.0,
@@ -258,7 +275,15 @@ impl ContactShadows {
         let (fibres, segments): (Vec<FibreSegment>, Vec<Segment>) = pairs
             .into_par_iter()
             .enumerate()
-            .map(|(i, (f, s))| (f, Segment { parent: i as u32, ..s }))
+            .map(|(i, (f, s))| {
+                (
+                    f,
+                    Segment {
+                        parent: i as u32,
+                        ..s
+                    },
+                )
+            })
             .unzip();
         c.fibres = fibres;
         c.bin(segments, bin_m);
@@ -485,14 +510,10 @@ impl ContactShadows {
                 0.0
             },
         };
-        let h0 = self.half(p, before, own, reach, scratch);
-        let h1 = self.half(p, after, own, reach, scratch);
-        NearLight {
-            direct_fraction: 0.5 * (h0.direct_fraction + h1.direct_fraction),
-            tf: 0.5 * (h0.tf + h1.tf),
-            sigma_f2: 0.5 * (h0.sigma_f2 + h1.sigma_f2),
-            crossings: 0.5 * (h0.crossings + h1.crossings),
-        }
+        let mut sum = NearLight::ZERO;
+        sum.add_weighted(0.5, &self.half(p, before, own, reach, scratch));
+        sum.add_weighted(0.5, &self.half(p, after, own, reach, scratch));
+        sum
     }
 
     /// The exact average light along the straight half from `a` to `b` (light frame): the mean
@@ -510,25 +531,11 @@ impl ContactShadows {
         if n == 1 {
             return self.part(a, b, own, reach, scratch);
         }
-        let mut sum = NearLight {
-            direct_fraction: 0.0,
-            tf: Vec3::ZERO,
-            sigma_f2: Vec3::ZERO,
-            crossings: 0.0,
-        };
+        let mut sum = NearLight::ZERO;
         let inv = 1.0 / n as f32;
         for i in 0..n {
-            let l = self.part(
-                a.lerp(b, i as f32 * inv),
-                a.lerp(b, (i + 1) as f32 * inv),
-                own,
-                reach,
-                scratch,
-            );
-            sum.direct_fraction += inv * l.direct_fraction;
-            sum.tf += inv * l.tf;
-            sum.sigma_f2 += inv * l.sigma_f2;
-            sum.crossings += inv * l.crossings;
+            let (from, to) = (a.lerp(b, i as f32 * inv), a.lerp(b, (i + 1) as f32 * inv));
+            sum.add_weighted(inv, &self.part(from, to, own, reach, scratch));
         }
         sum
     }
@@ -566,9 +573,8 @@ impl ContactShadows {
                     &self.bin_items[self.bin_start[c] as usize..self.bin_start[c + 1] as usize];
                 // Segments whose nearest depth is below x_lo − max_dx lie wholly before the
                 // window.
-                let first = items.partition_point(|&i| {
-                    self.segments[i as usize].x_min() < x_lo - self.max_dx
-                });
+                let first = items
+                    .partition_point(|&i| self.segments[i as usize].x_min() < x_lo - self.max_dx);
                 for &i in &items[first..] {
                     let s = &self.segments[i as usize];
                     if s.x_min() >= x_hi {
