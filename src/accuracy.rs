@@ -6,7 +6,7 @@
 //!   (`map::exact`, ray shooting through explicit fibres), per vertex and after shading.
 
 use crate::fiber::LightAtPoint;
-use crate::frame::Engine;
+use crate::frame::{ContactShadowing, Engine};
 use crate::hairstyle::Hairstyle;
 use crate::map::accuracy::{BIN_EDGES, Comparison, sample_vertices};
 use crate::map::contact::{ContactInput, ContactScratch};
@@ -47,14 +47,15 @@ pub fn single_fibre_variant(style: &Hairstyle, k: u32) -> Hairstyle {
 /// Measures the map against the exact reference for an engine's current hair state, at the
 /// resolutions `ns`, at `vertices` vertices spread evenly over the strands. Returns the rows
 /// and the time the reference took (build + queries), ms. Time per row is the map build plus a
-/// lookup at every vertex of the hair (with the contact shadows' build and queries when the
-/// engine uses them; lookups in parallel), median of `repeats` runs.
+/// lookup at every vertex of the hair (with the contact shadows' build and queries when
+/// `contact` asks for them; lookups in parallel), median of `repeats` runs.
 pub fn measure_map(
     engine: &Engine,
     geometries: &[MapGeometry],
     vertices: usize,
     footprint: &Footprint,
     repeats: u32,
+    contact: ContactShadowing,
 ) -> (Vec<Row>, f64) {
     let style = &engine.style;
     let strands = &engine.strands;
@@ -120,12 +121,10 @@ pub fn measure_map(
         light,
         fiber: &engine.fiber,
     };
-    // The engine's contact shadows when it uses them (one fibre per strand), read as the
-    // shader reads them but without the camera's opposition term (the reference has no
-    // camera): a view direction along the light's travel shares no fibres with the light ray.
-    let contact = engine
-        .config
-        .contact
+    // Contact shadows when asked for and usable (one fibre per strand), read as the shader
+    // reads them but without the camera's opposition term (the reference has no camera): a
+    // view direction along the light's travel shares no fibres with the light ray.
+    let contact = contact
         .window_m(style.strands.fibers_per_strand)
         .map(|window_m| ContactInput {
             positions: &strands.positions,

@@ -153,7 +153,7 @@ fn frames_are_byte_identical_with_one_and_two_threads() {
 
 #[test]
 fn one_fibre_hair_with_contact_shadows_is_byte_identical_with_one_and_two_threads() {
-    // Contact shadows (`map::contact`) are on for one fibre per strand: their binning (parallel
+    // Contact shadows (`map::contact`) for one fibre per strand: their binning (parallel
     // collect, sorted bins) and per-vertex queries must not depend on the thread count; and
     // they must change the picture (the test would pass vacuously if they were off).
     let style = wisp::accuracy::single_fibre_variant(&Hairstyle::default_smooth(), 1);
@@ -173,9 +173,10 @@ fn one_fibre_hair_with_contact_shadows_is_byte_identical_with_one_and_two_thread
             engine.frame(3.5).to_srgb8()
         })
     };
-    use wisp::frame::ContactShadowing::{Auto, Off};
-    let a = render(1, Auto);
-    let b = render(2, Auto);
+    use wisp::frame::ContactShadowing::{Off, WindowM};
+    let on = WindowM(wisp::frame::DEFAULT_CONTACT_WINDOW_M);
+    let a = render(1, on);
+    let b = render(2, on);
     assert!(
         a == b,
         "contact-shadowed frames differ between 1 and 2 threads"

@@ -200,7 +200,15 @@ fn point_light_map_against_the_exact_reference() {
     let mut engine = still_engine(config);
     engine.frame(0.0);
     let fp = Footprint::Fibres { rays: 64 };
-    let rows = measure_map(&engine, &sweep_geometries(&engine, &[]), 1500, &fp, 1).0;
+    let rows = measure_map(
+        &engine,
+        &sweep_geometries(&engine, &[]),
+        1500,
+        &fp,
+        1,
+        engine.config.contact,
+    )
+    .0;
     let row = rows.iter().find(|r| r.is_default).expect("default row");
     let c = &row.comparison;
     println!(

@@ -9,6 +9,7 @@
 
 use super::{AppError, SceneArgs};
 use wisp::accuracy::{markdown, measure_map, single_fibre_variant, sweep_geometries};
+use wisp::frame::{ContactShadowing, DEFAULT_CONTACT_WINDOW_M};
 use wisp::map::exact::Footprint;
 
 #[derive(clap::Args, Debug)]
@@ -70,7 +71,15 @@ fn parse_footprint(s: &str, rays: u32) -> Result<Footprint, AppError> {
 }
 
 pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
-    let (mut style, hair, motion, config) = args.scene.resolve()?;
+    let (mut style, hair, motion, mut config) = args.scene.resolve()?;
+    // Contact shadows are measured (40 mm unless `--contact-mm` says otherwise); the frame that
+    // settles the hair does not need them.
+    let contact = match args.scene.contact_mm {
+        Some(mm) if mm <= 0.0 => ContactShadowing::Off,
+        Some(mm) => ContactShadowing::WindowM(mm * 1e-3),
+        None => ContactShadowing::WindowM(DEFAULT_CONTACT_WINDOW_M),
+    };
+    config.contact = ContactShadowing::Off;
     if let Some(k) = args.single_fibre_strands {
         style = single_fibre_variant(&style, k);
     }
@@ -85,6 +94,7 @@ pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
         args.vertices as usize,
         &footprint,
         args.repeats,
+        contact,
     );
     println!(
         "wisp accuracy: {}, {} strands × {} fibres, {} vertices of {}, t = {} s, footprint {:?}; \

@@ -276,8 +276,14 @@ fn accuracy_part(args: &BenchArgs, at_s: f64, scene: &BenchScene, json: &mut Jso
     let default_n = engine.map_geometry().n;
     let geometries = wisp::accuracy::sweep_geometries(&engine, &args.map_res_list);
     let footprint = Footprint::Fibres { rays: 128 };
-    let (rows, reference_ms) =
-        wisp::accuracy::measure_map(&engine, &geometries, 2000, &footprint, args.repeats);
+    let (rows, reference_ms) = wisp::accuracy::measure_map(
+        &engine,
+        &geometries,
+        2000,
+        &footprint,
+        args.repeats,
+        engine.config.contact,
+    );
     println!(
         "\nspeed against error at t = {} s: map build + a lookup at all {} vertices, against the \
          exact reference (ray shooting through the placed fibres, 2,000 vertices, 128 rays each, \

@@ -167,8 +167,9 @@ pub struct SceneArgs {
     #[arg(long, value_parser = clap::value_parser!(u32).range(4..=1024))]
     pub map_res: Option<u32>,
     /// Contact shadows for one-fibre-per-strand hair: the fibres within this many millimetres
-    /// in front of each vertex (toward the light) are taken exactly, the map gives the rest;
-    /// 0 turns them off (default 40 for one-fibre hair; bundles of fibres never use them).
+    /// in front of each vertex (toward the light) are taken exactly, the map gives the rest
+    /// (40 is what ACCURACY.md measures; 0 or absent: off, except `wisp accuracy`, which uses
+    /// 40 unless given 0). Bundles of fibres never use them.
     #[arg(long, value_name = "MM", value_parser = parse_contact_mm, allow_hyphen_values = true)]
     pub contact_mm: Option<f32>,
     /// Fibre shader.

@@ -89,26 +89,26 @@ pub struct EngineConfig {
     /// Draw the head and the body spheres (default true); without them hair behind the head
     /// shows, as in a scene of hair alone.
     pub draw_solids: bool,
-    /// Contact shadows (`map::contact`): the fibres in front of each vertex taken exactly.
+    /// Contact shadows (`map::contact`): the fibres in front of each vertex taken exactly
+    /// (default off: they cost seconds per frame on dense one-fibre hair, BENCHMARKS.md).
     pub contact: ContactShadowing,
 }
 
 /// Whether the maps take the fibres just in front of each vertex exactly (`map::contact`).
+/// Only hair whose render strands are single fibres (one fibre per strand: the geometry is
+/// then exact) can use them; bundles of fibres, whose fibres the engine does not place, never
+/// do.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ContactShadowing {
-    /// On, with a window of [`DEFAULT_CONTACT_WINDOW_M`], when every render strand is a real
-    /// fibre (one fibre per strand: the geometry is then exact); off for bundles of fibres,
-    /// whose individual fibres the engine does not place.
-    Auto,
     /// Off: the map alone.
     Off,
-    /// On with this window, metres (> 0), for one-fibre strands; bundles stay off.
+    /// On with this window, metres (> 0), for one-fibre strands.
     WindowM(f32),
 }
 
-/// The contact window of [`ContactShadowing::Auto`], metres: the shortest with the one-fibre
-/// targets of the map issue met at the default map (ACCURACY.md §1: at 20 mm the lit bin
-/// binned by truth still reads −0.046, at 40 mm −0.025).
+/// The contact window `--contact-mm` and `wisp accuracy` use by default, metres: the shortest
+/// with the one-fibre targets of the map issue met at the default map (ACCURACY.md §1: at
+/// 20 mm the lit bin binned by truth still reads −0.046, at 40 mm −0.025).
 pub const DEFAULT_CONTACT_WINDOW_M: f32 = 0.04;
 
 impl ContactShadowing {
@@ -118,7 +118,6 @@ impl ContactShadowing {
             return None;
         }
         match self {
-            ContactShadowing::Auto => Some(DEFAULT_CONTACT_WINDOW_M),
             ContactShadowing::Off => None,
             ContactShadowing::WindowM(w) => (w > 0.0 && w.is_finite()).then_some(w),
         }
@@ -142,7 +141,7 @@ impl Default for EngineConfig {
             background: Vec3::new(0.012, 0.014, 0.018),
             camera: CameraSetup::HeadFollowing,
             draw_solids: true,
-            contact: ContactShadowing::Auto,
+            contact: ContactShadowing::Off,
         }
     }
 }
