@@ -137,7 +137,7 @@ impl LightMap {
     /// average over its piece of fibre, whose parts hidden from the camera are the ones in
     /// shadow when the light comes from near the camera (measured: dense blond, front light,
     /// single scattering 0.71 of the path tracer without this, 0.91 with the map alone).
-    /// Points darker than 1e-3 on the map are not queried.
+    /// Points darker than 1e-3 on the map are not queried: they read [`Self::light_at_seen`].
     pub fn light_at_vertex_seen(
         &self,
         vertex: usize,
@@ -151,10 +151,11 @@ impl LightMap {
             return self.light_at_seen(p, to_eye, tangent, fibre_radius_m);
         };
         // Where the map says the point itself is dark, the exact window cannot make it
-        // noticeably brighter (the map is calibrated there, ACCURACY.md §1): its value stands.
+        // noticeably brighter (the map is calibrated there, ACCURACY.md §1): the map's value
+        // stands, given the camera sees the point as everywhere else.
         let here = self.light_at(p);
         if here.tf.max_element() <= DARK {
-            return here;
+            return self.light_at_seen(p, to_eye, tangent, fibre_radius_m);
         }
         // The window holds about CONTACT_CROSSINGS of the map's expected crossings in front of
         // the point (all of them up to the full window near the lit surface; a shorter window
