@@ -138,7 +138,7 @@ pub struct SceneArgs {
     pub head_scale: Option<f32>,
     /// Head fit: the hairstyle head's centre X,Y,Z in the head joint's frame, model metres
     /// (rest-pose world axes). Needs --head-scale.
-    #[arg(long, value_parser = view_args::parse_point, allow_hyphen_values = true, requires = "head_scale")]
+    #[arg(long, value_parser = parse_point, allow_hyphen_values = true, requires = "head_scale")]
     pub head_offset: Option<Vec3>,
     /// Playback speed of the motion (1 = real time), in (0, 1000].
     #[arg(long, default_value_t = 1.0, value_parser = parse_speed, allow_hyphen_values = true)]

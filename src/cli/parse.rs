@@ -98,8 +98,8 @@ pub fn parse_finite_f32(s: &str) -> Result<f32, String> {
     }
 }
 
-/// `X,Y,Z`: three finite numbers, not all zero.
-pub fn parse_direction(s: &str) -> Result<Vec3, String> {
+/// `X,Y,Z`: three finite numbers.
+pub fn parse_point(s: &str) -> Result<Vec3, String> {
     let parts: Vec<&str> = s.split(',').collect();
     if parts.len() != 3 {
         return Err(format!("expected three numbers X,Y,Z (got `{s}`)"));
@@ -108,7 +108,12 @@ pub fn parse_direction(s: &str) -> Result<Vec3, String> {
     for (o, p) in v.iter_mut().zip(&parts) {
         *o = parse_finite_f32(p)?;
     }
-    let v = Vec3::from(v);
+    Ok(Vec3::from(v))
+}
+
+/// `X,Y,Z`: three finite numbers, not all zero.
+pub fn parse_direction(s: &str) -> Result<Vec3, String> {
+    let v = parse_point(s)?;
     if v.length_squared() < 1e-12 {
         return Err("the direction must not be zero".into());
     }

@@ -2,7 +2,7 @@
 //! on top of it, plus the narrowest hair line. Flattened into `SceneArgs`, so `render`, `play`,
 //! `bench` and `export` all take them. Degrees stop here.
 
-use super::{AppError, parse_finite_f32, parse_positive_f32};
+use super::{AppError, parse_finite_f32, parse_point, parse_positive_f32};
 use glam::Vec3;
 use wisp::frame::EngineConfig;
 use wisp::raster::LineWidth;
@@ -87,18 +87,6 @@ impl ViewArgs {
     }
 }
 
-/// `X,Y,Z`: three finite numbers.
-pub fn parse_point(s: &str) -> Result<Vec3, String> {
-    let parts: Vec<&str> = s.split(',').collect();
-    if parts.len() != 3 {
-        return Err(format!("expected three numbers X,Y,Z (got `{s}`)"));
-    }
-    let mut v = [0.0f32; 3];
-    for (o, p) in v.iter_mut().zip(&parts) {
-        *o = parse_finite_f32(p)?;
-    }
-    Ok(Vec3::from(v))
-}
 
 /// `V` or `R,G,B`: finite numbers >= 0 (one number is grey).
 pub fn parse_rgb(s: &str) -> Result<Vec3, String> {
