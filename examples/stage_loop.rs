@@ -28,11 +28,7 @@ fn main() {
         ..EngineConfig::default()
     };
     if let Some(mm) = std::env::args().nth(4).and_then(|a| a.parse::<f32>().ok()) {
-        config.contact = if mm > 0.0 {
-            wisp::frame::ContactShadowing::WindowM(mm * 1e-3)
-        } else {
-            wisp::frame::ContactShadowing::Off
-        };
+        config.contact = wisp::frame::ContactShadowing::from_mm(mm);
     }
     let mut e = Engine::new(style, Motion::default_dance(), config);
     e.run_up_to(2.0);

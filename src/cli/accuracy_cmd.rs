@@ -75,8 +75,7 @@ pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
     // Contact shadows are measured (40 mm unless `--contact-mm` says otherwise); the frame that
     // settles the hair does not need them.
     let contact = match args.scene.contact_mm {
-        Some(mm) if mm <= 0.0 => ContactShadowing::Off,
-        Some(mm) => ContactShadowing::WindowM(mm * 1e-3),
+        Some(mm) => ContactShadowing::from_mm(mm),
         None => ContactShadowing::WindowM(DEFAULT_CONTACT_WINDOW_M),
     };
     config.contact = ContactShadowing::Off;

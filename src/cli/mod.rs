@@ -238,11 +238,7 @@ impl SceneArgs {
         .with_scene(&scene);
         config.lighting.mode = self.shading.into();
         if let Some(mm) = self.contact_mm {
-            config.contact = if mm == 0.0 {
-                wisp::frame::ContactShadowing::Off
-            } else {
-                wisp::frame::ContactShadowing::WindowM(mm * 1e-3)
-            };
+            config.contact = wisp::frame::ContactShadowing::from_mm(mm);
         }
         config.self_collision = !self.no_self_collision;
         config.simulate = !self.no_sim;

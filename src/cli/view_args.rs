@@ -87,7 +87,6 @@ impl ViewArgs {
     }
 }
 
-
 /// `V` or `R,G,B`: finite numbers >= 0 (one number is grey).
 pub fn parse_rgb(s: &str) -> Result<Vec3, String> {
     let parts: Vec<&str> = s.split(',').collect();

@@ -112,6 +112,15 @@ pub enum ContactShadowing {
 pub const DEFAULT_CONTACT_WINDOW_M: f32 = 0.04;
 
 impl ContactShadowing {
+    /// From a window in millimetres (`--contact-mm`): 0 is off.
+    pub fn from_mm(mm: f32) -> Self {
+        if mm > 0.0 {
+            ContactShadowing::WindowM(mm * 1e-3)
+        } else {
+            ContactShadowing::Off
+        }
+    }
+
     /// The window for hair of `fibers_per_strand` fibres per render strand, or `None` (off).
     pub fn window_m(self, fibers_per_strand: f32) -> Option<f32> {
         if fibers_per_strand.round() != 1.0 {

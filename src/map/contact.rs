@@ -331,29 +331,10 @@ impl ContactShadows {
         self.window_m
     }
 
-    /// Fibre segments binned.
-    pub fn segment_count(&self) -> usize {
-        self.fibres.len()
-    }
-
-    /// Bytes held (for the memory report).
-    pub fn bytes(&self) -> usize {
-        self.points.capacity() * size_of::<Vec3>()
-            + self.segments.capacity() * size_of::<Segment>()
-            + self.fibres.capacity() * size_of::<FibreSegment>()
-            + (self.bin_start.capacity() + self.bin_items.capacity()) * size_of::<u32>()
-    }
-
-    /// The widest lateral radius a fibre can have in the map frame (a point light's
-    /// projection narrows fibres beyond its reference plane and widens none).
-    fn max_radius(&self) -> f32 {
-        self.radius_m
-    }
-
     /// The bin rectangle of a lateral box widened by the fibre radius.
     #[inline]
     fn bin_rect(&self, lo: Vec2, hi: Vec2) -> Option<([usize; 2], [usize; 2])> {
-        self.bin_rect_padded(lo, hi, self.max_radius())
+        self.bin_rect_padded(lo, hi, self.radius_m)
     }
 
     /// The bin rectangle of a lateral box widened by `pad`.
@@ -397,7 +378,7 @@ impl ContactShadows {
             self.bin_items.clear();
             return;
         }
-        let pad = Vec2::splat(self.max_radius() + bin_m.max(1e-6));
+        let pad = Vec2::splat(self.radius_m + bin_m.max(1e-6));
         self.origin = lo - pad;
         let extent = hi + pad - self.origin;
         let bin = bin_m.max(1e-6).max(extent.max_element() / MAX_BINS);
@@ -580,12 +561,11 @@ impl ContactShadows {
                     if s.x_min() >= x_hi {
                         break;
                     }
-                    let fibre = &self.fibres[s.parent as usize];
-                    if fibre.strand == own.0
-                        && (own.1 - OWN_BEFORE..=own.1 + OWN_AFTER).contains(&(fibre.seg as i64))
-                    {
+                    // Most parts scanned do not cover the query: test that first, and read the
+                    // part's fibre record (elsewhere in memory) only for those that do.
+                    let Some((u0, u1, dist)) = cover(s, a, b, r, reach.window_m) else {
                         continue;
-                    }
+                    };
                     // Taken once: in the first bin the half's and the segment's rectangles
                     // share.
                     if let Some(([sx0, sy0], _)) = self.seg_rect(s)
@@ -593,23 +573,27 @@ impl ContactShadows {
                     {
                         continue;
                     }
-                    if let Some((u0, u1, dist)) = cover(s, a, b, r, reach.window_m) {
-                        // The view ray shares a fibre at distance s with the light ray over a
-                        // share 1 − s/s_c of its width (`LightMap::light_at_seen`): given the
-                        // point is seen, the fibre is there with probability min(1, s/s_c).
-                        let q = if reach.shared_m > 0.0 {
-                            (dist / reach.shared_m).min(1.0)
-                        } else {
-                            1.0
-                        };
-                        covers.push(Cover {
-                            u0,
-                            u1,
-                            a_f: Vec3::from(fibre.a_f),
-                            beta2: Vec3::from(fibre.beta2),
-                            q,
-                        });
+                    let fibre = &self.fibres[s.parent as usize];
+                    if fibre.strand == own.0
+                        && (own.1 - OWN_BEFORE..=own.1 + OWN_AFTER).contains(&(fibre.seg as i64))
+                    {
+                        continue;
                     }
+                    // The view ray shares a fibre at distance s with the light ray over a
+                    // share 1 − s/s_c of its width (`LightMap::light_at_seen`): given the point
+                    // is seen, the fibre is there with probability min(1, s/s_c).
+                    let q = if reach.shared_m > 0.0 {
+                        (dist / reach.shared_m).min(1.0)
+                    } else {
+                        1.0
+                    };
+                    covers.push(Cover {
+                        u0,
+                        u1,
+                        a_f: Vec3::from(fibre.a_f),
+                        beta2: Vec3::from(fibre.beta2),
+                        q,
+                    });
                 }
             }
         }

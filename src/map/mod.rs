@@ -471,11 +471,6 @@ impl LightMap {
         });
     }
 
-    /// The contact shadows, if built.
-    pub fn contact(&self) -> Option<&contact::ContactShadows> {
-        self.contact.as_ref()
-    }
-
     pub fn geometry(&self) -> MapGeometry {
         self.geom
     }
