@@ -407,6 +407,29 @@ pub fn estimate(
             set_by: "one fibre per render strand: render points, --map-res and --contact-mm",
         },
         MemoryPart {
+            what: "surface shadow texture",
+            product: if config.draw_solids {
+                format!(
+                    "{} light(s) × at most {} map columns² × {} texels each, and a ribbon per render point",
+                    lights,
+                    geom.columns_per_axis(),
+                    crate::map::surface::TEXELS_PER_COLUMN
+                )
+            } else {
+                "off (no solids drawn)".to_string()
+            },
+            bytes: if config.draw_solids {
+                crate::map::surface::SurfaceShadow::estimated_bytes(
+                    geom.columns_per_axis() as u64,
+                    points,
+                )
+                .saturating_mul(lights)
+            } else {
+                0
+            },
+            set_by: "the solids drawn, --map-res and render points",
+        },
+        MemoryPart {
             what: "framebuffer",
             product: format!("{}×{} pixels", config.width, config.height),
             bytes: Framebuffer::estimated_bytes(config.width, config.height),

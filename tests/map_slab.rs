@@ -16,36 +16,13 @@ const LEN: f32 = 0.002;
 /// Samples per cell: a 2x2x2 lattice.
 const PER_CELL: f32 = 8.0;
 
-/// A slab filling slices 10..14 (4 cells) and lateral columns -8..8, fibres along map Y.
-fn slab(frame: &LightFrame) -> StrandGeometry {
-    let mut geo = StrandGeometry {
-        points_per_strand: 1,
-        ..Default::default()
-    };
-    for i in 10..14 {
-        for j in -8..8 {
-            for k in -8..8 {
-                for s in 0..8 {
-                    let sub =
-                        Vec3::new((s & 1) as f32, ((s >> 1) & 1) as f32, ((s >> 2) & 1) as f32);
-                    let m = (Vec3::new(i as f32, j as f32, k as f32) + 0.25 + 0.5 * sub) * DS;
-                    geo.positions.push(frame.to_world(m));
-                    geo.tangents.push(frame.y);
-                    geo.lengths_m.push(LEN);
-                }
-            }
-        }
-    }
-    geo
-}
-
 #[test]
 fn slab_reads_one_in_front_and_the_analytic_attenuation_behind() {
     let light = Vec3::new(0.3, -1.0, 0.2);
     let frame = LightFrame::new(light);
     let fiber = default_fiber();
     let map = build_map(
-        &slab(&frame),
+        &slab(&frame, 10..14, DS, LEN),
         &fiber,
         MapGeometry {
             n: 128,

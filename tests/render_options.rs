@@ -28,9 +28,11 @@ fn small() -> EngineConfig {
 }
 
 /// `tests/golden/default_still_160.png` is `wisp render --still --frames 1 --width 160
-/// --height 160` from main at 6039f6e/7d94265, before issue 14. The options added since
-/// (camera setup, solids switch, coverage channel, EXR output) must not change a single byte
-/// of that configuration, whose lines are 1 px at opacity 0.85 (`LineStyle::pixels`).
+/// --height 160` from main at 6039f6e/7d94265, before issue 14, regenerated once when skin
+/// started reading the hair's shadow from the surface texture (`map::surface`; 164 skin
+/// pixels at the hairline changed, no hair pixel). The options added since (camera setup,
+/// solids switch, coverage channel, EXR output) must not change a single byte of that
+/// configuration, whose lines are 1 px at opacity 0.85 (`LineStyle::pixels`).
 /// Tolerance 0. On failure a diff image (|a − b| × 16) is written to the target's temp dir.
 /// A deliberate change of the map or the shader changes these bytes: regenerate the golden
 /// with `WISP_UPDATE_GOLDEN=1 cargo test --release --test render_options` and say why in the

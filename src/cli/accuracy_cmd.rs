@@ -8,9 +8,11 @@
 //! vertex of the hair (the map's whole per-frame cost), median of `--repeats` runs.
 
 use super::{AppError, SceneArgs};
-use wisp::accuracy::{markdown, measure_map, single_fibre_variant, sweep_geometries};
+use wisp::accuracy::skin::measure_skin;
+use wisp::accuracy::{bias_per_bin, markdown, measure_map, single_fibre_variant, sweep_geometries};
 use wisp::frame::{ContactShadowing, DEFAULT_CONTACT_WINDOW_M};
 use wisp::map::exact::Footprint;
+use wisp::output::write_png_rgb8;
 
 #[derive(clap::Args, Debug)]
 pub struct AccuracyArgs {
@@ -38,6 +40,15 @@ pub struct AccuracyArgs {
     /// exact-geometry variant: with one fibre per strand the reference needs no placement).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=64))]
     pub single_fibre_strands: Option<u32>,
+    /// Measure the hair's shadow on the skin and clothes instead: every pixel of the solids
+    /// facing the light, the map's T_f against `--rays` exact rays from half a pixel's width
+    /// (use a small image, e.g. `--width 320 --height 320`: the rays are shot per pixel).
+    #[arg(long)]
+    pub skin: bool,
+    /// With `--skin`: write the map's T_f, the reference's and their difference side by side
+    /// to this PNG file.
+    #[arg(long, requires = "skin")]
+    pub skin_image: Option<std::path::PathBuf>,
     /// Timed repetitions per map resolution.
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub repeats: u32,
@@ -83,9 +94,15 @@ pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
         style = single_fibre_variant(&style, k);
     }
     let footprint = parse_footprint(&args.footprint, args.rays)?;
+    if let Some(path) = &args.skin_image {
+        super::check_output_file("--skin-image", path)?;
+    }
     let mut engine = super::engine(style.clone(), hair, motion, config);
     engine.run_up_to(args.at_s as f64);
     engine.frame(args.at_s as f64);
+    if args.skin {
+        return skin(&mut engine, &args);
+    }
     let geometries = sweep_geometries(&engine, &args.map_res_list);
     let (rows, reference_ms) = measure_map(
         &engine,
@@ -109,5 +126,49 @@ pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
     );
     println!();
     print!("{}", markdown(&rows));
+    Ok(())
+}
+
+/// `--skin`: the hair's shadow on the solids against exact rays.
+fn skin(engine: &mut wisp::frame::Engine, args: &AccuracyArgs) -> Result<(), AppError> {
+    let report = measure_skin(engine, args.rays);
+    println!(
+        "wisp accuracy --skin: {}, t = {} s, {}×{} px, {} rays per pixel from half a pixel's \
+         width; exact reference {:.0} ms",
+        engine.style.name, args.at_s, report.width, report.height, args.rays, report.reference_ms
+    );
+    println!();
+    println!("| pixels | T_f MAE | bias | bias, true T_f 0–0.2 / 0.2–0.5 / 0.5–0.8 / 0.8–1 |");
+    println!("|---|---|---|---|");
+    for (label, c) in [
+        (
+            format!("all facing the light ({})", report.pixels),
+            &report.comparison,
+        ),
+        (
+            format!(
+                "in the hair's shadow, true T_f < 0.98 ({})",
+                report.shadowed_pixels
+            ),
+            &report.shadowed,
+        ),
+    ] {
+        println!(
+            "| {label} | {:.4} | {:+.4} | {} |",
+            c.mae,
+            c.overall_bias,
+            bias_per_bin(&c.by_truth)
+        );
+    }
+    if let Some(path) = &args.skin_image {
+        let (w, h, rgb) = report.side_by_side_rgb8();
+        write_png_rgb8(path, w, h, &rgb).map_err(|e| {
+            AppError::other(anyhow::anyhow!("--skin-image {}: {e}", path.display()))
+        })?;
+        println!(
+            "\nwrote {} (map | exact rays | map − rays, red lighter, blue darker, ±0.25)",
+            path.display()
+        );
+    }
     Ok(())
 }

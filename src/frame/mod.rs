@@ -41,7 +41,7 @@ use crate::raster::{
     draw_ellipsoid, draw_mesh, draw_polylines,
 };
 use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};
-use crate::shade::{ShadeScratch, shade_skin, shade_vertices};
+use crate::shade::{Lighting, ShadeScratch, shade_skin, shade_vertices};
 use crate::sim::{Colliders, SimState, Simulator, StepStats};
 use glam::Vec3;
 use map_reuse::{MapInputs, MapInputsView};
@@ -411,13 +411,42 @@ impl Engine {
     /// The character's mesh (or the head and the body spheres), opaque, lit through the hair's
     /// shadow.
     fn draw_solids(&mut self) {
-        let (maps, lighting) = (&self.maps[..], &self.config.lighting);
+        // The maps move out for the call (no copy) so the shader can read them while the
+        // solids are drawn into the engine's own framebuffer.
+        let maps = std::mem::take(&mut self.maps);
+        let mode = self.config.lighting.mode;
+        let lighting = std::mem::replace(
+            &mut self.config.lighting,
+            Lighting {
+                lights: Vec::new(),
+                ambient: Vec3::ZERO,
+                mode,
+            },
+        );
+        self.draw_solids_with(|p, n, albedo| shade_skin(&maps, &lighting, albedo, p, n));
+        self.maps = maps;
+        self.config.lighting = lighting;
+    }
+
+    /// The solids alone on black, shaded by `skin(p, n, albedo)` (world point, unit normal,
+    /// albedo → linear RGB) instead of the map-lit skin shader of [`Self::draw`]: for
+    /// measuring the skin's shadow against another light (`accuracy::skin`). The next
+    /// [`Self::draw`] clears it.
+    pub fn solids_image(&mut self, skin: impl Fn(Vec3, Vec3, Vec3) -> Vec3 + Sync) -> &Framebuffer {
+        self.fb.clear(Vec3::ZERO);
+        self.draw_solids_with(skin);
+        &self.fb
+    }
+
+    /// Draws the solids into the current framebuffer (not cleared) with the surface shader
+    /// `skin`.
+    fn draw_solids_with(&mut self, skin: impl Fn(Vec3, Vec3, Vec3) -> Vec3 + Sync) {
         for (s, albedo) in self.solids.iter().zip(&self.solid_albedo) {
             draw_ellipsoid(
                 &mut self.fb,
                 &self.camera,
                 s.unit_sphere_to_world,
-                |p, n| shade_skin(maps, lighting, *albedo, p, n),
+                |p, n| skin(p, n, *albedo),
             );
         }
         if let Some(ch) = self.motion.character() {
@@ -434,7 +463,7 @@ impl Engine {
                 &mut self.fb,
                 &self.camera,
                 &mesh,
-                |p, n, albedo| shade_skin(maps, lighting, albedo, p, n),
+                &skin,
                 &mut self.mesh_scratch,
             );
         }
@@ -498,6 +527,9 @@ impl Engine {
             light: crate::map::MapLight::of(light, aim_m),
             fiber: &self.fiber,
         };
+        // Skin and clothes read the hair's shadow from a finer texture (`map::surface`).
+        let draw_solids = self.config.draw_solids;
+        let bundle_radius_m = 0.5 * self.style.strand_spacing_m();
         let contact = self
             .config
             .contact
@@ -523,8 +555,11 @@ impl Engine {
             },
             None => OccluderMesh::EMPTY,
         };
-        for map in &mut self.maps {
+        for (map, light) in self.maps.iter_mut().zip(lights) {
             map.set_occluders_with_mesh(&self.solids, mesh);
+            if draw_solids {
+                map.build_surface(&input(light), &self.strands.fibre_share, bundle_radius_m);
+            }
         }
     }
 

@@ -91,6 +91,29 @@ impl LightMap {
         self.light_with_taps(p, &[(1.0, 0.0)])
     }
 
+    /// Forward transmittance T_f (R, G, B) reaching a point of a surface (skin, clothes) at
+    /// world point `p` facing the light, past the hair and the solids. With the surface
+    /// texture ([`Self::build_surface`]): exp(−L)·V, L the texture's optical depth of the hair
+    /// in front of the first solid along the ray (`super::surface`), V the solids' visibility.
+    /// Without it: [`Self::light_at`].
+    pub fn light_at_surface(&self, p: Vec3) -> Vec3 {
+        let Some(surface) = &self.surface else {
+            return self.light_at(p).tf;
+        };
+        let m = self.proj.point(p);
+        if !m.is_finite() {
+            return Vec3::ONE;
+        }
+        let tf = (-surface.optical_depth(m)).exp() * self.occluders.visibility(m);
+        tf.clamp(Vec3::ZERO, Vec3::ONE)
+    }
+
+    /// Fraction of the light reaching world point `p` past the opaque solids alone (head,
+    /// body; not the hair), in [0, 1].
+    pub fn solid_visibility(&self, p: Vec3) -> f32 {
+        self.occluders.visibility(self.proj.point(p))
+    }
+
     /// The light reaching world point `p` *on a fibre the camera sees* from direction
     /// `to_eye` (from `p` toward the eye), for fibres of radius `fibre_radius_m`.
     ///

@@ -78,11 +78,12 @@ pub mod contact;
 pub mod exact;
 mod lookup;
 pub(crate) mod occluders;
+pub mod surface;
 
 pub use build::{CountModel, MapBuildInput, MapLight, MapStats};
 pub use occluders::{OccluderGrid, OccluderMesh, Solid};
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// Size of the map: N slices of `ds_m` along the light, and `lateral` × N columns across it
 /// per axis (each `ds_m / lateral` wide).
@@ -426,6 +427,8 @@ pub struct LightMap {
     /// The exact fibres in front of each vertex, for one-fibre-per-strand hair
     /// ([`LightMap::build_contact`]).
     contact: Option<contact::ContactShadows>,
+    /// The hair's shadow on surfaces, finer than the columns ([`LightMap::build_surface`]).
+    surface: Option<surface::SurfaceShadow>,
 }
 
 impl LightMap {
@@ -455,6 +458,7 @@ impl LightMap {
             stats: MapStats::default(),
             occluders: OccluderGrid::default(),
             contact: None,
+            surface: None,
         }
     }
 
@@ -469,6 +473,35 @@ impl LightMap {
                 CONTACT_BIN_COLUMNS * self.geom.column_m(),
             )
         });
+    }
+
+    /// Builds the map's surface shadow texture (`super::surface`) from the same `input` as
+    /// [`LightMap::build`] (call after it and after [`LightMap::set_occluders_with_mesh`]: it
+    /// uses the frame, the hair's extent and the solids' entry depths), with each
+    /// sample's `fibre_share`, for render strands whose fibres spread over `bundle_radius_m`. Skin and clothes read it
+    /// through [`LightMap::light_at_surface`]; without it they read the columns.
+    pub fn build_surface(
+        &mut self,
+        input: &MapBuildInput,
+        fibre_share: &[f32],
+        bundle_radius_m: f32,
+    ) {
+        let dc = self.geom.column_m();
+        if self.hair_lo[1] > self.hair_hi[1] {
+            self.surface = None;
+            return;
+        }
+        let lo = Vec2::new(self.hair_lo[1] as f32, self.hair_lo[2] as f32) * dc;
+        let hi = Vec2::new(self.hair_hi[1] as f32 + 1.0, self.hair_hi[2] as f32 + 1.0) * dc;
+        self.surface.get_or_insert_with(Default::default).build(
+            input,
+            fibre_share,
+            &self.proj,
+            &self.occluders,
+            (lo, hi),
+            dc,
+            bundle_radius_m,
+        );
     }
 
     pub fn geometry(&self) -> MapGeometry {

@@ -269,6 +269,34 @@ impl OccluderGrid {
         self.depth.is_empty()
     }
 
+    /// The depth along the light (light-frame metres) at which a ray near light-frame point
+    /// `m` first enters a solid: the shallowest of the 5 × 5 texels around `m`'s texel (+∞
+    /// where none of them meets a solid). Nothing beyond it can shadow a lit point on the
+    /// first surface that rays there meet; taking the neighbours' too keeps hair behind a
+    /// solid's silhouette off the surface points at the silhouette, which read across it.
+    #[inline]
+    pub fn entry_depth(&self, m: Vec3) -> f32 {
+        if self.depth.is_empty() || !m.is_finite() {
+            return f32::INFINITY;
+        }
+        let t = (Vec2::new(m.y, m.z) - self.origin) / self.texel_m;
+        let (ic, jc) = (t.x.floor() as i64, t.y.floor() as i64);
+        let mut shallowest = f32::INFINITY;
+        for i in ic - 2..=ic + 2 {
+            for j in jc - 2..=jc + 2 {
+                if i >= 0 && j >= 0 && (i as usize) < self.dims[0] && (j as usize) < self.dims[1] {
+                    shallowest = shallowest.min(self.depth[i as usize * self.dims[1] + j as usize]);
+                }
+            }
+        }
+        shallowest
+    }
+
+    /// The texel's width, metres.
+    pub fn texel_m(&self) -> f32 {
+        self.texel_m
+    }
+
     /// Fraction of the light reaching light-frame point `m` (metres) past the solids, in [0, 1].
     /// The shadow begins at the entry depth and is complete one texel further along the light,
     /// so a point on the lit surface of a solid (or just outside it, as hair roots are) is lit.

@@ -222,8 +222,8 @@ pub fn shade_skin(
         let (wi, irradiance) = l.toward_and_irradiance(p);
         let cos = normal.dot(wi).max(0.0);
         if cos > 0.0 {
-            let light = map.light_at(p + normal * map.surface_offset_m());
-            lit += irradiance * light.tf * cos * std::f32::consts::FRAC_1_PI;
+            let tf = map.light_at_surface(p + normal * map.surface_offset_m());
+            lit += irradiance * tf * cos * std::f32::consts::FRAC_1_PI;
         }
     }
     let v = albedo * (lit + lighting.ambient);

@@ -7,7 +7,7 @@ use glam::Vec3;
 use wisp::fiber::{Fiber, FiberParams};
 use wisp::hairstyle::{Hairstyle, generate};
 use wisp::interp::{StrandGeometry, interpolate};
-use wisp::map::{CountModel, LightMap, MapBuildInput, MapGeometry};
+use wisp::map::{CountModel, LightFrame, LightMap, MapBuildInput, MapGeometry};
 
 /// Rest-pose render strands of a preset.
 pub fn rest_strands(style: &Hairstyle) -> StrandGeometry {
@@ -19,6 +19,37 @@ pub fn rest_strands(style: &Hairstyle) -> StrandGeometry {
 
 pub fn default_fiber() -> Fiber {
     Fiber::new(&FiberParams::default())
+}
+
+/// A slab of hair filling slices `slices` (cells of `ds` metres along the light) and lateral
+/// columns −8..8, fibres along map Y, `len_m` of hair per sample on a 2 × 2 × 2 lattice per
+/// cell (`tests/map_slab.rs`, `tests/map_surface.rs`).
+pub fn slab(
+    frame: &LightFrame,
+    slices: std::ops::Range<i32>,
+    ds: f32,
+    len_m: f32,
+) -> StrandGeometry {
+    let mut geo = StrandGeometry {
+        points_per_strand: 1,
+        ..Default::default()
+    };
+    for i in slices {
+        for j in -8..8 {
+            for k in -8..8 {
+                for s in 0..8 {
+                    let sub =
+                        Vec3::new((s & 1) as f32, ((s >> 1) & 1) as f32, ((s >> 2) & 1) as f32);
+                    let m = (Vec3::new(i as f32, j as f32, k as f32) + 0.25 + 0.5 * sub) * ds;
+                    geo.positions.push(frame.to_world(m));
+                    geo.tangents.push(frame.y);
+                    geo.lengths_m.push(len_m);
+                    geo.fibre_share.push(1.0);
+                }
+            }
+        }
+    }
+    geo
 }
 
 /// Builds a map of `geo` lit along `light`.

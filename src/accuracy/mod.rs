@@ -4,11 +4,17 @@
 //!
 //! - [`measure_map`]: the light map at several resolutions against the exact reference
 //!   (`map::exact`, ray shooting through explicit fibres), per vertex and after shading.
+//! - [`skin::measure_skin`]: the hair's shadow on the skin against the same reference, per
+//!   pixel.
 
+pub mod skin;
+
+use crate::fiber::Fiber;
 use crate::fiber::LightAtPoint;
 use crate::frame::{ContactShadowing, Engine};
 use crate::hairstyle::Hairstyle;
-use crate::map::accuracy::{BIN_EDGES, Comparison, sample_vertices};
+use crate::interp::StrandGeometry;
+use crate::map::accuracy::{BIN_EDGES, Bin, Comparison, sample_vertices};
 use crate::map::contact::{ContactInput, ContactScratch};
 use crate::map::exact::{ExactInput, ExactReference, Footprint};
 use crate::map::{CountModel, LightMap, MapBuildInput, MapGeometry, MapLight};
@@ -59,22 +65,10 @@ pub fn measure_map(
 ) -> (Vec<Row>, f64) {
     let style = &engine.style;
     let strands = &engine.strands;
-    // The key light (the first): its map is the one measured.
     let key = engine.config.lighting.lights[0];
-    let light = MapLight::of(&key, glam::Vec3::from(engine.pose().head.translation));
     let t0 = Instant::now();
-    let reference = ExactReference::build(
-        &ExactInput {
-            positions: &strands.positions,
-            points_per_strand: strands.points_per_strand,
-            fibers_per_strand: style.strands.fibers_per_strand.round().max(1.0) as u32,
-            bundle_radius_m: 0.5 * style.strand_spacing_m(),
-            fibre_share: &strands.fibre_share,
-            light,
-            fiber: &engine.fiber,
-        },
-        0.5 * style.strand_spacing_m(),
-    );
+    let light = key_light(engine);
+    let reference = exact_reference(style, strands, &engine.fiber, light);
     // Only points where at least one fibre is present (past the tips, hair is not drawn).
     let fibres = style.strands.fibers_per_strand.round().max(1.0);
     let with_hair: Vec<usize> = (0..strands.positions.len())
@@ -190,6 +184,35 @@ pub fn measure_map(
     (rows, reference_ms)
 }
 
+/// The key light (the first: its map is the one measured) in the map's terms.
+pub fn key_light(engine: &Engine) -> MapLight {
+    let key = engine.config.lighting.lights[0];
+    MapLight::of(&key, glam::Vec3::from(engine.pose().head.translation))
+}
+
+/// The exact reference for render strands `strands` of hairstyle `style` under `light`: F
+/// fibres per render strand (the hairstyle's count rounded) within half the strand spacing,
+/// binned across the light at half the strand spacing.
+pub fn exact_reference<'a>(
+    style: &Hairstyle,
+    strands: &'a StrandGeometry,
+    fiber: &'a Fiber,
+    light: MapLight,
+) -> ExactReference<'a> {
+    ExactReference::build(
+        &ExactInput {
+            positions: &strands.positions,
+            points_per_strand: strands.points_per_strand,
+            fibers_per_strand: style.strands.fibers_per_strand.round().max(1.0) as u32,
+            bundle_radius_m: 0.5 * style.strand_spacing_m(),
+            fibre_share: &strands.fibre_share,
+            light,
+            fiber,
+        },
+        0.5 * style.strand_spacing_m(),
+    )
+}
+
 /// The resolutions a sweep compares: `ns` cubic cells per axis (the "N"), then the
 /// engine's own geometry (its N with finer columns across the light) when it is not among them.
 pub fn sweep_geometries(engine: &Engine, ns: &[u32]) -> Vec<MapGeometry> {
@@ -229,17 +252,6 @@ pub fn markdown(rows: &[Row]) -> String {
     s += "|---|---|---|---|---|---|---|---|\n";
     for r in rows {
         let c = &r.comparison;
-        let bias: Vec<String> = c
-            .by_truth
-            .iter()
-            .map(|b| {
-                if b.count == 0 {
-                    "—".into()
-                } else {
-                    format!("{:+.3} ({})", b.bias, b.count)
-                }
-            })
-            .collect();
         s += &format!(
             "| {} | {:.2} | {:.1} | {:.4} | {:+.4} | {} | {:.3} | {:.3} |\n",
             label(r),
@@ -247,7 +259,7 @@ pub fn markdown(rows: &[Row]) -> String {
             r.ms,
             c.mae,
             c.overall_bias,
-            bias.join(" / "),
+            bias_per_bin(&c.by_truth),
             r.luminance_rel_rms,
             r.luminance_ratio
         );
@@ -255,19 +267,23 @@ pub fn markdown(rows: &[Row]) -> String {
     s += "\nCalibration (bias binned by the map's own T_f):\n\n";
     s += &format!("| N | bias, map T_f {} |\n|---|---|\n", bins.join(" / "));
     for r in rows {
-        let bias: Vec<String> = r
-            .comparison
-            .by_estimate
-            .iter()
-            .map(|b| {
-                if b.count == 0 {
-                    "—".into()
-                } else {
-                    format!("{:+.3} ({})", b.bias, b.count)
-                }
-            })
-            .collect();
-        s += &format!("| {} | {} |\n", label(r), bias.join(" / "));
+        s += &format!(
+            "| {} | {} |\n",
+            label(r),
+            bias_per_bin(&r.comparison.by_estimate)
+        );
     }
     s
+}
+
+/// A table cell of the bias in each bin with its count, "—" for an empty bin, " / " between.
+pub fn bias_per_bin(bins: &[Bin; 4]) -> String {
+    let cells: Vec<String> = bins
+        .iter()
+        .map(|b| match b.count {
+            0 => "—".to_string(),
+            n => format!("{:+.3} ({n})", b.bias),
+        })
+        .collect();
+    cells.join(" / ")
 }

@@ -1,0 +1,353 @@
+//! The hair's shadow on surfaces (skin, clothes) at finer than the map's columns.
+//!
+//! Why: a surface shows the map's lateral reconstruction directly as a shadow. Long render
+//! strands over a shoulder cast long thin streaks on the arm (ACCURACY.md §1, "skin": exact
+//! rays draw them), while columns of ¾ of a strand spacing, blended between their centres,
+//! draw blobs on the column grid, a stipple the eye reads as an artefact, whatever the blend.
+//!
+//! What: a light-space texture across the light, [`TEXELS_PER_COLUMN`] texels per map column,
+//! holding the optical depth Σ n(1 − ā_f) (RGB) of *all* the hair along each texel's ray.
+//! Each map sample (a piece of strand of length ℓ) is drawn into it as a ribbon: its image
+//! across the light, [`ribbon_width_m`] wide (the spread of the fibres a render strand stands
+//! for, as the exact reference places them), with the piece's crossings
+//! F·2r·ℓ·sin ψ spread over the texels by their box-filtered overlap with the ribbon
+//! (normalised, so each piece deposits exactly its crossings). Only hair before the first
+//! solid along each ray is drawn (the occluder grid's entry depth, plus two of its texels for
+//! hair resting on the surface): a lit surface point lies on that first solid, so all the hair
+//! drawn is in front of it, and it receives
+//!
+//!   T_f = exp(−L) · V
+//!
+//! (the Poisson reading of the map, `map` module doc), with L the texture's optical depth
+//! and V the solids' own visibility. A point in a solid's shadow has V = 0 whatever L says.
+//! The texture is filled in parallel over bands of texel rows, each band adding the pieces
+//! that reach it in one fixed order (by first row, then input order), so it is the same bits
+//! for any thread count.
+
+use super::occluders::OccluderGrid;
+use super::{MapBuildInput, Projection};
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+
+/// Texels per map column across the light, along each axis.
+pub const TEXELS_PER_COLUMN: f32 = 2.0;
+/// Texels per axis at most; a larger extent gets coarser texels.
+const MAX_TEXELS_PER_AXIS: usize = 1024;
+/// Texel rows per parallel band.
+const BAND_ROWS: usize = 8;
+
+/// How wide a render strand's shadow is across the light: its fibres' spread. The exact
+/// reference places F fibres uniformly in a disc of radius R (half the strand spacing); the
+/// crossings across such a disc have the variance of a box √3·R wide.
+pub fn ribbon_width_m(bundle_radius_m: f32) -> f32 {
+    3f32.sqrt() * bundle_radius_m
+}
+
+/// A sample's piece of strand drawn as a ribbon across the light, in texel coordinates: from
+/// `a` along unit `dir` for `len` (≥ 1) texels, `half_w` either side, its depth along the
+/// light (map metres) running from `depth.0` to `depth.1`, and the optical depth per unit of
+/// box overlap (`per`) that makes the whole ribbon deposit the piece's own.
+#[derive(Clone, Copy, Debug)]
+struct Piece {
+    a: Vec2,
+    dir: Vec2,
+    len: f32,
+    half_w: f32,
+    depth: (f32, f32),
+    per: Vec3,
+    /// Texel box the ribbon touches: rows `x0..x1`, columns `y0..y1`.
+    x0: u32,
+    x1: u32,
+    y0: u32,
+    y1: u32,
+}
+
+impl Piece {
+    /// The ribbon from `a` to `b` (texel coordinates), or `None` when it touches no texel of a
+    /// `dims` texture.
+    fn new(a: Vec2, b: Vec2, depth: (f32, f32), half_w: f32, dims: [usize; 2]) -> Option<Piece> {
+        let d = b - a;
+        let len = d.length();
+        // A piece seen end-on still covers its width along some direction: at least one texel.
+        let (dir, len, a) = if len >= 1.0 {
+            (d / len, len, a)
+        } else {
+            let dir = if len > 0.0 { d / len } else { Vec2::X };
+            (dir, 1.0, 0.5 * (a + b) - dir * 0.5)
+        };
+        let reach = half_w + 1.0;
+        let end = a + dir * len;
+        let (lo, hi) = (
+            a.min(end) - Vec2::splat(reach),
+            a.max(end) + Vec2::splat(reach),
+        );
+        let x0 = lo.x.floor().max(0.0) as usize;
+        let y0 = lo.y.floor().max(0.0) as usize;
+        let x1 = (hi.x.ceil().max(0.0) as usize).min(dims[0]);
+        let y1 = (hi.y.ceil().max(0.0) as usize).min(dims[1]);
+        if x0 >= x1 || y0 >= y1 {
+            return None;
+        }
+        Some(Piece {
+            a,
+            dir,
+            len,
+            half_w,
+            depth,
+            per: Vec3::ZERO,
+            x0: x0 as u32,
+            x1: x1 as u32,
+            y0: y0 as u32,
+            y1: y1 as u32,
+        })
+    }
+
+    /// Texel (x, y)'s box overlap with the ribbon, and the piece's depth where the texel's
+    /// centre projects on it.
+    #[inline]
+    fn at(&self, x: usize, y: usize) -> (f32, f32) {
+        let overlap = |c: f32, lo: f32, hi: f32| ((c + 0.5).min(hi) - (c - 0.5).max(lo)).max(0.0);
+        let q = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) - self.a;
+        let s = q.dot(self.dir);
+        let w =
+            overlap(s, 0.0, self.len) * overlap(q.dot(self.dir.perp()), -self.half_w, self.half_w);
+        let t = (s / self.len).clamp(0.0, 1.0);
+        (w, self.depth.0 + (self.depth.1 - self.depth.0) * t)
+    }
+
+    /// The columns `y` of row `x` whose texel centre can overlap the ribbon (within half a
+    /// texel of it along and across): the intersection of two strips, each an interval in y.
+    #[inline]
+    fn row_span(&self, x: usize) -> std::ops::Range<usize> {
+        let qx = x as f32 + 0.5 - self.a.x;
+        let (dx, dy) = (self.dir.x, self.dir.y);
+        // Along: s = qx·dx + qy·dy in (−½, len + ½); across: d = −qx·dy + qy·dx in
+        // (−half_w − ½, half_w + ½); qy = y + ½ − a.y.
+        let mut lo = f32::NEG_INFINITY;
+        let mut hi = f32::INFINITY;
+        let mut strip = |c: f32, k: f32, from: f32, to: f32| {
+            if k.abs() > 1e-6 {
+                let (u, v) = ((from - c) / k, (to - c) / k);
+                lo = lo.max(u.min(v));
+                hi = hi.min(u.max(v));
+            } else if !(c > from && c < to) {
+                hi = f32::NEG_INFINITY;
+            }
+        };
+        strip(qx * dx, dy, -0.5, self.len + 0.5);
+        strip(-qx * dy, dx, -self.half_w - 0.5, self.half_w + 0.5);
+        if lo.is_nan() || hi.is_nan() || lo > hi {
+            return 0..0;
+        }
+        let to_y = |qy: f32| qy + self.a.y - 0.5;
+        let y0 = (to_y(lo).floor().max(self.y0 as f32)) as usize;
+        let y1 = ((to_y(hi).ceil() + 1.0).min(self.y1 as f32)).max(0.0) as usize;
+        y0..y1.max(y0)
+    }
+
+    /// Sum of the overlaps over the texels the ribbon touches.
+    fn overlap_sum(&self) -> f32 {
+        let mut sum = 0.0;
+        for x in self.x0 as usize..self.x1 as usize {
+            for y in self.row_span(x) {
+                sum += self.at(x, y).0;
+            }
+        }
+        sum
+    }
+}
+
+/// The texture (see the module doc).
+#[derive(Clone, Debug, Default)]
+pub struct SurfaceShadow {
+    /// Map coordinates (metres, across the light: map Y, Z) of texel (0, 0)'s corner.
+    origin: Vec2,
+    texel_m: f32,
+    dims: [usize; 2],
+    /// Optical depth R, G, B per texel, row-major (rows along map Y).
+    sums: Vec<Vec3>,
+    /// Per texel, the depth along the light (map metres) beyond which hair is not drawn: the
+    /// first solid's entry depth there plus two occluder texels (hair resting on it counts).
+    limit: Vec<f32>,
+    /// Scratch: the pieces, sorted by first row.
+    pieces: Vec<Piece>,
+    /// Scratch: per band, the range of `pieces` that may reach it.
+    band_first: Vec<u32>,
+}
+
+impl SurfaceShadow {
+    /// Bytes the texture keeps for an extent of `columns` map columns per axis and `samples`
+    /// map samples.
+    pub fn estimated_bytes(columns: u64, samples: u64) -> u64 {
+        let per_axis =
+            ((columns as f32 * TEXELS_PER_COLUMN) as u64).min(MAX_TEXELS_PER_AXIS as u64) + 4;
+        let texel = (std::mem::size_of::<Vec3>() + std::mem::size_of::<f32>()) as u64;
+        (per_axis * per_axis * texel)
+            .saturating_add(samples.saturating_mul(std::mem::size_of::<Piece>() as u64))
+    }
+
+    /// Fills the texture from `input`'s samples in the map's light frame `proj`, over the
+    /// lateral extent `lo..hi` (map metres, Y and Z), with `column_m`-wide columns and
+    /// render strands whose fibres spread over `bundle_radius_m`. `fibre_share` is each
+    /// sample's share of its strand's fibres (`input.lengths_m` is the piece's length times
+    /// it; the ribbon is drawn over the piece's whole length); missing shares count as 1.
+    /// Reuses its memory.
+    #[allow(clippy::too_many_arguments)]
+    pub fn build(
+        &mut self,
+        input: &MapBuildInput,
+        fibre_share: &[f32],
+        proj: &Projection,
+        solids: &OccluderGrid,
+        (lo, hi): (Vec2, Vec2),
+        column_m: f32,
+        bundle_radius_m: f32,
+    ) {
+        let width_m = ribbon_width_m(bundle_radius_m);
+        let margin = Vec2::splat(width_m + column_m);
+        let (lo, hi) = (lo - margin, hi + margin);
+        let extent = (hi - lo).max(Vec2::ZERO);
+        let mut texel_m = column_m / TEXELS_PER_COLUMN;
+        let wanted = extent.max_element() / texel_m;
+        if wanted.is_nan() || wanted > MAX_TEXELS_PER_AXIS as f32 {
+            texel_m = extent.max_element() / MAX_TEXELS_PER_AXIS as f32;
+        }
+        if !(texel_m > 0.0 && texel_m.is_finite() && lo.is_finite()) {
+            self.dims = [0, 0];
+            self.sums.clear();
+            return;
+        }
+        self.origin = lo;
+        self.texel_m = texel_m;
+        let dims = [
+            ((extent.x / texel_m).ceil() as usize).clamp(1, MAX_TEXELS_PER_AXIS),
+            ((extent.y / texel_m).ceil() as usize).clamp(1, MAX_TEXELS_PER_AXIS),
+        ];
+        self.dims = dims;
+        let texels = dims[0] * dims[1];
+        self.sums.clear();
+        self.sums.resize(texels, Vec3::ZERO);
+        // Where hair stops counting: the first solid along each texel's ray.
+        self.limit.clear();
+        self.limit.resize(texels, 0.0);
+        let origin = self.origin;
+        let tolerance = 2.0 * solids.texel_m();
+        self.limit.par_iter_mut().enumerate().for_each(|(k, l)| {
+            let (x, y) = ((k / dims[1]) as f32 + 0.5, (k % dims[1]) as f32 + 0.5);
+            let m = origin + Vec2::new(x, y) * texel_m;
+            *l = solids.entry_depth(Vec3::new(0.0, m.x, m.y)) + tolerance;
+        });
+        // 1. Each sample's ribbon and its normalisation, in parallel.
+        let r = input.fiber.params().radius_m;
+        let count = input
+            .positions
+            .len()
+            .min(input.tangents.len())
+            .min(input.lengths_m.len());
+        let inv_texel = 1.0 / texel_m;
+        let half_w = 0.5 * width_m * inv_texel;
+        let pieces = &mut self.pieces;
+        pieces.clear();
+        pieces.par_extend(
+            (0..count)
+                .into_par_iter()
+                .with_min_len(256)
+                .filter_map(|s| {
+                    let (p, u, len) = (input.positions[s], input.tangents[s], input.lengths_m[s]);
+                    let share = fibre_share.get(s).copied().unwrap_or(1.0);
+                    if !(p.is_finite()
+                        && u.is_finite()
+                        && len.is_finite()
+                        && len > 0.0
+                        && share > 0.0)
+                    {
+                        return None;
+                    }
+                    let piece_m = len / share.min(1.0);
+                    let (_, across, _) = proj.strand(p, u);
+                    let crossings = input.fibers_per_strand * 2.0 * r * len * across;
+                    let fs = input
+                        .fiber
+                        .forward_scatter(u.dot(proj.toward_light(p)).clamp(-1.0, 1.0));
+                    let loss = (Vec3::ONE - fs.a_f.clamp(Vec3::ZERO, Vec3::ONE)) * crossings;
+                    if loss.max_element().is_nan() || loss.max_element() <= 0.0 {
+                        return None;
+                    }
+                    // Texel coordinates across the light, and depth along it.
+                    let lat = |q: Vec3| {
+                        let m = proj.point(q);
+                        ((Vec2::new(m.y, m.z) - origin) * inv_texel, m.x)
+                    };
+                    let ((a, depth_a), (b, depth_b)) =
+                        (lat(p - u * (0.5 * piece_m)), lat(p + u * (0.5 * piece_m)));
+                    if !(a.is_finite()
+                        && b.is_finite()
+                        && depth_a.is_finite()
+                        && depth_b.is_finite())
+                    {
+                        return None;
+                    }
+                    let mut piece = Piece::new(a, b, (depth_a, depth_b), half_w, dims)?;
+                    let sum = piece.overlap_sum();
+                    (sum > 0.0).then(|| {
+                        piece.per = loss * (inv_texel * inv_texel / sum);
+                        piece
+                    })
+                }),
+        );
+        // 2. Pieces by first row (stable: input order within a row), and per band the first
+        // piece that may reach it.
+        pieces.par_sort_by_key(|p| p.x0);
+        let bands = dims[0].div_ceil(BAND_ROWS);
+        let tallest = pieces.iter().map(|p| p.x1 - p.x0).max().unwrap_or(0) as usize;
+        self.band_first.clear();
+        self.band_first.extend((0..=bands).map(|b| {
+            let from = (b * BAND_ROWS).saturating_sub(tallest) as u32;
+            pieces.partition_point(|p| p.x0 < from) as u32
+        }));
+        // 3. Each band adds its pieces in that order.
+        let (pieces, band_first, limit) = (&self.pieces, &self.band_first, &self.limit);
+        self.sums
+            .par_chunks_mut(BAND_ROWS * dims[1])
+            .enumerate()
+            .for_each(|(b, rows)| {
+                let (r0, r1) = (b * BAND_ROWS, ((b + 1) * BAND_ROWS).min(dims[0]));
+                let last = pieces.partition_point(|p| (p.x0 as usize) < r1);
+                for piece in &pieces[band_first[b] as usize..last] {
+                    let (x0, x1) = ((piece.x0 as usize).max(r0), (piece.x1 as usize).min(r1));
+                    for x in x0..x1 {
+                        for y in piece.row_span(x) {
+                            let (w, depth) = piece.at(x, y);
+                            let k = x * dims[1] + y;
+                            if w > 0.0 && depth <= limit[k] {
+                                rows[k - r0 * dims[1]] += piece.per * w;
+                            }
+                        }
+                    }
+                }
+            });
+    }
+
+    /// The optical depth (R, G, B) of the hair along the ray through map point `m`, bilinear
+    /// between texel centres; 0 outside the texture.
+    pub fn optical_depth(&self, m: Vec3) -> Vec3 {
+        if self.dims[0] == 0 || !m.is_finite() {
+            return Vec3::ZERO;
+        }
+        let t = (Vec2::new(m.y, m.z) - self.origin) / self.texel_m - Vec2::splat(0.5);
+        let f = t.floor();
+        let w = t - f;
+        let (x0, y0) = (f.x as i64, f.y as i64);
+        let mut out = Vec3::ZERO;
+        for (dx, wx) in [(0, 1.0 - w.x), (1, w.x)] {
+            for (dy, wy) in [(0, 1.0 - w.y), (1, w.y)] {
+                let (x, y) = (x0 + dx, y0 + dy);
+                if x < 0 || y < 0 || x as usize >= self.dims[0] || y as usize >= self.dims[1] {
+                    continue;
+                }
+                out += self.sums[x as usize * self.dims[1] + y as usize] * (wx * wy);
+            }
+        }
+        out
+    }
+}
