@@ -7,7 +7,6 @@ mod common;
 use common::*;
 use glam::Vec3;
 use wisp::hairstyle::Hairstyle;
-use wisp::interp::StrandGeometry;
 use wisp::map::{LightFrame, MapGeometry};
 
 const DS: f32 = 1.0 / 128.0;
