@@ -205,3 +205,20 @@ fn bench_runs_and_writes_json() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--parts"), "{}", stderr(&o));
 }
+
+#[test]
+fn a_reader_that_closes_the_pipe_early_stops_wisp_quietly() {
+    // `wisp fiber tables | head -c 10`: the reader is gone before wisp writes its tables. The
+    // standard print macros would panic with a backtrace; wisp stops with 141 (as a program
+    // killed by SIGPIPE) and says nothing.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_wisp"))
+        .args(["fiber", "tables"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run wisp");
+    drop(child.stdout.take());
+    let o = child.wait_with_output().expect("wait for wisp");
+    assert_eq!(o.status.code(), Some(141), "stderr: {}", stderr(&o));
+    assert!(stderr(&o).is_empty(), "stderr: {}", stderr(&o));
+}

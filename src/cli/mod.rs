@@ -1,7 +1,38 @@
 //! Command-line edge: argument parsing, degrees and file formats live here, nowhere deeper.
 //!
 //! Exit codes: 0 success, 2 bad input (flags, files, output paths, or a run over its memory or
-//! work budget), 1 any other failure.
+//! work budget), 1 any other failure, 141 when standard output was closed early (`wisp … |
+//! head`: the reader had what it wanted; wisp stops quietly, as a program killed by SIGPIPE).
+
+/// `print!` / `println!` for the commands (they shadow the standard macros in this module and
+/// the ones declared below it): the standard ones panic when standard output is a pipe its
+/// reader has closed; these stop the process quietly with exit code 141 instead.
+macro_rules! print {
+    ($($arg:tt)*) => {
+        $crate::cli::write_stdout(format_args!($($arg)*))
+    };
+}
+macro_rules! println {
+    () => {
+        print!("\n")
+    };
+    ($($arg:tt)*) => {
+        $crate::cli::write_stdout(format_args!("{}\n", format_args!($($arg)*)))
+    };
+}
+
+/// Writes to standard output; a closed pipe ends the process with code 141, any other write
+/// error with code 1 and a message.
+pub fn write_stdout(args: std::fmt::Arguments) {
+    use std::io::Write;
+    if let Err(e) = std::io::stdout().lock().write_fmt(args) {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            std::process::exit(141);
+        }
+        eprintln!("wisp: error: cannot write to standard output: {e}");
+        std::process::exit(1);
+    }
+}
 
 pub mod accuracy_cmd;
 pub mod bench_cmd;
