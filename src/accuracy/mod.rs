@@ -93,16 +93,21 @@ pub fn measure_map(
         ..engine.config.lighting.clone()
     };
     let lum = |c: &Vec3| c.dot(Vec3::new(0.2126, 0.7152, 0.0722)) as f64;
-    let mut ref_colors = Vec::new();
-    shade_vertices_with(
-        &engine.fiber,
-        lighting,
-        eye,
-        &pos,
-        &tan,
-        |_, i, _| truth[i],
-        &mut ref_colors,
-    );
+    // The sampled vertices shaded with the given light at each.
+    let shade = |light: &[LightAtPoint]| {
+        let mut colors = Vec::new();
+        shade_vertices_with(
+            &engine.fiber,
+            lighting,
+            eye,
+            &pos,
+            &tan,
+            |_, i, _| light[i],
+            &mut colors,
+        );
+        colors
+    };
+    let ref_colors = shade(&truth);
     let ref_mean = ref_colors.iter().map(lum).sum::<f64>() / ref_colors.len().max(1) as f64;
     let ref_rms = (ref_colors.iter().map(|c| lum(c).powi(2)).sum::<f64>()
         / ref_colors.len().max(1) as f64)
@@ -151,16 +156,7 @@ pub fn measure_map(
             .collect();
         times.sort_by(f64::total_cmp);
         let estimate = read(&map, &mut verts.iter().copied());
-        let mut colors = Vec::new();
-        shade_vertices_with(
-            &engine.fiber,
-            lighting,
-            eye,
-            &pos,
-            &tan,
-            |_, i, _| estimate[i],
-            &mut colors,
-        );
+        let colors = shade(&estimate);
         let rms = (colors
             .iter()
             .zip(&ref_colors)
