@@ -6,7 +6,7 @@
 //! draw blobs on the column grid, a stipple the eye reads as an artefact, whatever the blend.
 //!
 //! What: a light-space texture across the light, [`TEXELS_PER_COLUMN`] texels per map column,
-//! holding the optical depth Σ n(1 − ā_f) (RGB) of *all* the hair along each texel's ray.
+//! holding the optical depth Σ n(1 − ā_f) (RGB) of the hair along each texel's ray.
 //! Each map sample (a piece of strand of length ℓ) is drawn into it as a ribbon: its image
 //! across the light, [`ribbon_width_m`] wide (the spread of the fibres a render strand stands
 //! for, as the exact reference places them), with the piece's crossings
@@ -55,7 +55,10 @@ struct Piece {
     half_w: f32,
     depth: (f32, f32),
     per: Vec3,
-    /// Texel box the ribbon touches: rows `x0..x1`, columns `y0..y1`.
+    /// The sample it stands for (its place in the fixed order of the sums).
+    index: u32,
+    /// Texel box the ribbon touches: rows `x0..x1`, columns `y0..y1` (`x0` = `u32::MAX`: no
+    /// piece).
     x0: u32,
     x1: u32,
     y0: u32,
@@ -63,6 +66,21 @@ struct Piece {
 }
 
 impl Piece {
+    /// A sample that draws nothing (sorted after every real piece).
+    const NONE: Piece = Piece {
+        a: Vec2::ZERO,
+        dir: Vec2::X,
+        len: 1.0,
+        half_w: 0.0,
+        depth: (0.0, 0.0),
+        per: Vec3::ZERO,
+        index: u32::MAX,
+        x0: u32::MAX,
+        x1: 0,
+        y0: 0,
+        y1: 0,
+    };
+
     /// The ribbon from `a` to `b` (texel coordinates), or `None` when it touches no texel of a
     /// `dims` texture.
     fn new(a: Vec2, b: Vec2, depth: (f32, f32), half_w: f32, dims: [usize; 2]) -> Option<Piece> {
@@ -95,6 +113,7 @@ impl Piece {
             half_w,
             depth,
             per: Vec3::ZERO,
+            index: 0,
             x0: x0 as u32,
             x1: x1 as u32,
             y0: y0 as u32,
@@ -248,11 +267,13 @@ impl SurfaceShadow {
         let half_w = 0.5 * width_m * inv_texel;
         let pieces = &mut self.pieces;
         pieces.clear();
-        pieces.par_extend(
-            (0..count)
-                .into_par_iter()
-                .with_min_len(256)
-                .filter_map(|s| {
+        pieces.resize(count, Piece::NONE);
+        pieces
+            .par_iter_mut()
+            .enumerate()
+            .with_min_len(256)
+            .for_each(|(s, out)| {
+                *out = (|| {
                     let (p, u, len) = (input.positions[s], input.tangents[s], input.lengths_m[s]);
                     let share = fibre_share.get(s).copied().unwrap_or(1.0);
                     if !(p.is_finite()
@@ -291,13 +312,18 @@ impl SurfaceShadow {
                     let sum = piece.overlap_sum();
                     (sum > 0.0).then(|| {
                         piece.per = loss * (inv_texel * inv_texel / sum);
+                        piece.index = s as u32;
                         piece
                     })
-                }),
-        );
-        // 2. Pieces by first row (stable: input order within a row), and per band the first
-        // piece that may reach it.
-        pieces.par_sort_by_key(|p| p.x0);
+                })()
+                .unwrap_or(Piece::NONE);
+            });
+        // 2. Pieces by first row, then input order (a total order: the sort needs no
+        // stability, and so no buffer), samples that draw nothing last and dropped; per band
+        // the first piece that may reach it.
+        pieces.par_sort_unstable_by_key(|p| (p.x0, p.index));
+        let real = pieces.partition_point(|p| p.x0 != u32::MAX);
+        pieces.truncate(real);
         let bands = dims[0].div_ceil(BAND_ROWS);
         let tallest = pieces.iter().map(|p| p.x1 - p.x0).max().unwrap_or(0) as usize;
         self.band_first.clear();
