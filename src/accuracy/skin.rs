@@ -2,15 +2,17 @@
 //!
 //! What is measured: at every pixel where the camera sees a solid (the character's mesh, or
 //! the head and body ellipsoids) fully, facing the key light, the T_f the skin shader reads
-//! from the map ([`LightMap::light_at_surface`], at the normal-offset point the shader uses)
-//! against the exact reference's ([`ExactReference::light_at_point`]: rays toward the light
-//! through the explicit fibres, from a disc across the light of half a pixel's width at the
-//! point's depth, so the reference is the pixel's own average, what an ideal renderer shows
-//! at this resolution). The solids' own shadow (the head on the body) is the map's occluder
-//! grid in both, so only the hair's shadow differs.
+//! from the map ([`crate::map::LightMap::light_at_surface`], at the normal-offset point the
+//! shader uses) against the exact reference's
+//! ([`crate::map::exact::ExactReference::light_at_point`]: rays toward the light through the
+//! explicit fibres, from a disc across the light of half a pixel's width at the point's depth,
+//! so the reference is the pixel's own average, what an ideal renderer shows at this
+//! resolution). The solids' own shadow (the head on the body) is the map's occluder grid in
+//! both, so only the hair's shadow differs.
 //!
-//! The reference shoots rays at every measured pixel; its cost grows with pixels × rays, so
-//! measure at a few hundred pixels across (`wisp accuracy --skin`, ACCURACY.md §1).
+//! The reference shoots rays at every measured pixel; its cost grows with pixels × rays (the
+//! smooth preset at 800 × 800 with 64 rays: about 2 s on 2 cores; `wisp accuracy --skin`,
+//! ACCURACY.md §1).
 
 use super::{exact_reference, key_light};
 use crate::fiber::LightAtPoint;

@@ -42,7 +42,7 @@ pub struct AccuracyArgs {
     pub single_fibre_strands: Option<u32>,
     /// Measure the hair's shadow on the skin and clothes instead: every pixel of the solids
     /// facing the light, the map's T_f against `--rays` exact rays from half a pixel's width
-    /// (use a small image, e.g. `--width 320 --height 320`: the rays are shot per pixel).
+    /// (shot per pixel: 800 × 800 with 64 rays takes about 2 s for the smooth preset).
     #[arg(long)]
     pub skin: bool,
     /// With `--skin`: write the map's T_f, the reference's and their difference side by side

@@ -477,9 +477,10 @@ impl LightMap {
 
     /// Builds the map's surface shadow texture (`super::surface`) from the same `input` as
     /// [`LightMap::build`] (call after it and after [`LightMap::set_occluders_with_mesh`]: it
-    /// uses the frame, the hair's extent and the solids' entry depths), with each
-    /// sample's `fibre_share`, for render strands whose fibres spread over `bundle_radius_m`. Skin and clothes read it
-    /// through [`LightMap::light_at_surface`]; without it they read the columns.
+    /// uses the frame, the hair's extent and the solids' entry depths), with each sample's
+    /// `fibre_share`, for render strands whose fibres spread over `bundle_radius_m`. Skin and
+    /// clothes read it through [`LightMap::light_at_surface`]; without it they read the
+    /// columns.
     pub fn build_surface(
         &mut self,
         input: &MapBuildInput,

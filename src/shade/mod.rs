@@ -204,8 +204,9 @@ pub fn shade_vertices_with<L>(
 }
 
 /// Skin: Lambertian with albedo `albedo`, lit through the hair and past the other solids (each
-/// light's map gives T_f at the skin point: hair casts its shadow on the head, the head on the
-/// body), plus ambient. The lookup point is moved off the surface along its normal by
+/// light's map gives T_f at the skin point, from its surface texture where it has one,
+/// [`LightMap::light_at_surface`]: hair casts its shadow on the head, the head on the body),
+/// plus ambient. The lookup point is moved off the surface along its normal by
 /// [`LightMap::surface_offset_m`] ("normal offset" shadow mapping), so that near the terminator,
 /// where the light grazes the surface, the solid does not shadow itself through the finite
 /// resolution of the occluder grid.
