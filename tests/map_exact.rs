@@ -238,14 +238,10 @@ fn bundles_place_f_fibres_within_their_radius_and_threads_do_not_matter() {
     };
     let verts: Vec<usize> = (0..geo.positions.len()).step_by(97).collect();
     let run = |threads| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .expect("pool")
-            .install(|| {
-                let r = ExactReference::build(&input, 0.002);
-                r.light_at_vertices(&verts, &Footprint::Fibres { rays: 32 })
-            })
+        common::on_threads(threads, || {
+            let r = ExactReference::build(&input, 0.002);
+            r.light_at_vertices(&verts, &Footprint::Fibres { rays: 32 })
+        })
     };
     let (one, two) = (run(1), run(2));
     assert!(

@@ -111,33 +111,29 @@ fn hair_behind_the_first_solid_casts_no_shadow_on_it() {
 fn the_texture_is_the_same_for_any_thread_count() {
     let style = Hairstyle::default_smooth();
     let build = |threads: usize| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .expect("pool")
-            .install(|| {
-                let mut e = Engine::new(
-                    style.clone(),
-                    Motion::default_dance(),
-                    EngineConfig {
-                        width: 64,
-                        height: 64,
-                        ..EngineConfig::default()
-                    },
-                );
-                e.run_up_to(0.5);
-                e.frame(0.5);
-                let map = &e.maps()[0];
-                // Read over a lattice around the head.
-                let mut out = Vec::new();
-                for i in -20..20 {
-                    for j in -30..10 {
-                        let p = Vec3::new(i as f32 * 0.01, 1.45 + j as f32 * 0.01, 0.1);
-                        out.push(map.light_at_surface(p).to_array().map(f32::to_bits));
-                    }
+        on_threads(threads, || {
+            let mut e = Engine::new(
+                style.clone(),
+                Motion::default_dance(),
+                EngineConfig {
+                    width: 64,
+                    height: 64,
+                    ..EngineConfig::default()
+                },
+            );
+            e.run_up_to(0.5);
+            e.frame(0.5);
+            let map = &e.maps()[0];
+            // Read over a lattice around the head.
+            let mut out = Vec::new();
+            for i in -20..20 {
+                for j in -30..10 {
+                    let p = Vec3::new(i as f32 * 0.01, 1.45 + j as f32 * 0.01, 0.1);
+                    out.push(map.light_at_surface(p).to_array().map(f32::to_bits));
                 }
-                out
-            })
+            }
+            out
+        })
     };
     let (one, two) = (build(1), build(2));
     assert!(

@@ -1,5 +1,7 @@
 //! End to end: hairstyle -> simulation -> map -> shading -> raster, through the library.
 
+mod common;
+
 use glam::{Affine3A, Vec3};
 use wisp::frame::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
@@ -121,11 +123,7 @@ fn default_render_has_the_right_size_covers_the_frame_and_is_darker_away_from_th
 #[test]
 fn frames_are_byte_identical_with_one_and_two_threads() {
     let render = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        common::on_threads(threads, || {
             let config = EngineConfig {
                 width: 200,
                 height: 200,
@@ -158,11 +156,7 @@ fn one_fibre_hair_with_contact_shadows_is_byte_identical_with_one_and_two_thread
     // they must change the picture (the test would pass vacuously if they were off).
     let style = wisp::accuracy::single_fibre_variant(&Hairstyle::default_smooth(), 1);
     let render = |threads: usize, contact: wisp::frame::ContactShadowing| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        common::on_threads(threads, || {
             let config = EngineConfig {
                 width: 160,
                 height: 160,

@@ -135,11 +135,7 @@ fn irradiance_and_ambient_are_settable() {
 #[test]
 fn coverage_and_colour_identical_for_one_and_two_threads() {
     let render = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        common::on_threads(threads, || {
             let mut e = engine(small());
             e.frame(0.0).clone()
         })

@@ -104,11 +104,9 @@ fn two_lights_render_the_sum_of_each_alone() {
 #[test]
 fn two_lights_are_deterministic_across_thread_counts() {
     let frame = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| still_engine(two_light_scene()).frame(0.0).to_srgb8())
+        common::on_threads(threads, || {
+            still_engine(two_light_scene()).frame(0.0).to_srgb8()
+        })
     };
     assert!(frame(1) == frame(2));
 }

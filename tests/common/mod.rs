@@ -9,6 +9,16 @@ use wisp::hairstyle::{Hairstyle, generate};
 use wisp::interp::{StrandGeometry, interpolate};
 use wisp::map::{CountModel, LightFrame, LightMap, MapBuildInput, MapGeometry};
 
+/// Runs `f` on a pool of exactly `threads` worker threads (the determinism tests compare 1
+/// and 2).
+pub fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("thread pool")
+        .install(f)
+}
+
 /// Rest-pose render strands of a preset.
 pub fn rest_strands(style: &Hairstyle) -> StrandGeometry {
     let (g, layout) = generate(style);
