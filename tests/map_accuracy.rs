@@ -232,6 +232,7 @@ fn fibres_the_camera_sees_near_the_light_are_lit_as_the_exact_rays_say() {
             points_per_strand: strands.points_per_strand,
             fibers_per_strand: 1,
             bundle_radius_m: 0.0,
+            placement_seed: 0,
             fibre_share: &strands.fibre_share,
             light: dir.into(),
             fiber: &engine.fiber,

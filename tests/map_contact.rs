@@ -139,6 +139,7 @@ fn with_everything_in_the_window_it_is_the_exact_reference() {
             points_per_strand: ppl,
             fibers_per_strand: 1,
             bundle_radius_m: 0.0,
+            placement_seed: 0,
             fibre_share: &[],
             light: light.into(),
             fiber: &fiber,

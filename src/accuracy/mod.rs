@@ -4,6 +4,8 @@
 //!
 //! - [`measure_map`]: the light map at several resolutions against the exact reference
 //!   (`map::exact`, ray shooting through explicit fibres), per vertex and after shading.
+//! - [`placement_floor`]: the reference against itself with the fibres placed otherwise in
+//!   each bundle: the error no estimate from the render strands can go below.
 //! - [`skin::measure_skin`]: the hair's shadow on the skin against the same reference, per
 //!   pixel.
 
@@ -69,20 +71,7 @@ pub fn measure_map(
     let t0 = Instant::now();
     let light = key_light(engine);
     let reference = exact_reference(style, strands, &engine.fiber, light);
-    // Only points where at least one fibre is present (past the tips, hair is not drawn).
-    let fibres = style.strands.fibers_per_strand.round().max(1.0);
-    let with_hair: Vec<usize> = (0..strands.positions.len())
-        .filter(|&i| {
-            strands
-                .fibre_share
-                .get(i)
-                .is_none_or(|s| *s >= 0.5 / fibres)
-        })
-        .collect();
-    let verts: Vec<usize> = sample_vertices(with_hair.len(), vertices)
-        .into_iter()
-        .map(|k| with_hair[k])
-        .collect();
+    let verts = sampled_vertices(engine, vertices);
     let truth = reference.light_at_vertices(&verts, footprint);
     let reference_ms = t0.elapsed().as_secs_f64() * 1e3;
     let pos: Vec<Vec3> = verts.iter().map(|&v| strands.positions[v]).collect();
@@ -180,6 +169,52 @@ pub fn measure_map(
     (rows, reference_ms)
 }
 
+/// The `vertices` vertices a measurement samples, spread evenly over the strands' points
+/// where at least one fibre is present (past the tips, hair is not drawn).
+fn sampled_vertices(engine: &Engine, vertices: usize) -> Vec<usize> {
+    let strands = &engine.strands;
+    let fibres = engine.style.strands.fibers_per_strand.round().max(1.0);
+    let with_hair: Vec<usize> = (0..strands.positions.len())
+        .filter(|&i| {
+            strands
+                .fibre_share
+                .get(i)
+                .is_none_or(|s| *s >= 0.5 / fibres)
+        })
+        .collect();
+    sample_vertices(with_hair.len(), vertices)
+        .into_iter()
+        .map(|k| with_hair[k])
+        .collect()
+}
+
+/// The reference against itself: the same vertices as [`measure_map`], the exact reference
+/// with each bundle's fibres turned by other angles (`ExactInput::placement_seed` = each of
+/// `seeds`) compared with the documented placement, as if it were a map. This is the floor
+/// below which no estimate that knows the render strands but not where their fibres lie can
+/// go: at a vertex the camera sees lit, a few fibres of its own bundle and its neighbours'
+/// decide its light, and their places are the reference's construction. With one fibre per
+/// strand there is nothing to place, and the comparison is exact (0). Costs one reference per
+/// seed, plus the documented one.
+pub fn placement_floor(
+    engine: &Engine,
+    vertices: usize,
+    footprint: &Footprint,
+    seeds: &[u64],
+) -> Vec<Comparison> {
+    let light = key_light(engine);
+    let verts = sampled_vertices(engine, vertices);
+    let placed = |seed: u64| {
+        exact_reference_placed(&engine.style, &engine.strands, &engine.fiber, light, seed)
+            .light_at_vertices(&verts, footprint)
+    };
+    let truth = placed(0);
+    seeds
+        .iter()
+        .map(|&seed| Comparison::new(&truth, &placed(seed)))
+        .collect()
+}
+
 /// The key light (the first: its map is the one measured) in the map's terms.
 pub fn key_light(engine: &Engine) -> MapLight {
     let key = engine.config.lighting.lights[0];
@@ -195,12 +230,25 @@ pub fn exact_reference<'a>(
     fiber: &'a Fiber,
     light: MapLight,
 ) -> ExactReference<'a> {
+    exact_reference_placed(style, strands, fiber, light, 0)
+}
+
+/// [`exact_reference`] with the bundles' fibres placed by `placement_seed`
+/// (`ExactInput::placement_seed`; 0 is the documented placement).
+pub fn exact_reference_placed<'a>(
+    style: &Hairstyle,
+    strands: &'a StrandGeometry,
+    fiber: &'a Fiber,
+    light: MapLight,
+    placement_seed: u64,
+) -> ExactReference<'a> {
     ExactReference::build(
         &ExactInput {
             positions: &strands.positions,
             points_per_strand: strands.points_per_strand,
             fibers_per_strand: style.strands.fibers_per_strand.round().max(1.0) as u32,
             bundle_radius_m: 0.5 * style.strand_spacing_m(),
+            placement_seed,
             fibre_share: &strands.fibre_share,
             light,
             fiber,

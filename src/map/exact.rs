@@ -14,7 +14,8 @@
 //! first segment and is carried along the strand by projection (discrete parallel transport,
 //! as `interp` carries curls), so a bundle keeps its shape along the strand. The F offsets are
 //! a Vogel (golden-angle) spiral filling the disc of radius `bundle_radius_m` evenly, turned
-//! by a per-strand angle from a hash of the strand index. With F = 1 the only fibre is the
+//! by a per-strand angle from a hash of the strand index (and `placement_seed`, 0 unless a
+//! measurement asks for another placement of the same bundles). With F = 1 the only fibre is the
 //! strand itself (offset 0): the geometry is then exact, not a model.
 //!
 //! ## A ray and its crossings
@@ -71,6 +72,12 @@ pub struct ExactInput<'a> {
     /// Radius of the disc across the strand within which its fibres are placed, metres
     /// (unused when `fibers_per_strand` is 1).
     pub bundle_radius_m: f32,
+    /// Seed of each bundle's turn (0: the documented placement). Another seed turns the same
+    /// pattern of fibres by other per-strand angles: the same hair, its fibres elsewhere in
+    /// each bundle. Comparing two seeds measures how much of a point's light depends on where
+    /// the fibres happen to lie, which no model of the render strands can know
+    /// (`accuracy::placement_floor`).
+    pub placement_seed: u64,
     /// Share of each strand's fibres present at each point (`StrandGeometry::fibre_share`), or
     /// empty for all. Fibre f of F covers a segment where the mean share of its two ends is at
     /// least (f + ½)/F, so the fibres end one by one as the share falls.
@@ -175,9 +182,12 @@ fn vogel(i: u32, count: u32) -> Vec2 {
     Vec2::new(c, s) * rho
 }
 
-/// A per-strand angle in [0, 2π) from a hash of its index (SplitMix64 finaliser).
-fn strand_angle(s: usize) -> f32 {
-    let mut z = (s as u64).wrapping_add(0x9E37_79B9_7F4A_7C15);
+/// A per-strand angle in [0, 2π) from a hash of its index and the placement seed (SplitMix64
+/// finaliser).
+fn strand_angle(s: usize, seed: u64) -> f32 {
+    let mut z = (s as u64)
+        .wrapping_add(seed.wrapping_mul(0xD1B5_4A32_D192_ED03))
+        .wrapping_add(0x9E37_79B9_7F4A_7C15);
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
     z ^= z >> 31;
@@ -192,7 +202,7 @@ fn place_fibres(pts: &[Vec3], s: usize, input: &ExactInput, proj: &Projection) -
     if pts.iter().any(|p| !p.is_finite()) {
         return vec![Vec3::NAN; ppl * f_count];
     }
-    let (sn, cs) = strand_angle(s).sin_cos();
+    let (sn, cs) = strand_angle(s, input.placement_seed).sin_cos();
     let offsets = (0..f_count as u32).map(|f| {
         if f_count == 1 {
             Vec2::ZERO
