@@ -421,11 +421,13 @@ fn dual_composition_properties() {
             (d - s).abs().max_element() <= 1e-6 * s.max_element().max(1e-6),
             "{d} vs {s}"
         );
+        // Linear in T_f at a fixed spread: none here, since the spread of the light that
+        // arrives depends on T_f itself (`shader::arriving_spread`).
         let scattered = |t: f32| {
             let l = LightAtPoint {
                 direct_fraction: 0.0,
                 tf: Vec3::splat(t),
-                sigma_f2: Vec3::splat(0.03),
+                sigma_f2: Vec3::ZERO,
                 crossings_behind: LightAtPoint::DENSE,
             };
             fiber.shade(ShadingMode::DualScattering, u, wi, wo, &l)

@@ -161,7 +161,9 @@ fn back_scatter_follows_local_density() {
 }
 
 /// Figure 5's composition holds for both models: with d_b = 0 in full light the dual shader is the
-/// single-scattering shader, and the scattered path is linear in T_f − direct_fraction.
+/// single-scattering shader, and the scattered path is linear in T_f − direct_fraction at a
+/// fixed spread (here none: the spread of the light that arrives depends on T_f itself,
+/// `shader::arriving_spread`, tested in the library).
 #[test]
 fn dual_composition_both_models() {
     for model in [FiberModel::Marschner, FiberModel::Chiang] {
@@ -191,14 +193,20 @@ fn dual_composition_both_models() {
                 u,
                 wi,
                 wo,
-                &light(0.0, 0.2, 9.0),
+                &LightAtPoint {
+                    sigma_f2: Vec3::ZERO,
+                    ..light(0.0, 0.2, 9.0)
+                },
             );
             let b = fiber.shade(
                 ShadingMode::DualScattering,
                 u,
                 wi,
                 wo,
-                &light(0.0, 0.6, 9.0),
+                &LightAtPoint {
+                    sigma_f2: Vec3::ZERO,
+                    ..light(0.0, 0.6, 9.0)
+                },
             );
             assert!(close(b, 3.0 * a, 1e-5), "{model:?}: {a} {b}");
             assert!(b.max_element() > 0.0);
