@@ -46,7 +46,7 @@ fn rows(engine: &Engine, ns: &[u32], fp: Footprint) -> Vec<Row> {
         1,
         ContactShadowing::WindowM(DEFAULT_CONTACT_WINDOW_M),
     )
-    .0
+    .rows
 }
 
 /// Bounds on the default row: T_f MAE, worst calibration bin, |overall bias|, |luminance − 1|.

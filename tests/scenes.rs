@@ -206,7 +206,7 @@ fn point_light_map_against_the_exact_reference() {
         1,
         engine.config.contact,
     )
-    .0;
+    .rows;
     let row = rows.iter().find(|r| r.is_default).expect("default row");
     let c = &row.comparison;
     println!(

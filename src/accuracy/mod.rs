@@ -52,9 +52,20 @@ pub fn single_fibre_variant(style: &Hairstyle, k: u32) -> Hairstyle {
     s
 }
 
+/// What [`measure_map`] measured: the rows, and the reference they were measured against.
+#[derive(Clone, Debug)]
+pub struct MapMeasurement {
+    pub rows: Vec<Row>,
+    /// Time the reference took (build + queries), ms.
+    pub reference_ms: f64,
+    /// The sampled vertices, the footprint and the reference's light at each.
+    pub vertices: Vec<usize>,
+    pub footprint: Footprint,
+    pub truth: Vec<LightAtPoint>,
+}
+
 /// Measures the map against the exact reference for an engine's current hair state, at the
-/// resolutions `ns`, at `vertices` vertices spread evenly over the strands. Returns the rows
-/// and the time the reference took (build + queries), ms. Time per row is the map build plus a
+/// resolutions `ns`, at `vertices` vertices spread evenly over the strands. Time per row is the map build plus a
 /// lookup at every vertex of the hair (with the contact shadows' build and queries when
 /// `contact` asks for them; lookups in parallel), median of `repeats` runs.
 pub fn measure_map(
@@ -64,7 +75,7 @@ pub fn measure_map(
     footprint: &Footprint,
     repeats: u32,
     contact: ContactShadowing,
-) -> (Vec<Row>, f64) {
+) -> MapMeasurement {
     let style = &engine.style;
     let strands = &engine.strands;
     let key = engine.config.lighting.lights[0];
@@ -166,7 +177,13 @@ pub fn measure_map(
             luminance_ratio: mean / ref_mean.max(1e-12),
         });
     }
-    (rows, reference_ms)
+    MapMeasurement {
+        rows,
+        reference_ms,
+        vertices: verts,
+        footprint: *footprint,
+        truth,
+    }
 }
 
 /// The `vertices` vertices a measurement samples, spread evenly over the strands' points
@@ -188,30 +205,28 @@ fn sampled_vertices(engine: &Engine, vertices: usize) -> Vec<usize> {
         .collect()
 }
 
-/// The reference against itself: the same vertices as [`measure_map`], the exact reference
+/// The reference against itself: at the vertices `measured` sampled, the exact reference
 /// with each bundle's fibres turned by other angles (`ExactInput::placement_seed` = each of
-/// `seeds`) compared with the documented placement, as if it were a map. This is the floor
-/// below which no estimate that knows the render strands but not where their fibres lie can
-/// go: at a vertex the camera sees lit, a few fibres of its own bundle and its neighbours'
-/// decide its light, and their places are the reference's construction. With one fibre per
-/// strand there is nothing to place, and the comparison is exact (0). Costs one reference per
-/// seed, plus the documented one.
+/// `seeds`) compared with the documented placement (the measurement's own reference), as if it
+/// were a map. This is the floor below which no estimate that knows the render strands but
+/// not where their fibres lie can go: at a vertex the camera sees lit, a few fibres of its own
+/// bundle and its neighbours' decide its light, and their places are the reference's
+/// construction. With one fibre per strand there is nothing to place, and the comparison is
+/// exact (0). Costs one reference per seed.
 pub fn placement_floor(
     engine: &Engine,
-    vertices: usize,
-    footprint: &Footprint,
+    measured: &MapMeasurement,
     seeds: &[u64],
 ) -> Vec<Comparison> {
     let light = key_light(engine);
-    let verts = sampled_vertices(engine, vertices);
-    let placed = |seed: u64| {
-        exact_reference_placed(&engine.style, &engine.strands, &engine.fiber, light, seed)
-            .light_at_vertices(&verts, footprint)
-    };
-    let truth = placed(0);
     seeds
         .iter()
-        .map(|&seed| Comparison::new(&truth, &placed(seed)))
+        .map(|&seed| {
+            let placed =
+                exact_reference_placed(&engine.style, &engine.strands, &engine.fiber, light, seed)
+                    .light_at_vertices(&measured.vertices, &measured.footprint);
+            Comparison::new(&measured.truth, &placed)
+        })
         .collect()
 }
 

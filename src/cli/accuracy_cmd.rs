@@ -53,7 +53,7 @@ pub struct AccuracyArgs {
     pub skin_image: Option<std::path::PathBuf>,
     /// Also measure the reference's own floor: the exact reference with each bundle's fibres
     /// placed otherwise (2 other placements; `accuracy::placement_floor`) against the
-    /// documented one, in the table's terms. Costs three more references.
+    /// documented one, in the table's terms. Costs two more references.
     #[arg(long)]
     pub placement_floor: bool,
     /// Timed repetitions per map resolution.
@@ -111,7 +111,7 @@ pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
         return skin(&mut engine, &args);
     }
     let geometries = sweep_geometries(&engine, &args.map_res_list);
-    let (rows, reference_ms) = measure_map(
+    let measured = measure_map(
         &engine,
         &geometries,
         args.vertices as usize,
@@ -129,13 +129,13 @@ pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
         engine.strands.positions.len(),
         args.at_s,
         footprint,
-        reference_ms
+        measured.reference_ms
     );
     println!();
-    print!("{}", markdown(&rows));
+    print!("{}", markdown(&measured.rows));
     if args.placement_floor {
         let seeds = [1, 2];
-        let floors = placement_floor(&engine, args.vertices as usize, &footprint, &seeds);
+        let floors = placement_floor(&engine, &measured, &seeds);
         println!(
             "\nPlacement floor (the exact reference with each bundle's fibres turned by other \
              angles, against the documented placement; no estimate from the render strands can \
@@ -146,7 +146,11 @@ pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
              0.5–0.8 / 0.8–1.0 | MAE in the same bins |"
         );
         println!("|---|---|---|---|---|");
-        let default_map = rows.iter().find(|r| r.is_default).map(|r| &r.comparison);
+        let default_map = measured
+            .rows
+            .iter()
+            .find(|r| r.is_default)
+            .map(|r| &r.comparison);
         let labelled = seeds
             .iter()
             .map(|s| s.to_string())

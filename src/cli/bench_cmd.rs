@@ -276,7 +276,9 @@ fn accuracy_part(args: &BenchArgs, at_s: f64, scene: &BenchScene, json: &mut Jso
     let default_n = engine.map_geometry().n;
     let geometries = wisp::accuracy::sweep_geometries(&engine, &args.map_res_list);
     let footprint = Footprint::Fibres { rays: 128 };
-    let (rows, reference_ms) = wisp::accuracy::measure_map(
+    let wisp::accuracy::MapMeasurement {
+        rows, reference_ms, ..
+    } = wisp::accuracy::measure_map(
         &engine,
         &geometries,
         2000,
