@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """wisp's image against a path-traced one (not run by CI).
 
-    compare.py WISP_EXR MITSUBA_EXR [--passes NPY] [--png OUT.png] [--label TEXT] [--json OUT]
+    compare.py WISP_EXR MITSUBA_EXR [--passes NPY] [--crop F] [--png OUT.png] [--label TEXT] [--json OUT]
 
 Over the pixels fully covered in both images (alpha >= --coverage in each, default 0.99, so
 both hold radiance of hair alone; with fewer than 500 such pixels, as for isolated fibres,
@@ -39,17 +39,25 @@ def block_sum(a, k):
     return a.reshape(h // k, k, w // k, k, *a.shape[2:]).sum(axis=(1, 3))
 
 
-def compare(wisp, ref, passes=None, coverage=0.99, region="auto", min_pixels=500):
+def compare(wisp, ref, passes=None, coverage=0.99, region="auto", min_pixels=500, crop=1.0):
     """Figures over the compared region: "covered" (alpha >= coverage in both), "all" (every
     pixel: the ratio of the images' summed premultiplied RGB, i.e. of the light each renderer
     sends to the camera; what sparse hair such as isolated fibres needs, where no pixel is
-    fully covered), or "auto" (covered if it has at least min_pixels pixels, else all)."""
+    fully covered), or "auto" (covered if it has at least min_pixels pixels, else all).
+    crop < 1 keeps only the central crop x crop of the image (a slab's edges, where light
+    leaks around the side, stay out)."""
     if wisp.shape != ref.shape:
         raise SystemExit(f"compare.py: image sizes differ: {wisp.shape} vs {ref.shape}")
-    mask = (wisp[..., 3] >= coverage) & (ref[..., 3] >= coverage)
+    keep = np.ones(wisp.shape[:2], bool)
+    if crop < 1.0:
+        h, w = keep.shape
+        dy, dx = int(round(h * (1 - crop) / 2)), int(round(w * (1 - crop) / 2))
+        keep[:] = False
+        keep[dy : h - dy, dx : w - dx] = True
+    mask = (wisp[..., 3] >= coverage) & (ref[..., 3] >= coverage) & keep
     if region == "all" or (region == "auto" and mask.sum() < min_pixels):
         region = "all"
-        mask = np.ones(wisp.shape[:2], bool)
+        mask = keep
     else:
         region = "covered"
     n = int(mask.sum())
@@ -137,6 +145,8 @@ def main():
     ap.add_argument("--coverage", type=float, default=0.99)
     ap.add_argument("--region", choices=["auto", "covered", "all"], default="auto",
                     help="compared pixels (see compare()); auto falls back to all below 500 covered pixels")
+    ap.add_argument("--crop", type=float, default=1.0,
+                    help="compare only the central CROP x CROP of the image, in (0, 1] (default 1: all)")
     ap.add_argument("--png", help="side-by-side image to write")
     ap.add_argument("--label", default="")
     ap.add_argument("--json", help="write the figures here")
@@ -148,7 +158,10 @@ def main():
     wisp = load_rgba(mi, args.wisp_exr)
     ref = load_rgba(mi, args.ref_exr)
     passes = np.load(args.passes).astype(np.float64) if args.passes else None
-    fig, mask = compare(wisp, ref, passes, args.coverage, args.region)
+    if not 0.0 < args.crop <= 1.0:
+        raise SystemExit(f"compare.py: --crop {args.crop}: must lie in (0, 1]")
+    fig, mask = compare(wisp, ref, passes, args.coverage, args.region, crop=args.crop)
+    fig["crop"] = args.crop
     fig["label"] = args.label
     if not np.isfinite(wisp).all():
         print("compare.py: warning: wisp's image has non-finite values", file=sys.stderr)
