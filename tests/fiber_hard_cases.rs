@@ -341,7 +341,7 @@ fn dual_unshadowed_is_direct_only() {
         / std::f32::consts::PI
         / (0.5 * (a.theta_o - a.theta_i)).cos().powi(2)
         / (2.0 * std::f32::consts::PI * s2).powf(0.5)
-        * 0.7
+        * fiber.params().d_b
         * a.theta_i.cos();
     assert!(
         (dual - single).cmple(peak * 1.0001).all(),

@@ -55,6 +55,12 @@
 //!   exactly white; the same max(1, ρ_w) normalisation keeps ā_f + ā_b ≤ 1 (a path tracer with
 //!   this model would let grazing light gain energy per crossing; wisp does not).
 //! - Tables ignore eccentricity (circular fibre of index η), as Zinke §4.2 does for N^G.
+//! - **Flux is not fluence** ([`window_fluence`]). T_f = ∏ ā_f counts the *power* that keeps
+//!   going forward past each crossing of the shadow path (a flux along it), but Eq. 7 spreads
+//!   T_f as a unit-fluence distribution (∫ S_f dω = 1). Light that has left the path's
+//!   direction crosses the hair's layers obliquely: a fibre intercepts its fluence, which is
+//!   the flux times w/sin w for Eq. 7's window. Read literally, Eq. 5 feeds a shadowed fibre
+//!   2/π of the forward light the window spreads; the shader multiplies by the factor.
 
 use super::azimuthal::N_H;
 pub use super::azimuthal::{
@@ -305,6 +311,25 @@ fn shares_at<M: DualModel>(
         }
     }
     out
+}
+
+/// The fluence the forward-scattered light brings per unit of the flux T_f that the map
+/// carries along the shadow path, for light spread uniformly in azimuth over Eq. 7's window of
+/// half-width `window_rad` about the light's direction (in the fibres' normal plane).
+///
+/// A direction at azimuth ψ from the shadow path (and any inclination θ) carries flux L cos θ
+/// cos ψ dω along the path and delivers L cos θ dω to a fibre's projected width, so over the
+/// window fluence ÷ flux = ∫ dψ / ∫ cos ψ dψ = w / sin w: 1 for a beam (w → 0), π/2 for Zinke's
+/// front half circle (w = 90°). Windows wider than 90° hold light travelling back along the
+/// path, which a forward flux cannot carry; there the flux is counted both ways (|cos ψ|),
+/// w / (2 − sin w), which is continuous at 90° and π/2 again for isotropic light (180°).
+pub fn window_fluence(window_rad: f64) -> f64 {
+    let w = window_rad.clamp(1e-6, std::f64::consts::PI);
+    if w <= std::f64::consts::FRAC_PI_2 {
+        w / w.sin()
+    } else {
+        w / (2.0 - w.sin())
+    }
 }
 
 /// Direct (untabulated) lobe shares at θi, for checking the tables: azimuthal integrals are

@@ -168,7 +168,9 @@ pub struct Fiber {
     pub(crate) model: ModelShading,
     pub(crate) dual: DualTables,
     kk: KajiyaKay,
-    pub(crate) d_f: f32,
+    /// d_f times the window's fluence per unit flux ([`dual::window_fluence`]): what multiplies
+    /// the forward-scattered share T_f − direct (Figure 5's d_f).
+    pub(crate) scattered_gain: f32,
     pub(crate) d_b: f32,
 }
 
@@ -234,7 +236,7 @@ impl Fiber {
         let kk = KajiyaKay::new(&consts, &dual);
         Self {
             params: params.clone(),
-            d_f: params.d_f,
+            scattered_gain: (params.d_f as f64 * dual::window_fluence(window)) as f32,
             d_b: params.d_b,
             consts,
             chiang,

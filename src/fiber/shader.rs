@@ -6,8 +6,10 @@
 //! **How the map's statistics combine (Figure 5).** T_f is the map's average over light rays of
 //! ∏ ā_f over their crossings, where a ray with no crossing contributes 1 (Zinke Eq. 5, n = 0),
 //! so T_f ≥ directFraction and the forward-*scattered* share is T_f − directFraction. We use
-//! F = directFraction·(f_s + d_b f_back) + max(T_f − directFraction, 0)·d_f·(f_s^G + π d_b
-//! f_back^G), as Figure 5 prints. The alternative T_f·d_f·(…) counts unobstructed light twice: a
+//! F = directFraction·(f_s + d_b f_back) + max(T_f − directFraction, 0)·d_f·(w/sin w)·(f_s^G +
+//! π d_b f_back^G), as Figure 5 prints it but for w/sin w (π/2 for Zinke's window): T_f is a
+//! flux along the shadow path and a fibre intercepts fluence (`dual::window_fluence`; the
+//! product is `Fiber::scattered_gain`). The alternative T_f·d_f·(…) counts unobstructed light twice: a
 //! fibre in full light would receive 1 + d_f = 1.7 times the direct light (pinned by
 //! `dual_unshadowed_is_direct_only` in tests/fiber_hard_cases.rs).
 //! f_back of the direct path uses σ̄_b² alone (direct light has no forward spread);
@@ -241,7 +243,7 @@ impl Fiber {
         let cos_i = t.ci;
         match &self.model {
             ModelShading::Marschner(m) => {
-                // F = direct (f_s + f_back) + scattered d_f (f_s^G + π f_back^G), times cos θi.
+                // F = direct (f_s + f_back) + scattered gain (f_s^G + π f_back^G), times cos θi.
                 let [n_r, n_tt, ng_r, ng_tt, ng_trt] =
                     m.lobes.lookup(a.theta_d().abs(), a.phi.abs());
                 let mut out = Vec3::ZERO;
@@ -261,7 +263,7 @@ impl Fiber {
                     }
                     f_s_g *= inv;
                     let f_back_g = back_w * gauss3(dx, sigma_b2 + l.sigma_f2);
-                    out += l.scattered * self.d_f * (f_s_g + PI * f_back_g);
+                    out += l.scattered * self.scattered_gain * (f_s_g + PI * f_back_g);
                 }
                 finite_or_zero(out * cos_i)
             }
@@ -279,7 +281,7 @@ impl Fiber {
                         c.deon.m_broadened_all(l.sigma_f2, t.si, t.ci, t.so, t.co);
                     let g_s_g = m_r * n[4] + m_tt * n[5] + m_trt * n[6] + m_rest * n[3];
                     let f_back_g = back_w * gauss3(dx, sigma_b2 + l.sigma_f2);
-                    out += l.scattered * self.d_f * (g_s_g + PI * cos_i * f_back_g);
+                    out += l.scattered * self.scattered_gain * (g_s_g + PI * cos_i * f_back_g);
                 }
                 finite_or_zero(out)
             }
@@ -408,6 +410,54 @@ fn unit_or_zero(x: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fiber::{Fiber, FiberModel, FiberParams, ShadingMode};
+
+    /// Figure 5's forward-scattered term carries d_f times the window's fluence per unit flux
+    /// (`dual::window_fluence`, π/2 for Zinke's 90° window): a fully shadowed point (direct 0)
+    /// shades exactly π/2 brighter than with the literal factor d_f, in both fibre models,
+    /// and a directly lit point with T_f = direct (nothing scattered) does not change.
+    #[test]
+    fn scattered_light_carries_the_window_fluence() {
+        for model in [FiberModel::Marschner, FiberModel::Chiang] {
+            let fiber = Fiber::new(&FiberParams {
+                model,
+                ..Default::default()
+            });
+            let half_pi = std::f32::consts::FRAC_PI_2;
+            assert!((fiber.scattered_gain - fiber.params().d_f * half_pi).abs() < 1e-6);
+            let mut literal = fiber.clone();
+            literal.scattered_gain = fiber.params().d_f;
+            let (u, wi, wo) = (
+                Vec3::Y,
+                Vec3::new(0.8, 0.3, 0.1).normalize(),
+                Vec3::new(-0.6, -0.1, -0.5).normalize(),
+            );
+            let shadowed = LightAtPoint {
+                direct_fraction: 0.0,
+                tf: Vec3::new(0.3, 0.2, 0.1),
+                sigma_f2: Vec3::splat(0.05),
+                crossings_behind: LightAtPoint::DENSE,
+            };
+            let (a, b) = (
+                fiber.shade(ShadingMode::DualScattering, u, wi, wo, &shadowed),
+                literal.shade(ShadingMode::DualScattering, u, wi, wo, &shadowed),
+            );
+            assert!(b.min_element() > 0.0, "{model:?}: {b}");
+            assert!(
+                (a - b * half_pi).abs().max_element() <= 1e-6 * a.max_element(),
+                "{a} vs {b}"
+            );
+            let lit = LightAtPoint {
+                direct_fraction: 0.4,
+                tf: Vec3::splat(0.4),
+                ..shadowed
+            };
+            assert_eq!(
+                fiber.shade(ShadingMode::DualScattering, u, wi, wo, &lit),
+                literal.shade(ShadingMode::DualScattering, u, wi, wo, &lit)
+            );
+        }
+    }
 
     /// The arriving light's spread against the Poisson sum it stands for, term by term in f64:
     /// with N ~ Poisson(n̄) crossings of β² each, a ray of N crossings arriving with weight
