@@ -13,7 +13,8 @@ slab.hair,style.json`); three short anchor strands at each side and at the top o
 span its width and height, which makes the import's fit exactly scale 1 and no offset (the
 anchors lie 0.1 m above the part of the slab in view and never meet the light that reaches
 it). The camera looks along -z at the slab's centre (fov 10 degrees: only the slab's hanging
-part); "back" light travels along +z (toward the camera, through the slab), "front" along -z.
+part); "back" light travels along +z (toward the camera, through the slab), "front" along -z,
+"back45" and "front45" the same turned 45 degrees about the fibres (from the image's right).
 No head, ambient 0, irradiance 1, the fibre of run_table.py's dense case of that colour.
 
 Each case renders wisp's dual and single shading and Mitsuba's max_depth 64 and 2, and
@@ -42,7 +43,7 @@ import run_table as rt  # noqa: E402
 HEAD_RADII_M = (0.076, 0.098, 0.094)  # the smooth preset's head ellipsoid (x, y, z)
 FIBRE_RADIUS_M = 4e-5
 WIDTH_M, DEPTH_M, BOTTOM_M, POINTS = 0.08, 0.01, -0.2, 31
-LIGHTS = {"back": "0,0,1", "front": "0,0,-1"}
+LIGHTS = {"back": "0,0,1", "front": "0,0,-1", "back45": "-1,0,1", "front45": "-1,0,-1"}
 
 
 def write_hair(path, strands):
