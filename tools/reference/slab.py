@@ -40,25 +40,24 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import run_table as rt  # noqa: E402
 
-HEAD_RADII_M = (0.076, 0.098, 0.094)  # the smooth preset's head ellipsoid (x, y, z)
-FIBRE_RADIUS_M = 4e-5
 WIDTH_M, DEPTH_M, BOTTOM_M, POINTS = 0.08, 0.01, -0.2, 31
 LIGHTS = {"back": "0,0,1", "front": "0,0,-1", "back45": "-1,0,1", "front45": "-1,0,-1"}
 
 
-def write_hair(path, strands):
+def write_hair(path, strands, fibre_radius_m):
     """cyHair with one segment count for all strands and a points array (metres)."""
     pts = np.concatenate(strands).astype("<f4")
     header = b"HAIR" + struct.pack("<4I", len(strands), len(pts), 2, len(strands[0]) - 1)
-    header += struct.pack("<5f", 2 * FIBRE_RADIUS_M, 1.0, 0.5, 0.5, 0.5)
+    header += struct.pack("<5f", 2 * fibre_radius_m, 1.0, 0.5, 0.5, 0.5)
     open(path, "wb").write(header + b"\0" * (128 - len(header)) + pts.tobytes())
 
 
-def slab_strands(nbar, wisps, seed=1):
-    """The slab's strands plus 9 anchors, their count a multiple of `wisps` (so the style's
-    strands_per_wisp can make one fibre per strand)."""
-    rx, ry, rz = HEAD_RADII_M
-    density = nbar / (2 * FIBRE_RADIUS_M * DEPTH_M)
+def slab_strands(nbar, style, seed=1):
+    """The slab's strands plus 9 anchors under `style`'s head ellipsoid, for its fibre radius,
+    their count a multiple of its wisps (so strands_per_wisp can make one fibre per strand)."""
+    rx, ry, rz = style["head"]["radii_m"]
+    wisps = style["wisps"]["count"]
+    density = nbar / (2 * style["fiber"]["radius_m"] * DEPTH_M)
     n = int(round((density * WIDTH_M * DEPTH_M + 9) / wisps)) * wisps - 9
     rng = np.random.default_rng(seed)
     xs = rng.uniform(-WIDTH_M / 2, WIDTH_M / 2, n)
@@ -100,18 +99,19 @@ def main():
     ap.add_argument("--wisp", default=os.path.join(rt.REPO, "target", "release", "wisp"))
     ap.add_argument("--python", default=sys.executable, help="the Python that has mitsuba")
     args = ap.parse_args()
+    fiber = parse_fiber(args.fiber)
     os.makedirs(args.out, exist_ok=True)
     results = open(os.path.join(args.out, "results.jsonl"), "a")
     for nbar in [float(v) for v in args.nbar.split(",")]:
         style = rt.style_variant("smooth", f"slab-{args.colour}", sigma_a=rt.COLOURS[args.colour] * rt.EUMELANIN,
                                  model=args.model)
-        style["fiber"].update(parse_fiber(args.fiber))
-        strands, n = slab_strands(nbar, style["wisps"]["count"])
+        style["fiber"].update(fiber)
+        strands, n = slab_strands(nbar, style)
         style["wisps"]["strands_per_wisp"] = len(strands) // style["wisps"]["count"]
         case_dir = os.path.join(args.out, f"n{nbar:g}-{args.colour}")
         os.makedirs(case_dir, exist_ok=True)
         hair = os.path.join(case_dir, "slab.hair")
-        write_hair(hair, strands)
+        write_hair(hair, strands, style["fiber"]["radius_m"])
         style_path = os.path.join(case_dir, f"style{('-' + args.tag) if args.tag else ''}.json")
         json.dump(style, open(style_path, "w"), indent=1)
         for light in args.lights.split(","):
@@ -142,7 +142,7 @@ def main():
             dw, sw = np.array(figs["dual"]["wisp_mean"]), np.array(figs["single"]["wisp_mean"])
             dr, sr = np.array(figs["dual"]["ref_mean"]), np.array(figs["single"]["ref_mean"])
             row = dict(nbar=nbar, strands=n, colour=args.colour, light=light, tag=args.tag,
-                       fiber=parse_fiber(args.fiber), dual=(dw / dr).tolist(),
+                       fiber=fiber, dual=(dw / dr).tolist(),
                        single=(sw / sr).tolist(), multi=((dw - sw) / (dr - sr)).tolist(),
                        pt_multi_share=((dr - sr) / dr).tolist(), pixels=figs["dual"]["pixels"])
             results.write(json.dumps(row) + "\n")
