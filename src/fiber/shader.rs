@@ -9,8 +9,8 @@
 //! F = directFraction·(f_s + d_b f_back) + max(T_f − directFraction, 0)·d_f·(w/sin w)·(f_s^G +
 //! π d_b f_back^G), as Figure 5 prints it but for w/sin w (π/2 for Zinke's window): T_f is a
 //! flux along the shadow path and a fibre intercepts fluence (`dual::window_fluence`; the
-//! product is `Fiber::scattered_gain`). The alternative T_f·d_f·(…) counts unobstructed light twice: a
-//! fibre in full light would receive 1 + d_f = 1.7 times the direct light (pinned by
+//! product is `Fiber::scattered_gain`). The alternative T_f·d_f·(…) counts unobstructed light
+//! twice: a fibre in full light would receive 1 + d_f = 2 times the direct light (pinned by
 //! `dual_unshadowed_is_direct_only` in tests/fiber_hard_cases.rs).
 //! f_back of the direct path uses σ̄_b² alone (direct light has no forward spread);
 //! f_back^G uses σ̄_b² + σ̄_f² (Eq. 24). f_back = 2 Ā_b g(θi + θo − Δ̄_b, σ̄_b²)/(π cos²θd) (Eqs. 10,
