@@ -43,12 +43,7 @@
 //! piece its view ray reaches; with the light near the camera those are the lit parts. Each
 //! fibre in the window is therefore counted with the probability that it is there given that
 //! the point is seen (`q` = min(1, s / s_c) for a fibre at distance s, s_c the length over
-//! which the view and light rays share fibres; `LightMap::light_at_seen`). Under a directional
-//! light with the eye on the light's side, `seen` does better than that expectation: it asks
-//! the real fibres which parts of the piece the camera sees (offsets across the fibre's width,
-//! hiders along the view ray) and averages the light over those parts only.
-
-mod seen;
+//! which the view and light rays share fibres; `LightMap::light_at_seen`).
 
 use super::Projection;
 use crate::fiber::Fiber;
@@ -186,8 +181,6 @@ impl NearLight {
 pub struct ContactScratch {
     covers: Vec<Cover>,
     events: Vec<(f32, u32)>,
-    /// Per offset across the fibre (`seen`): the covers of its rays.
-    offset_covers: Vec<Vec<Cover>>,
 }
 
 /// One segment's shadow on a half: the interval of u it covers and what it does there.

@@ -2,7 +2,7 @@
 //! self-collision (§4.1).
 
 use super::contact::ContactScratch;
-use super::{Cell, LightMap, Projection, on_map};
+use super::{Cell, LightMap, on_map};
 use crate::fiber::LightAtPoint;
 use glam::Vec3;
 
@@ -206,13 +206,7 @@ impl LightMap {
         if far.tf.max_element() <= DARK {
             return far;
         }
-        let near = match self.proj {
-            Projection::Parallel { frame } if s_c > 0.0 => {
-                let eye = frame.to_map(to_eye.normalize_or_zero());
-                contact.near_light_seen(vertex, delta, s_c, eye, scratch)
-            }
-            _ => contact.near_light(vertex, delta, s_c, scratch),
-        };
+        let near = contact.near_light(vertex, delta, s_c, scratch);
         LightAtPoint {
             direct_fraction: (far.direct_fraction * near.direct_fraction).clamp(0.0, 1.0),
             tf: (far.tf * near.tf).clamp(Vec3::ZERO, Vec3::ONE),
