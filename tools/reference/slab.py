@@ -102,6 +102,9 @@ def main():
     ap.add_argument("--wisp", default=os.path.join(rt.REPO, "target", "release", "wisp"))
     ap.add_argument("--python", default=sys.executable, help="the Python that has mitsuba")
     args = ap.parse_args()
+    kinds = set(args.kinds.split(","))
+    if not kinds <= {"dual", "single"}:
+        ap.error(f"--kinds {args.kinds!r}: a comma-separated subset of dual,single")
     fiber = parse_fiber(args.fiber)
     os.makedirs(args.out, exist_ok=True)
     results = open(os.path.join(args.out, "results.jsonl"), "a")
@@ -120,7 +123,7 @@ def main():
         for light in args.lights.split(","):
             figs = {}
             for kind, depth in (("dual", 64), ("single", 2)):
-                if kind not in args.kinds.split(","):
+                if kind not in kinds:
                     continue
                 ref_dir = os.path.join(case_dir, f"{light}-{kind}")
                 d = ref_dir + (f"-{args.tag}" if args.tag else "")
