@@ -1,0 +1,336 @@
+//! Contact shadows: the exact shadow of the fibres just in front of a vertex, for hair whose
+//! render strands are its real fibres (one fibre per strand).
+//!
+//! A map cell is an average over many fibres; a vertex on the lit side of the hair is lit or
+//! not by the one or two fibres directly in front of it, which no cell resolves (ACCURACY.md
+//! §1: with one fibre per strand the map alone reads the lit vertices 0.16–0.28 too dark binned
+//! by truth, and the path tracer shows dense hair 10–20% brighter front-lit). When every render
+//! strand *is* a fibre, the geometry in front of the vertex is known exactly, so over a window
+//! of `window_m` toward the light the vertex's light is computed from the fibres themselves,
+//! and only what lies beyond the window comes from the map (read at the window's far end,
+//! [`super::LightMap::light_at_vertex_seen`]). The map's expected crossings inside the window
+//! are replaced by the real ones: unbiased wherever the map is, and exact as the window grows.
+//!
+//! ## What a vertex receives
+//! The vertex stands for the piece of fibre half a segment to each side (the exact reference's
+//! `Footprint::Fibres`). Along each half, the light-frame point o(u), u ∈ [0, 1], moves on a
+//! straight line. A fibre segment S of radius r shadows o(u) where (all linear in u, so their
+//! intersection is one interval of u):
+//! - the perpendicular distance across the light from o(u) to S's axis is below r, at a
+//!   parameter t ∈ [0, 1) along S (joints are shared half-open, as in the exact reference);
+//! - the crossing lies in front of o(u) and at most `window_m` in front of it.
+//!
+//! The half's light is then the exact average over u of ∏ ā_f over the segments covering u
+//! (a sweep over the intervals' ends), its direct fraction the share of u that no segment
+//! covers, its σ̄f² the share-weighted sum of β̄_f²: what infinitely many rays along the piece
+//! would give, with no sampling noise. The vertex's own strand does not shadow it within two
+//! segments (as the exact reference excludes them). Fibres end where the strand's fibre share
+//! falls below one half, as the reference places them.
+//!
+//! ## Cost
+//! Segments are cut into parts of at most a bin across and along the light and binned across
+//! the light (a uniform grid, counting sort; index lists), each bin sorted by the parts'
+//! nearest depth; a half of a piece is cut the same way, and each of its parts visits the bins
+//! it touches and, in each, only the parts whose depth range meets the window (binary search,
+//! then a scan). A part listed in several bins is taken in the first bin the query part and it
+//! share. The number of fibres a query must take is inherent: every fibre crossing the
+//! "curtain" the piece sweeps toward the light inside the window, about (piece length / fibre
+//! width) × the expected crossings along one ray; hence the window's shortening with depth
+//! (`LightMap::light_at_vertex_seen`). The result does not depend on the thread count.
+//!
+//! ## The camera
+//! A vertex's colour is the average over its piece, but the camera sees only the parts of the
+//! piece its view ray reaches; with the light near the camera those are the lit parts. Each
+//! fibre in the window is therefore counted with the probability that it is there given that
+//! the point is seen (`q` = min(1, s / s_c) for a fibre at distance s, s_c the length over
+//! which the view and light rays share fibres; `LightMap::light_at_seen`).
+
+use super::Projection;
+use crate::fiber::Fiber;
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+
+mod bins;
+mod query;
+
+/// What contact shadows are built from.
+#[derive(Clone, Copy)]
+pub struct ContactInput<'a> {
+    /// Render-strand points (world, metres), strand after strand, root first; each render
+    /// strand is one fibre.
+    pub positions: &'a [Vec3],
+    /// Points per render strand (≥ 1).
+    pub points_per_strand: usize,
+    /// Share of the strand's fibre present at each point, or empty for all: the fibre covers a
+    /// segment where the mean share of its two ends is at least ½.
+    pub fibre_share: &'a [f32],
+    /// How far in front of a vertex the fibres are taken exactly, metres (> 0).
+    pub window_m: f32,
+    /// The fibre: radius and per-crossing forward scattering.
+    pub fiber: &'a Fiber,
+}
+
+/// One fibre segment in the light frame.
+#[derive(Clone, Copy, Debug)]
+struct Segment {
+    /// Projection of A across the light (y, z) and b − a, metres.
+    a: Vec2,
+    d: Vec2,
+    /// 1/|d|.
+    inv_len: f32,
+    /// Depth of A along the light and its change to B, metres.
+    x_a: f32,
+    dx: f32,
+    /// The fibre segment this is a part of (index into `ContactShadows::fibres`).
+    parent: u32,
+}
+
+/// What a fibre segment's parts share: how a crossing scatters, and whose it is.
+#[derive(Clone, Copy, Debug)]
+struct FibreSegment {
+    /// Per-crossing forward transmittance ā_f and spread β̄_f² (Zinke 2008 Eqs. 6, 19, 20)
+    /// for the light's inclination to this segment.
+    a_f: [f32; 3],
+    beta2: [f32; 3],
+    /// Render strand and segment index along it (own-strand exclusion).
+    strand: u32,
+    seg: u32,
+}
+
+impl Segment {
+    #[inline]
+    fn x_min(&self) -> f32 {
+        self.x_a.min(self.x_a + self.dx)
+    }
+}
+
+/// Segments of the vertex's own strand that do not shadow it: k − 2 ..= k + 1 (the two
+/// segments on each side of point k), as the exact reference excludes.
+const OWN_BEFORE: i64 = 2;
+const OWN_AFTER: i64 = 1;
+
+/// Most bins a side (a hostile extent gets coarser bins, never a huge grid).
+const MAX_BINS: f32 = 4096.0;
+
+/// Most parts a segment or a half-piece is cut into (longer ones get longer parts).
+const MAX_PARTS: usize = 64;
+
+/// The fibres near the hair, binned across the light, ready for per-vertex queries.
+#[derive(Clone, Debug, Default)]
+pub struct ContactShadows {
+    window_m: f32,
+    radius_m: f32,
+    /// Lateral scale for a point light (`Projection::Central`): r shrinks as ref/x.
+    central_ref_m: Option<f32>,
+    points_per_strand: usize,
+    /// Light-frame points of every render strand (NaN for strands with a non-finite point).
+    points: Vec<Vec3>,
+    /// The fibre segments, and their parts of at most a bin across and along the light.
+    fibres: Vec<FibreSegment>,
+    segments: Vec<Segment>,
+    /// Largest depth extent of any segment, metres (bounds the window's binary search).
+    max_dx: f32,
+    origin: Vec2,
+    inv_bin: f32,
+    dims: [usize; 2],
+    bin_start: Vec<u32>,
+    /// Each bin's parts (indices), by nearest depth.
+    bin_items: Vec<u32>,
+}
+
+/// The light a vertex receives from the fibres inside its window: exact averages over its
+/// piece of fibre.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NearLight {
+    /// Share of the piece no fibre in the window covers.
+    pub direct_fraction: f32,
+    /// Mean ∏ ā_f over the piece, RGB.
+    pub tf: Vec3,
+    /// Mean Σ β̄_f² over the piece, RGB (rad²).
+    pub sigma_f2: Vec3,
+    /// Mean number of crossings over the piece.
+    pub crossings: f32,
+}
+
+impl NearLight {
+    /// All zero: the start of a weighted sum.
+    const ZERO: Self = Self {
+        direct_fraction: 0.0,
+        tf: Vec3::ZERO,
+        sigma_f2: Vec3::ZERO,
+        crossings: 0.0,
+    };
+
+    /// Adds `w` × `other` (averages over parts of a piece).
+    #[inline]
+    fn add_weighted(&mut self, w: f32, other: &Self) {
+        self.direct_fraction += w * other.direct_fraction;
+        self.tf += w * other.tf;
+        self.sigma_f2 += w * other.sigma_f2;
+        self.crossings += w * other.crossings;
+    }
+
+    /// Nothing in the window.
+    pub const CLEAR: Self = Self {
+        direct_fraction: 1.0,
+        tf: Vec3::ONE,
+        sigma_f2: Vec3::ZERO,
+        crossings: 0.0,
+    };
+}
+
+/// Reusable buffer of [`ContactShadows::near_light`] (one per worker).
+#[derive(Clone, Debug, Default)]
+pub struct ContactScratch {
+    covers: Vec<Cover>,
+    events: Vec<(f32, u32)>,
+}
+
+/// One segment's shadow on a half: the interval of u it covers and what it does there.
+#[derive(Clone, Copy, Debug)]
+struct Cover {
+    u0: f32,
+    u1: f32,
+    a_f: Vec3,
+    beta2: Vec3,
+    /// Probability that the fibre is there given that the camera sees the point (1 − the
+    /// share of it the view ray would have crossed too; 1 without a camera).
+    q: f32,
+}
+
+/// What a query takes in front of the point: the window, and the length over which the ray
+/// toward the camera shares the light ray's fibres.
+#[derive(Clone, Copy, Debug)]
+struct Reach {
+    window_m: f32,
+    shared_m: f32,
+}
+
+impl ContactShadows {
+    /// Bins the fibres of `input` in the light frame of `proj` (the map's), with bins of
+    /// `bin_m` across the light.
+    pub fn build(input: &ContactInput, proj: &Projection, bin_m: f32) -> Self {
+        let ppl = input.points_per_strand.max(1);
+        let strands = input.positions.len() / ppl;
+        let r = input.fiber.params().radius_m;
+        let points: Vec<Vec3> = input.positions[..strands * ppl]
+            .par_chunks(ppl)
+            .flat_map_iter(|pts| {
+                let finite = pts.iter().all(|p| p.is_finite());
+                pts.iter()
+                    .map(move |p| if finite { proj.point(*p) } else { Vec3::NAN })
+            })
+            .collect();
+        let share = input.fibre_share;
+        let fiber = input.fiber;
+        let pairs: Vec<(FibreSegment, Segment)> = (0..strands)
+            .into_par_iter()
+            .flat_map_iter(|s| {
+                let pts = &points[s * ppl..(s + 1) * ppl];
+                let at = move |i: usize| share.get(s * ppl + i).copied().unwrap_or(1.0);
+                pts.windows(2).enumerate().filter_map(move |(k, w)| {
+                    let (a, b) = (w[0], w[1]);
+                    if !(a.is_finite() && b.is_finite()) || 0.5 * (at(k) + at(k + 1)) < 0.5 {
+                        return None;
+                    }
+                    let d = Vec2::new(b.y - a.y, b.z - a.z);
+                    let len = d.length();
+                    // A fibre exactly along the light has a disc, not a strip, as its shadow;
+                    // the exact reference skips it too.
+                    if len * len <= 1e-18 {
+                        return None;
+                    }
+                    let (wa, wb) = (proj.to_world(a), proj.to_world(b));
+                    let u = (wb - wa).normalize_or_zero();
+                    let sin_theta = u.dot(proj.toward_light(0.5 * (wa + wb)));
+                    let f = fiber.forward_scatter(sin_theta);
+                    let a_f = f.a_f.clamp(Vec3::ZERO, Vec3::ONE);
+                    let fibre = FibreSegment {
+                        a_f: a_f.into(),
+                        beta2: f.beta_f2.max(Vec3::ZERO).into(),
+                        strand: s as u32,
+                        seg: k as u32,
+                    };
+                    let seg = Segment {
+                        a: Vec2::new(a.y, a.z),
+                        d,
+                        inv_len: 1.0 / len,
+                        x_a: a.x,
+                        dx: b.x - a.x,
+                        parent: 0,
+                    };
+                    Some((fibre, seg))
+                })
+            })
+            .collect();
+        let central_ref_m = match *proj {
+            Projection::Parallel { .. } => None,
+            Projection::Central { ref_depth_m, .. } => Some(ref_depth_m),
+        };
+        let mut c = Self {
+            window_m: input.window_m.max(0.0),
+            radius_m: r,
+            central_ref_m,
+            points_per_strand: ppl,
+            points,
+            ..Default::default()
+        };
+        let (fibres, segments): (Vec<FibreSegment>, Vec<Segment>) = pairs
+            .into_par_iter()
+            .enumerate()
+            .map(|(i, (f, s))| {
+                (
+                    f,
+                    Segment {
+                        parent: i as u32,
+                        ..s
+                    },
+                )
+            })
+            .unzip();
+        c.fibres = fibres;
+        c.bin(segments, bin_m);
+        c
+    }
+
+    /// How many equal parts a straight piece is cut into so that each spans at most one bin
+    /// across the light and one bin along it (at most [`MAX_PARTS`]).
+    #[inline]
+    fn parts(&self, lateral_m: f32, depth_m: f32) -> usize {
+        let n = (lateral_m.max(depth_m.abs()) * self.inv_bin).ceil();
+        if n.is_nan() {
+            1
+        } else {
+            (n as usize).clamp(1, MAX_PARTS)
+        }
+    }
+
+    /// Upper bound, in bytes, of what contact shadows hold once built from `points` render
+    /// points whose segments are at most `segment_len_m` long, with bins of `bin_m`: per point
+    /// its light-frame position and fibre record; per part (a segment cut into at most
+    /// [`MAX_PARTS`] parts of a bin) the part, its bin rectangle while binning, and its
+    /// listings (at most 3 × 3 bins: a part spans at most two bins a side, three with the
+    /// radius' padding); two bin-offset tables of at most [`MAX_BINS`]² entries.
+    pub fn estimated_bytes(points: u64, segment_len_m: f32, bin_m: f32) -> u64 {
+        let parts_each = (segment_len_m / bin_m.max(1e-9)).ceil();
+        let parts_each = if parts_each.is_finite() {
+            (parts_each as u64).clamp(1, MAX_PARTS as u64)
+        } else {
+            MAX_PARTS as u64
+        };
+        let parts = points.saturating_mul(parts_each);
+        let rect = size_of::<Option<([usize; 2], [usize; 2])>>() as u64;
+        let per_part = size_of::<Segment>() as u64 + rect + 9 * size_of::<u32>() as u64;
+        let per_point = (size_of::<Vec3>() + size_of::<FibreSegment>()) as u64;
+        let bins = (MAX_BINS * MAX_BINS) as u64 * 2 * size_of::<u32>() as u64;
+        points
+            .saturating_mul(per_point)
+            .saturating_add(parts.saturating_mul(per_part))
+            .saturating_add(bins)
+    }
+
+    /// Metres in front of a vertex taken exactly.
+    pub fn window_m(&self) -> f32 {
+        self.window_m
+    }
+}
