@@ -188,6 +188,10 @@ pub struct SurfaceShadow {
     /// Per texel, the depth along the light (map metres) beyond which hair is not drawn: the
     /// first solid's entry depth there plus two occluder texels (hair resting on it counts).
     limit: Vec<f32>,
+    /// Scratch: a summed-area table of the texels with a solid behind them (finite `limit`),
+    /// (dims[0] + 1) × (dims[1] + 1), so a piece can ask in O(1) whether any surface will read
+    /// what it deposits.
+    solid_sat: Vec<u32>,
     /// Scratch: the pieces, sorted by first row.
     pieces: Vec<Piece>,
     /// Scratch: per band, the range of `pieces` that may reach it.
@@ -200,7 +204,7 @@ impl SurfaceShadow {
     pub fn estimated_bytes(columns: u64, samples: u64) -> u64 {
         let per_axis =
             ((columns as f32 * TEXELS_PER_COLUMN) as u64).min(MAX_TEXELS_PER_AXIS as u64) + 4;
-        let texel = (std::mem::size_of::<Vec3>() + std::mem::size_of::<f32>()) as u64;
+        let texel = (std::mem::size_of::<Vec3>() + 2 * std::mem::size_of::<f32>()) as u64;
         (per_axis * per_axis * texel)
             .saturating_add(samples.saturating_mul(std::mem::size_of::<Piece>() as u64))
     }
@@ -256,6 +260,36 @@ impl SurfaceShadow {
             let m = origin + Vec2::new(x, y) * texel_m;
             *l = solids.entry_depth(Vec3::new(0.0, m.x, m.y)) + tolerance;
         });
+        // Which texels any surface reads: a point on a solid reads the four texels around it
+        // (bilinear), all within one texel of a texel whose ray meets that solid (its limit is
+        // finite: `entry_depth` already looks 2 occluder texels around). A piece whose box,
+        // widened by 2 texels, holds no such texel deposits only where nothing is read, so it
+        // is skipped: the values every surface reads are the same bits, and hair with no solid
+        // behind it (31% of smooth's samples under the default light) costs nothing.
+        let (rows1, cols1) = (dims[0] + 1, dims[1] + 1);
+        let sat = &mut self.solid_sat;
+        sat.clear();
+        sat.resize(rows1 * cols1, 0);
+        for x in 0..dims[0] {
+            let mut run = 0u32;
+            for y in 0..dims[1] {
+                run += u32::from(self.limit[x * dims[1] + y].is_finite());
+                sat[(x + 1) * cols1 + y + 1] = sat[x * cols1 + y + 1] + run;
+            }
+        }
+        let sat = &self.solid_sat;
+        let reads_any = |p: &Piece| {
+            let (x0, x1) = (
+                (p.x0 as usize).saturating_sub(2),
+                (p.x1 as usize + 2).min(dims[0]),
+            );
+            let (y0, y1) = (
+                (p.y0 as usize).saturating_sub(2),
+                (p.y1 as usize + 2).min(dims[1]),
+            );
+            sat[x1 * cols1 + y1] + sat[x0 * cols1 + y0]
+                != sat[x0 * cols1 + y1] + sat[x1 * cols1 + y0]
+        };
         // 1. Each sample's ribbon and its normalisation, in parallel.
         let r = input.fiber.params().radius_m;
         let count = input
@@ -309,6 +343,9 @@ impl SurfaceShadow {
                         return None;
                     }
                     let mut piece = Piece::new(a, b, (depth_a, depth_b), half_w, dims)?;
+                    if !reads_any(&piece) {
+                        return None;
+                    }
                     let sum = piece.overlap_sum();
                     (sum > 0.0).then(|| {
                         piece.per = loss * (inv_texel * inv_texel / sum);
