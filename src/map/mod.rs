@@ -76,6 +76,7 @@ mod build;
 mod column;
 pub mod contact;
 pub mod exact;
+mod lateral_bins;
 mod lookup;
 pub(crate) mod occluders;
 pub mod surface;

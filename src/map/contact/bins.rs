@@ -2,6 +2,7 @@
 //! r-widened lateral box touches, listed in each bin by nearest depth first.
 
 use super::{ContactShadows, MAX_BINS, Segment};
+use crate::map::lateral_bins::list_by_depth;
 use glam::Vec2;
 use rayon::prelude::*;
 
@@ -90,48 +91,16 @@ impl ContactShadows {
             .iter()
             .map(|s| s.dx.abs())
             .fold(0.0f32, f32::max);
-        let ny = self.dims[1];
-        let mut start = vec![0u32; self.dims[0] * ny + 1];
         let rects: Vec<_> = self.segments.par_iter().map(|s| self.seg_rect(s)).collect();
-        for ([x0, y0], [x1, y1]) in rects.iter().flatten() {
-            for bx in *x0..=*x1 {
-                for by in *y0..=*y1 {
-                    start[bx * ny + by + 1] += 1;
-                }
-            }
-        }
-        for i in 1..start.len() {
-            start[i] += start[i - 1];
-        }
-        let mut cursor = start.clone();
-        let mut items = vec![0u32; *start.last().unwrap_or(&0) as usize];
-        for (i, rect) in rects.iter().enumerate() {
-            if let Some(([x0, y0], [x1, y1])) = rect {
-                for bx in *x0..=*x1 {
-                    for by in *y0..=*y1 {
-                        let c = &mut cursor[bx * ny + by];
-                        items[*c as usize] = i as u32;
-                        *c += 1;
-                    }
-                }
-            }
-        }
-        let segs = &self.segments;
-        let mut bins: Vec<&mut [u32]> = Vec::with_capacity(start.len() - 1);
-        let mut rest: &mut [u32] = &mut items;
-        for w in start.windows(2) {
-            let (a, b) = std::mem::take(&mut rest).split_at_mut((w[1] - w[0]) as usize);
-            bins.push(a);
-            rest = b;
-        }
         // Ties (equal nearest depth) by index: a total order, so the bins do not depend on
         // the thread count.
-        bins.into_par_iter().for_each(|bin| {
-            bin.sort_unstable_by(|a, b| {
-                let (sa, sb) = (&segs[*a as usize], &segs[*b as usize]);
-                sa.x_min().total_cmp(&sb.x_min()).then(a.cmp(b))
-            })
-        });
+        let segs = &self.segments;
+        let (start, items) = list_by_depth(
+            self.dims,
+            segs.len(),
+            |i| rects[i],
+            |i| segs[i as usize].x_min(),
+        );
         self.bin_items = items;
         self.bin_start = start;
     }

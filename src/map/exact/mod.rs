@@ -49,6 +49,7 @@
 //! run in parallel and the results do not depend on the thread count (each query is
 //! independent and sums its rays in a fixed order).
 
+use super::lateral_bins::list_by_depth;
 use super::{MapLight, Projection};
 use crate::fiber::Fiber;
 use glam::{Vec2, Vec3};
@@ -266,46 +267,20 @@ impl<'a> ExactReference<'a> {
                 (l.y.max(0.0) as usize, (h.y as usize).min(dims[1] - 1)),
             )
         };
-        let mut bin_start = vec![0u32; dims[0] * dims[1] + 1];
-        for s in &segments {
-            let ((x0, x1), (y0, y1)) = bin_range(s);
-            for bx in x0..=x1 {
-                for by in y0..=y1 {
-                    bin_start[bx * dims[1] + by + 1] += 1;
-                }
-            }
-        }
-        for i in 1..bin_start.len() {
-            bin_start[i] += bin_start[i - 1];
-        }
-        let mut cursor = bin_start.clone();
-        let mut bin_items = vec![0u32; *bin_start.last().unwrap_or(&0) as usize];
-        for (i, s) in segments.iter().enumerate() {
-            let ((x0, x1), (y0, y1)) = bin_range(s);
-            for bx in x0..=x1 {
-                for by in y0..=y1 {
-                    let c = &mut cursor[bx * dims[1] + by];
-                    bin_items[*c as usize] = i as u32;
-                    *c += 1;
-                }
-            }
-        }
         // Each bin sorted by the segments' nearest depth to the light, so a ray stops at the
         // first segment that lies wholly behind its start.
-        let x_min = |i: u32| {
-            let s = &segments[i as usize];
-            s.x_a.min(s.x_a + s.dx)
-        };
-        let mut slices = Vec::with_capacity(bin_start.len().saturating_sub(1));
-        let mut rest: &mut [u32] = &mut bin_items;
-        for w in bin_start.windows(2) {
-            let (a, b) = std::mem::take(&mut rest).split_at_mut((w[1] - w[0]) as usize);
-            slices.push(a);
-            rest = b;
-        }
-        slices.into_par_iter().for_each(|bin| {
-            bin.sort_unstable_by(|a, b| x_min(*a).total_cmp(&x_min(*b)).then(a.cmp(b)))
-        });
+        let (bin_start, bin_items) = list_by_depth(
+            dims,
+            segments.len(),
+            |i| {
+                let ((x0, x1), (y0, y1)) = bin_range(&segments[i]);
+                Some(([x0, y0], [x1, y1]))
+            },
+            |i| {
+                let s = &segments[i as usize];
+                s.x_a.min(s.x_a + s.dx)
+            },
+        );
         Self {
             proj,
             fiber: input.fiber,
