@@ -35,7 +35,13 @@ fn exported_scene_reads_back() {
     );
     e.frame(0.0);
     let scene = write_reference_scene(&e, &dir, 0.0).unwrap();
-    for f in ["hair.hair", "scene.json", "wisp.exr", "wisp.png"] {
+    for f in [
+        "hair.hair",
+        "scene.json",
+        "wisp.exr",
+        "wisp.png",
+        "vertex_rgb.f32",
+    ] {
         assert!(dir.join(f).exists(), "{f}");
         assert!(
             !dir.join(format!("{f}.tmp")).exists(),
@@ -86,6 +92,19 @@ fn exported_scene_reads_back() {
     assert_eq!((w, h), (96, 64));
     assert_eq!(rgb, fb.color);
     assert_eq!(alpha, fb.coverage);
+
+    // vertex_rgb.f32: the shaded colour of every point, in hair.hair's order, bit for bit.
+    let bytes = std::fs::read(dir.join("vertex_rgb.f32")).unwrap();
+    assert_eq!(bytes.len(), 12 * hair.points.len());
+    let back: Vec<Vec3> = bytes
+        .chunks_exact(12)
+        .map(|c| {
+            let f = |k: usize| f32::from_le_bytes(c[4 * k..4 * k + 4].try_into().unwrap());
+            Vec3::new(f(0), f(1), f(2))
+        })
+        .collect();
+    assert_eq!(back, e.colors());
+    assert!(back.iter().any(|c| c.max_element() > 0.0), "all black");
 }
 
 #[test]

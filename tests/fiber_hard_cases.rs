@@ -140,6 +140,7 @@ fn check_fiber(fiber: &Fiber) {
         ShadingMode::DualScattering,
         ShadingMode::SingleScattering,
         ShadingMode::KajiyaKay,
+        ShadingMode::Visibility,
     ] {
         for wi in &dirs {
             for wo in &dirs {
@@ -149,6 +150,40 @@ fn check_fiber(fiber: &Fiber) {
                         v.is_finite() && v.min_element() >= 0.0,
                         "{mode:?} {wi} {wo} {v}"
                     );
+                }
+            }
+        }
+    }
+}
+
+/// `Visibility` is the shadows alone: the direct fraction for any directions (degenerate ones
+/// too: a fibre with no usable tangent still has its shadow), clamped to [0, 1], NaN as 0, and
+/// blind to T_f, the spread and the fibre model.
+#[test]
+fn visibility_is_the_direct_fraction_alone() {
+    let fiber = Fiber::new(&FiberParams::default());
+    let u = Vec3::Y;
+    let dirs = hard_directions();
+    for (direct, want) in [
+        (0.0f32, 0.0f32),
+        (0.37, 0.37),
+        (1.0, 1.0),
+        (1.5, 1.0),
+        (-0.2, 0.0),
+        (f32::NAN, 0.0),
+        (f32::INFINITY, 0.0),
+    ] {
+        let light = LightAtPoint {
+            direct_fraction: direct,
+            tf: Vec3::new(0.9, 0.1, f32::NAN),
+            sigma_f2: Vec3::splat(3.0),
+            crossings_behind: 7.0,
+        };
+        for wi in &dirs {
+            for wo in &dirs {
+                for tangent in [u, Vec3::ZERO] {
+                    let v = fiber.shade(ShadingMode::Visibility, tangent, *wi, *wo, &light);
+                    assert_eq!(v, Vec3::splat(want), "direct {direct} {wi} {wo}");
                 }
             }
         }

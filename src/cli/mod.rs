@@ -120,12 +120,16 @@ pub enum Command {
 /// Fibre shader choice on the command line.
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum ShadingArg {
-    /// Dual scattering (Zinke 2008): Marschner BCSDF plus multiple scattering.
+    /// Dual scattering (Zinke 2008): the fibre's BCSDF plus multiple scattering.
     Dual,
-    /// Marschner BCSDF attenuated by the forward transmittance only.
+    /// Single scattering with hard shadows: the BCSDF times the light that reaches the point
+    /// through no fibre.
     Single,
     /// Kajiya-Kay scaled by transmittance (Bertails 2005).
     KajiyaKay,
+    /// The shadows alone: grey = the irradiance reaching the hair through no fibre (no fibre
+    /// model, no ambient on the hair).
+    Visibility,
 }
 
 impl From<ShadingArg> for ShadingMode {
@@ -134,6 +138,7 @@ impl From<ShadingArg> for ShadingMode {
             ShadingArg::Dual => ShadingMode::DualScattering,
             ShadingArg::Single => ShadingMode::SingleScattering,
             ShadingArg::KajiyaKay => ShadingMode::KajiyaKay,
+            ShadingArg::Visibility => ShadingMode::Visibility,
         }
     }
 }

@@ -105,7 +105,8 @@ pub fn run(args: PlayArgs) -> Result<(), AppError> {
                     engine.config.lighting.mode = match engine.config.lighting.mode {
                         ShadingMode::DualScattering => ShadingMode::SingleScattering,
                         ShadingMode::SingleScattering => ShadingMode::KajiyaKay,
-                        ShadingMode::KajiyaKay => ShadingMode::DualScattering,
+                        ShadingMode::KajiyaKay => ShadingMode::Visibility,
+                        ShadingMode::Visibility => ShadingMode::DualScattering,
                     }
                 }
                 Key::C => engine.config.self_collision = !engine.config.self_collision,

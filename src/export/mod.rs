@@ -9,7 +9,11 @@
 //!   ambient, image size, fibres per strand, wisp's fibre parameters verbatim and their
 //!   mapping to Mitsuba 3's `hair` BSDF ([`mitsuba`]);
 //! - `wisp.exr`: the frame as linear RGBA float, coverage in alpha (RGB premultiplied: the
-//!   engine must have drawn over a black background), and `wisp.png` to look at.
+//!   engine must have drawn over a black background), and `wisp.png` to look at;
+//! - `vertex_rgb.f32`: the colour wisp shaded each render-strand point with (linear RGB, three
+//!   little-endian f32 per point, in `hair.hair`'s point order), so a reference can take
+//!   wisp's shading apart from its raster: `tools/reference/visibility.py --decompose` puts
+//!   these colours on the fibres the path tracer sees.
 //!
 //! Every file is written under a temporary name and renamed into place.
 
@@ -107,6 +111,7 @@ pub const HAIR_FILE: &str = "hair.hair";
 pub const SCENE_FILE: &str = "scene.json";
 pub const WISP_EXR: &str = "wisp.exr";
 pub const WISP_PNG: &str = "wisp.png";
+pub const VERTEX_RGB: &str = "vertex_rgb.f32";
 
 /// The one directional light a reference scene describes (tools/reference renders exactly
 /// that): its direction of travel and irradiance, or why `lights` is not such a scene.
@@ -175,7 +180,24 @@ impl ReferenceScene {
     }
 }
 
-/// Writes `hair.hair`, `scene.json`, `wisp.exr` and `wisp.png` for `engine`'s last rendered
+/// Writes `colors` as three little-endian f32 per point ([`VERTEX_RGB`]), atomically.
+fn write_vertex_rgb(path: &Path, colors: &[glam::Vec3]) -> Result<(), OutputError> {
+    let bytes: Vec<u8> = colors
+        .iter()
+        .flat_map(|c| c.to_array())
+        .flat_map(f32::to_le_bytes)
+        .collect();
+    write_atomically(path, |mut file| {
+        use std::io::Write;
+        file.write_all(&bytes).map_err(|error| OutputError::Io {
+            path: path.to_path_buf(),
+            error,
+        })?;
+        Ok(file)
+    })
+}
+
+/// Writes `hair.hair`, `scene.json`, `wisp.exr`, `wisp.png` and `vertex_rgb.f32` for `engine`'s last rendered
 /// frame (call [`Engine::frame`] first) into the existing directory `dir`. Returns the scene
 /// description written.
 pub fn write_reference_scene(
@@ -208,6 +230,7 @@ pub fn write_reference_scene(
         &fb.coverage,
     )?;
     write_png_rgb8(&dir.join(WISP_PNG), fb.width, fb.height, &fb.to_srgb8())?;
+    write_vertex_rgb(&dir.join(VERTEX_RGB), engine.colors())?;
     let text = serde_json::to_string_pretty(&scene).map_err(|e| ExportError::Scene {
         path: scene_path.clone(),
         message: e.to_string(),

@@ -82,6 +82,12 @@ pub enum ShadingMode {
     SingleScattering,
     /// Kajiya-Kay diffuse + specular scaled by transmittance (Bertails 2005 §3.3).
     KajiyaKay,
+    /// The shadows alone, no fibre model: the share of the light that reaches the point
+    /// through no fibre (`direct_fraction`), so a pixel shows the irradiance that arrives
+    /// directly at the hair it sees. It is what single scattering multiplies its BCSDF by, and
+    /// what `tools/reference/visibility.py` path-traces, so shadows can be checked apart from
+    /// the fibre model (ACCURACY.md §2, "Where the side-lit deficit comes from").
+    Visibility,
 }
 
 /// What the light-oriented map knows about the light reaching a point (all dimensionless).
@@ -331,6 +337,11 @@ impl Fiber {
         wo: Vec3,
         light: &LightAtPoint,
     ) -> Vec3 {
+        // The shadows alone need no angles (a degenerate tangent still has its shadow).
+        let visibility = || Vec3::splat(shader::unit_or_zero(light.direct_fraction));
+        if mode == ShadingMode::Visibility {
+            return visibility();
+        }
         let Some((a, sines)) = HairAngles::from_vectors_trig(u, wi, wo) else {
             return Vec3::ZERO;
         };
@@ -338,6 +349,7 @@ impl Fiber {
             ShadingMode::DualScattering => self.shade_dual(&a, &Trig::from_sines(sines), light),
             ShadingMode::SingleScattering => self.shade_single(&a, &Trig::from_sines(sines), light),
             ShadingMode::KajiyaKay => self.kk.shade(&a, light),
+            ShadingMode::Visibility => visibility(),
         };
         if v.is_finite() { v } else { Vec3::ZERO }
     }

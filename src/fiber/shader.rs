@@ -399,7 +399,7 @@ fn chiang_lobes(c: &ChiangShading, t: &Trig, n: &[Vec3; 7]) -> [Vec3; 4] {
 
 /// A fraction in [0, 1]; NaN and infinities read as 0.
 #[inline]
-fn unit_or_zero(x: f32) -> f32 {
+pub(crate) fn unit_or_zero(x: f32) -> f32 {
     if x.is_finite() {
         x.clamp(0.0, 1.0)
     } else {

@@ -111,7 +111,7 @@ pub fn shade_vertices(
     let shaded = &mut scratch.shaded;
     shaded.clear();
     shaded.resize(n, Vec3::ZERO);
-    let ambient = lighting.ambient * fibre_tint(fiber);
+    let ambient = hair_ambient(fiber, lighting);
     shaded
         .par_chunks_mut(CHUNK)
         .zip(keyed.par_chunks(CHUNK))
@@ -139,6 +139,16 @@ pub fn shade_vertices(
     colors.resize(positions.len(), Vec3::ZERO);
     for (c, &(_, i)) in shaded.iter().zip(keyed.iter()) {
         colors[i as usize] = *c;
+    }
+}
+
+/// The ambient radiance added to every hair vertex: the sky tinted by the fibre, none when the
+/// picture shows the shadows alone (`ShadingMode::Visibility`).
+fn hair_ambient(fiber: &Fiber, lighting: &Lighting) -> Vec3 {
+    if lighting.mode == ShadingMode::Visibility {
+        Vec3::ZERO
+    } else {
+        lighting.ambient * fibre_tint(fiber)
     }
 }
 
@@ -188,7 +198,7 @@ pub fn shade_vertices_with<L>(
     L: Fn(usize, usize, Vec3) -> LightAtPoint + Sync,
 {
     colors.resize(positions.len(), Vec3::ZERO);
-    let ambient = lighting.ambient * fibre_tint(fiber);
+    let ambient = hair_ambient(fiber, lighting);
     colors
         .par_chunks_mut(CHUNK)
         .zip(positions.par_chunks(CHUNK).zip(tangents.par_chunks(CHUNK)))

@@ -76,6 +76,7 @@ impl Readout {
                 ShadingMode::DualScattering => "dual",
                 ShadingMode::SingleScattering => "single",
                 ShadingMode::KajiyaKay => "kajiya-kay",
+                ShadingMode::Visibility => "visibility",
             },
             if self.self_collision { "on" } else { "off" },
         );
