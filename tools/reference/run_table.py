@@ -2,6 +2,7 @@
 """Regenerates issue 14's comparison table: wisp against Mitsuba 3 (not run by CI).
 
     run_table.py [--out DIR] [--size 400] [--spp 128] [--passes 8] [--only dense,isolated,curly]
+                 [--lights front,side,back] [--kinds dual,single]
 
 For every case it writes hairstyle JSON generated from the presets into DIR/styles (no new
 preset files), exports the frame with `wisp export` (dual and single shading), renders the
@@ -148,6 +149,8 @@ def main():
     ap.add_argument("--spp", type=int, default=128)
     ap.add_argument("--passes", type=int, default=8)
     ap.add_argument("--only", default="dense,isolated,curly")
+    ap.add_argument("--lights", default="front,side,back", help="which of front,side,back")
+    ap.add_argument("--kinds", default="dual,single", help="which of dual,single (a single-only run takes minutes)")
     ap.add_argument("--model", help="set fiber.model in every hairstyle (e.g. chiang)")
     ap.add_argument("--dual-shading", default="dual", help="wisp --shading for the all-orders column")
     ap.add_argument("--single-shading", default="single", help="wisp --shading for the single column")
@@ -164,7 +167,10 @@ def main():
     os.makedirs(styles_dir, exist_ok=True)
     results = open(os.path.join(args.out, "results.jsonl"), "a")
     camera = {}
+    lights, kinds = args.lights.split(","), args.kinds.split(",")
     for case, colour, light, style in cases(args.only.split(","), args.model):
+        if light not in lights:
+            continue
         style_path = os.path.join(styles_dir, f"{style['name']}.json")
         json.dump(style, open(style_path, "w"), indent=1)
         common = [args.wisp, "export", "--quiet", "--hairstyle", style_path, "--still",
@@ -180,6 +186,8 @@ def main():
                 "--camera-up", vec(cam["up"]), "--fov-deg", f"{cam['fov_y_deg']:.6g}",
                 "--light-dir", vec(light_dir(cam, light))]
         for kind, shading, depth in (("dual", args.dual_shading, 64), ("single", args.single_shading, 2)):
+            if kind not in kinds:
+                continue
             d = os.path.join(args.out, case, f"{colour}-{light}-{kind}")
             p, _ = run([c for c in common if c != "--quiet"] + view + ["--shading", shading, "--out", d])
             wisp_ms = float(re.search(r"frame ([0-9.]+) ms", p.stderr).group(1))
