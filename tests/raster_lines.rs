@@ -212,6 +212,41 @@ fn nearer_hair_is_on_top_in_any_order() {
     }
 }
 
+/// Two opaque lines on the same pixels whose depths cross halfway (one runs near to far, the
+/// other far to near, so their mid-points are equally deep): each pixel shows the one nearer
+/// *there*, in either input order. Sorting whole segments by mid-point depth, as the raster
+/// did before per-pixel order, put one line on top along its whole length.
+#[test]
+fn lines_crossing_in_depth_are_ordered_per_pixel() {
+    let cam = axis_camera(64, 64);
+    let a = [
+        unproject(&cam, 2.0, 32.5, 1.0),
+        unproject(&cam, 62.0, 32.5, 3.0),
+    ];
+    let b = [
+        unproject(&cam, 2.0, 32.5, 3.0),
+        unproject(&cam, 62.0, 32.5, 1.0),
+    ];
+    let (red, blue) = (Vec3::X, Vec3::Z);
+    for a_first in [true, false] {
+        let (pts, cols) = if a_first {
+            ([a[0], a[1], b[0], b[1]], [red, red, blue, blue])
+        } else {
+            ([b[0], b[1], a[0], a[1]], [blue, blue, red, red])
+        };
+        let mut fb = Framebuffer::new(64, 64, Vec3::ZERO);
+        draw(&mut fb, &cam, &pts, &cols, 2, LineStyle::default());
+        // a's depth along the row: 1/z is linear on screen, from 1 to 1/3; b's from 1/3 to 1.
+        // They are equally deep at x = 32; a is nearer left of it, b right of it.
+        for x in [4, 16, 28] {
+            assert_eq!(fb.pixel(x, 32).unwrap(), red, "a_first {a_first}, x {x}");
+        }
+        for x in [36, 48, 60] {
+            assert_eq!(fb.pixel(x, 32).unwrap(), blue, "a_first {a_first}, x {x}");
+        }
+    }
+}
+
 /// Small deterministic generator (xorshift64*), so the tests need no extra crate.
 struct Rng(u64);
 impl Rng {

@@ -9,6 +9,8 @@ use glam::Vec3;
 const BAND_ROWS: u64 = 16;
 /// Segments per set-up chunk: `SETUP_CHUNK` in `lines.rs`.
 const SETUP_CHUNK: u64 = 4096;
+/// Bytes of one fragment: `Frag` in `lines.rs` (pixel, 1/depth bits, α, RGB).
+const FRAG_BYTES: u64 = 24;
 
 impl Framebuffer {
     /// Bytes of a `width` × `height` framebuffer: linear RGB (`Vec3`), depth and coverage
@@ -22,14 +24,24 @@ impl LineScratch {
     /// Bytes [`draw_polylines`](super::draw_polylines) keeps for `segments` segments on an
     /// image `height` rows high, when a segment covers `rows_per_segment` rows on average:
     /// each segment is binned once per band it touches (`Seg` in its chunk's list, then
-    /// gathered into the band's list) with two `u64` sort keys, plus one list header per chunk
-    /// and band.
+    /// gathered into a band's list) with two `u64` sort keys, plus one list header per chunk
+    /// and band; and per worker thread, the fragments of the densest band twice (emitted, then
+    /// grouped by pixel; `Frag` is 24 bytes). A segment covers about 3 pixel centres per row it
+    /// crosses at the 1 px minimum width; the densest band is taken as 8 times the mean band,
+    /// at most the whole frame (the hair's screen rows hold it all in a fraction of the bands).
     pub fn estimated_bytes(segments: u64, height: u32, rows_per_segment: f64) -> u64 {
         let bands = (height as u64).div_ceil(BAND_ROWS).max(1);
         let touched = (1.0 + rows_per_segment.max(0.0) / BAND_ROWS as f64).min(bands as f64);
         let binned = (segments as f64 * touched).ceil() as u64;
         let per_binned = 2 * size_of::<Seg>() as u64 + 2 * size_of::<u64>() as u64;
         let headers = segments.div_ceil(SETUP_CHUNK) * bands * size_of::<Vec<Seg>>() as u64;
-        binned.saturating_mul(per_binned).saturating_add(headers)
+        let fragments = segments as f64 * 3.0 * (rows_per_segment.max(0.0) + 1.0);
+        let densest_band = (fragments * 8.0 / bands as f64).min(fragments).ceil() as u64;
+        let threads = rayon::current_num_threads().max(1) as u64;
+        let per_thread = densest_band.saturating_mul(2 * FRAG_BYTES);
+        binned
+            .saturating_mul(per_binned)
+            .saturating_add(headers)
+            .saturating_add(per_thread.saturating_mul(threads))
     }
 }

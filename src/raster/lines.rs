@@ -25,12 +25,16 @@
 //! 2. **Raster** (parallel over bands): a band concatenates its lists from all chunks in chunk
 //!    order (= input order) into one contiguous array, sorts keys — mid-point 1/depth bits high,
 //!    position low: far to near, ties in input order, a total order fixed by the input alone —
-//!    with a radix sort, and draws each segment over its rows, visiting only pixel centres in
-//!    the segment's expanded rectangle. Bands are whole rows so each owns a disjoint `&mut`
-//!    slice of the framebuffer (no `unsafe`, no locks).
+//!    with a radix sort, and walks each segment over its rows, visiting only pixel centres in
+//!    the segment's expanded rectangle, emitting one fragment (pixel, 1/depth, α, colour) per
+//!    covered centre nearer than the opaque depth. A stable counting sort groups the fragments
+//!    by pixel, and each pixel composites its own back to front by its own 1/depth (most runs
+//!    are already in order from the segment sort; the rest are sorted). Bands are whole rows so
+//!    each owns a disjoint `&mut` slice of the framebuffer (no `unsafe`); the working buffers
+//!    are per worker thread (an uncontended lock each).
 //!
-//! Measured (100K segments of curly hair around a head at 1280x720, `benches/raster.rs`, the
-//! 2 cores shared with other builds): about 27 ms per frame on one core (best of 30; criterion
+//! Measured before per-pixel order (100K segments of curly hair around a head at 1280x720,
+//! `benches/raster.rs`, the 2 cores shared with other builds): about 27 ms per frame on one core (best of 30; criterion
 //! median 29 ms under load), of which the depth sort is about 1.5 ms (input order: 25 ms).
 //! Rejected on the way: the first version — a serial binning pass, one shared segment array
 //! read in sorted order, `sort_unstable`, libm `ceil`/`floor` and saturating `as usize` per
@@ -48,18 +52,25 @@
 //! interpolated linearly in screen space within a segment (segments are a few pixels long),
 //! perspective-correctly at clip points.
 //!
-//! Hair over hair: hair does not write depth. Each band composites its segments with "over"
-//! (`dst += (src − dst)·α`, α = coverage × opacity) sorted back to front by segment mid-point
-//! depth, so nearer hair is always on top regardless of input order, and the result depends
-//! only on the input, never on the thread count (each pixel belongs to one band, processed by
-//! one thread in one order). Per-segment sorting is the classic approach for hair (Sintorn &
-//! Assarsson 2008 sort hair segments for the same reason); it misorders only segments that
-//! cross in depth within one pixel. Rejected: a hair z-buffer (depth write + "over" in input
-//! order) drops hair behind the anti-aliased fringe of nearer hair, leaving dark halos, and
-//! makes the picture depend on strand order; weighted blended OIT is order independent but
+//! Hair over hair: hair does not write depth. Each pixel composites the fragments that cover
+//! it with "over" (`dst += (src − dst)·α`, α = coverage × opacity) back to front by 1/depth at
+//! the pixel centre, ties in the segment order above, so nearer hair is on top at every pixel
+//! regardless of input order, and the result depends only on the input, never on the thread
+//! count (each pixel belongs to one band, processed by one thread in one order). Until
+//! 2026-12-04 whole segments were composited in mid-point depth order (the classic approach,
+//! as Sintorn & Assarsson 2008 sort hair segments); that misorders any two segments whose
+//! depths cross where they overlap, which dense hair does all the time (one fibre weaves over
+//! and under its neighbours within a segment): against a path tracer's first-hit fibres, the
+//! raster showed side-lit dense hair 3.6% darker than its own vertex values on those fibres
+//! (0.964), per-pixel order 1.0% (0.990); smooth at 1280×720 costs about 14 ms more on 2
+//! threads (ACCURACY.md §2, BENCHMARKS.md). Rejected: a hair z-buffer (depth write + "over" in
+//! input order) drops hair behind the anti-aliased fringe of nearer hair, leaving dark halos,
+//! and makes the picture depend on strand order; weighted blended OIT is order independent but
 //! does not make near hair opaque over far hair, so dense hair turns into an average colour.
 //! Known approximation: the head's anti-aliased edge pixels (centre outside the silhouette)
 //! hold no depth, so hair behind the head shows through that one-pixel fringe.
+
+use std::sync::Mutex;
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -79,16 +90,38 @@ pub struct LineScratch {
     /// Per set-up chunk, per band: the chunk's visible segments touching the band, in input
     /// order. Inner capacities persist across frames.
     chunks: Vec<Vec<Vec<Seg>>>,
-    /// Per band: its segments gathered contiguously in input order, and their sort keys
-    /// (see `band_key`) with the radix sort's second buffer. Capacities persist.
-    bands: Vec<BandScratch>,
+    /// Per worker thread: the band being drawn (its segments, fragments and their sort).
+    /// Capacities persist; a thread reuses its buffers for every band it draws.
+    threads: Vec<Mutex<BandScratch>>,
 }
 
 #[derive(Debug, Default)]
 struct BandScratch {
+    /// The band's segments gathered contiguously in input order, and their sort keys (see
+    /// `band_key`) with the radix sort's second buffer.
     segs: Vec<Seg>,
     keys: Vec<u64>,
     tmp: Vec<u64>,
+    /// Its fragments in emission order, then sorted by pixel (`sorted`, with each pixel's
+    /// first index in `starts`).
+    frags: Vec<Frag>,
+    sorted: Vec<Frag>,
+    starts: Vec<u32>,
+    /// One out-of-order pixel's sort keys.
+    run_keys: Vec<u64>,
+}
+
+/// One segment's coverage of one pixel centre: 24 bytes.
+#[derive(Clone, Copy, Debug, Default)]
+struct Frag {
+    /// Pixel index within the band.
+    pixel: u32,
+    /// Bits of 1/depth at the pixel centre (positive, so they order like the value).
+    iz_bits: u32,
+    /// Coverage × opacity, in (0, 1].
+    alpha: f32,
+    /// Linear RGB at the pixel centre.
+    color: Vec3,
 }
 
 impl LineScratch {
@@ -99,16 +132,22 @@ impl LineScratch {
             .iter()
             .map(|c| c.iter().map(Vec::capacity).sum::<usize>() + c.capacity())
             .sum();
-        let band_segs: usize = self.bands.iter().map(|b| b.segs.capacity()).sum();
-        let keys: usize = self
-            .bands
+        let per_thread: usize = self
+            .threads
             .iter()
-            .map(|b| b.keys.capacity() + b.tmp.capacity())
+            .map(|t| {
+                let t = t.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+                t.segs.capacity() * size_of::<Seg>()
+                    + (t.keys.capacity() + t.tmp.capacity()) * 8
+                    + (t.frags.capacity() + t.sorted.capacity()) * size_of::<Frag>()
+                    + t.starts.capacity() * 4
+                    + t.run_keys.capacity() * 8
+            })
             .sum();
-        (segs + band_segs) * size_of::<Seg>()
-            + keys * 8
+        segs * size_of::<Seg>()
+            + per_thread
             + self.chunks.capacity()
-            + self.bands.capacity()
+            + self.threads.capacity() * size_of::<Mutex<BandScratch>>()
     }
 }
 
@@ -203,19 +242,35 @@ pub fn draw_polylines(
         });
 
     // 2. Raster, parallel over bands: gather the band's segments contiguously in input order
-    //    (the sorted walk then stays within one cache-resident array), sort far to near, draw.
-    if scratch.bands.len() < band_count {
-        scratch.bands.resize_with(band_count, Default::default);
+    //    (the walk then stays within one cache-resident array), turn them into fragments,
+    //    sort the fragments by pixel and depth, composite. Working memory is per thread.
+    let threads = rayon::current_num_threads().max(1);
+    if scratch.threads.len() < threads {
+        scratch.threads.resize_with(threads, Default::default);
     }
     let chunks = &scratch.chunks[..chunk_count];
+    let pool = &scratch.threads;
     fb.color
         .par_chunks_mut(width * BAND_ROWS)
         .zip(fb.depth.par_chunks(width * BAND_ROWS))
         .zip(fb.coverage.par_chunks_mut(width * BAND_ROWS))
-        .zip(scratch.bands[..band_count].par_iter_mut())
         .enumerate()
-        .for_each(|(b, (((color, depth), coverage), scratch))| {
-            let BandScratch { segs, keys, tmp } = scratch;
+        .for_each(|(b, ((color, depth), coverage))| {
+            // Each worker thread has its own scratch; the lock is never contended. A poisoned
+            // lock only means another band panicked, and the buffers are cleared before use.
+            let slot = rayon::current_thread_index().unwrap_or(0) % pool.len();
+            let mut guard = pool[slot]
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner);
+            let BandScratch {
+                segs,
+                keys,
+                tmp,
+                frags,
+                sorted,
+                starts,
+                run_keys,
+            } = &mut *guard;
             segs.clear();
             for bins in chunks {
                 if let Some(bin) = bins.get(b) {
@@ -231,8 +286,50 @@ pub fn draw_polylines(
                 depth,
                 coverage,
             };
-            draw_band(&params, segs, keys, band);
+            emit_fragments(&params, segs, keys, &band, frags);
+            sort_by_pixel(frags, sorted, starts, band.color.len());
+            composite(sorted, starts, run_keys, band);
         });
+    // Which thread draws which band varies between frames: give every thread the largest
+    // capacities any of them needed, so a warmed-up frame allocates nothing whichever bands
+    // its threads get.
+    equalise_capacities(&mut scratch.threads);
+}
+
+/// Grows every thread's buffers to the largest capacity among them (a no-op once warm).
+fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
+    let mut need = [0usize; 7];
+    let caps = |t: &BandScratch| {
+        [
+            t.keys.capacity(),
+            t.tmp.capacity(),
+            t.segs.capacity(),
+            t.frags.capacity(),
+            t.sorted.capacity(),
+            t.starts.capacity(),
+            t.run_keys.capacity(),
+        ]
+    };
+    for t in threads.iter_mut() {
+        let t = t
+            .get_mut()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        for (n, c) in need.iter_mut().zip(caps(t)) {
+            *n = (*n).max(c);
+        }
+    }
+    for t in threads.iter_mut() {
+        let t = t
+            .get_mut()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        t.keys.reserve(need[0].saturating_sub(t.keys.len()));
+        t.tmp.reserve(need[1].saturating_sub(t.tmp.len()));
+        t.segs.reserve(need[2].saturating_sub(t.segs.len()));
+        t.frags.reserve(need[3].saturating_sub(t.frags.len()));
+        t.sorted.reserve(need[4].saturating_sub(t.sorted.len()));
+        t.starts.reserve(need[5].saturating_sub(t.starts.len()));
+        t.run_keys.reserve(need[6].saturating_sub(t.run_keys.len()));
+    }
 }
 
 /// Sorts band keys ascending. Positions (the low 32 bits) are already ascending, so a stable
@@ -299,8 +396,11 @@ fn fmax(a: f32, b: f32) -> f32 {
     if a > b { a } else { b }
 }
 
-/// Draws the segments of band `b`, whose keys are sorted far to near.
-fn draw_band(p: &Params, segs: &[Seg], keys: &[u64], band: Band) {
+/// Appends to `frags` one fragment per pixel centre that segment `segs[i]` covers in this band
+/// and that lies nearer than the opaque depth, in segment order (= input order), pixels in
+/// row order within a segment.
+fn emit_fragments(p: &Params, segs: &[Seg], keys: &[u64], band: &Band, frags: &mut Vec<Frag>) {
+    frags.clear();
     let w = p.width;
     let rows = band.color.len() / w;
     let (row0, row_end) = (band.row0, band.row0 + rows);
@@ -337,15 +437,11 @@ fn draw_band(p: &Params, segs: &[Seg], keys: &[u64], band: Band) {
             // `fa` ≥ 0 and `fb` ≤ last column < 2³¹ here (framebuffer sizes are u32 and fit).
             let (i0, i1) = (ceil_index(fa), fb as i32 as usize);
             let row = (j - row0) * w;
-            let (Some(color), Some(depth), Some(coverage)) = (
-                band.color.get_mut(row + i0..=row + i1),
-                band.depth.get(row + i0..=row + i1),
-                band.coverage.get_mut(row + i0..=row + i1),
-            ) else {
+            let Some(depth) = band.depth.get(row + i0..=row + i1) else {
                 continue;
             };
             let mut rx = i0 as f32 + 0.5 - s.x0;
-            for ((dst, &z), cov) in color.iter_mut().zip(depth).zip(coverage.iter_mut()) {
+            for (px, &z) in (row + i0..).zip(depth) {
                 let d = (s.ux * ry - s.uy * rx).abs();
                 let along = s.ux * rx + s.uy * ry;
                 rx += 1.0;
@@ -370,11 +466,87 @@ fn draw_band(p: &Params, segs: &[Seg], keys: &[u64], band: Band) {
                 if !(iz * z > 1.0) {
                     continue;
                 }
-                let c = s.c0 + (s.c1 - s.c0) * t;
-                *dst += (c - *dst) * alpha;
-                // The box overlap can exceed 1 by float rounding (a few 1e-7 for wide lines);
-                // coverage must stay in [0, 1].
-                *cov += (1.0 - *cov) * fmin(alpha, 1.0);
+                frags.push(Frag {
+                    pixel: px as u32,
+                    // 1/z > 0 here (it beat the opaque depth), so its bits order like its value.
+                    iz_bits: iz.to_bits(),
+                    // The box overlap can exceed 1 by float rounding (a few 1e-7 for wide
+                    // lines); α must stay in [0, 1].
+                    alpha: fmin(alpha, 1.0),
+                    color: s.c0 + (s.c1 - s.c0) * t,
+                });
+            }
+        }
+    }
+}
+
+/// Stable counting sort of `frags` by pixel into `sorted`; on return `starts[p]..starts[p+1]`
+/// is pixel `p`'s run, in emission order.
+fn sort_by_pixel(frags: &[Frag], sorted: &mut Vec<Frag>, starts: &mut Vec<u32>, pixels: usize) {
+    starts.clear();
+    starts.resize(pixels + 1, 0);
+    for f in frags {
+        if let Some(c) = starts.get_mut(f.pixel as usize + 1) {
+            *c += 1;
+        }
+    }
+    for p in 1..=pixels {
+        starts[p] += starts[p - 1];
+    }
+    sorted.clear();
+    sorted.resize(frags.len(), Frag::default());
+    // `starts[p]` walks pixel p's run while scattering, so afterwards it holds the run's end,
+    // which is pixel p + 1's start: shift the table back by one entry.
+    for f in frags {
+        let p = f.pixel as usize;
+        if let Some(slot) = starts.get_mut(p) {
+            let at = *slot as usize;
+            *slot += 1;
+            if let Some(dst) = sorted.get_mut(at) {
+                *dst = *f;
+            }
+        }
+    }
+    starts.copy_within(0..pixels, 1);
+    starts[0] = 0;
+}
+
+/// Composites every pixel's fragments back to front with "over": by 1/depth ascending (far
+/// first), ties in emission order. The fragments were emitted from segments sorted far to near
+/// by mid-point depth, so most runs are in order already (checked in one pass); the rest are
+/// drawn through a sorted list of (1/depth bits, index in the run) keys, which are unique, so
+/// the unstable sort gives one order fixed by the input.
+fn composite(sorted: &[Frag], starts: &[u32], run_keys: &mut Vec<u64>, band: Band) {
+    let over = |dst: &mut Vec3, cov: &mut f32, f: &Frag| {
+        *dst += (f.color - *dst) * f.alpha;
+        *cov += (1.0 - *cov) * f.alpha;
+    };
+    for (p, (dst, cov)) in band
+        .color
+        .iter_mut()
+        .zip(band.coverage.iter_mut())
+        .enumerate()
+    {
+        let (a, b) = (starts[p] as usize, starts[p + 1] as usize);
+        let Some(run) = sorted.get(a..b) else {
+            continue;
+        };
+        if run.is_sorted_by_key(|f| f.iz_bits) {
+            for f in run {
+                over(dst, cov, f);
+            }
+            continue;
+        }
+        run_keys.clear();
+        run_keys.extend(
+            run.iter()
+                .enumerate()
+                .map(|(i, f)| (u64::from(f.iz_bits) << 32) | i as u64),
+        );
+        run_keys.sort_unstable();
+        for &k in run_keys.iter() {
+            if let Some(f) = run.get((k & 0xFFFF_FFFF) as usize) {
+                over(dst, cov, f);
             }
         }
     }
@@ -403,6 +575,12 @@ mod tests {
             sort_keys(&mut keys, &mut Vec::new());
             assert_eq!(keys, expected, "n {n}");
         }
+    }
+
+    /// The memory budget's fragment size (`budget.rs`) is the real one.
+    #[test]
+    fn fragment_is_24_bytes() {
+        assert_eq!(size_of::<Frag>(), 24);
     }
 
     #[test]
