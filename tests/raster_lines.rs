@@ -186,6 +186,21 @@ fn head_hides_lines_behind_it() {
     }
 }
 
+/// Draws one red and one blue opaque 1 px segment on a 64² `axis_camera`, in both input orders
+/// (red first, then blue first); returns the two frames.
+fn red_and_blue_in_both_orders(cam: &Camera, red: [Vec3; 2], blue: [Vec3; 2]) -> [Framebuffer; 2] {
+    let (r, b) = (Vec3::X, Vec3::Z);
+    let orders = [
+        ([red[0], red[1], blue[0], blue[1]], [r, r, b, b]),
+        ([blue[0], blue[1], red[0], red[1]], [b, b, r, r]),
+    ];
+    orders.map(|(pts, cols)| {
+        let mut fb = Framebuffer::new(64, 64, Vec3::ZERO);
+        draw(&mut fb, cam, &pts, &cols, 2, LineStyle::default());
+        fb
+    })
+}
+
 /// Two opaque lines crossing at the image centre: the nearer one is on top whatever the
 /// input order.
 #[test]
@@ -199,16 +214,11 @@ fn nearer_hair_is_on_top_in_any_order() {
         unproject(&cam, 32.5, 0.0, 2.0),
         unproject(&cam, 32.5, 64.0, 2.0),
     ];
-    let (red, blue) = (Vec3::X, Vec3::Z);
-    for near_first in [true, false] {
-        let (pts, cols) = if near_first {
-            ([near[0], near[1], far[0], far[1]], [red, red, blue, blue])
-        } else {
-            ([far[0], far[1], near[0], near[1]], [blue, blue, red, red])
-        };
-        let mut fb = Framebuffer::new(64, 64, Vec3::ZERO);
-        draw(&mut fb, &cam, &pts, &cols, 2, LineStyle::default());
-        assert_eq!(fb.pixel(32, 32).unwrap(), red, "near_first {near_first}");
+    for (k, fb) in red_and_blue_in_both_orders(&cam, near, far)
+        .iter()
+        .enumerate()
+    {
+        assert_eq!(fb.pixel(32, 32).unwrap(), Vec3::X, "order {k}");
     }
 }
 
@@ -227,22 +237,14 @@ fn lines_crossing_in_depth_are_ordered_per_pixel() {
         unproject(&cam, 2.0, 32.5, 3.0),
         unproject(&cam, 62.0, 32.5, 1.0),
     ];
-    let (red, blue) = (Vec3::X, Vec3::Z);
-    for a_first in [true, false] {
-        let (pts, cols) = if a_first {
-            ([a[0], a[1], b[0], b[1]], [red, red, blue, blue])
-        } else {
-            ([b[0], b[1], a[0], a[1]], [blue, blue, red, red])
-        };
-        let mut fb = Framebuffer::new(64, 64, Vec3::ZERO);
-        draw(&mut fb, &cam, &pts, &cols, 2, LineStyle::default());
+    for (k, fb) in red_and_blue_in_both_orders(&cam, a, b).iter().enumerate() {
         // a's depth along the row: 1/z is linear on screen, from 1 to 1/3; b's from 1/3 to 1.
-        // They are equally deep at x = 32; a is nearer left of it, b right of it.
+        // They are equally deep at x = 32; a (red) is nearer left of it, b (blue) right of it.
         for x in [4, 16, 28] {
-            assert_eq!(fb.pixel(x, 32).unwrap(), red, "a_first {a_first}, x {x}");
+            assert_eq!(fb.pixel(x, 32).unwrap(), Vec3::X, "order {k}, x {x}");
         }
         for x in [36, 48, 60] {
-            assert_eq!(fb.pixel(x, 32).unwrap(), blue, "a_first {a_first}, x {x}");
+            assert_eq!(fb.pixel(x, 32).unwrap(), Vec3::Z, "order {k}, x {x}");
         }
     }
 }

@@ -396,9 +396,9 @@ fn fmax(a: f32, b: f32) -> f32 {
     if a > b { a } else { b }
 }
 
-/// Appends to `frags` one fragment per pixel centre that segment `segs[i]` covers in this band
-/// and that lies nearer than the opaque depth, in segment order (= input order), pixels in
-/// row order within a segment.
+/// Fills `frags` with one fragment per pixel centre that a segment covers in this band and
+/// that lies nearer than the opaque depth: segments in `keys` order (far to near by mid-point
+/// depth, ties in input order), pixels in row order within a segment.
 fn emit_fragments(p: &Params, segs: &[Seg], keys: &[u64], band: &Band, frags: &mut Vec<Frag>) {
     frags.clear();
     let w = p.width;
