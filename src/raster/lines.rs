@@ -296,6 +296,13 @@ pub fn draw_polylines(
     equalise_capacities(&mut scratch.threads);
 }
 
+/// Grows `v`'s capacity to at least `cap`, exactly `cap` when it has to grow.
+fn grow_to<T>(v: &mut Vec<T>, cap: usize) {
+    if v.capacity() < cap {
+        v.reserve_exact(cap - v.len());
+    }
+}
+
 /// Grows every thread's buffers to the largest capacity among them (a no-op once warm).
 fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
     let mut need = [0usize; 7];
@@ -322,13 +329,15 @@ fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
         let t = t
             .get_mut()
             .unwrap_or_else(std::sync::PoisonError::into_inner);
-        t.keys.reserve(need[0].saturating_sub(t.keys.len()));
-        t.tmp.reserve(need[1].saturating_sub(t.tmp.len()));
-        t.segs.reserve(need[2].saturating_sub(t.segs.len()));
-        t.frags.reserve(need[3].saturating_sub(t.frags.len()));
-        t.sorted.reserve(need[4].saturating_sub(t.sorted.len()));
-        t.starts.reserve(need[5].saturating_sub(t.starts.len()));
-        t.run_keys.reserve(need[6].saturating_sub(t.run_keys.len()));
+        // `reserve_exact`, not `reserve`: amortised growth would double past `need`, and two
+        // threads would then outgrow each other every frame without bound.
+        grow_to(&mut t.keys, need[0]);
+        grow_to(&mut t.tmp, need[1]);
+        grow_to(&mut t.segs, need[2]);
+        grow_to(&mut t.frags, need[3]);
+        grow_to(&mut t.sorted, need[4]);
+        grow_to(&mut t.starts, need[5]);
+        grow_to(&mut t.run_keys, need[6]);
     }
 }
 
@@ -590,31 +599,40 @@ mod tests {
         }
     }
 
-    /// After a warm-up frame, drawing the same (or a smaller) scene again allocates nothing.
+    /// After a warm-up frame, drawing the same scene again allocates nothing, whichever thread
+    /// draws which band.
     #[test]
     fn warmed_up_scratch_does_not_grow() {
-        let cam = Camera::look_at(Vec3::new(0.0, 0.0, 2.0), Vec3::ZERO, Vec3::Y, 0.9, 160, 120);
-        let pts: Vec<Vec3> = (0..400)
-            .map(|i| {
-                let a = i as f32 * 0.37;
-                Vec3::new(a.sin(), (i % 20) as f32 * 0.05 - 0.5, a.cos()) * 0.5
-            })
-            .collect();
-        let cols = vec![Vec3::ONE; pts.len()];
-        let lines = Polylines {
-            points: &pts,
-            colors: &cols,
-            widths_m: &[],
-            points_per_line: 20,
-        };
-        let mut fb = Framebuffer::new(160, 120, Vec3::ZERO);
-        let mut scratch = LineScratch::default();
-        draw_polylines(&mut fb, &cam, &lines, &LineStyle::default(), &mut scratch);
-        let warm = scratch.capacity_bytes();
-        assert!(warm > 0);
-        for _ in 0..3 {
+        // Two threads, so bands move between the per-thread buffers from frame to frame.
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let cam = Camera::look_at(Vec3::new(0.0, 0.0, 2.0), Vec3::ZERO, Vec3::Y, 0.9, 160, 120);
+            let pts: Vec<Vec3> = (0..400)
+                .map(|i| {
+                    let a = i as f32 * 0.37;
+                    Vec3::new(a.sin(), (i % 20) as f32 * 0.05 - 0.5, a.cos()) * 0.5
+                })
+                .collect();
+            let cols = vec![Vec3::ONE; pts.len()];
+            let lines = Polylines {
+                points: &pts,
+                colors: &cols,
+                widths_m: &[],
+                points_per_line: 20,
+            };
+            let mut fb = Framebuffer::new(160, 120, Vec3::ZERO);
+            let mut scratch = LineScratch::default();
             draw_polylines(&mut fb, &cam, &lines, &LineStyle::default(), &mut scratch);
-            assert_eq!(scratch.capacity_bytes(), warm);
-        }
+            let warm = scratch.capacity_bytes();
+            assert!(warm > 0);
+            // Many frames: the per-thread buffers must not outgrow each other frame after frame.
+            for _ in 0..40 {
+                draw_polylines(&mut fb, &cam, &lines, &LineStyle::default(), &mut scratch);
+                assert_eq!(scratch.capacity_bytes(), warm);
+            }
+        });
     }
 }
