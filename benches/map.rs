@@ -35,6 +35,7 @@ fn bench_map(c: &mut Criterion) {
                 positions: &geo.positions,
                 tangents: &geo.tangents,
                 lengths_m: &geo.lengths_m,
+                fibre_share: &geo.fibre_share,
                 fibers_per_strand: style.strands.fibers_per_strand,
                 light: light.into(),
                 fiber: &fiber,

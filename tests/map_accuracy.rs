@@ -253,6 +253,7 @@ fn fibres_the_camera_sees_near_the_light_are_lit_as_the_exact_rays_say() {
             positions: &strands.positions,
             tangents: &strands.tangents,
             lengths_m: &strands.lengths_m,
+            fibre_share: &strands.fibre_share,
             fibers_per_strand: 1.0,
             light: light.into(),
             fiber: &engine.fiber,

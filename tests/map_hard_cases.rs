@@ -25,6 +25,7 @@ fn build(
         positions: pos,
         tangents: tan,
         lengths_m: len,
+        fibre_share: &[],
         fibers_per_strand: fibers,
         light: light.into(),
         fiber,

@@ -67,6 +67,7 @@ fn poisson_average_matches_ray_shooting_and_mean_count_does_not() {
             positions: &geo.positions,
             tangents: &geo.tangents,
             lengths_m: &geo.lengths_m,
+            fibre_share: &geo.fibre_share,
             fibers_per_strand: 1.0,
             light: light.into(),
             fiber: &fiber,

@@ -39,6 +39,7 @@ fn map_with_sphere(
         positions: &geo.positions,
         tangents: &geo.tangents,
         lengths_m: &geo.lengths_m,
+        fibre_share: &geo.fibre_share,
         fibers_per_strand: FIBERS,
         light: light.into(),
         fiber: &fiber,
@@ -52,7 +53,7 @@ fn map_with_sphere(
             centre,
         ),
     }]);
-    map.build_surface(&input, &geo.fibre_share, 0.5 * DS);
+    map.build_surface(&input, 0.5 * DS);
     map
 }
 

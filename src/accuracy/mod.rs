@@ -116,6 +116,7 @@ pub fn measure_map(
         positions: &strands.positions,
         tangents: &strands.tangents,
         lengths_m: &strands.lengths_m,
+        fibre_share: &strands.fibre_share,
         fibers_per_strand: style.strands.fibers_per_strand,
         light,
         fiber: &engine.fiber,

@@ -523,6 +523,7 @@ impl Engine {
             positions: &self.strands.positions,
             tangents: &self.strands.tangents,
             lengths_m: &self.strands.lengths_m,
+            fibre_share: &self.strands.fibre_share,
             fibers_per_strand: self.style.strands.fibers_per_strand,
             light: crate::map::MapLight::of(light, aim_m),
             fiber: &self.fiber,
@@ -558,7 +559,7 @@ impl Engine {
         for (map, light) in self.maps.iter_mut().zip(lights) {
             map.set_occluders_with_mesh(&self.solids, mesh);
             if draw_solids {
-                map.build_surface(&input(light), &self.strands.fibre_share, bundle_radius_m);
+                map.build_surface(&input(light), bundle_radius_m);
             }
         }
     }

@@ -34,14 +34,35 @@ pub struct MapBuildInput<'a> {
     pub positions: &'a [Vec3],
     /// Unit tangents at the samples.
     pub tangents: &'a [Vec3],
-    /// Hair length each sample stands for, metres.
+    /// Hair length each sample stands for, metres, times its fibre share: the length of
+    /// *fibre*, in units of the strand's F fibres (`StrandGeometry::lengths_m`).
     pub lengths_m: &'a [f32],
+    /// Share of its strand's fibres present at each sample, in (0, 1]
+    /// (`StrandGeometry::fibre_share`; missing entries count as 1). The piece of strand a
+    /// sample stands for is `lengths_m / share` long: a tapered tip's fewer fibres still run
+    /// along its whole piece, so its crossings are spread over that length, not packed into a
+    /// shorter one.
+    pub fibre_share: &'a [f32],
     /// Real fibres per render strand.
     pub fibers_per_strand: f32,
     /// The light's geometry: the direction it travels, or where a point light is.
     pub light: MapLight,
     /// The fibre (radius and forward-scattering statistics).
     pub fiber: &'a Fiber,
+}
+
+impl MapBuildInput<'_> {
+    /// Length of strand sample `s` stands for, metres: `lengths_m[s] / fibre_share[s]` (the
+    /// fibre length it fills, undone of the taper), or `lengths_m[s]` where the share is
+    /// missing, not in (0, 1) or gives no finite length.
+    #[inline]
+    pub fn span_m(&self, s: usize) -> f32 {
+        let len = self.lengths_m.get(s).copied().unwrap_or(0.0);
+        match self.fibre_share.get(s) {
+            Some(&share) if share > 0.0 && share < 1.0 && (len / share).is_finite() => len / share,
+            _ => len,
+        }
+    }
 }
 
 /// What the map needs to know of a light: where its rays go.
@@ -204,9 +225,8 @@ impl LightMap {
         // exceeds a cell, it is split into `pieces` equal parts spread along the tangent,
         // so a strand fills every cell it passes through instead of a dotted line of them (at
         // the default resolution samples are 11 mm apart and cells 7.4 mm).
-        let max_len = input.lengths_m[..count]
-            .iter()
-            .copied()
+        let max_len = (0..count)
+            .map(|s| input.span_m(s))
             .filter(|l| l.is_finite())
             .fold(0.0f32, f32::max);
         let pieces = ((max_len / ds).ceil() as usize).clamp(1, MAX_PIECES);
@@ -230,6 +250,7 @@ impl LightMap {
             .map(|(s, (out, stat))| {
                 let u = input.tangents[s];
                 let len_total = input.lengths_m[s];
+                let span_total = input.span_m(s);
                 let p = input.positions[s];
                 let p0 = proj.point(p) * inv_cell;
                 if !(p0.abs().max_element() < MAX_CELL_COORD
@@ -258,11 +279,12 @@ impl LightMap {
                     volume_fraction: volume_scale * len * volume_weight,
                 };
                 let u_cells = u_map * inv_cell;
-                // Half the depth a piece spans along the light, in cells.
-                let half_depth = 0.5 * (u_cells.x * len).abs();
+                // Half the depth a piece spans along the light, in cells (its whole length of
+                // strand, also where a tapered tip has fewer fibres).
+                let half_depth = 0.5 * (u_cells.x * span_total / pieces as f32).abs();
                 let mut ext = Extent::EMPTY;
                 for (q, quad) in out.chunks_exact_mut(SPLAT).enumerate() {
-                    let along = ((q as f32 + 0.5) / pieces as f32 - 0.5) * len_total;
+                    let along = ((q as f32 + 0.5) / pieces as f32 - 0.5) * span_total;
                     // The piece's offset, in cells, is rounded to 1/1024 of a cell (7 µm at the
                     // default size): then moving the hair by whole cells moves every piece by
                     // exactly whole cells too (adding numbers on that grid is exact in f32),

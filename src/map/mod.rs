@@ -478,16 +478,10 @@ impl LightMap {
 
     /// Builds the map's surface shadow texture (`super::surface`) from the same `input` as
     /// [`LightMap::build`] (call after it and after [`LightMap::set_occluders_with_mesh`]: it
-    /// uses the frame, the hair's extent and the solids' entry depths), with each sample's
-    /// `fibre_share`, for render strands whose fibres spread over `bundle_radius_m`. Skin and
-    /// clothes read it through [`LightMap::light_at_surface`]; without it they read the
-    /// columns.
-    pub fn build_surface(
-        &mut self,
-        input: &MapBuildInput,
-        fibre_share: &[f32],
-        bundle_radius_m: f32,
-    ) {
+    /// uses the frame, the hair's extent and the solids' entry depths), for render strands
+    /// whose fibres spread over `bundle_radius_m`. Skin and clothes read it through
+    /// [`LightMap::light_at_surface`]; without it they read the columns.
+    pub fn build_surface(&mut self, input: &MapBuildInput, bundle_radius_m: f32) {
         let dc = self.geom.column_m();
         if self.hair_lo[1] > self.hair_hi[1] {
             self.surface = None;
@@ -497,7 +491,6 @@ impl LightMap {
         let hi = Vec2::new(self.hair_hi[1] as f32 + 1.0, self.hair_hi[2] as f32 + 1.0) * dc;
         self.surface.get_or_insert_with(Default::default).build(
             input,
-            fibre_share,
             &self.proj,
             &self.occluders,
             (lo, hi),

@@ -211,15 +211,13 @@ impl SurfaceShadow {
 
     /// Fills the texture from `input`'s samples in the map's light frame `proj`, over the
     /// lateral extent `lo..hi` (map metres, Y and Z), with `column_m`-wide columns and
-    /// render strands whose fibres spread over `bundle_radius_m`. `fibre_share` is each
-    /// sample's share of its strand's fibres (`input.lengths_m` is the piece's length times
-    /// it; the ribbon is drawn over the piece's whole length); missing shares count as 1.
+    /// render strands whose fibres spread over `bundle_radius_m`. A tapered sample's ribbon is
+    /// drawn over its piece's whole length (`MapBuildInput::span_m`), with its own crossings.
     /// Reuses its memory.
     #[allow(clippy::too_many_arguments)]
     pub fn build(
         &mut self,
         input: &MapBuildInput,
-        fibre_share: &[f32],
         proj: &Projection,
         solids: &OccluderGrid,
         (lo, hi): (Vec2, Vec2),
@@ -309,7 +307,7 @@ impl SurfaceShadow {
             .for_each(|(s, out)| {
                 *out = (|| {
                     let (p, u, len) = (input.positions[s], input.tangents[s], input.lengths_m[s]);
-                    let share = fibre_share.get(s).copied().unwrap_or(1.0);
+                    let share = input.fibre_share.get(s).copied().unwrap_or(1.0);
                     if !(p.is_finite()
                         && u.is_finite()
                         && len.is_finite()
@@ -318,7 +316,7 @@ impl SurfaceShadow {
                     {
                         return None;
                     }
-                    let piece_m = len / share.min(1.0);
+                    let piece_m = input.span_m(s);
                     let (_, across, _) = proj.strand(p, u);
                     let crossings = input.fibers_per_strand * 2.0 * r * len * across;
                     let fs = input

@@ -24,6 +24,7 @@ fn build(points: &[Vec3], len: f32, n: u32, ds: f32) -> LightMap {
         positions: points,
         tangents: &tangents,
         lengths_m: &lengths,
+        fibre_share: &[],
         fibers_per_strand: 10.0,
         light: Vec3::X.into(),
         fiber: &f,
@@ -134,6 +135,7 @@ fn every_column_is_monotonic_exactly() {
         positions: &geo.positions,
         tangents: &geo.tangents,
         lengths_m: &geo.lengths_m,
+        fibre_share: &geo.fibre_share,
         fibers_per_strand: style.strands.fibers_per_strand,
         light: Vec3::new(-0.5, -0.7, 0.5).into(),
         fiber: &f,
@@ -204,6 +206,55 @@ fn a_point_inside_a_cell_receives_only_the_crossings_in_front_of_it() {
         one.direct_fraction,
         exp(2.0)
     );
+}
+
+/// A tapered tip (issue 7): a sample with a share s of its strand's fibres stands for its whole
+/// piece of strand with s times the crossings, so it shadows the same cells as a full sample,
+/// each with s times the optical depth. The fill used to place `lengths_m` (= piece × s) as
+/// the piece's extent, packing a tip's crossings into s of its length: behind the piece's
+/// ends it cast no shadow, and the cells at its middle were 1/s too dark.
+#[test]
+fn a_tapered_sample_spreads_its_crossings_along_its_whole_piece() {
+    let ds = 0.01;
+    let piece_m = 0.04;
+    let share = 0.25;
+    let f = fiber();
+    let build_one = |lengths_m: f32, fibre_share: &[f32]| {
+        let mut map = LightMap::new(
+            MapGeometry {
+                n: 16,
+                ds_m: ds,
+                lateral: 1,
+            },
+            CountModel::Poisson,
+        );
+        map.build(&MapBuildInput {
+            // The piece runs across the light (+X) along Y, over four columns.
+            positions: &[Vec3::new(0.005, 0.04, 0.005)],
+            tangents: &[Vec3::Y],
+            lengths_m: &[lengths_m],
+            fibre_share,
+            fibers_per_strand: 10.0,
+            light: Vec3::X.into(),
+            fiber: &f,
+        });
+        map
+    };
+    let full = build_one(piece_m, &[]);
+    let tip = build_one(piece_m * share, &[share]);
+    // Behind the piece (next slice), at the column centres it spans.
+    for y in [0.025, 0.035, 0.045, 0.055] {
+        let p = Vec3::new(0.015, y, 0.005);
+        let (a, b) = (full.light_at(p).tf, tip.light_at(p).tf);
+        for c in 0..3 {
+            let (la, lb) = (a[c].ln(), b[c].ln());
+            assert!(la < -0.005, "y {y}: the full piece shadows here ({})", a[c]);
+            assert!(
+                (lb / la - share).abs() < 0.01,
+                "y {y}, channel {c}: optical depth {lb} against {la} × {share}"
+            );
+        }
+    }
 }
 
 #[test]

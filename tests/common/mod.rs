@@ -75,6 +75,7 @@ pub fn build_map(
         positions: &geo.positions,
         tangents: &geo.tangents,
         lengths_m: &geo.lengths_m,
+        fibre_share: &geo.fibre_share,
         fibers_per_strand: fibers,
         light: light.into(),
         fiber,
