@@ -1,16 +1,17 @@
 //! What the raster buffers hold, for the run's memory budget (`crate::budget`), computed
-//! before they exist. Keep it in step with `framebuffer.rs` and `lines.rs`.
+//! before they exist, from the sizes and constants `framebuffer.rs` and `lines.rs` use.
 
+use super::lines::Frag;
 use super::segment::Seg;
 use super::{Framebuffer, LineScratch};
 use glam::Vec3;
 
-/// Rows of a band: `BAND_ROWS` in `lines.rs`.
-const BAND_ROWS: u64 = 16;
-/// Segments per set-up chunk: `SETUP_CHUNK` in `lines.rs`.
-const SETUP_CHUNK: u64 = 4096;
-/// Bytes of one fragment: `Frag` in `lines.rs` (pixel, 1/depth bits, α, RGB).
-const FRAG_BYTES: u64 = 24;
+/// Rows of a band, as `lines.rs` draws them.
+const BAND_ROWS: u64 = super::lines::BAND_ROWS as u64;
+/// Segments per set-up chunk, as `lines.rs` bins them.
+const SETUP_CHUNK: u64 = super::lines::SETUP_CHUNK as u64;
+/// Bytes of one fragment (pixel, 1/depth bits, α, RGB).
+const FRAG_BYTES: u64 = size_of::<Frag>() as u64;
 
 impl Framebuffer {
     /// Bytes of a `width` × `height` framebuffer: linear RGB (`Vec3`), depth and coverage

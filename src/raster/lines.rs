@@ -81,9 +81,9 @@ use super::polyline::{LineStyle, LineWidth, Polylines};
 use super::segment::{Params, Seg, setup_segment};
 
 /// Image rows per band (the unit of parallel work and of binning).
-const BAND_ROWS: usize = 16;
+pub(super) const BAND_ROWS: usize = 16;
 /// Segments per parallel set-up task.
-const SETUP_CHUNK: usize = 4096;
+pub(super) const SETUP_CHUNK: usize = 4096;
 /// Buffers reused between frames, so a warmed-up frame allocates nothing.
 #[derive(Debug, Default)]
 pub struct LineScratch {
@@ -113,7 +113,7 @@ struct BandScratch {
 
 /// One segment's coverage of one pixel centre: 24 bytes.
 #[derive(Clone, Copy, Debug, Default)]
-struct Frag {
+pub(super) struct Frag {
     /// Pixel index within the band.
     pixel: u32,
     /// Bits of 1/depth at the pixel centre (positive, so they order like the value).
@@ -586,7 +586,7 @@ mod tests {
         }
     }
 
-    /// The memory budget's fragment size (`budget.rs`) is the real one.
+    /// A fragment stays 24 bytes: the per-thread buffers hold millions of them a frame.
     #[test]
     fn fragment_is_24_bytes() {
         assert_eq!(size_of::<Frag>(), 24);
