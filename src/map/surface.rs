@@ -34,7 +34,7 @@ pub const TEXELS_PER_COLUMN: f32 = 2.0;
 /// Texels per axis at most; a larger extent gets coarser texels.
 const MAX_TEXELS_PER_AXIS: usize = 1024;
 /// Texel rows per parallel band.
-const BAND_ROWS: usize = 8;
+const BAND_ROWS: usize = 16;
 
 /// How wide a render strand's shadow is across the light: its fibres' spread. The exact
 /// reference places F fibres uniformly in a disc of radius R (half the strand spacing); the
@@ -45,8 +45,9 @@ pub fn ribbon_width_m(bundle_radius_m: f32) -> f32 {
 
 /// A sample's piece of strand drawn as a ribbon across the light, in texel coordinates: from
 /// `a` along unit `dir` for `len` (≥ 1) texels, `half_w` either side, its depth along the
-/// light (map metres) running from `depth.0` to `depth.1`, and the optical depth per unit of
-/// box overlap (`per`) that makes the whole ribbon deposit the piece's own.
+/// light (map metres) running from `depth.0` to `depth.1`, the optical depth it deposits in
+/// all (`loss`, per texel area) and its ribbon's summed box overlap (`sum`), so each texel gets
+/// `loss · w / sum`: the whole ribbon deposits the piece's own.
 #[derive(Clone, Copy, Debug)]
 struct Piece {
     a: Vec2,
@@ -54,7 +55,10 @@ struct Piece {
     len: f32,
     half_w: f32,
     depth: (f32, f32),
-    per: Vec3,
+    loss: Vec3,
+    /// The overlap sum, or 0 while it is not known yet: a piece within one band of rows is
+    /// summed there, as its texels are visited to deposit ([`SurfaceShadow::build`], step 3).
+    sum: f32,
     /// The sample it stands for (its place in the fixed order of the sums).
     index: u32,
     /// Texel box the ribbon touches: rows `x0..x1`, columns `y0..y1` (`x0` = `u32::MAX`: no
@@ -73,7 +77,8 @@ impl Piece {
         len: 1.0,
         half_w: 0.0,
         depth: (0.0, 0.0),
-        per: Vec3::ZERO,
+        loss: Vec3::ZERO,
+        sum: 0.0,
         index: u32::MAX,
         x0: u32::MAX,
         x1: 0,
@@ -112,7 +117,8 @@ impl Piece {
             len,
             half_w,
             depth,
-            per: Vec3::ZERO,
+            loss: Vec3::ZERO,
+            sum: 0.0,
             index: 0,
             x0: x0 as u32,
             x1: x1 as u32,
@@ -121,8 +127,8 @@ impl Piece {
         })
     }
 
-    /// Texel (x, y)'s box overlap with the ribbon, and the piece's depth where the texel's
-    /// centre projects on it.
+    /// Texel (x, y)'s box overlap with the ribbon, and where the texel's centre projects on
+    /// the ribbon's axis (texels from `a`; [`Piece::depth_at`] turns it into a depth).
     #[inline]
     fn at(&self, x: usize, y: usize) -> (f32, f32) {
         let overlap = |c: f32, lo: f32, hi: f32| ((c + 0.5).min(hi) - (c - 0.5).max(lo)).max(0.0);
@@ -130,8 +136,15 @@ impl Piece {
         let s = q.dot(self.dir);
         let w =
             overlap(s, 0.0, self.len) * overlap(q.dot(self.dir.perp()), -self.half_w, self.half_w);
+        (w, s)
+    }
+
+    /// The piece's depth along the light (map metres) at axis position `s` (from [`Piece::at`]),
+    /// asked only where a texel overlaps: the division is skipped for the rest.
+    #[inline]
+    fn depth_at(&self, s: f32) -> f32 {
         let t = (s / self.len).clamp(0.0, 1.0);
-        (w, self.depth.0 + (self.depth.1 - self.depth.0) * t)
+        self.depth.0 + (self.depth.1 - self.depth.0) * t
     }
 
     /// The columns `y` of row `x` whose texel centre can overlap the ribbon (within half a
@@ -164,7 +177,8 @@ impl Piece {
         y0..y1.max(y0)
     }
 
-    /// Sum of the overlaps over the texels the ribbon touches.
+    /// Sum of the overlaps over the texels the ribbon touches (rows, then columns: the order
+    /// [`Piece::visit`] adds them in too, so both give the same bits).
     fn overlap_sum(&self) -> f32 {
         let mut sum = 0.0;
         for x in self.x0 as usize..self.x1 as usize {
@@ -173,6 +187,65 @@ impl Piece {
             }
         }
         sum
+    }
+
+    /// Whether the ribbon's rows lie within one band of [`BAND_ROWS`] rows.
+    fn within_one_band(&self) -> bool {
+        self.x0 as usize / BAND_ROWS == (self.x1 as usize - 1) / BAND_ROWS
+    }
+
+    /// Adds the ribbon's rows within `band` to `rows` (the band's texels, `cols` per row;
+    /// `limit` is the whole texture's), where its depth is at most the texel's limit: the
+    /// piece's loss × the texel's overlap ÷ the ribbon's overlap sum, per texel area
+    /// (`inv_texel_area`, 1/m²). A piece whose sum is not known yet lies within the band: its
+    /// overlaps are gathered into `touched` (scratch) and summed in [`Piece::overlap_sum`]'s
+    /// order, so it deposits the same bits as with the sum taken beforehand.
+    fn deposit(
+        &self,
+        band: std::ops::Range<usize>,
+        cols: usize,
+        limit: &[f32],
+        inv_texel_area: f32,
+        rows: &mut [Vec3],
+        touched: &mut Vec<(u32, f32)>,
+    ) {
+        let (x0, x1) = (
+            (self.x0 as usize).max(band.start),
+            (self.x1 as usize).min(band.end),
+        );
+        let first = band.start * cols;
+        if self.sum > 0.0 {
+            let per = self.loss * (inv_texel_area / self.sum);
+            for x in x0..x1 {
+                for y in self.row_span(x) {
+                    let (w, along) = self.at(x, y);
+                    let k = x * cols + y;
+                    if w > 0.0 && self.depth_at(along) <= limit[k] {
+                        rows[k - first] += per * w;
+                    }
+                }
+            }
+            return;
+        }
+        debug_assert!(self.x0 as usize >= band.start && self.x1 as usize <= band.end);
+        touched.clear();
+        let mut sum = 0.0;
+        for x in x0..x1 {
+            for y in self.row_span(x) {
+                let (w, along) = self.at(x, y);
+                sum += w;
+                let k = x * cols + y;
+                if w > 0.0 && self.depth_at(along) <= limit[k] {
+                    touched.push(((k - first) as u32, w));
+                }
+            }
+        }
+        if sum > 0.0 {
+            let per = self.loss * (inv_texel_area / sum);
+            for &(k, w) in touched.iter() {
+                rows[k as usize] += per * w;
+            }
+        }
     }
 }
 
@@ -344,12 +417,17 @@ impl SurfaceShadow {
                     if !reads_any(&piece) {
                         return None;
                     }
-                    let sum = piece.overlap_sum();
-                    (sum > 0.0).then(|| {
-                        piece.per = loss * (inv_texel * inv_texel / sum);
-                        piece.index = s as u32;
-                        piece
-                    })
+                    piece.loss = loss;
+                    piece.index = s as u32;
+                    // A ribbon within one band is summed there, as it is deposited (its
+                    // texels visited once); one that crosses bands needs its sum in each.
+                    if !piece.within_one_band() {
+                        piece.sum = piece.overlap_sum();
+                        if piece.sum <= 0.0 {
+                            return None;
+                        }
+                    }
+                    Some(piece)
                 })()
                 .unwrap_or(Piece::NONE);
             });
@@ -366,25 +444,19 @@ impl SurfaceShadow {
             let from = (b * BAND_ROWS).saturating_sub(tallest) as u32;
             pieces.partition_point(|p| p.x0 < from) as u32
         }));
-        // 3. Each band adds its pieces in that order.
+        // 3. Each band adds its pieces in that order (a piece within the band is summed as it
+        // is deposited, `Piece::deposit`).
         let (pieces, band_first, limit) = (&self.pieces, &self.band_first, &self.limit);
+        let inv_texel_area = inv_texel * inv_texel;
         self.sums
             .par_chunks_mut(BAND_ROWS * dims[1])
             .enumerate()
             .for_each(|(b, rows)| {
                 let (r0, r1) = (b * BAND_ROWS, ((b + 1) * BAND_ROWS).min(dims[0]));
                 let last = pieces.partition_point(|p| (p.x0 as usize) < r1);
+                let mut touched = Vec::new();
                 for piece in &pieces[band_first[b] as usize..last] {
-                    let (x0, x1) = ((piece.x0 as usize).max(r0), (piece.x1 as usize).min(r1));
-                    for x in x0..x1 {
-                        for y in piece.row_span(x) {
-                            let (w, depth) = piece.at(x, y);
-                            let k = x * dims[1] + y;
-                            if w > 0.0 && depth <= limit[k] {
-                                rows[k - r0 * dims[1]] += piece.per * w;
-                            }
-                        }
-                    }
+                    piece.deposit(r0..r1, dims[1], limit, inv_texel_area, rows, &mut touched);
                 }
             });
     }
@@ -410,5 +482,104 @@ impl SurfaceShadow {
             }
         }
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Ribbons of several lengths, widths, angles and sub-texel offsets, in a texture of
+    /// 3 bands × 40 columns.
+    fn ribbons() -> Vec<Piece> {
+        let dims = [3 * BAND_ROWS, 40];
+        let mut out = Vec::new();
+        for (k, angle_deg) in [0.0f32, 7.0, 33.0, 45.0, 80.0, 90.0, 137.0]
+            .iter()
+            .enumerate()
+        {
+            for len in [0.3f32, 1.0, 4.5, 9.0] {
+                for half_w in [0.2f32, 1.15, 3.0] {
+                    let dir = Vec2::from_angle(angle_deg.to_radians());
+                    let a = Vec2::new(BAND_ROWS as f32 * 0.5 + 0.37, 20.0 + 0.21 * k as f32)
+                        - dir * (0.5 * len);
+                    let mut p = Piece::new(a, a + dir * len, (0.1, 0.3), half_w, dims).unwrap();
+                    p.loss = Vec3::new(0.3, 0.5, 0.9);
+                    out.push(p);
+                }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn a_ribbon_summed_as_it_deposits_gives_the_bits_of_one_summed_first() {
+        // The frames did not change when the band pass took over the sum of the ribbons
+        // within one band: both ways must deposit the same bits, and the whole loss.
+        let cols = 40;
+        let limit = vec![f32::INFINITY; 3 * BAND_ROWS * cols];
+        let mut touched = Vec::new();
+        let mut within = 0;
+        for piece in ribbons() {
+            if !piece.within_one_band() {
+                continue;
+            }
+            within += 1;
+            let band = (piece.x0 as usize / BAND_ROWS) * BAND_ROWS;
+            let band = band..band + BAND_ROWS;
+            let mut gathered = vec![Vec3::ZERO; BAND_ROWS * cols];
+            piece.deposit(band.clone(), cols, &limit, 4.0, &mut gathered, &mut touched);
+            let summed = Piece {
+                sum: piece.overlap_sum(),
+                ..piece
+            };
+            let mut first = vec![Vec3::ZERO; BAND_ROWS * cols];
+            summed.deposit(band, cols, &limit, 4.0, &mut first, &mut touched);
+            assert!(
+                gathered
+                    .iter()
+                    .zip(&first)
+                    .all(|(a, b)| a.to_array() == b.to_array()),
+                "{piece:?}"
+            );
+            let total: Vec3 = gathered.iter().sum();
+            assert!(
+                (total - piece.loss * 4.0).abs().max_element() < 1e-5,
+                "{total} against {}",
+                piece.loss * 4.0
+            );
+        }
+        assert!(within >= 40, "only {within} ribbons within one band");
+    }
+
+    #[test]
+    fn a_ribbon_across_bands_deposits_its_whole_loss_band_by_band() {
+        let cols = 40;
+        let limit = vec![f32::INFINITY; 3 * BAND_ROWS * cols];
+        let mut touched = Vec::new();
+        let mut across = 0;
+        for mut piece in ribbons() {
+            // Moved down by half a band, so the longer ribbons straddle a band's edge.
+            piece.a.x += 0.5 * BAND_ROWS as f32;
+            piece.x0 += BAND_ROWS as u32 / 2;
+            piece.x1 += BAND_ROWS as u32 / 2;
+            if piece.within_one_band() {
+                continue;
+            }
+            across += 1;
+            piece.sum = piece.overlap_sum();
+            let mut total = Vec3::ZERO;
+            for b in 0..3 {
+                let band = b * BAND_ROWS..(b + 1) * BAND_ROWS;
+                let mut rows = vec![Vec3::ZERO; BAND_ROWS * cols];
+                piece.deposit(band, cols, &limit, 4.0, &mut rows, &mut touched);
+                total += rows.iter().sum::<Vec3>();
+            }
+            assert!(
+                (total - piece.loss * 4.0).abs().max_element() < 1e-5,
+                "{piece:?}: {total}"
+            );
+        }
+        assert!(across >= 20, "only {across} ribbons across bands");
     }
 }
