@@ -308,16 +308,20 @@ impl LightMap {
                     let (j0, k0) = (l0.x as i64, l0.y as i64);
                     ext.include([i, j0, k0]);
                     ext.include([i, j0 + 1, k0 + 1]);
+                    // The wrapped column indices of j0, j0 + 1, k0, k0 + 1: one integer
+                    // division per axis, the next index by a compare.
+                    let wrap_next = |m: i64| if m + 1 == ncol { 0 } else { m + 1 };
+                    let (jm, km) = (j0.rem_euclid(ncol), k0.rem_euclid(ncol));
+                    let (jw, kw) = ([jm, wrap_next(jm)], [km, wrap_next(km)]);
                     for (t, e) in quad.iter_mut().enumerate() {
-                        let (dj, dk) = ((t >> 1) as i64, (t & 1) as i64);
+                        let (dj, dk) = (t >> 1, t & 1);
                         let wt = if dj == 0 { 1.0 - w.x } else { w.x }
                             * if dk == 0 { 1.0 - w.y } else { w.y };
-                        let (j, k) = (j0 + dj, k0 + dk);
                         // A share of exactly 0 (a piece on a column centre line) makes no cell.
                         *e = Entry {
                             slice: i,
                             col: if wt > 0.0 {
-                                (j.rem_euclid(ncol) * ncol + k.rem_euclid(ncol)) as u32
+                                (jw[dj] * ncol + kw[dk]) as u32
                             } else {
                                 u32::MAX
                             },
