@@ -30,6 +30,11 @@ use crate::raster::{Framebuffer, LineScratch, MeshScratch};
 use crate::sim::Simulator;
 use glam::Vec3;
 
+/// Bytes per render point: position, tangent and colour, length, fibre share and width, and
+/// the shading's order (key, vertex index, key again) and colour in that order.
+const RENDER_POINT_BYTES: usize =
+    3 * size_of::<Vec3>() + 3 * size_of::<f32>() + 3 * size_of::<u32>() + size_of::<Vec3>();
+
 /// Default memory budget: 4 GB.
 pub const DEFAULT_MEMORY_BYTES: u64 = 4_000_000_000;
 /// Default work budget before the first frame: 20 CPU-minutes (10 minutes on 2 cores).
@@ -356,11 +361,12 @@ pub fn estimate(
         MemoryPart {
             what: "render strands",
             product: format!(
-                "{} render points × {} B (position, tangent, colour, length, fibre share, width)",
+                "{} render points × {} B (position, tangent, colour, length, fibre share, width; \
+                 shading order and colour)",
                 grouped(points),
-                3 * size_of::<Vec3>() + 3 * size_of::<f32>()
+                RENDER_POINT_BYTES
             ),
-            bytes: points * b(3 * size_of::<Vec3>() + 3 * size_of::<f32>()),
+            bytes: points * b(RENDER_POINT_BYTES),
             set_by: "wisps.count × wisps.strands_per_wisp × strands.points",
         },
         MemoryPart {

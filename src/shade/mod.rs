@@ -58,6 +58,10 @@ pub fn fibre_tint(fiber: &Fiber) -> Vec3 {
 #[derive(Clone, Debug, Default)]
 pub struct ShadeScratch {
     keyed: Vec<(u32, u32)>,
+    /// The vertices' keys, then (counting sort by key) the vertices in key order.
+    keys: Vec<u32>,
+    /// Per key (map column, and one for points off the map): its count, then its cursor.
+    counts: Vec<u32>,
     shaded: Vec<Vec3>,
 }
 
@@ -99,15 +103,36 @@ pub fn shade_vertices(
         return;
     };
     let n = positions.len().min(tangents.len());
-    let keyed = &mut scratch.keyed;
-    keyed.clear();
-    keyed.par_extend(
+    // Vertices by (key, index): a counting sort by key (the map's column, or one bucket for
+    // points off the map) that keeps the indices in order, O(vertices + columns).
+    let keys = &mut scratch.keys;
+    keys.clear();
+    keys.par_extend(
         positions[..n]
             .par_iter()
-            .enumerate()
-            .map(|(i, p)| (first.lookup_order_key(*p), i as u32)),
+            .map(|p| first.lookup_order_key(*p)),
     );
-    keyed.par_sort_unstable();
+    let columns = first.geometry().columns_per_axis() as usize;
+    let columns = columns.saturating_mul(columns);
+    let bucket = |key: u32| (key as usize).min(columns);
+    let counts = &mut scratch.counts;
+    counts.clear();
+    counts.resize(columns + 1, 0);
+    for &key in keys.iter() {
+        counts[bucket(key)] += 1;
+    }
+    let mut at = 0u32;
+    for c in counts.iter_mut() {
+        (*c, at) = (at, at + *c);
+    }
+    let keyed = &mut scratch.keyed;
+    keyed.clear();
+    keyed.resize(n, (0, 0));
+    for (i, &key) in keys.iter().enumerate() {
+        let slot = &mut counts[bucket(key)];
+        keyed[*slot as usize] = (key, i as u32);
+        *slot += 1;
+    }
     let shaded = &mut scratch.shaded;
     shaded.clear();
     shaded.resize(n, Vec3::ZERO);
