@@ -44,7 +44,9 @@ impl MapGeometry {
         let cell_bytes = size_of::<Cell>() as u64;
         let offsets =
             (2 * columns + 1) * u32_bytes + columns * size_of::<super::ColumnIndex>() as u64;
-        let stats = samples.saturating_mul(size_of::<PieceStats>() as u64);
+        // Per sample: its pieces' statistics and the forward attenuation kept for the skin.
+        let stats =
+            samples.saturating_mul((size_of::<PieceStats>() + size_of::<glam::Vec3>()) as u64);
         let slots = 2 * entries.saturating_mul(SLOT_SPAN_PER_CELL as u64) * u32_bytes;
         offsets
             .saturating_add(entries.saturating_mul(2 * entry_bytes + cell_bytes + u32_bytes))

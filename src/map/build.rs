@@ -181,6 +181,9 @@ impl Extent {
 pub(super) struct Scratch {
     /// Per sample: what each of its pieces carries.
     stats: Vec<PieceStats>,
+    /// Per sample: the forward attenuation ā_f (clamped to [0, 1]) its pieces carry, NaN for a
+    /// sample the fill skipped; the skin's texture reads it instead of evaluating it again.
+    pub(super) forward_a: Vec<Vec3>,
     /// Per sample piece and column: the fill's output, in sample order.
     entries: Vec<Entry>,
     /// The filled entries grouped by column (counting sort), each column in sample order.
@@ -239,15 +242,18 @@ impl LightMap {
         entries.resize(count * per_sample, Entry::default());
         stats.reserve_exact(count.saturating_sub(stats.len()));
         stats.resize(count, PieceStats::default());
+        let forward_a = &mut self.scratch.forward_a;
+        forward_a.reserve_exact(count.saturating_sub(forward_a.len()));
+        forward_a.resize(count, Vec3::NAN);
         // Per sample: the fibre's per-crossing statistics once, then its pieces. The extent of
         // the filled cells (first slice, overflow check) comes from an exact min/max reduce,
         // so the reduction order does not matter.
         let extent = entries
             .par_chunks_mut(per_sample)
-            .zip(stats.par_iter_mut())
+            .zip(stats.par_iter_mut().zip(forward_a.par_iter_mut()))
             .enumerate()
             .with_min_len(512)
-            .map(|(s, (out, stat))| {
+            .map(|(s, (out, (stat, forward)))| {
                 let u = input.tangents[s];
                 let len_total = input.lengths_m[s];
                 let span_total = input.span_m(s);
@@ -259,6 +265,7 @@ impl LightMap {
                     && len_total >= 0.0)
                 {
                     out.iter_mut().for_each(|e| e.col = u32::MAX);
+                    *forward = Vec3::NAN;
                     return (Extent::EMPTY, 1usize);
                 }
                 // The strand's image in map coordinates; for a point light its crossing and
@@ -268,6 +275,7 @@ impl LightMap {
                 let crossings = crossing_scale * len * across;
                 let fs = fiber.forward_scatter(u.dot(proj.toward_light(p)).clamp(-1.0, 1.0));
                 let a = fs.a_f.clamp(Vec3::ZERO, Vec3::ONE);
+                *forward = a;
                 let loss = match model {
                     CountModel::Poisson => Vec3::ONE - a,
                     CountModel::MeanCount => -a.max(Vec3::splat(1e-30)).ln(),

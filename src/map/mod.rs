@@ -496,6 +496,7 @@ impl LightMap {
             (lo, hi),
             dc,
             bundle_radius_m,
+            &self.scratch.forward_a,
         );
     }
 

@@ -294,7 +294,8 @@ impl SurfaceShadow {
     /// lateral extent `lo..hi` (map metres, Y and Z), with `column_m`-wide columns and
     /// render strands whose fibres spread over `bundle_radius_m`. A tapered sample's ribbon is
     /// drawn over its piece's whole length (`MapBuildInput::span_m`), with its own crossings.
-    /// Reuses its memory.
+    /// `forward_a` may hold each sample's clamped ā_f as the map's fill evaluated it (NaN, or
+    /// missing: evaluated here, to the same bits). Reuses its memory.
     #[allow(clippy::too_many_arguments)]
     pub fn build(
         &mut self,
@@ -304,6 +305,7 @@ impl SurfaceShadow {
         (lo, hi): (Vec2, Vec2),
         column_m: f32,
         bundle_radius_m: f32,
+        forward_a: &[Vec3],
     ) {
         let width_m = ribbon_width_m(bundle_radius_m);
         let margin = Vec2::splat(width_m + column_m);
@@ -376,6 +378,12 @@ impl SurfaceShadow {
             .len()
             .min(input.tangents.len())
             .min(input.lengths_m.len());
+        // The map's per-sample ā_f, if it was built from these samples (as it must be).
+        let forward_a = if forward_a.len() == count {
+            forward_a
+        } else {
+            &[]
+        };
         let inv_texel = 1.0 / texel_m;
         let half_w = 0.5 * width_m * inv_texel;
         let pieces = &mut self.pieces;
@@ -400,10 +408,15 @@ impl SurfaceShadow {
                     let piece_m = input.span_m(s);
                     let (_, across, _) = proj.strand(p, u);
                     let crossings = input.fibers_per_strand * 2.0 * r * len * across;
-                    let fs = input
-                        .fiber
-                        .forward_scatter(u.dot(proj.toward_light(p)).clamp(-1.0, 1.0));
-                    let loss = (Vec3::ONE - fs.a_f.clamp(Vec3::ZERO, Vec3::ONE)) * crossings;
+                    let a_f = match forward_a.get(s) {
+                        Some(a) if !a.x.is_nan() => *a,
+                        _ => input
+                            .fiber
+                            .forward_scatter(u.dot(proj.toward_light(p)).clamp(-1.0, 1.0))
+                            .a_f
+                            .clamp(Vec3::ZERO, Vec3::ONE),
+                    };
+                    let loss = (Vec3::ONE - a_f) * crossings;
                     if loss.max_element().is_nan() || loss.max_element() <= 0.0 {
                         return None;
                     }
