@@ -172,6 +172,14 @@ fn bench_runs_and_writes_json() {
     assert!(o.status.success(), "{}", stderr(&o));
     let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
     assert_eq!(v["scaling"].as_array().unwrap().len(), 2);
+    // The map stage by part: the dance moves the hair, so every frame builds the hair map.
+    for row in v["scaling"].as_array().unwrap() {
+        for key in ["map_hair_ms", "map_occluders_ms", "map_skin_texture_ms"] {
+            let ms = row[key].as_f64().unwrap();
+            assert!(ms.is_finite() && ms >= 0.0, "{key}: {row}");
+        }
+        assert!(row["map_hair_ms"].as_f64().unwrap() > 0.0, "{row}");
+    }
     let rows = v["speed_vs_error"].as_array().unwrap();
     // The two resolutions asked for, plus the scene's own choice.
     assert_eq!(rows.len(), 3);

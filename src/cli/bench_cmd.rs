@@ -16,7 +16,7 @@
 
 use super::{AppError, SceneArgs};
 use std::path::PathBuf;
-use wisp::frame::StageTimings;
+use wisp::frame::{MapPartTimings, StageTimings};
 use wisp::map::exact::Footprint;
 
 #[derive(clap::Args, Debug)]
@@ -175,20 +175,28 @@ fn scaling_part(args: &BenchArgs, scene: &BenchScene, json: &mut Json) -> Result
     );
     let mut base_total = None;
     let mut scaling = Vec::new();
+    let mut map_parts = Vec::new();
     for &threads in &args.threads_list {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads as usize)
             .build()
             .map_err(AppError::other)?;
-        let per_frame: Vec<StageTimings> = pool.install(|| {
+        let per_frame: Vec<(StageTimings, MapPartTimings)> = pool.install(|| {
             let mut engine = scene.engine();
             (0..args.frames)
                 .map(|i| {
                     engine.frame(i as f64 / 30.0);
-                    engine.timings
+                    (engine.timings, engine.map_parts)
                 })
                 .collect()
         });
+        let (per_frame, parts): (Vec<StageTimings>, Vec<MapPartTimings>) =
+            per_frame.into_iter().unzip();
+        let parts_ms = [0, 1, 2].map(|k| {
+            let mut v: Vec<f64> = parts.iter().map(|p| p.as_array()[k]).collect();
+            median(&mut v) * 1e3
+        });
+        map_parts.push((threads, parts_ms));
         let mut med = [0.0f64; 7];
         for (s, m) in med.iter_mut().enumerate().take(6) {
             let mut v: Vec<f64> = per_frame.iter().map(|t| t.as_array()[s]).collect();
@@ -215,7 +223,30 @@ fn scaling_part(args: &BenchArgs, scene: &BenchScene, json: &mut Json) -> Result
         }
         row.insert("total_ms".into(), med[6].into());
         row.insert("speedup".into(), (base / med[6]).into());
+        for (key, v) in ["map_hair_ms", "map_occluders_ms", "map_skin_texture_ms"]
+            .iter()
+            .zip(parts_ms)
+        {
+            row.insert((*key).into(), v.into());
+        }
         scaling.push(serde_json::Value::Object(row));
+    }
+    // The map stage by part (medians of each part, so they need not add up to the map's).
+    println!(
+        "
+map stage by part, median ms per frame (0 where the maps were reused):"
+    );
+    println!(
+        "threads  {:>12} {:>12} {:>12}",
+        MapPartTimings::NAMES[0],
+        MapPartTimings::NAMES[1],
+        MapPartTimings::NAMES[2]
+    );
+    for (threads, ms) in map_parts {
+        println!(
+            "{threads:>7}  {:>12.2} {:>12.2} {:>12.2}",
+            ms[0], ms[1], ms[2]
+        );
     }
     json.insert("scaling".into(), scaling.into());
     Ok(())

@@ -61,6 +61,26 @@ impl StageTimings {
     }
 }
 
+/// Seconds spent in each part of the map stage of one frame (all 0 when the maps were
+/// reused: nothing they are made of had moved).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MapPartTimings {
+    /// The hair's light maps (fill, sorts, merge and sweep; contact shadows' bins when on).
+    pub hair_s: f64,
+    /// The head's and body's entry depths across each light.
+    pub occluders_s: f64,
+    /// The skin's shadow texture (`map::surface`), when solids are drawn.
+    pub surface_s: f64,
+}
+
+impl MapPartTimings {
+    pub const NAMES: [&'static str; 3] = ["hair map", "occluders", "skin texture"];
+
+    pub fn as_array(&self) -> [f64; 3] {
+        [self.hair_s, self.occluders_s, self.surface_s]
+    }
+}
+
 /// Everything about a run that is not the hairstyle or the motion.
 #[derive(Clone, Debug)]
 pub struct EngineConfig {

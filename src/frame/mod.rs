@@ -24,7 +24,7 @@ mod setup;
 
 pub use config::{
     ContactShadowing, DEFAULT_CONTACT_WINDOW_M, DEFAULT_MIN_LINE_WIDTH_PX, EngineConfig,
-    StageTimings,
+    MapPartTimings, StageTimings,
 };
 use setup::{colliders_of, solids_of};
 pub use setup::{
@@ -95,6 +95,8 @@ pub struct Engine {
     mesh_scratch: MeshScratch,
     /// Timings of the last frame.
     pub timings: StageTimings,
+    /// The last map stage's parts (inside `timings.map_s`).
+    pub map_parts: MapPartTimings,
     /// Figures of the last simulation advance.
     pub step_stats: StepStats,
 }
@@ -225,6 +227,7 @@ impl Engine {
             character_has_head,
             mesh_scratch: MeshScratch::default(),
             timings: StageTimings::default(),
+            map_parts: MapPartTimings::default(),
             step_stats: StepStats::default(),
             config,
         }
@@ -507,9 +510,11 @@ impl Engine {
             solids: &self.solids,
             mesh: mesh_positions,
         }) && self.maps.len() == lights.len().max(1);
+        self.map_parts = MapPartTimings::default();
         if self.map_reused {
             return;
         }
+        let started = Instant::now();
         // One map per light, built side by side (each build is itself parallel and its
         // result does not depend on the thread count).
         if self.maps.len() != lights.len() {
@@ -549,6 +554,7 @@ impl Engine {
                 map.build(&input(light));
                 map.build_contact(contact.as_ref());
             });
+        self.map_parts.hair_s = started.elapsed().as_secs_f64();
         let mesh = match character {
             Some(ch) => OccluderMesh {
                 positions: &self.character.positions,
@@ -557,10 +563,14 @@ impl Engine {
             None => OccluderMesh::EMPTY,
         };
         for (map, light) in self.maps.iter_mut().zip(lights) {
+            let t = Instant::now();
             map.set_occluders_with_mesh(&self.solids, mesh);
+            let t_surface = Instant::now();
             if draw_solids {
                 map.build_surface(&input(light), bundle_radius_m);
             }
+            self.map_parts.occluders_s += (t_surface - t).as_secs_f64();
+            self.map_parts.surface_s += t_surface.elapsed().as_secs_f64();
         }
     }
 
