@@ -232,10 +232,7 @@ fn scaling_part(args: &BenchArgs, scene: &BenchScene, json: &mut Json) -> Result
         scaling.push(serde_json::Value::Object(row));
     }
     // The map stage by part (medians of each part, so they need not add up to the map's).
-    println!(
-        "
-map stage by part, median ms per frame (0 where the maps were reused):"
-    );
+    println!("\nmap stage by part, median ms per frame (0 where the maps were reused):");
     println!(
         "threads  {:>12} {:>12} {:>12}",
         MapPartTimings::NAMES[0],
