@@ -31,9 +31,9 @@ use crate::sim::Simulator;
 use glam::Vec3;
 
 /// Bytes per render point: position, tangent and colour, length, fibre share and width, and
-/// the shading's order (key, vertex index, key again) and colour in that order.
+/// the shading's order (key, vertex index) and colour in that order.
 const RENDER_POINT_BYTES: usize =
-    3 * size_of::<Vec3>() + 3 * size_of::<f32>() + 3 * size_of::<u32>() + size_of::<Vec3>();
+    3 * size_of::<Vec3>() + 3 * size_of::<f32>() + 2 * size_of::<u32>() + size_of::<Vec3>();
 
 /// Default memory budget: 4 GB.
 pub const DEFAULT_MEMORY_BYTES: u64 = 4_000_000_000;

@@ -57,9 +57,10 @@ pub fn fibre_tint(fiber: &Fiber) -> Vec3 {
 /// that order. Allocation-free once warmed up.
 #[derive(Clone, Debug, Default)]
 pub struct ShadeScratch {
-    keyed: Vec<(u32, u32)>,
-    /// The vertices' keys, then (counting sort by key) the vertices in key order.
+    /// The vertices' keys (map columns).
     keys: Vec<u32>,
+    /// The vertex indices in key order (ties by index).
+    order: Vec<u32>,
     /// Per key (map column, and one for points off the map): its count, then its cursor.
     counts: Vec<u32>,
     shaded: Vec<Vec3>,
@@ -125,12 +126,12 @@ pub fn shade_vertices(
     for c in counts.iter_mut() {
         (*c, at) = (at, at + *c);
     }
-    let keyed = &mut scratch.keyed;
-    keyed.clear();
-    keyed.resize(n, (0, 0));
+    let order = &mut scratch.order;
+    order.clear();
+    order.resize(n, 0);
     for (i, &key) in keys.iter().enumerate() {
         let slot = &mut counts[bucket(key)];
-        keyed[*slot as usize] = (key, i as u32);
+        order[*slot as usize] = i as u32;
         *slot += 1;
     }
     let shaded = &mut scratch.shaded;
@@ -139,10 +140,10 @@ pub fn shade_vertices(
     let ambient = hair_ambient(fiber, lighting);
     shaded
         .par_chunks_mut(CHUNK)
-        .zip(keyed.par_chunks(CHUNK))
-        .for_each(|(out, keys)| {
+        .zip(order.par_chunks(CHUNK))
+        .for_each(|(out, indices)| {
             let mut contact = ContactScratch::default();
-            for (c, &(_, i)) in out.iter_mut().zip(keys) {
+            for (c, &i) in out.iter_mut().zip(indices) {
                 let i = i as usize;
                 *c = shade_one(
                     fiber,
@@ -162,7 +163,7 @@ pub fn shade_vertices(
         });
     colors.clear();
     colors.resize(positions.len(), Vec3::ZERO);
-    for (c, &(_, i)) in shaded.iter().zip(keyed.iter()) {
+    for (c, &i) in shaded.iter().zip(order.iter()) {
         colors[i as usize] = *c;
     }
 }
