@@ -206,9 +206,10 @@ impl Piece {
     /// Adds the ribbon's rows within `band` to `rows` (the band's texels, `cols` per row;
     /// `limit` is the whole texture's), where its depth is at most the texel's limit: the
     /// piece's loss × the texel's overlap ÷ the ribbon's overlap sum, per texel area
-    /// (`inv_texel_area`, 1/m²). A piece whose sum is not known yet lies within the band: its
-    /// overlaps are gathered into `touched` (scratch) and summed in [`Piece::overlap_sum`]'s
-    /// order, so it deposits the same bits as with the sum taken beforehand.
+    /// (`inv_texel_area`, 1/m²). The overlaps are gathered into `touched` (scratch) first; a
+    /// piece whose sum is not known yet lies within the band, and is summed on the way in
+    /// [`Piece::overlap_sum`]'s order, so it deposits the same bits as with the sum taken
+    /// beforehand.
     fn deposit(
         &self,
         band: std::ops::Range<usize>,
@@ -223,20 +224,6 @@ impl Piece {
             (self.x1 as usize).min(band.end),
         );
         let first = band.start * cols;
-        if self.sum > 0.0 {
-            let per = self.loss * (inv_texel_area / self.sum);
-            for x in x0..x1 {
-                for y in self.row_span(x) {
-                    let (w, along) = self.at(x, y);
-                    let k = x * cols + y;
-                    if w > 0.0 && self.depth_at(along) <= limit[k] {
-                        rows[k - first] += per * w;
-                    }
-                }
-            }
-            return;
-        }
-        debug_assert!(self.x0 as usize >= band.start && self.x1 as usize <= band.end);
         touched.clear();
         let mut sum = 0.0;
         for x in x0..x1 {
@@ -248,6 +235,11 @@ impl Piece {
                     touched.push(((k - first) as u32, w));
                 }
             }
+        }
+        if self.sum > 0.0 {
+            sum = self.sum;
+        } else {
+            debug_assert!(self.x0 as usize >= band.start && self.x1 as usize <= band.end);
         }
         if sum > 0.0 {
             let per = self.loss * (inv_texel_area / sum);
