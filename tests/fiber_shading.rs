@@ -329,3 +329,82 @@ fn window_fluence_is_fluence_over_flux() {
     let step = 1e-6;
     assert!((window_fluence(half_pi - step) - window_fluence(half_pi + step)).abs() < 1e-5);
 }
+
+/// Trap 11 for a light inclined to the fibre: Eq. 7's window lies in the shading fibre's own
+/// azimuth, at the light's inclination θi. Brute force over the window's directions, built as
+/// 3-vectors: the fibre intercepts cos θi of each (its projected width), the shadow path
+/// carries |ω · ω_light| of each; fluence ÷ flux is their ratio. It is w/sin w across the
+/// fibre, 1 along it, and falls monotonically between.
+#[test]
+fn an_inclined_light_s_window_fluence_is_fluence_over_flux() {
+    use wisp::fiber::dual::{window_fluence, window_fluence_inclined};
+    let brute = |w: f64, theta_i: f64| {
+        let light = [theta_i.sin(), theta_i.cos(), 0.0];
+        let n = 20_000;
+        let (mut fluence, mut flux) = (0.0f64, 0.0f64);
+        for k in 0..n {
+            let psi = -w + (k as f64 + 0.5) * 2.0 * w / n as f64;
+            let d = [
+                theta_i.sin(),
+                theta_i.cos() * psi.cos(),
+                theta_i.cos() * psi.sin(),
+            ];
+            let along_axis = d[0];
+            fluence += (1.0 - along_axis * along_axis).sqrt();
+            flux += theta_i.cos() * (d[0] * light[0] + d[1] * light[1] + d[2] * light[2]).abs();
+        }
+        fluence / flux
+    };
+    for w_deg in [10.0f64, 45.0, 90.0, 120.0, 179.0] {
+        let w = w_deg.to_radians();
+        let mut last = f64::INFINITY;
+        for t_deg in [0.0f64, 10.0, 30.0, 45.0, 60.0, 75.0, 85.0, 89.0] {
+            let t = t_deg.to_radians();
+            let s2 = t.sin().powi(2);
+            let (got, want) = (window_fluence_inclined(w, s2), brute(w, t));
+            assert!(
+                (got - want).abs() <= 1e-6 * want,
+                "w = {w_deg}°, θi = {t_deg}°: {got} vs {want}"
+            );
+            // Monotone up to Zinke's 90°; wider windows count backward flux too.
+            assert!(
+                w_deg > 90.0 || got <= last + 1e-12,
+                "not monotone at w = {w_deg}°, θi = {t_deg}°"
+            );
+            last = got;
+        }
+        assert_eq!(window_fluence_inclined(w, 0.0), window_fluence(w));
+        assert!((window_fluence_inclined(w, 1.0) - 1.0).abs() < 1e-12);
+    }
+}
+
+/// The shader's per-fibre table of d_f × the inclined window's fluence follows the closed form
+/// to 3e-5 (relative) between its nodes and at them for windows up to 90° (1e-3 wider, where
+/// the flux counted both ways has a kink), and stays finite and in [d_f, d_f × its value
+/// across the fibre] for any sin θi, out-of-range ones included.
+#[test]
+fn the_gain_table_follows_the_closed_form() {
+    use wisp::fiber::dual::{ScatteredGain, window_fluence_inclined};
+    for (d_f, w_deg) in [(1.0f64, 90.0f64), (0.7, 90.0), (1.0, 30.0), (1.0, 150.0)] {
+        let w = w_deg.to_radians();
+        let table = ScatteredGain::new(d_f, w);
+        for k in 0..=1000 {
+            let si = -1.0 + 2.0 * k as f64 / 1000.0;
+            let want = d_f * window_fluence_inclined(w, si * si);
+            let got = table.at(si as f32) as f64;
+            let tol = if w_deg <= 90.0 { 3e-5 } else { 1e-3 };
+            assert!(
+                (got - want).abs() <= tol * want,
+                "d_f {d_f}, w {w_deg}°, sin θi {si}: {got} vs {want}"
+            );
+        }
+        let hi = (d_f * window_fluence_inclined(w, 0.0)) as f32;
+        for si in [1.5f32, -7.0, f32::INFINITY, f32::NEG_INFINITY] {
+            let g = table.at(si);
+            assert!(
+                g.is_finite() && g >= d_f as f32 * 0.99999 && g <= hi * 1.00001,
+                "{si}: {g}"
+            );
+        }
+    }
+}

@@ -174,9 +174,10 @@ pub struct Fiber {
     pub(crate) model: ModelShading,
     pub(crate) dual: DualTables,
     kk: KajiyaKay,
-    /// d_f times the window's fluence per unit flux ([`dual::window_fluence`]): what multiplies
-    /// the forward-scattered share T_f − direct (Figure 5's d_f).
-    pub(crate) scattered_gain: f32,
+    /// d_f times the window's fluence per unit flux at the light's inclination
+    /// ([`dual::window_fluence_inclined`]): what multiplies the forward-scattered share
+    /// T_f − direct (Figure 5's d_f).
+    pub(crate) scattered_gain: dual::ScatteredGain,
     pub(crate) d_b: f32,
 }
 
@@ -242,7 +243,7 @@ impl Fiber {
         let kk = KajiyaKay::new(&consts, &dual);
         Self {
             params: params.clone(),
-            scattered_gain: (params.d_f as f64 * dual::window_fluence(window)) as f32,
+            scattered_gain: dual::ScatteredGain::new(params.d_f as f64, window),
             d_b: params.d_b,
             consts,
             chiang,

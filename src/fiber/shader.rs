@@ -6,10 +6,11 @@
 //! **How the map's statistics combine (Figure 5).** T_f is the map's average over light rays of
 //! ∏ ā_f over their crossings, where a ray with no crossing contributes 1 (Zinke Eq. 5, n = 0),
 //! so T_f ≥ directFraction and the forward-*scattered* share is T_f − directFraction. We use
-//! F = directFraction·(f_s + d_b f_back) + max(T_f − directFraction, 0)·d_f·(w/sin w)·(f_s^G +
-//! π d_b f_back^G), as Figure 5 prints it but for w/sin w (π/2 for Zinke's window): T_f is a
-//! flux along the shadow path and a fibre intercepts fluence (`dual::window_fluence`; the
-//! product is `Fiber::scattered_gain`). The alternative T_f·d_f·(…) counts unobstructed light
+//! F = directFraction·(f_s + d_b f_back) + max(T_f − directFraction, 0)·d_f·G(θi)·(f_s^G +
+//! π d_b f_back^G), as Figure 5 prints it but for G: T_f is a flux along the shadow path and a
+//! fibre intercepts fluence, G = w/sin w (π/2 for Zinke's window) for a light in the fibre's
+//! normal plane, falling to 1 for a light along the fibre (`dual::window_fluence_inclined`;
+//! d_f·G is `Fiber::scattered_gain`, tabulated over sin²θi). The alternative T_f·d_f·(…) counts unobstructed light
 //! twice: a fibre in full light would receive 1 + d_f = 2 times the direct light (pinned by
 //! `dual_unshadowed_is_direct_only` in tests/fiber_hard_cases.rs).
 //! f_back of the direct path uses σ̄_b² alone (direct light has no forward spread);
@@ -263,7 +264,8 @@ impl Fiber {
                     }
                     f_s_g *= inv;
                     let f_back_g = back_w * gauss3(dx, sigma_b2 + l.sigma_f2);
-                    out += l.scattered * self.scattered_gain * (f_s_g + PI * f_back_g);
+                    let gain = self.scattered_gain.at(t.si);
+                    out += l.scattered * gain * (f_s_g + PI * f_back_g);
                 }
                 finite_or_zero(out * cos_i)
             }
@@ -281,7 +283,8 @@ impl Fiber {
                         c.deon.m_broadened_all(l.sigma_f2, t.si, t.ci, t.so, t.co);
                     let g_s_g = m_r * n[4] + m_tt * n[5] + m_trt * n[6] + m_rest * n[3];
                     let f_back_g = back_w * gauss3(dx, sigma_b2 + l.sigma_f2);
-                    out += l.scattered * self.scattered_gain * (g_s_g + PI * cos_i * f_back_g);
+                    let gain = self.scattered_gain.at(t.si);
+                    out += l.scattered * gain * (g_s_g + PI * cos_i * f_back_g);
                 }
                 finite_or_zero(out)
             }
@@ -413,50 +416,65 @@ mod tests {
     use crate::fiber::{Fiber, FiberModel, FiberParams, ShadingMode};
 
     /// Figure 5's forward-scattered term carries d_f times the window's fluence per unit flux
-    /// (`dual::window_fluence`, π/2 for Zinke's 90° window): a fully shadowed point (direct 0)
-    /// shades exactly π/2 brighter than with the literal factor d_f, in both fibre models,
-    /// and a directly lit point with T_f = direct (nothing scattered) does not change.
+    /// at the light's inclination (`dual::window_fluence_inclined`: π/2 for Zinke's 90° window
+    /// and a light across the fibre, 1 along it): a fully shadowed point (direct 0) shades
+    /// that much brighter than with the literal factor d_f, in both fibre models and at every
+    /// inclination, and a directly lit point with T_f = direct (nothing scattered) does not
+    /// change.
     #[test]
     fn scattered_light_carries_the_window_fluence() {
+        use crate::fiber::dual::{ScatteredGain, window_fluence_inclined};
         for model in [FiberModel::Marschner, FiberModel::Chiang] {
             let fiber = Fiber::new(&FiberParams {
                 model,
                 ..Default::default()
             });
+            let d_f = fiber.params().d_f as f64;
             let half_pi = std::f32::consts::FRAC_PI_2;
-            assert!((fiber.scattered_gain - fiber.params().d_f * half_pi).abs() < 1e-6);
+            assert!((fiber.scattered_gain.at(0.0) - d_f as f32 * half_pi).abs() < 1e-6);
+            assert!((fiber.scattered_gain.at(1.0) - d_f as f32).abs() < 1e-6);
             let mut literal = fiber.clone();
-            literal.scattered_gain = fiber.params().d_f;
-            let (u, wi, wo) = (
-                Vec3::Y,
-                Vec3::new(0.8, 0.3, 0.1).normalize(),
-                Vec3::new(-0.6, -0.1, -0.5).normalize(),
-            );
-            let shadowed = LightAtPoint {
-                direct_fraction: 0.0,
-                tf: Vec3::new(0.3, 0.2, 0.1),
-                sigma_f2: Vec3::splat(0.05),
-                crossings_behind: LightAtPoint::DENSE,
-            };
-            let (a, b) = (
-                fiber.shade(ShadingMode::DualScattering, u, wi, wo, &shadowed),
-                literal.shade(ShadingMode::DualScattering, u, wi, wo, &shadowed),
-            );
-            assert!(b.min_element() > 0.0, "{model:?}: {b}");
-            assert!(
-                (a - b * half_pi).abs().max_element() <= 1e-6 * a.max_element(),
-                "{a} vs {b}"
-            );
-            let lit = LightAtPoint {
-                direct_fraction: 0.4,
-                tf: Vec3::splat(0.4),
-                ..shadowed
-            };
-            assert_eq!(
-                fiber.shade(ShadingMode::DualScattering, u, wi, wo, &lit),
-                literal.shade(ShadingMode::DualScattering, u, wi, wo, &lit)
-            );
+            // A window of zero width is a beam: fluence = flux at any inclination.
+            literal.scattered_gain = ScatteredGain::new(d_f, 0.0);
+            for wi in [
+                Vec3::new(0.8, 0.0, 0.1),
+                Vec3::new(0.8, 0.3, 0.1),
+                Vec3::new(0.3, 0.9, -0.2),
+                Vec3::new(0.05, -0.99, 0.02),
+            ] {
+                let wi = wi.normalize();
+                let want = window_fluence_inclined(90f64.to_radians(), (wi.y * wi.y) as f64);
+                check_gain(&fiber, &literal, wi, want as f32, model);
+            }
         }
+    }
+
+    fn check_gain(fiber: &Fiber, literal: &Fiber, wi: Vec3, gain: f32, model: FiberModel) {
+        let (u, wo) = (Vec3::Y, Vec3::new(-0.6, -0.1, -0.5).normalize());
+        let shadowed = LightAtPoint {
+            direct_fraction: 0.0,
+            tf: Vec3::new(0.3, 0.2, 0.1),
+            sigma_f2: Vec3::splat(0.05),
+            crossings_behind: LightAtPoint::DENSE,
+        };
+        let (a, b) = (
+            fiber.shade(ShadingMode::DualScattering, u, wi, wo, &shadowed),
+            literal.shade(ShadingMode::DualScattering, u, wi, wo, &shadowed),
+        );
+        assert!(b.min_element() > 0.0, "{model:?}: {b}");
+        assert!(
+            (a - b * gain).abs().max_element() <= 1e-4 * a.max_element(),
+            "{model:?}, ωi {wi}: {a} vs {b} × {gain}"
+        );
+        let lit = LightAtPoint {
+            direct_fraction: 0.4,
+            tf: Vec3::splat(0.4),
+            ..shadowed
+        };
+        assert_eq!(
+            fiber.shade(ShadingMode::DualScattering, u, wi, wo, &lit),
+            literal.shade(ShadingMode::DualScattering, u, wi, wo, &lit)
+        );
     }
 
     /// The arriving light's spread against the Poisson sum it stands for, term by term in f64:
