@@ -2,7 +2,7 @@
 """Regenerates issue 14's comparison table: wisp against Mitsuba 3 (not run by CI).
 
     run_table.py [--out DIR] [--size 400] [--spp 128] [--passes 8] [--only dense,isolated,curly]
-                 [--lights front,side,back] [--kinds dual,single]
+                 [--lights front,side,back] [--kinds dual,single] [--set FIELD=VALUE ...]
 
 For every case it writes hairstyle JSON generated from the presets into DIR/styles (no new
 preset files), exports the frame with `wisp export` (dual and single shading), renders the
@@ -23,7 +23,9 @@ concentrations 0.3 and 1.3: sigma_a = c x (0.419, 0.697, 1.37) per unit radius.
 Results go to DIR/results.jsonl (one line per comparison) and DIR/table.md; side-by-side
 PNGs to DIR/<case>/compare_*.png. "coverage wisp / PT" is the ratio of the images' summed
 alpha: how much of the image each renderer's hair covers (1 = physical coverage agrees). Re-running skips renders whose outputs exist
-(--force to redo); --table-only rebuilds table.md from results.jsonl.
+(--force to redo); --table-only rebuilds table.md from results.jsonl. `--set strands.points=241`
+changes a field of every case's hairstyle (ACCURACY.md's curl-resolution table); use a new DIR
+for it, since the path-traced renders are of that geometry.
 """
 
 import argparse
@@ -61,6 +63,24 @@ def style_variant(preset, name, strand_factor=1, strands_per_wisp=None, sigma_a=
     if model is not None:
         s["fiber"]["model"] = model
     return s
+
+
+def set_field(style, assignment):
+    """`--set strands.points=241`: a dotted hairstyle field given a JSON value (a bare word is a
+    string), applied to every hairstyle of the table after the variants are made."""
+    key, sep, raw = assignment.partition("=")
+    if not sep or not key:
+        sys.exit(f"run_table.py: --set {assignment!r}: expected FIELD.PATH=VALUE")
+    try:
+        value = json.loads(raw)
+    except json.JSONDecodeError:
+        value = raw
+    node, parts = style, key.split(".")
+    for part in parts[:-1]:
+        if not isinstance(node.get(part), dict):
+            sys.exit(f"run_table.py: --set {assignment!r}: the hairstyle has no section {part!r}")
+        node = node[part]
+    node[parts[-1]] = value
 
 
 def cases(only, model):
@@ -158,6 +178,8 @@ def main():
     ap.add_argument("--python", default=sys.executable, help="the Python that has mitsuba")
     ap.add_argument("--force", action="store_true")
     ap.add_argument("--table-only", action="store_true")
+    ap.add_argument("--set", action="append", default=[], metavar="FIELD=VALUE",
+                    help="set a hairstyle field in every case, e.g. strands.points=241 (repeatable)")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     if args.table_only:
@@ -171,6 +193,8 @@ def main():
     for case, colour, light, style in cases(args.only.split(","), args.model):
         if light not in lights:
             continue
+        for assignment in args.set:
+            set_field(style, assignment)
         style_path = os.path.join(styles_dir, f"{style['name']}.json")
         json.dump(style, open(style_path, "w"), indent=1)
         common = [args.wisp, "export", "--quiet", "--hairstyle", style_path, "--still",
