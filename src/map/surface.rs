@@ -270,6 +270,9 @@ pub struct SurfaceShadow {
     pieces: Vec<Piece>,
     /// Scratch: per band, the range of `pieces` that may reach it.
     band_first: Vec<u32>,
+    /// Scratch: per band, the overlaps of the piece it is depositing (at most a piece's
+    /// texels within one band: pieces are at most a map cell long).
+    touched: Vec<Vec<(u32, f32)>>,
 }
 
 impl SurfaceShadow {
@@ -462,15 +465,16 @@ impl SurfaceShadow {
         // is deposited, `Piece::deposit`).
         let (pieces, band_first, limit) = (&self.pieces, &self.band_first, &self.limit);
         let inv_texel_area = inv_texel * inv_texel;
+        self.touched.resize_with(bands, Vec::new);
         self.sums
             .par_chunks_mut(BAND_ROWS * dims[1])
+            .zip(self.touched.par_iter_mut())
             .enumerate()
-            .for_each(|(b, rows)| {
+            .for_each(|(b, (rows, touched))| {
                 let (r0, r1) = (b * BAND_ROWS, ((b + 1) * BAND_ROWS).min(dims[0]));
                 let last = pieces.partition_point(|p| (p.x0 as usize) < r1);
-                let mut touched = Vec::new();
                 for piece in &pieces[band_first[b] as usize..last] {
-                    piece.deposit(r0..r1, dims[1], limit, inv_texel_area, rows, &mut touched);
+                    piece.deposit(r0..r1, dims[1], limit, inv_texel_area, rows, touched);
                 }
             });
     }
