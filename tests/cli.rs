@@ -230,3 +230,38 @@ fn a_reader_that_closes_the_pipe_early_stops_wisp_quietly() {
     assert_eq!(o.status.code(), Some(141), "stderr: {}", stderr(&o));
     assert!(stderr(&o).is_empty(), "stderr: {}", stderr(&o));
 }
+
+#[test]
+fn a_hairstyle_with_coarse_curls_loads_with_a_warning_naming_the_field() {
+    // The curly preset at its old 61 points: legal, but measured to light curls wrongly
+    // (`Hairstyle::advisories`). It renders (exit 0) and says so; at 121 points it is silent.
+    let dir = tmp("cli-coarse-curls");
+    for (points, warned) in [(61u32, true), (121, false)] {
+        let mut style = wisp::hairstyle::Hairstyle::default_curly();
+        style.strands.points = points;
+        let file = dir.join(format!("curly{points}.json"));
+        std::fs::write(&file, serde_json::to_string(&style).unwrap()).unwrap();
+        let out = dir.join(format!("out{points}"));
+        let o = wisp(&[
+            "render",
+            "--frames",
+            "1",
+            "--width",
+            "32",
+            "--height",
+            "32",
+            "--quiet",
+            "--hairstyle",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let err = stderr(&o);
+        let named = err.contains("warning")
+            && err.contains(&format!("curly{points}.json"))
+            && err.contains("strands.points");
+        assert_eq!(named, warned, "{points} points: {err}");
+        assert!(out.join("frame_00000.png").exists());
+    }
+}

@@ -506,13 +506,22 @@ pub fn load_hairstyle(arg: &str) -> Result<Hairstyle, AppError> {
         _ => {}
     }
     let path = std::path::Path::new(arg);
-    Hairstyle::load(path).map_err(|e| match e {
+    let style = Hairstyle::load(path).map_err(|e| match e {
         HairstyleError::Io { .. } if !path.exists() => AppError::input(anyhow::anyhow!(
             "--hairstyle {arg}: not a preset ({}) and no such file",
             PRESETS.join(", ")
         )),
         e => AppError::input(e),
-    })
+    })?;
+    for a in style.advisories() {
+        eprintln!(
+            "wisp: warning: {}: field `{}`: {}",
+            path.display(),
+            a.field,
+            a.message
+        );
+    }
+    Ok(style)
 }
 
 /// Checks, before any work, that `path` can be an output file: not a directory, in a folder

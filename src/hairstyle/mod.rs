@@ -5,10 +5,12 @@
 //! `wisps.count`) and the rule that failed. Sizes are bounded so that a hostile file cannot make
 //! the engine allocate gigabytes.
 
+mod advice;
 pub mod dynamics;
 mod generate;
 mod model;
 
+pub use advice::{Advisory, MAX_CURL_TURN_PER_SEGMENT_DEG};
 pub use generate::{SplitMix64, generate};
 pub use model::{GuideSet, StrandLayout};
 

@@ -1,0 +1,115 @@
+//! Advisories: what a hairstyle may legally ask for but the renderer is measured to get wrong.
+//!
+//! A rule of `Hairstyle::validate` refuses a file; an advisory lets it load and says what the
+//! picture will suffer and which field fixes it. Each advisory cites the measurement it rests
+//! on, so its threshold is not a matter of taste.
+
+use super::Hairstyle;
+
+/// Largest turn of a curl's helix per render-strand segment, degrees, that the light between
+/// the points is right for. Measured against a path tracer (ACCURACY.md §2, "Curls need their
+/// points": the curly preset back-lit, single scattering; turns at its mean strand length):
+/// 52° per segment (7 per turn) read 16–26% too bright, 26° (14 per turn) 4–6%, 13° 3–6%;
+/// the error is in the light averaged
+/// along a segment that cuts across the curl (the shadows alone: "along the fibre" 1.174 at
+/// 52°, 1.016 at 26°).
+pub const MAX_CURL_TURN_PER_SEGMENT_DEG: f32 = 30.0;
+
+/// One advisory: the field to change and why, in words for a user.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Advisory {
+    /// Dotted path of the field that fixes it (as in validation errors).
+    pub field: String,
+    pub message: String,
+}
+
+impl Hairstyle {
+    /// What this (valid) hairstyle asks for that the renderer is measured to get wrong; empty
+    /// for the presets.
+    pub fn advisories(&self) -> Vec<Advisory> {
+        let mut out = Vec::new();
+        if let Some(a) = self.curl_resolution_advisory() {
+            out.push(a);
+        }
+        out
+    }
+
+    /// The helix turn per segment on the longest strands (their segments are longest: every
+    /// strand has the same number of points), degrees; `None` for straight hair.
+    pub fn curl_turn_per_segment_deg(&self) -> Option<f32> {
+        let curl = &self.curl;
+        if !(curl.radius_m > 0.0 && curl.period_m > 0.0) || self.strands.points < 2 {
+            return None;
+        }
+        let segment_m = self.max_length_m() / (self.strands.points - 1) as f32;
+        Some(360.0 * segment_m / curl.period_m)
+    }
+
+    fn curl_resolution_advisory(&self) -> Option<Advisory> {
+        let turn = self.curl_turn_per_segment_deg()?;
+        if turn <= MAX_CURL_TURN_PER_SEGMENT_DEG {
+            return None;
+        }
+        let segments =
+            (360.0 * self.max_length_m() / (MAX_CURL_TURN_PER_SEGMENT_DEG * self.curl.period_m))
+                .ceil() as u64;
+        Some(Advisory {
+            field: "strands.points".into(),
+            message: format!(
+                "curls of period {:.1} mm turn {turn:.0}° per segment on the longest strands \
+                 ({} points over {:.0} mm); beyond {MAX_CURL_TURN_PER_SEGMENT_DEG:.0}° the light \
+                 between the points is wrong (measured against a path tracer: 7 segments per \
+                 turn read back-lit curls 16-26% too bright, 14 per turn 4-6%); {} points or \
+                 more keep it under {MAX_CURL_TURN_PER_SEGMENT_DEG:.0}°, at a cost linear in \
+                 the points",
+                self.curl.period_m * 1e3,
+                self.strands.points,
+                self.max_length_m() * 1e3,
+                segments + 1,
+            ),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_presets_need_no_advice() {
+        assert!(Hairstyle::default_smooth().advisories().is_empty());
+        assert!(Hairstyle::dense().advisories().is_empty());
+        let curly = Hairstyle::default_curly();
+        assert!(curly.advisories().is_empty(), "{:?}", curly.advisories());
+        // The curly preset is just under the limit: 0.26 m × 1.12 / 120 segments over a
+        // 30 mm period is 29.1°.
+        let turn = curly.curl_turn_per_segment_deg().unwrap();
+        assert!((turn - 29.12).abs() < 0.01, "{turn}");
+    }
+
+    #[test]
+    fn coarse_curls_are_named_with_the_points_that_fix_them() {
+        let mut style = Hairstyle::default_curly();
+        style.strands.points = 61; // the preset before 2026-12-04: 58° per segment
+        let advice = style.advisories();
+        assert_eq!(advice.len(), 1);
+        assert_eq!(advice[0].field, "strands.points");
+        // 360° × 0.2912 m / (30° × 0.03 m) = 116.5 → 117 segments, 118 points.
+        assert!(advice[0].message.contains("118 points"), "{}", advice[0].message);
+        assert!(advice[0].message.contains("58°"), "{}", advice[0].message);
+        // The number it names is enough, and one fewer is not.
+        style.strands.points = 118;
+        assert!(style.advisories().is_empty());
+        style.strands.points = 117;
+        assert_eq!(style.advisories().len(), 1);
+    }
+
+    #[test]
+    fn straight_hair_and_degenerate_curls_get_none() {
+        let mut style = Hairstyle::default_curly();
+        style.curl.radius_m = 0.0;
+        style.strands.points = 3;
+        assert!(style.advisories().is_empty());
+        assert_eq!(style.curl_turn_per_segment_deg(), None);
+    }
+}
