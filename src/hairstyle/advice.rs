@@ -50,9 +50,9 @@ impl Hairstyle {
         if turn <= MAX_CURL_TURN_PER_SEGMENT_DEG {
             return None;
         }
-        let segments =
-            (360.0 * self.max_length_m() / (MAX_CURL_TURN_PER_SEGMENT_DEG * self.curl.period_m))
-                .ceil() as u64;
+        let segments = (360.0 * self.max_length_m()
+            / (MAX_CURL_TURN_PER_SEGMENT_DEG * self.curl.period_m))
+            .ceil() as u64;
         Some(Advisory {
             field: "strands.points".into(),
             message: format!(
@@ -95,7 +95,11 @@ mod tests {
         assert_eq!(advice.len(), 1);
         assert_eq!(advice[0].field, "strands.points");
         // 360° × 0.2912 m / (30° × 0.03 m) = 116.5 → 117 segments, 118 points.
-        assert!(advice[0].message.contains("118 points"), "{}", advice[0].message);
+        assert!(
+            advice[0].message.contains("118 points"),
+            "{}",
+            advice[0].message
+        );
         assert!(advice[0].message.contains("58°"), "{}", advice[0].message);
         // The number it names is enough, and one fewer is not.
         style.strands.points = 118;
