@@ -10,9 +10,8 @@ use super::Hairstyle;
 /// the points is right for. Measured against a path tracer (ACCURACY.md §2, "Curls need their
 /// points": the curly preset back-lit, single scattering; turns at its mean strand length):
 /// 52° per segment (7 per turn) read 16–26% too bright, 26° (14 per turn) 4–6%, 13° 3–6%;
-/// the error is in the light averaged
-/// along a segment that cuts across the curl (the shadows alone: "along the fibre" 1.174 at
-/// 52°, 1.016 at 26°).
+/// the error is in the light averaged along a segment that cuts across the curl (the shadows
+/// alone: "along the fibre" 1.174 at 52°, 1.016 at 26°).
 pub const MAX_CURL_TURN_PER_SEGMENT_DEG: f32 = 30.0;
 
 /// One advisory: the field to change and why, in words for a user.
