@@ -595,3 +595,16 @@ fn infinite_feature_distances_still_give_every_strand_a_wisp() {
         Err(e) => assert!(e.to_string().contains("huge.tfx"), "{e}"),
     }
 }
+
+#[test]
+fn an_imported_groom_drops_the_hairstyle_s_curls_and_so_their_advice() {
+    // The CLI warns about what will be drawn: a coarse-curled hairstyle warns on its own, but a
+    // groom keeps its own shape (no curls), so the same hairstyle under a groom does not.
+    let mut base = Hairstyle::default_curly();
+    base.strands.points = 61;
+    assert_eq!(base.advisories().len(), 1);
+    let f = parse_strand_file(&encode_cyhair(&arcs(60)), "g.hair").unwrap();
+    let g = build_groom(&[("g.hair".into(), f)], &base, &GroomOptions::default()).unwrap();
+    assert_eq!(g.style.curl_turn_per_segment_deg(), None);
+    assert!(g.style.advisories().is_empty());
+}

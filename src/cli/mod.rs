@@ -338,8 +338,10 @@ impl SceneArgs {
                 self.hairstyle.join(",")
             )));
         }
-        let base = load_hairstyle(styles.first().map_or("smooth", |s| s.as_str()))?;
+        let source = styles.first().map_or("smooth", |s| s.as_str());
+        let base = load_hairstyle(source)?;
         if files.is_empty() {
+            warn_advisories(source, &base);
             return Ok((base, None));
         }
         let opts = wisp::groom::GroomOptions {
@@ -374,6 +376,9 @@ impl SceneArgs {
             r.rest_distance_mean_m * 1e3,
             r.rest_distance_max_m * 1e3,
         );
+        // What the groom keeps of the hairstyle (not its curls: an imported groom has its own
+        // shape) is checked as it will be drawn.
+        warn_advisories(source, &groom.style);
         Ok((groom.style, Some((groom.guides, groom.layout))))
     }
 
@@ -506,22 +511,24 @@ pub fn load_hairstyle(arg: &str) -> Result<Hairstyle, AppError> {
         _ => {}
     }
     let path = std::path::Path::new(arg);
-    let style = Hairstyle::load(path).map_err(|e| match e {
+    Hairstyle::load(path).map_err(|e| match e {
         HairstyleError::Io { .. } if !path.exists() => AppError::input(anyhow::anyhow!(
             "--hairstyle {arg}: not a preset ({}) and no such file",
             PRESETS.join(", ")
         )),
         e => AppError::input(e),
-    })?;
+    })
+}
+
+/// Prints the hairstyle's advisories (`Hairstyle::advisories`: what it may ask for but is
+/// measured to render wrongly) as warnings naming `source`, the file it came from.
+fn warn_advisories(source: &str, style: &Hairstyle) {
     for a in style.advisories() {
         eprintln!(
-            "wisp: warning: {}: field `{}`: {}",
-            path.display(),
-            a.field,
-            a.message
+            "wisp: warning: {source}: field `{}`: {}",
+            a.field, a.message
         );
     }
-    Ok(style)
 }
 
 /// Checks, before any work, that `path` can be an output file: not a directory, in a folder
