@@ -26,11 +26,7 @@ impl Hairstyle {
     /// What this (valid) hairstyle asks for that the renderer is measured to get wrong; empty
     /// for the presets.
     pub fn advisories(&self) -> Vec<Advisory> {
-        let mut out = Vec::new();
-        if let Some(a) = self.curl_resolution_advisory() {
-            out.push(a);
-        }
-        out
+        self.curl_resolution_advisory().into_iter().collect()
     }
 
     /// The helix turn per segment on the longest strands (their segments are longest: every
@@ -49,9 +45,9 @@ impl Hairstyle {
         if turn <= MAX_CURL_TURN_PER_SEGMENT_DEG {
             return None;
         }
-        let segments = (360.0 * self.max_length_m()
-            / (MAX_CURL_TURN_PER_SEGMENT_DEG * self.curl.period_m))
-            .ceil() as u64;
+        // The turn scales as 1/segments: this many bring it to the limit.
+        let segments =
+            ((self.strands.points - 1) as f32 * turn / MAX_CURL_TURN_PER_SEGMENT_DEG).ceil() as u64;
         Some(Advisory {
             field: "strands.points".into(),
             message: format!(
