@@ -95,6 +95,7 @@ fn bench_raster(c: &mut Criterion) {
         colors: &cols,
         widths_m: &[],
         points_per_line: POINTS,
+        bundle: None,
     };
     assert_eq!(lines.segment_count(), 100_000);
     let cam = camera();

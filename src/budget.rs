@@ -444,7 +444,12 @@ pub fn estimate(
         MemoryPart {
             what: "hair line raster",
             product: format!("{} segments on {} rows", grouped(segments), config.height),
-            bytes: LineScratch::estimated_bytes(segments, config.height, sample_len_m * px_per_m),
+            bytes: LineScratch::estimated_bytes(
+                segments,
+                config.height,
+                sample_len_m * px_per_m,
+                style.strands.fibers_per_strand.round() >= 2.0,
+            ),
             set_by: "render strands × strands.points, and --height",
         },
         MemoryPart {

@@ -50,6 +50,7 @@ fn draw_line(a: (f32, f32), b: (f32, f32), z: f32, w_m: f32, min_px: f32, n: usi
         colors: &cols,
         widths_m: &widths,
         points_per_line: n,
+        bundle: None,
     };
     let mut fb = Framebuffer::new(200, 200, Vec3::ZERO);
     draw_polylines(
@@ -119,6 +120,7 @@ fn dense_thin_lines_accumulate_toward_full_coverage() {
         colors: &cols,
         widths_m: &widths,
         points_per_line: 2,
+        bundle: None,
     };
     let mut fb = Framebuffer::new(64, 64, Vec3::ZERO);
     let style = LineStyle::projected(1.0);
@@ -181,6 +183,7 @@ fn projected_widths_never_panic() {
                     colors: &cols,
                     widths_m: widths,
                     points_per_line: 2,
+                    bundle: None,
                 };
                 let mut fb = Framebuffer::new(80, 60, Vec3::ZERO);
                 draw_polylines(
@@ -211,6 +214,7 @@ fn projected_widths_never_panic() {
         colors: &cols[..2],
         widths_m: &[],
         points_per_line: 2,
+        bundle: None,
     };
     let mut fb = Framebuffer::new(80, 60, Vec3::ZERO);
     draw_polylines(

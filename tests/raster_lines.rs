@@ -40,6 +40,7 @@ fn draw(
         colors: cols,
         widths_m: &[],
         points_per_line: n,
+        bundle: None,
     };
     draw_polylines(fb, cam, &lines, &style, &mut LineScratch::default());
 }
@@ -321,6 +322,7 @@ fn render_scene(threads: usize, w: u32, h: u32) -> Framebuffer {
             colors: &cols,
             widths_m: &[],
             points_per_line: 40,
+            bundle: None,
         };
         let style = LineStyle {
             width: LineWidth::Pixels(1.0),
@@ -404,6 +406,7 @@ fn degenerate_input_never_panics_and_draws_nothing_wrong() {
                     colors: &[Vec3::ONE; 3],
                     widths_m: &[],
                     points_per_line: 3,
+                    bundle: None,
                 };
                 for width_px in [1.0, 0.0, -1.0, f32::NAN, 1e9, f32::INFINITY] {
                     let style = LineStyle {
@@ -439,6 +442,7 @@ fn degenerate_input_never_panics_and_draws_nothing_wrong() {
                 colors: &cols[..ncol],
                 widths_m: &[],
                 points_per_line: n,
+                bundle: None,
             };
             draw_polylines(&mut fb, &cam, &lines, &LineStyle::default(), &mut scratch);
             assert!(fb.color.iter().all(|c| c.is_finite()));
@@ -450,6 +454,7 @@ fn degenerate_input_never_panics_and_draws_nothing_wrong() {
             colors: &cols[2..],
             widths_m: &[],
             points_per_line: 2,
+            bundle: None,
         };
         draw_polylines(
             &mut fb,
@@ -473,6 +478,7 @@ fn degenerate_input_never_panics_and_draws_nothing_wrong() {
         colors: &cols[3..],
         widths_m: &[],
         points_per_line: 2,
+        bundle: None,
     };
     draw_polylines(&mut fb, &cam, &lines, &LineStyle::default(), &mut scratch);
 }

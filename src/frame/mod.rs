@@ -37,7 +37,7 @@ use crate::interp::{StrandGeometry, interpolate_among};
 use crate::map::{CountModel, LightMap, MapGeometry, MapStats, OccluderMesh, Solid};
 use crate::motion::{CharacterPose, Motion, Pose};
 use crate::raster::{
-    Camera, Framebuffer, LineScratch, Mesh, MeshScratch, Polylines, Surface, Texture,
+    Bundle, Camera, Framebuffer, LineScratch, Mesh, MeshScratch, Polylines, Surface, Texture,
     draw_ellipsoid, draw_mesh, draw_polylines,
 };
 use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};
@@ -77,6 +77,9 @@ pub struct Engine {
     shade_scratch: ShadeScratch,
     /// Physical width of each render-strand point in metres (fibres per strand × diameter).
     widths_m: Vec<f32>,
+    /// A render strand's fibres in its bundle's unit disc (as the exact reference places
+    /// them), for the raster to draw them where they lie; empty for one fibre per strand.
+    bundle_points: Vec<glam::Vec2>,
     camera: Camera,
     /// The head-following framing, when the camera is not fixed.
     follow: Option<HeadFollowing>,
@@ -194,6 +197,12 @@ impl Engine {
             config.height,
         );
         let fb = Framebuffer::new(config.width, config.height, config.background);
+        let fibres = style.strands.fibers_per_strand.round();
+        let bundle_points = if fibres >= 2.0 {
+            crate::map::exact::bundle_disc_points(fibres.min(256.0) as u32)
+        } else {
+            Vec::new()
+        };
         Self {
             style,
             fiber,
@@ -215,6 +224,7 @@ impl Engine {
             colors: Vec::new(),
             shade_scratch: ShadeScratch::default(),
             widths_m: Vec::new(),
+            bundle_points,
             camera,
             follow: None,
             fb,
@@ -400,6 +410,13 @@ impl Engine {
             colors: &self.colors,
             widths_m: &self.widths_m,
             points_per_line: self.strands.points_per_strand,
+            // The fibres spread over half the strand spacing, as the map's surface texture
+            // and the exact reference spread them.
+            bundle: (!self.bundle_points.is_empty()).then_some(Bundle {
+                radius_m: 0.5 * self.style.strand_spacing_m(),
+                fibre_radius_m: self.style.fiber.radius_m,
+                points: &self.bundle_points,
+            }),
         };
         draw_polylines(
             &mut self.fb,

@@ -1,8 +1,8 @@
 //! What the raster buffers hold, for the run's memory budget (`crate::budget`), computed
 //! before they exist, from the sizes and constants `framebuffer.rs` and `lines.rs` use.
 
-use super::lines::Frag;
-use super::segment::Seg;
+use super::fragment::Frag;
+use super::segment::{Fibres, Seg};
 use super::{Framebuffer, LineScratch};
 use glam::Vec3;
 
@@ -30,7 +30,13 @@ impl LineScratch {
     /// grouped by pixel; `Frag` is 24 bytes). A segment covers about 3 pixel centres per row it
     /// crosses at the 1 px minimum width; the densest band is taken as 8 times the mean band,
     /// at most the whole frame (the hair's screen rows hold it all in a fraction of the bands).
-    pub fn estimated_bytes(segments: u64, height: u32, rows_per_segment: f64) -> u64 {
+    /// Lines that stand for `bundles` of fibres add a table of how each segment draws them.
+    pub fn estimated_bytes(
+        segments: u64,
+        height: u32,
+        rows_per_segment: f64,
+        bundles: bool,
+    ) -> u64 {
         let bands = (height as u64).div_ceil(BAND_ROWS).max(1);
         let touched = (1.0 + rows_per_segment.max(0.0) / BAND_ROWS as f64).min(bands as f64);
         let binned = (segments as f64 * touched).ceil() as u64;
@@ -40,8 +46,14 @@ impl LineScratch {
         let densest_band = (fragments * 8.0 / bands as f64).min(fragments).ceil() as u64;
         let threads = rayon::current_num_threads().max(1) as u64;
         let per_thread = densest_band.saturating_mul(2 * FRAG_BYTES);
+        let fibres = if bundles {
+            segments.saturating_mul(size_of::<Fibres>() as u64)
+        } else {
+            0
+        };
         binned
             .saturating_mul(per_binned)
+            .saturating_add(fibres)
             .saturating_add(headers)
             .saturating_add(per_thread.saturating_mul(threads))
     }

@@ -27,7 +27,7 @@
 //!    position low: far to near, ties in input order, a total order fixed by the input alone —
 //!    with a radix sort, and walks each segment over its rows, visiting only pixel centres in
 //!    the segment's expanded rectangle, emitting one fragment (pixel, 1/depth, α, colour) per
-//!    covered centre nearer than the opaque depth. A stable counting sort groups the fragments
+//!    covered centre nearer than the opaque depth (`fragment.rs`). A stable counting sort groups the fragments
 //!    by pixel, and each pixel composites its own back to front by its own 1/depth (most runs
 //!    are already in order from the segment sort; the rest are sorted). Bands are whole rows so
 //!    each owns a disjoint `&mut` slice of the framebuffer (no `unsafe`); the working buffers
@@ -72,13 +72,14 @@
 
 use std::sync::Mutex;
 
-use glam::Vec3;
 use rayon::prelude::*;
 
+use super::bundle::Profiles;
 use super::camera::Camera;
+use super::fragment::{Band, Frag, composite, emit_fragments, sort_by_pixel};
 use super::framebuffer::Framebuffer;
 use super::polyline::{LineStyle, LineWidth, Polylines};
-use super::segment::{Params, Seg, setup_segment};
+use super::segment::{Fibres, Params, Seg, setup_segment};
 
 /// Image rows per band (the unit of parallel work and of binning).
 pub(super) const BAND_ROWS: usize = 16;
@@ -93,6 +94,10 @@ pub struct LineScratch {
     /// Per worker thread: the band being drawn (its segments, fragments and their sort).
     /// Capacities persist; a thread reuses its buffers for every band it draws.
     threads: Vec<Mutex<BandScratch>>,
+    /// The bundle profiles of the last call that drew bundles (`bundle.rs`).
+    profiles: Profiles,
+    /// With bundles, each segment's [`Fibres`] (by segment index); empty otherwise.
+    fibres: Vec<Fibres>,
 }
 
 #[derive(Debug, Default)]
@@ -109,19 +114,6 @@ struct BandScratch {
     starts: Vec<u32>,
     /// One out-of-order pixel's sort keys.
     run_keys: Vec<u64>,
-}
-
-/// One segment's coverage of one pixel centre: 24 bytes.
-#[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Frag {
-    /// Pixel index within the band.
-    pixel: u32,
-    /// Bits of 1/depth at the pixel centre (positive, so they order like the value).
-    iz_bits: u32,
-    /// Coverage × opacity, in (0, 1].
-    alpha: f32,
-    /// Linear RGB at the pixel centre.
-    color: Vec3,
 }
 
 impl LineScratch {
@@ -145,6 +137,7 @@ impl LineScratch {
             })
             .sum();
         segs * size_of::<Seg>()
+            + self.fibres.capacity() * size_of::<Fibres>()
             + per_thread
             + self.chunks.capacity()
             + self.threads.capacity() * size_of::<Mutex<BandScratch>>()
@@ -197,12 +190,15 @@ pub fn draw_polylines(
     if !(view.focal_px > 0.0) || !view.focal_px.is_finite() || !view.eye.is_finite() {
         return;
     }
+    let bundles = matches!(style.width, LineWidth::Projected { .. })
+        && lines.bundle.is_some_and(|b| scratch.profiles.prepare(&b));
     let params = Params {
         view,
         width_model: style.width,
         opacity: style.opacity.min(1.0),
         width,
         height,
+        bundle: bundles.then_some(&scratch.profiles),
     };
     let seg_count = lines.segment_count().min(MAX_SEGMENTS);
     if seg_count == 0 {
@@ -212,34 +208,47 @@ pub fn draw_polylines(
     let chunk_count = seg_count.div_ceil(SETUP_CHUNK);
 
     // 1. Set-up and binning, parallel over fixed chunks of segments (the chunking is fixed,
-    //    so it does not depend on the thread count): each chunk bins into its own lists.
+    //    so it does not depend on the thread count): each chunk bins into its own lists, and
+    //    with bundles writes its segments' `Fibres` into its part of the call's table.
     if scratch.chunks.len() < chunk_count {
         scratch.chunks.resize_with(chunk_count, Vec::new);
     }
-    scratch.chunks[..chunk_count]
-        .par_iter_mut()
-        .enumerate()
-        .for_each(|(chunk, bins)| {
-            if bins.len() < band_count {
-                bins.resize_with(band_count, Vec::new);
-            }
-            let bins = &mut bins[..band_count];
-            for bin in bins.iter_mut() {
-                bin.clear();
-            }
-            let first = chunk * SETUP_CHUNK;
-            for k in first..(first + SETUP_CHUNK).min(seg_count) {
-                if let Some(seg) = setup_segment(&params, lines, k) {
-                    let (b0, b1) = (
-                        seg.row_lo as usize / BAND_ROWS,
-                        seg.row_hi as usize / BAND_ROWS,
-                    );
-                    for bin in &mut bins[b0..=b1] {
-                        bin.push(seg);
-                    }
+    let setup_chunk = |chunk: usize, bins: &mut Vec<Vec<Seg>>, fibres: &mut [Fibres]| {
+        if bins.len() < band_count {
+            bins.resize_with(band_count, Vec::new);
+        }
+        let bins = &mut bins[..band_count];
+        for bin in bins.iter_mut() {
+            bin.clear();
+        }
+        let first = chunk * SETUP_CHUNK;
+        for k in first..(first + SETUP_CHUNK).min(seg_count) {
+            if let Some((seg, f)) = setup_segment(&params, lines, k) {
+                if let Some(slot) = fibres.get_mut(k - first) {
+                    *slot = f;
+                }
+                let (b0, b1) = (
+                    seg.row_lo as usize / BAND_ROWS,
+                    seg.row_hi as usize / BAND_ROWS,
+                );
+                for bin in &mut bins[b0..=b1] {
+                    bin.push(seg);
                 }
             }
-        });
+        }
+    };
+    let chunks = scratch.chunks[..chunk_count].par_iter_mut().enumerate();
+    if bundles {
+        // Only grown: a segment's entry is read only when its set-up wrote it this call.
+        if scratch.fibres.len() < seg_count {
+            scratch.fibres.resize(seg_count, Fibres::default());
+        }
+        chunks
+            .zip(scratch.fibres.par_chunks_mut(SETUP_CHUNK))
+            .for_each(|((chunk, bins), fibres)| setup_chunk(chunk, bins, fibres));
+    } else {
+        chunks.for_each(|(chunk, bins)| setup_chunk(chunk, bins, &mut []));
+    }
 
     // 2. Raster, parallel over bands: gather the band's segments contiguously in input order
     //    (the walk then stays within one cache-resident array), turn them into fragments,
@@ -249,6 +258,7 @@ pub fn draw_polylines(
         scratch.threads.resize_with(threads, Default::default);
     }
     let chunks = &scratch.chunks[..chunk_count];
+    let fibres = &scratch.fibres[..];
     let pool = &scratch.threads;
     fb.color
         .par_chunks_mut(width * BAND_ROWS)
@@ -286,7 +296,7 @@ pub fn draw_polylines(
                 depth,
                 coverage,
             };
-            emit_fragments(&params, segs, keys, &band, frags);
+            emit_fragments(&params, segs, fibres, keys, &band, frags);
             sort_by_pixel(frags, sorted, starts, band.color.len());
             composite(sorted, starts, run_keys, band);
         });
@@ -375,195 +385,10 @@ fn sort_keys(keys: &mut Vec<u64>, tmp: &mut Vec<u64>) {
     }
 }
 
-/// One band's pixels: rows `row0 ..` of the framebuffer.
-struct Band<'a> {
-    row0: usize,
-    color: &'a mut [Vec3],
-    depth: &'a [f32],
-    coverage: &'a mut [f32],
-}
-
-/// `ceil(v)` for `0 ≤ v < 2³¹` as an index; avoids a libm call on baseline x86-64, and the
-/// saturating f32 -> usize conversion, which costs a dozen instructions where f32 -> i32 costs
-/// one (callgrind: the two conversions per row were 6% of all instructions).
-#[inline]
-fn ceil_index(v: f32) -> usize {
-    let t = v as i32;
-    (t + i32::from((t as f32) < v)) as usize
-}
-
-/// `min` and `max` as `minss`/`maxss`: the result is `b` when either is NaN. `f32::min/max`
-/// return the non-NaN operand, which takes three extra instructions per call; the hot loop
-/// only sees finite values.
-#[inline(always)]
-fn fmin(a: f32, b: f32) -> f32 {
-    if a < b { a } else { b }
-}
-
-#[inline(always)]
-fn fmax(a: f32, b: f32) -> f32 {
-    if a > b { a } else { b }
-}
-
-/// Fills `frags` with one fragment per pixel centre that a segment covers in this band and
-/// that lies nearer than the opaque depth: segments in `keys` order (far to near by mid-point
-/// depth, ties in input order), pixels in row order within a segment.
-fn emit_fragments(p: &Params, segs: &[Seg], keys: &[u64], band: &Band, frags: &mut Vec<Frag>) {
-    frags.clear();
-    let w = p.width;
-    let rows = band.color.len() / w;
-    let (row0, row_end) = (band.row0, band.row0 + rows);
-    let last_col = (w - 1) as f32;
-    for &key in keys {
-        let Some(s) = segs.get((key & 0xFFFF_FFFF) as usize) else {
-            continue;
-        };
-        let (hw, opacity) = (s.half_w, s.opacity);
-        // Along-axis extent in which a pixel centre can have coverage.
-        let s_lo = if s.cap0 { -0.5 } else { 0.0 };
-        let s_hi = s.len + if s.cap1 { 0.5 } else { 0.0 };
-        let (j0, j1) = (
-            (s.row_lo as usize).max(row0),
-            (s.row_hi as usize + 1).min(row_end),
-        );
-        for j in j0..j1 {
-            let ry = j as f32 + 0.5 - s.y0;
-            // Pixel centres x + 0.5 with |d(x)| ≤ reach: around the axis crossing of this row.
-            let xc = s.x0 + ry * s.dxdy;
-            let (mut xa, mut xb) = (xc - s.half_span, xc + s.half_span);
-            // ... and with s(x) = ux·(x − x0) + uy·ry within [s_lo, s_hi] (± a hair of slack).
-            if s.inv_ux != 0.0 {
-                let p0 = s.x0 + (s_lo - 0.01 - s.uy * ry) * s.inv_ux;
-                let p1 = s.x0 + (s_hi + 0.01 - s.uy * ry) * s.inv_ux;
-                xa = xa.max(p0.min(p1));
-                xb = xb.min(p0.max(p1));
-            }
-            // Clamp in float before converting to indices (`max`/`min` also absorb ±inf).
-            let (fa, fb) = ((xa - 0.5).max(0.0), (xb - 0.5).min(last_col));
-            if !(fa <= fb) {
-                continue;
-            }
-            // `fa` ≥ 0 and `fb` ≤ last column < 2³¹ here (framebuffer sizes are u32 and fit).
-            let (i0, i1) = (ceil_index(fa), fb as i32 as usize);
-            let row = (j - row0) * w;
-            let Some(depth) = band.depth.get(row + i0..=row + i1) else {
-                continue;
-            };
-            let mut rx = i0 as f32 + 0.5 - s.x0;
-            for (px, &z) in (row + i0..).zip(depth) {
-                let d = (s.ux * ry - s.uy * rx).abs();
-                let along = s.ux * rx + s.uy * ry;
-                rx += 1.0;
-                let across = fmax(fmin(d + 0.5, hw) - fmax(d - 0.5, -hw), 0.0);
-                let lo = if s.cap0 {
-                    fmin(fmax(along + 0.5, 0.0), 1.0)
-                } else {
-                    f32::from(u8::from(along >= 0.0))
-                };
-                let hi = if s.cap1 {
-                    fmin(fmax(s.len - along + 0.5, 0.0), 1.0)
-                } else {
-                    f32::from(u8::from(along < s.len))
-                };
-                let alpha = across * fmax(lo + hi - 1.0, 0.0) * opacity;
-                if !(alpha > 0.0) {
-                    continue;
-                }
-                let t = fmin(fmax(along * s.inv_len, 0.0), 1.0);
-                let iz = s.iz0 + (s.iz1 - s.iz0) * t;
-                // Nearer than the opaque surface: 1/z_hair > 1/z_buffer, without a division.
-                if !(iz * z > 1.0) {
-                    continue;
-                }
-                frags.push(Frag {
-                    pixel: px as u32,
-                    // 1/z > 0 here (it beat the opaque depth), so its bits order like its value.
-                    iz_bits: iz.to_bits(),
-                    // The box overlap can exceed 1 by float rounding (a few 1e-7 for wide
-                    // lines); α must stay in [0, 1].
-                    alpha: fmin(alpha, 1.0),
-                    color: s.c0 + (s.c1 - s.c0) * t,
-                });
-            }
-        }
-    }
-}
-
-/// Stable counting sort of `frags` by pixel into `sorted`; on return `starts[p]..starts[p+1]`
-/// is pixel `p`'s run, in emission order.
-fn sort_by_pixel(frags: &[Frag], sorted: &mut Vec<Frag>, starts: &mut Vec<u32>, pixels: usize) {
-    starts.clear();
-    starts.resize(pixels + 1, 0);
-    for f in frags {
-        if let Some(c) = starts.get_mut(f.pixel as usize + 1) {
-            *c += 1;
-        }
-    }
-    for p in 1..=pixels {
-        starts[p] += starts[p - 1];
-    }
-    sorted.clear();
-    sorted.resize(frags.len(), Frag::default());
-    // `starts[p]` walks pixel p's run while scattering, so afterwards it holds the run's end,
-    // which is pixel p + 1's start: shift the table back by one entry.
-    for f in frags {
-        let p = f.pixel as usize;
-        if let Some(slot) = starts.get_mut(p) {
-            let at = *slot as usize;
-            *slot += 1;
-            if let Some(dst) = sorted.get_mut(at) {
-                *dst = *f;
-            }
-        }
-    }
-    starts.copy_within(0..pixels, 1);
-    starts[0] = 0;
-}
-
-/// Composites every pixel's fragments back to front with "over": by 1/depth ascending (far
-/// first), ties in emission order. The fragments were emitted from segments sorted far to near
-/// by mid-point depth, so most runs are in order already (checked in one pass); the rest are
-/// drawn through a sorted list of (1/depth bits, index in the run) keys, which are unique, so
-/// the unstable sort gives one order fixed by the input.
-fn composite(sorted: &[Frag], starts: &[u32], run_keys: &mut Vec<u64>, band: Band) {
-    let over = |dst: &mut Vec3, cov: &mut f32, f: &Frag| {
-        *dst += (f.color - *dst) * f.alpha;
-        *cov += (1.0 - *cov) * f.alpha;
-    };
-    for (p, (dst, cov)) in band
-        .color
-        .iter_mut()
-        .zip(band.coverage.iter_mut())
-        .enumerate()
-    {
-        let (a, b) = (starts[p] as usize, starts[p + 1] as usize);
-        let Some(run) = sorted.get(a..b) else {
-            continue;
-        };
-        if run.is_sorted_by_key(|f| f.iz_bits) {
-            for f in run {
-                over(dst, cov, f);
-            }
-            continue;
-        }
-        run_keys.clear();
-        run_keys.extend(
-            run.iter()
-                .enumerate()
-                .map(|(i, f)| (u64::from(f.iz_bits) << 32) | i as u64),
-        );
-        run_keys.sort_unstable();
-        for &k in run_keys.iter() {
-            if let Some(f) = run.get((k & 0xFFFF_FFFF) as usize) {
-                over(dst, cov, f);
-            }
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec3;
 
     #[test]
     fn radix_sort_matches_comparison_sort() {
@@ -583,19 +408,6 @@ mod tests {
             expected.sort_unstable();
             sort_keys(&mut keys, &mut Vec::new());
             assert_eq!(keys, expected, "n {n}");
-        }
-    }
-
-    /// A fragment stays 24 bytes: the per-thread buffers hold millions of them a frame.
-    #[test]
-    fn fragment_is_24_bytes() {
-        assert_eq!(size_of::<Frag>(), 24);
-    }
-
-    #[test]
-    fn ceil_index_matches_ceil() {
-        for v in [0.0_f32, 0.2, 1.0, 1.5, 7.999, 1e6, 1.5e9] {
-            assert_eq!(ceil_index(v), v.ceil() as usize, "{v}");
         }
     }
 
@@ -622,6 +434,7 @@ mod tests {
                 colors: &cols,
                 widths_m: &[],
                 points_per_line: 20,
+                bundle: None,
             };
             let mut fb = Framebuffer::new(160, 120, Vec3::ZERO);
             let mut scratch = LineScratch::default();

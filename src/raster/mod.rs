@@ -11,7 +11,9 @@
 //! - [`lines`]: anti-aliased polylines, depth-tested against the opaque depth, composited back
 //!   to front per band of rows, in parallel and bit-identical for any thread count;
 //!   `segment` clips and projects each segment (near plane in view space, then a screen guard
-//!   rectangle in float, before anything becomes an index).
+//!   rectangle in float, before anything becomes an index), `fragment` turns a band's
+//!   segments into per-pixel fragments and composites them, and `bundle` draws a line that
+//!   stands for a bundle of fibres as its fibres where they are wide enough to see.
 //!
 //! A frame: [`Framebuffer::clear`], [`draw_ellipsoid`] for each solid and [`draw_mesh`] for a
 //! mesh, then [`draw_polylines`]
@@ -22,7 +24,9 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 mod budget;
+mod bundle;
 pub mod camera;
+mod fragment;
 pub mod framebuffer;
 pub mod lines;
 pub mod mesh;
@@ -34,5 +38,5 @@ pub use camera::{Camera, DEFAULT_NEAR_M, View};
 pub use framebuffer::Framebuffer;
 pub use lines::{LineScratch, MAX_SEGMENTS, draw_polylines};
 pub use mesh::{Mesh, MeshScratch, Surface, Texture, draw_mesh};
-pub use polyline::{LineStyle, LineWidth, MAX_WIDTH_PX, Polylines};
+pub use polyline::{Bundle, LineStyle, LineWidth, MAX_WIDTH_PX, Polylines};
 pub use solid::draw_ellipsoid;

@@ -4,6 +4,8 @@
 
 use glam::Vec3;
 
+pub use super::bundle::Bundle;
+
 /// Widest line drawn, pixels; the coverage model is meant for thin lines.
 pub const MAX_WIDTH_PX: f32 = 64.0;
 
@@ -23,6 +25,10 @@ pub struct Polylines<'a> {
     pub widths_m: &'a [f32],
     /// Vertices per line, `n` (every line has the same count); below 2 draws nothing.
     pub points_per_line: usize,
+    /// What each line stands for, read only by [`LineWidth::Projected`]: `None`, a plain line
+    /// of its width; a [`Bundle`], its fibres spread over the bundle's disc (the same
+    /// coverage, drawn where the fibres are).
+    pub bundle: Option<Bundle<'a>>,
 }
 
 impl Polylines<'_> {

@@ -15,6 +15,7 @@
 
 use glam::Vec3;
 
+use super::bundle::Profiles;
 use super::camera::View;
 use super::polyline::{LineWidth, MAX_WIDTH_PX, Polylines};
 
@@ -43,6 +44,9 @@ pub(super) struct Seg {
     /// Half the drawn width in pixels, and the coverage multiplier (opacity).
     pub(super) half_w: f32,
     pub(super) opacity: f32,
+    /// Where its [`Fibres`] are in the draw call's table (the segment's index), or
+    /// [`NO_FIBRES`] for a line drawn as a plain band.
+    pub(super) fibres: u32,
     /// Free end of a polyline (box-filtered end) at the start / end.
     pub(super) cap0: bool,
     pub(super) cap1: bool,
@@ -51,8 +55,45 @@ pub(super) struct Seg {
     pub(super) row_hi: u32,
 }
 
+/// Projected bundle radius (pixels) from which a bundle's fibres are drawn, blended in until
+/// they are drawn alone from `BUNDLE_FULL_PX`: below, 2r is under a twentieth of a pixel for
+/// the presets (r/R ≈ 0.017) and the fibres would average to the band anyway.
+const BUNDLE_FROM_PX: f32 = 3.0;
+const BUNDLE_FULL_PX: f32 = 6.0;
+
+/// Sharpest joint mitred: a turn of at most 60° (cosine 0.5); a sharper one is cut square, so
+/// its mitre never reaches more than tan 30° ≈ 0.58 widths past the joint.
+const MITRE_MIN_COS: f32 = 0.5;
+
+/// [`Seg::fibres`] of a plain line.
+pub(super) const NO_FIBRES: u32 = u32::MAX;
+
+/// How a bundle's segment is drawn as its fibres (`bundle.rs`); kept beside the segments, one
+/// per segment, only in a draw call with bundles, so plain lines stay small.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Fibres {
+    /// 1 / the bundle's projected radius R in pixels, the scale from its profile to coverage
+    /// (k·`w_px / A(+∞)`, k the blend from the band), and its pattern's first sample.
+    pub(super) inv_r: f32,
+    pub(super) cov_scale: f32,
+    pub(super) pattern: u32,
+    /// The band it is blended from: half width in pixels, and its weight (1 − k, times its
+    /// opacity relative to the segment's).
+    pub(super) band_hw: f32,
+    pub(super) band_scale: f32,
+    /// Mitred joints: a pixel belongs to the segment where `b0·r ≥ 0` and `b1·(r − e) < 0`, r
+    /// from the first end, e = end − first end, b0 and b1 the mean unit directions of the
+    /// joints (the segment's own direction at a free end or a sharp bend); `ext0`, `ext1` how
+    /// far the mitre reaches past each end along the axis, pixels.
+    pub(super) b0: (f32, f32),
+    pub(super) b1: (f32, f32),
+    pub(super) e: (f32, f32),
+    pub(super) ext0: f32,
+    pub(super) ext1: f32,
+}
+
 /// Per-frame constants of the set-up and raster passes.
-pub(super) struct Params {
+pub(super) struct Params<'a> {
     pub(super) view: View,
     /// How wide segments are drawn.
     pub(super) width_model: LineWidth,
@@ -60,11 +101,14 @@ pub(super) struct Params {
     pub(super) opacity: f32,
     pub(super) width: usize,
     pub(super) height: usize,
+    /// The lines' bundle profiles, when they stand for bundles (width model `Projected` only).
+    pub(super) bundle: Option<&'a Profiles>,
 }
 
-/// Clips and projects segment `k` of `lines`; `None` when nothing of it can be seen.
+/// Clips and projects segment `k` of `lines`; `None` when nothing of it can be seen. A
+/// bundle's segment drawn as its fibres comes with its [`Fibres`] (and [`Seg::fibres`] = k).
 #[inline]
-pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<Seg> {
+pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<(Seg, Fibres)> {
     let n = lines.points_per_line;
     let segs_per_line = n.checked_sub(1).filter(|&s| s > 0)?;
     let (line, i) = (k / segs_per_line, k % segs_per_line);
@@ -103,7 +147,27 @@ pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<S
             (v1, c1, wm1, cap1) = (v, c, wm, false);
         }
     }
-    let (half_w, opacity) = drawn_width(p, wm0 / v0.z, wm1 / v1.z)?;
+    let (mut half_w, mut opacity) = drawn_width(p, wm0 / v0.z, wm1 / v1.z)?;
+    let (mut inv_r, mut cov_scale, mut pattern) = (0.0, 0.0, 0);
+    let (band_hw, mut band_scale) = (half_w, 1.0);
+    if let (Some(prof), Some(b)) = (p.bundle, lines.bundle) {
+        // The bundle's projected radius (at most half the widest line). Its fibres are drawn
+        // where they can be told apart: blended in from BUNDLE_FROM_PX to BUNDLE_FULL_PX, the
+        // band of their summed width below (the same coverage, so nothing pops).
+        let w_px = p.view.focal_px * 0.5 * (wm0 / v0.z + wm1 / v1.z);
+        let r_px = p.view.focal_px * b.radius_m * 0.5 * (1.0 / v0.z + 1.0 / v1.z);
+        let r_px = r_px.min(0.5 * MAX_WIDTH_PX);
+        let k = ((r_px - BUNDLE_FROM_PX) / (BUNDLE_FULL_PX - BUNDLE_FROM_PX)).clamp(0.0, 1.0);
+        if k > 0.0 && r_px.is_finite() && w_px.is_finite() && p.opacity > 0.0 {
+            // The band's part keeps its own width and opacity (relative to the style's).
+            band_scale = (1.0 - k) * opacity / p.opacity;
+            half_w = half_w.max(r_px * (1.0 + prof.rho));
+            opacity = p.opacity;
+            inv_r = 1.0 / r_px;
+            cov_scale = k * w_px / prof.total;
+            pattern = Profiles::pattern_of(line);
+        }
+    }
     let reach = half_w + 0.5;
     let (mut x0, mut y0) = view.view_to_pixel(v0);
     let (mut x1, mut y1) = view.view_to_pixel(v1);
@@ -171,9 +235,57 @@ pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<S
     } else {
         (1.0, 0.0, 0.0, 0.0)
     };
-    let r = reach;
+    // Mitred joints for bundles: the parallel stripes of consecutive segments meet on the
+    // bisector of their joint, so cutting each segment there (instead of square to its axis)
+    // tiles the joint without the notch outside and overlap inside a wide line would show.
+    let (mut b0, mut b1, mut ext0, mut ext1) = ((ux, uy), (ux, uy), 0.0f32, 0.0f32);
+    // (Only where the fibres are drawn: a band of a pixel or two has no notch to speak of,
+    // and the mitre's longer reach would cost every thin segment.)
+    if inv_r > 0.0 && len > 0.0 {
+        let neighbour = |idx: usize| -> Option<(f32, f32)> {
+            let v = view.to_view(*lines.points.get(idx)?);
+            (v.is_finite() && v.z >= near).then(|| view.view_to_pixel(v))
+        };
+        let joint = |q: (f32, f32), toward: bool| -> Option<((f32, f32), f32)> {
+            // Unit direction of the neighbouring segment, on screen.
+            let (ex, ey) = if toward {
+                (x0 - q.0, y0 - q.1)
+            } else {
+                (q.0 - x1, q.1 - y1)
+            };
+            let l = (ex * ex + ey * ey).sqrt();
+            if !(l > 1e-6) {
+                return None;
+            }
+            let (nx, ny) = (ex / l, ey / l);
+            let cos_turn = nx * ux + ny * uy;
+            if !(cos_turn > MITRE_MIN_COS) {
+                return None;
+            }
+            let (mx, my) = (nx + ux, ny + uy);
+            let m = (mx * mx + my * my).sqrt();
+            // |tan(turn/2)| = |sin| / (1 + cos), the mitre's reach per pixel of width.
+            let tan_half = (nx * uy - ny * ux).abs() / (1.0 + cos_turn);
+            Some(((mx / m, my / m), tan_half))
+        };
+        if !cap0
+            && t0 <= 0.0
+            && i > 0
+            && let Some((b, t)) = neighbour(a - 1).and_then(|q| joint(q, true))
+        {
+            (b0, ext0) = (b, half_w * t + 0.5);
+        }
+        if !cap1
+            && t1 >= 1.0
+            && i + 1 < segs_per_line
+            && let Some((b, t)) = neighbour(a + 2).and_then(|q| joint(q, false))
+        {
+            (b1, ext1) = (b, half_w * t + 0.5);
+        }
+    }
+    let r = reach + ext0.max(ext1);
     let (dxdy, half_span) = if uy.abs() > 1e-6 {
-        (ux / uy, r / uy.abs())
+        (ux / uy, reach / uy.abs())
     } else {
         (0.0, f32::INFINITY)
     };
@@ -188,7 +300,19 @@ pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<S
     if !(row_lo <= row_hi) || xmax < 0.0 || xmin > p.width as f32 {
         return None;
     }
-    Some(Seg {
+    let fibres = Fibres {
+        inv_r,
+        cov_scale,
+        pattern,
+        band_hw,
+        band_scale,
+        b0,
+        b1,
+        e: (x1 - x0, y1 - y0),
+        ext0,
+        ext1,
+    };
+    let seg = Seg {
         x0,
         y0,
         ux,
@@ -204,11 +328,13 @@ pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<S
         c1,
         half_w,
         opacity,
+        fibres: if inv_r > 0.0 { k as u32 } else { NO_FIBRES },
         cap0,
         cap1,
         row_lo: row_lo as u32,
         row_hi: row_hi as u32,
-    })
+    };
+    Some((seg, fibres))
 }
 
 /// Half the drawn width in pixels and the coverage multiplier of a segment whose ends have

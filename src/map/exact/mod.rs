@@ -56,6 +56,7 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
 mod placement;
+pub use placement::bundle_disc_points;
 mod rays;
 
 use placement::place_fibres;

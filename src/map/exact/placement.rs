@@ -23,6 +23,12 @@ pub(super) fn vogel(i: u32, count: u32) -> Vec2 {
     Vec2::new(c, s) * rho
 }
 
+/// Where the fibres of a bundle of `count` lie in its unit disc (fibre f at `vogel(f, count)`,
+/// before the per-strand turn): the raster draws a bundle's fibres there too.
+pub fn bundle_disc_points(count: u32) -> Vec<Vec2> {
+    (0..count).map(|f| vogel(f, count)).collect()
+}
+
 /// A per-strand angle in [0, 2π) from a hash of its index and the placement seed (SplitMix64
 /// finaliser).
 fn strand_angle(s: usize, seed: u64) -> f32 {
