@@ -27,9 +27,9 @@
 //!    position low: far to near, ties in input order, a total order fixed by the input alone —
 //!    with a radix sort, and walks each segment over its rows, visiting only pixel centres in
 //!    the segment's expanded rectangle, emitting one fragment (pixel, 1/depth, α, colour) per
-//!    covered centre nearer than the opaque depth (`fragment.rs`). A stable counting sort groups the fragments
-//!    by pixel, and each pixel composites its own back to front by its own 1/depth (most runs
-//!    are already in order from the segment sort; the rest are sorted). Bands are whole rows so
+//!    covered centre nearer than the opaque depth (`fragment.rs`). A stable counting sort
+//!    groups the fragments by pixel, and each pixel composites its own back to front by its
+//!    own 1/depth (most runs are already in order from the segment sort; the rest are sorted). Bands are whole rows so
 //!    each owns a disjoint `&mut` slice of the framebuffer (no `unsafe`); the working buffers
 //!    are per worker thread (an uncontended lock each).
 //!
