@@ -45,12 +45,27 @@ fn draw(pix: &[(f32, f32)], r_px: f32, bundle: bool) -> Framebuffer {
 
 /// [`draw`] with fibres of radius `rho`·R.
 fn draw_rho(pix: &[(f32, f32)], r_px: f32, rho: f32, bundle: bool) -> Framebuffer {
+    draw_shares(pix, &vec![1.0; pix.len()], r_px, rho, bundle)
+}
+
+/// [`draw_rho`] with a share of the fibres left at each point (a tapered tip: its width is
+/// that share of the full bundle's).
+fn draw_shares(
+    pix: &[(f32, f32)],
+    shares: &[f32],
+    r_px: f32,
+    rho: f32,
+    bundle: bool,
+) -> Framebuffer {
     let cam = camera();
     let pts: Vec<Vec3> = pix.iter().map(|&(x, y)| at(x, y)).collect();
     let m_per_px = 2.0 / 200.0;
     let radius_m = r_px * m_per_px;
     let fibre_radius_m = rho * radius_m;
-    let widths = vec![FIBRES as f32 * 2.0 * fibre_radius_m; pts.len()];
+    let widths: Vec<f32> = shares
+        .iter()
+        .map(|s| s * FIBRES as f32 * 2.0 * fibre_radius_m)
+        .collect();
     let cols = vec![Vec3::ONE; pts.len()];
     let disc = bundle_disc_points(FIBRES);
     let lines = Polylines {
@@ -107,6 +122,42 @@ fn a_bundle_covers_what_its_fibres_cover_at_every_scale() {
             );
         }
     }
+}
+
+/// Toward a tapered tip the fibres left are the innermost: where a quarter of them are left
+/// the bundle is drawn half as wide (√¼ of its radius), and its coverage is still the
+/// width's (the fibres' summed width × length, to 1%).
+#[test]
+fn a_tapered_tip_narrows_the_bundle() {
+    let pix: Vec<(f32, f32)> = (0..9).map(|i| (40.0 + 40.0 * i as f32, 200.0)).collect();
+    let shares = [1.0, 1.0, 1.0, 1.0, 0.25, 0.25, 0.25, 0.25, 0.25];
+    let r_px = 20.0;
+    let rho = 0.005;
+    let fb = draw_shares(&pix, &shares, r_px, rho, true);
+    let spread = |x: usize| {
+        let c = column(&fb, x);
+        let first = c.iter().position(|a| *a > 0.0).unwrap();
+        let last = c.iter().rposition(|a| *a > 0.0).unwrap();
+        (last - first + 1) as f32
+    };
+    // Mid-segment columns: full share at x = 60, a quarter at x = 300.
+    let (root, tip) = (spread(60), spread(300));
+    assert!(root > 30.0, "{root}");
+    assert!(
+        (tip / root - 0.5).abs() < 0.15,
+        "root {root} px, tip {tip} px"
+    );
+    let w_full = 2.0 * FIBRES as f32 * rho * r_px;
+    // Segment k's width is the mean of its ends' shares.
+    let expected: f32 = shares
+        .windows(2)
+        .map(|s| 40.0 * w_full * 0.5 * (s[0] + s[1]))
+        .sum();
+    let got = total(&fb) as f32;
+    assert!(
+        (got - expected).abs() < 0.01 * expected,
+        "{got} vs {expected}"
+    );
 }
 
 /// Coverage down one image column across a horizontal bundle.

@@ -161,9 +161,15 @@ pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<(
         if k > 0.0 && r_px.is_finite() && w_px.is_finite() && p.opacity > 0.0 {
             // The band's part keeps its own width and opacity (relative to the style's).
             band_scale = (1.0 - k) * opacity / p.opacity;
-            half_w = half_w.max(r_px * (1.0 + prof.rho));
+            // Toward a tip, where a share s of the fibres is left (its width over the full
+            // bundle's fibres, r·T = 2Fr in pixels), the ones left are the innermost (the
+            // placement's spiral fills the disc from its centre), so the bundle narrows to
+            // √s of its radius; the coverage stays the width's whatever the radius.
+            let share = (w_px / (prof.total * r_px)).clamp(0.0, 1.0);
+            let r_draw = (r_px * share.sqrt()).max(0.5);
+            half_w = half_w.max(r_draw * (1.0 + prof.rho));
             opacity = p.opacity;
-            inv_r = 1.0 / r_px;
+            inv_r = 1.0 / r_draw;
             cov_scale = k * w_px / prof.total;
             pattern = Profiles::pattern_of(line);
         }
