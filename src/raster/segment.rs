@@ -246,7 +246,9 @@ pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<(
     // tiles the joint without the notch outside and overlap inside a wide line would show.
     let (mut b0, mut b1, mut ext0, mut ext1) = ((ux, uy), (ux, uy), 0.0f32, 0.0f32);
     // (Only where the fibres are drawn: a band of a pixel or two has no notch to speak of,
-    // and the mitre's longer reach would cost every thin segment.)
+    // and the mitre's longer reach would cost every thin segment. Where a strand crosses
+    // R = BUNDLE_FROM_PX, the band's side of that one joint is cut square: a sliver of at most
+    // 3 px × tan(turn/2) overlaps or stays open there.)
     if inv_r > 0.0 && len > 0.0 {
         let neighbour = |idx: usize| -> Option<(f32, f32)> {
             let v = view.to_view(*lines.points.get(idx)?);
