@@ -166,8 +166,8 @@ fn column(fb: &Framebuffer, x: usize) -> Vec<f32> {
 }
 
 /// Where the bundle is 50 px across, its 30 fibres (0.5 px wide each) show as separate
-/// stripes: the profile across has many peaks and near-empty gaps, where the plain line of the same coverage is
-/// one flat band 15 px wide.
+/// stripes: the profile across has many peaks and near-empty gaps, where the plain line of
+/// the same coverage is one flat band 15 px wide.
 #[test]
 fn a_wide_bundle_shows_its_fibres() {
     let line: Vec<(f32, f32)> = (0..5).map(|i| (50.0 + 75.0 * i as f32, 200.0)).collect();

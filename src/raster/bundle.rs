@@ -14,9 +14,11 @@
 //! R the bundle's projected radius, r a fibre's, xₖ ∈ [−1, 1] fibre k's offset across the line
 //! (its point of the unit disc projected on one axis). Its integral over d is the fibres'
 //! summed width 2Fr, the same as the band's, so the coverage of the hair is unchanged; only
-//! where within the bundle it lies differs. Where the bundle is under a pixel across, the
-//! pixel window holds the whole profile and the line draws as the thin band it was (the
-//! bundle is given at least the line style's minimum width, so it stays anti-aliased).
+//! where within the bundle it lies differs (a pixel's coverage is capped at 1: fibres that
+//! overlap on screen cover their union). Where the bundle is under 3 px in radius the fibres
+//! would average back to the band, so the band is drawn (`segment.rs` blends the two from 3
+//! to 6 px, mitres the joints of the fibres' segments, and narrows the bundle toward a
+//! tapered tip).
 //!
 //! How: in units of R the profile depends only on the offsets and on ρ = r/R, both fixed for a
 //! draw call, so the cumulative width A(u) = Σₖ clamp(u − xₖ + ρ, 0, 2ρ) is tabulated once per

@@ -29,9 +29,9 @@
 //!    the segment's expanded rectangle, emitting one fragment (pixel, 1/depth, α, colour) per
 //!    covered centre nearer than the opaque depth (`fragment.rs`). A stable counting sort
 //!    groups the fragments by pixel, and each pixel composites its own back to front by its
-//!    own 1/depth (most runs are already in order from the segment sort; the rest are sorted). Bands are whole rows so
-//!    each owns a disjoint `&mut` slice of the framebuffer (no `unsafe`); the working buffers
-//!    are per worker thread (an uncontended lock each).
+//!    own 1/depth (most runs are already in order from the segment sort; the rest are
+//!    sorted). Bands are whole rows so each owns a disjoint `&mut` slice of the framebuffer
+//!    (no `unsafe`); the working buffers are per worker thread (an uncontended lock each).
 //!
 //! Measured before per-pixel order (100K segments of curly hair around a head at 1280x720,
 //! `benches/raster.rs`, the 2 cores shared with other builds): about 27 ms per frame on one core (best of 30; criterion
@@ -96,7 +96,8 @@ pub struct LineScratch {
     threads: Vec<Mutex<BandScratch>>,
     /// The bundle profiles of the last call that drew bundles (`bundle.rs`).
     profiles: Profiles,
-    /// With bundles, each segment's [`Fibres`] (by segment index); empty otherwise.
+    /// With bundles, each segment's [`Fibres`] (by segment index): grown to the largest call,
+    /// never cleared; an entry is read only for a segment whose set-up wrote it this call.
     fibres: Vec<Fibres>,
 }
 
