@@ -154,7 +154,7 @@ pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<(
         // The bundle's projected radius (at most half the widest line). Its fibres are drawn
         // where they can be told apart: blended in from BUNDLE_FROM_PX to BUNDLE_FULL_PX, the
         // band of their summed width below (the same coverage, so nothing pops).
-        let w_px = p.view.focal_px * 0.5 * (wm0 / v0.z + wm1 / v1.z);
+        let w_px = projected_px(p, wm0 / v0.z, wm1 / v1.z);
         let r_px = p.view.focal_px * b.radius_m * 0.5 * (1.0 / v0.z + 1.0 / v1.z);
         let r_px = r_px.min(0.5 * MAX_WIDTH_PX);
         let k = ((r_px - BUNDLE_FROM_PX) / (BUNDLE_FULL_PX - BUNDLE_FROM_PX)).clamp(0.0, 1.0);
@@ -345,6 +345,13 @@ pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<(
     Some((seg, fibres))
 }
 
+/// A segment's projected width in pixels, from its ends' physical widths over their depths
+/// (metres per metre): the mean of the ends' `f·w/z`.
+#[inline]
+fn projected_px(p: &Params, w_over_z0: f32, w_over_z1: f32) -> f32 {
+    p.view.focal_px * 0.5 * (w_over_z0 + w_over_z1)
+}
+
 /// Half the drawn width in pixels and the coverage multiplier of a segment whose ends have
 /// physical width over depth `w_over_z0`, `w_over_z1` (metres per metre; read only by
 /// [`LineWidth::Projected`]). `None` when the segment has no width to draw.
@@ -358,7 +365,7 @@ fn drawn_width(p: &Params, w_over_z0: f32, w_over_z1: f32) -> Option<(f32, f32)>
     match p.width_model {
         LineWidth::Pixels(w) => Some((0.5 * w.min(MAX_WIDTH_PX), p.opacity)),
         LineWidth::Projected { min_px } => {
-            let w_px = p.view.focal_px * 0.5 * (w_over_z0 + w_over_z1);
+            let w_px = projected_px(p, w_over_z0, w_over_z1);
             // `!(a > 0)` also rejects NaN; +inf (a point at the eye) is capped below.
             if !(w_px > 0.0) {
                 return None;
