@@ -3,7 +3,8 @@
 //! `--toggle-collect`): `cargo run --release --example stage_loop -- [REPS] [STAGE] [STYLE]
 //! [CONTACT_MM]`. STYLE: `smooth` (default), `curly`, `dense`, or `smoothxK` (smooth with K
 //! times the strands, one fibre each, as `wisp accuracy --single-fibre-strands K`);
-//! CONTACT_MM: the contact window (0 = off; default: the engine's).
+//! CONTACT_MM: the contact window (0 = off; default: the engine's). The environment variable
+//! `WISP_AT_S` sets the time in the dance of the timed frame (default 2 s).
 use wisp::frame::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
@@ -31,8 +32,12 @@ fn main() {
         config.contact = wisp::frame::ContactShadowing::from_mm(mm);
     }
     let mut e = Engine::new(style, Motion::default_dance(), config);
-    e.run_up_to(2.0);
-    e.frame(2.0);
+    let at_s: f64 = std::env::var("WISP_AT_S")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(2.0);
+    e.run_up_to(at_s);
+    e.frame(at_s);
     let t = std::time::Instant::now();
     for _ in 0..reps {
         match stage.as_str() {

@@ -23,7 +23,9 @@
 //!    band of `BAND_ROWS` image rows it touches. Chunks are fixed by the input, not by the
 //!    thread count, and each has its own lists, so binning needs no serial pass and no locks.
 //! 2. **Raster** (parallel over bands): a band concatenates its lists from all chunks in chunk
-//!    order (= input order) into one contiguous array, sorts keys — mid-point 1/depth bits high,
+//!    order (= input order) into one contiguous array, leaving out segments behind the opaque
+//!    solids at every pixel they could touch (`cull.rs`, tiles of the band's farthest opaque
+//!    depth; the same fragments in the same order), sorts keys — mid-point 1/depth bits high,
 //!    position low: far to near, ties in input order, a total order fixed by the input alone —
 //!    with a radix sort, and walks each segment over its rows, visiting only pixel centres in
 //!    the segment's expanded rectangle, emitting one fragment (pixel, 1/depth, α, colour) per
@@ -76,6 +78,7 @@ use rayon::prelude::*;
 
 use super::bundle::Profiles;
 use super::camera::Camera;
+use super::cull::FarDepth;
 use super::fragment::{Band, Frag, composite, emit_fragments, sort_by_pixel};
 use super::framebuffer::Framebuffer;
 use super::polyline::{LineStyle, LineWidth, Polylines};
@@ -115,6 +118,8 @@ struct BandScratch {
     starts: Vec<u32>,
     /// One out-of-order pixel's sort keys.
     run_keys: Vec<u64>,
+    /// The band's farthest opaque depth per tile, to drop segments behind the solids.
+    far: FarDepth,
 }
 
 impl LineScratch {
@@ -135,6 +140,7 @@ impl LineScratch {
                     + (t.frags.capacity() + t.sorted.capacity()) * size_of::<Frag>()
                     + t.starts.capacity() * 4
                     + t.run_keys.capacity() * 8
+                    + t.far.tiles.capacity() * 4
             })
             .sum();
         segs * size_of::<Seg>()
@@ -281,11 +287,15 @@ pub fn draw_polylines(
                 sorted,
                 starts,
                 run_keys,
+                far,
             } = &mut *guard;
+            // Segments behind the solids at every pixel they could touch are left out
+            // (`cull.rs`: the same fragments in the same order, without the walk).
+            far.build(depth, width);
             segs.clear();
             for bins in chunks {
                 if let Some(bin) = bins.get(b) {
-                    segs.extend_from_slice(bin);
+                    segs.extend(bin.iter().filter(|s| !far.hides(s)));
                 }
             }
             keys.clear();
@@ -316,7 +326,7 @@ fn grow_to<T>(v: &mut Vec<T>, cap: usize) {
 
 /// Grows every thread's buffers to the largest capacity among them (a no-op once warm).
 fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
-    let mut need = [0usize; 7];
+    let mut need = [0usize; 8];
     let caps = |t: &BandScratch| {
         [
             t.keys.capacity(),
@@ -326,6 +336,7 @@ fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
             t.sorted.capacity(),
             t.starts.capacity(),
             t.run_keys.capacity(),
+            t.far.tiles.capacity(),
         ]
     };
     for t in threads.iter_mut() {
@@ -349,6 +360,7 @@ fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
         grow_to(&mut t.sorted, need[4]);
         grow_to(&mut t.starts, need[5]);
         grow_to(&mut t.run_keys, need[6]);
+        grow_to(&mut t.far.tiles, need[7]);
     }
 }
 

@@ -26,6 +26,7 @@
 mod budget;
 mod bundle;
 pub mod camera;
+mod cull;
 mod fragment;
 pub mod framebuffer;
 pub mod lines;
