@@ -34,6 +34,7 @@ fn exported_scene_reads_back() {
         config,
     );
     e.frame(0.0);
+    e.shade();
     let scene = write_reference_scene(&e, &dir, 0.0).unwrap();
     for f in [
         "hair.hair",

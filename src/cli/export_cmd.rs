@@ -42,6 +42,9 @@ pub fn run(args: ExportArgs) -> Result<(), AppError> {
     engine.frame(t);
     engine.frame(t);
     let frame_ms = engine.timings.total_s() * 1e3;
+    // A frame shades only the points the raster can draw; `vertex_rgb.f32` holds every
+    // point's colour (the same colours where the frame has them, so the image is unchanged).
+    engine.shade();
     let scene =
         wisp::export::write_reference_scene(&engine, &args.out, t).map_err(AppError::other)?;
     if !args.quiet {

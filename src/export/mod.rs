@@ -10,8 +10,9 @@
 //!   mapping to Mitsuba 3's `hair` BSDF ([`mitsuba`]);
 //! - `wisp.exr`: the frame as linear RGBA float, coverage in alpha (RGB premultiplied: the
 //!   engine must have drawn over a black background), and `wisp.png` to look at;
-//! - `vertex_rgb.f32`: the colour wisp shaded each render-strand point with (linear RGB, three
-//!   little-endian f32 per point, in `hair.hair`'s point order), so a reference can take
+//! - `vertex_rgb.f32`: the colour wisp shades each render-strand point with (linear RGB, three
+//!   little-endian f32 per point, in `hair.hair`'s point order; every point, also those the
+//!   frame left unshaded behind the solids: call `Engine::shade` first), so a reference can take
 //!   wisp's shading apart from its raster: `tools/reference/visibility.py --decompose` puts
 //!   these colours on the fibres the path tracer sees.
 //!
@@ -198,8 +199,8 @@ fn write_vertex_rgb(path: &Path, colors: &[glam::Vec3]) -> Result<(), OutputErro
 }
 
 /// Writes `hair.hair`, `scene.json`, `wisp.exr`, `wisp.png` and `vertex_rgb.f32` for `engine`'s last rendered
-/// frame (call [`Engine::frame`] first) into the existing directory `dir`. Returns the scene
-/// description written.
+/// frame (call [`Engine::frame`] first, then [`Engine::shade`] so every point has its colour)
+/// into the existing directory `dir`. Returns the scene description written.
 pub fn write_reference_scene(
     engine: &Engine,
     dir: &Path,

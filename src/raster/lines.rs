@@ -74,6 +74,7 @@
 
 use std::sync::Mutex;
 
+use glam::Vec3;
 use rayon::prelude::*;
 
 use super::bundle::Profiles;
@@ -102,6 +103,10 @@ pub struct LineScratch {
     /// With bundles, each segment's [`Fibres`] (by segment index): grown to the largest call,
     /// never cleared; an entry is read only for a segment whose set-up wrote it this call.
     fibres: Vec<Fibres>,
+    /// [`seen_points`]: every band's farthest opaque depth per tile, and a colour per point
+    /// for the set-up (which reads colours only to reject non-finite ones).
+    far_bands: Vec<FarDepth>,
+    blank_colours: Vec<Vec3>,
 }
 
 #[derive(Debug, Default)]
@@ -143,8 +148,12 @@ impl LineScratch {
                     + t.far.tiles.capacity() * 4
             })
             .sum();
+        let far: usize = self.far_bands.iter().map(|f| f.tiles.capacity() * 4).sum();
         segs * size_of::<Seg>()
             + self.fibres.capacity() * size_of::<Fibres>()
+            + far
+            + self.far_bands.capacity() * size_of::<FarDepth>()
+            + self.blank_colours.capacity() * size_of::<Vec3>()
             + per_thread
             + self.chunks.capacity()
             + self.threads.capacity() * size_of::<Mutex<BandScratch>>()
@@ -163,6 +172,49 @@ fn band_key(s: &Seg, pos: usize) -> u64 {
 /// Most segments drawn per call: the sort key holds a position in 32 bits.
 pub const MAX_SEGMENTS: usize = u32::MAX as usize;
 
+/// The per-call constants of drawing `lines` into `fb`, with the bundle profiles prepared in
+/// `profiles`; `None` when nothing would be drawn (an empty or inconsistent framebuffer, no
+/// width or opacity, a camera that projects nowhere).
+fn prepare<'a>(
+    fb: &Framebuffer,
+    cam: &Camera,
+    lines: &Polylines,
+    style: &LineStyle,
+    profiles: &'a mut Profiles,
+) -> Option<Params<'a>> {
+    let (width, height) = (fb.width as usize, fb.height as usize);
+    if width == 0 || height == 0 || !fb.is_consistent() {
+        return None;
+    }
+    let width_ok = match style.width {
+        LineWidth::Pixels(w) => w > 0.0,
+        LineWidth::Projected { min_px } => min_px > 0.0,
+    };
+    if !width_ok || !(style.opacity > 0.0) {
+        return None;
+    }
+    // Project with the framebuffer's size, whatever the camera says.
+    let view = Camera {
+        width: fb.width,
+        height: fb.height,
+        ..*cam
+    }
+    .view();
+    if !(view.focal_px > 0.0) || !view.focal_px.is_finite() || !view.eye.is_finite() {
+        return None;
+    }
+    let bundles = matches!(style.width, LineWidth::Projected { .. })
+        && lines.bundle.is_some_and(|b| profiles.prepare(&b));
+    Some(Params {
+        view,
+        width_model: style.width,
+        opacity: style.opacity.min(1.0),
+        width,
+        height,
+        bundle: bundles.then_some(&*profiles),
+    })
+}
+
 /// Draws `lines` into `fb` (see the module doc for the scheme). Deterministic: the result is
 /// bit-identical for any rayon thread count. Never panics on any input; segments with
 /// non-finite points or colours, or entirely nearer than the near plane, draw nothing.
@@ -177,36 +229,10 @@ pub fn draw_polylines(
     scratch: &mut LineScratch,
 ) {
     let (width, height) = (fb.width as usize, fb.height as usize);
-    if width == 0 || height == 0 || !fb.is_consistent() {
+    let Some(params) = prepare(fb, cam, lines, style, &mut scratch.profiles) else {
         return;
-    }
-    let width_ok = match style.width {
-        LineWidth::Pixels(w) => w > 0.0,
-        LineWidth::Projected { min_px } => min_px > 0.0,
     };
-    if !width_ok || !(style.opacity > 0.0) {
-        return;
-    }
-    // Project with the framebuffer's size, whatever the camera says.
-    let view = Camera {
-        width: fb.width,
-        height: fb.height,
-        ..*cam
-    }
-    .view();
-    if !(view.focal_px > 0.0) || !view.focal_px.is_finite() || !view.eye.is_finite() {
-        return;
-    }
-    let bundles = matches!(style.width, LineWidth::Projected { .. })
-        && lines.bundle.is_some_and(|b| scratch.profiles.prepare(&b));
-    let params = Params {
-        view,
-        width_model: style.width,
-        opacity: style.opacity.min(1.0),
-        width,
-        height,
-        bundle: bundles.then_some(&scratch.profiles),
-    };
+    let bundles = params.bundle.is_some();
     let seg_count = lines.segment_count().min(MAX_SEGMENTS);
     if seg_count == 0 {
         return;
@@ -315,6 +341,70 @@ pub fn draw_polylines(
     // capacities any of them needed, so a warmed-up frame allocates nothing whichever bands
     // its threads get.
     equalise_capacities(&mut scratch.threads);
+}
+
+/// Marks in `seen` (one flag per point of `lines`, resized to match) the points whose colour
+/// [`draw_polylines`] could put into a pixel of `fb` as it is now: a point of a segment that
+/// is on screen and not behind the opaque depth at every pixel it could touch (`cull.rs`, over
+/// the bands it covers). The rest draw nothing whatever their colour, so a caller may leave
+/// them unshaded (the engine skips shading the hair hidden behind the character: about a
+/// quarter of the default dance's points at 1280 × 720). The same set-up as the raster (clipping, widths, bundles,
+/// mitres), so a point left unmarked is one the raster would leave out; parallel over lines,
+/// the same flags for any thread count. Call it after the solids are drawn.
+pub fn seen_points(
+    fb: &Framebuffer,
+    cam: &Camera,
+    lines: &Polylines,
+    style: &LineStyle,
+    scratch: &mut LineScratch,
+    seen: &mut Vec<bool>,
+) {
+    seen.clear();
+    seen.resize(lines.points.len(), false);
+    let n = lines.points_per_line;
+    let segs_per_line = n.saturating_sub(1);
+    let width = fb.width as usize;
+    let band_count = (fb.height as usize).div_ceil(BAND_ROWS);
+    if segs_per_line == 0 || width == 0 {
+        return;
+    }
+    scratch.far_bands.resize_with(band_count, FarDepth::default);
+    scratch
+        .far_bands
+        .par_iter_mut()
+        .zip(fb.depth.par_chunks(width * BAND_ROWS))
+        .for_each(|(far, depth)| far.build(depth, width));
+    scratch.blank_colours.clear();
+    scratch.blank_colours.resize(lines.points.len(), Vec3::ZERO);
+    let blank = Polylines {
+        colors: &scratch.blank_colours,
+        ..*lines
+    };
+    let Some(params) = prepare(fb, cam, &blank, style, &mut scratch.profiles) else {
+        return;
+    };
+    let far_bands = &scratch.far_bands;
+    let seg_count = blank.segment_count().min(MAX_SEGMENTS);
+    seen.par_chunks_mut(n)
+        .enumerate()
+        .for_each(|(line, flags)| {
+            for i in 0..segs_per_line {
+                let k = line * segs_per_line + i;
+                if k >= seg_count {
+                    return;
+                }
+                let Some((seg, _)) = setup_segment(&params, &blank, k) else {
+                    continue;
+                };
+                let bands = seg.row_lo as usize / BAND_ROWS..=seg.row_hi as usize / BAND_ROWS;
+                let shows = far_bands
+                    .get(bands)
+                    .is_some_and(|b| b.iter().any(|far| !far.hides(&seg)));
+                if shows && let Some(pair) = flags.get_mut(i..i + 2) {
+                    pair.fill(true);
+                }
+            }
+        });
 }
 
 /// Grows `v`'s capacity to at least `cap`, exactly `cap` when it has to grow.

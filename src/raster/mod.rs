@@ -37,7 +37,7 @@ pub mod solid;
 
 pub use camera::{Camera, DEFAULT_NEAR_M, View};
 pub use framebuffer::Framebuffer;
-pub use lines::{LineScratch, MAX_SEGMENTS, draw_polylines};
+pub use lines::{LineScratch, MAX_SEGMENTS, draw_polylines, seen_points};
 pub use mesh::{Mesh, MeshScratch, Surface, Texture, draw_mesh};
 pub use polyline::{Bundle, LineStyle, LineWidth, MAX_WIDTH_PX, Polylines};
 pub use solid::draw_ellipsoid;

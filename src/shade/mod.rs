@@ -66,8 +66,9 @@ pub struct ShadeScratch {
     shaded: Vec<Vec3>,
 }
 
-/// Shades every vertex: `colors[i]` is the linear RGB radiance of vertex `i` seen from `eye`,
-/// summed over the lights (`maps[k]` is light `k`'s map). The light a vertex receives is the
+/// Shades every vertex, or with `seen` only those it flags (the rest are black: the engine
+/// leaves out the hair the raster would not draw, `raster::seen_points`): `colors[i]` is the
+/// linear RGB radiance of vertex `i` seen from `eye`, summed over the lights (`maps[k]` is light `k`'s map). The light a vertex receives is the
 /// map's, given that the camera sees it ([`LightMap::light_at_vertex_seen`]: with the light
 /// near the camera the view and light rays cross the same fibres, so a fibre that is seen is
 /// lit more often than the average), with the fibres just in front of it taken exactly when
@@ -87,6 +88,7 @@ pub fn shade_vertices(
     eye: Vec3,
     positions: &[Vec3],
     tangents: &[Vec3],
+    seen: Option<&[bool]>,
     colors: &mut Vec<Vec3>,
     scratch: &mut ShadeScratch,
 ) {
@@ -104,23 +106,29 @@ pub fn shade_vertices(
         return;
     };
     let n = positions.len().min(tangents.len());
+    let wanted = |i: usize| seen.is_none_or(|s| s.get(i).copied().unwrap_or(false));
     // Vertices by (key, index): a counting sort by key (the map's column, or one bucket for
-    // points off the map) that keeps the indices in order, O(vertices + columns).
+    // points off the map) that keeps the indices in order, O(vertices + columns). Vertices
+    // left out are in no bucket.
     let keys = &mut scratch.keys;
     keys.clear();
-    keys.par_extend(
-        positions[..n]
-            .par_iter()
-            .map(|p| first.lookup_order_key(*p)),
-    );
+    keys.par_extend(positions[..n].par_iter().enumerate().map(|(i, p)| {
+        if wanted(i) {
+            first.lookup_order_key(*p)
+        } else {
+            u32::MAX
+        }
+    }));
     let columns = first.geometry().columns_per_axis() as usize;
     let columns = columns.saturating_mul(columns);
     let bucket = |key: u32| (key as usize).min(columns);
     let counts = &mut scratch.counts;
     counts.clear();
     counts.resize(columns + 1, 0);
-    for &key in keys.iter() {
-        counts[bucket(key)] += 1;
+    for (i, &key) in keys.iter().enumerate() {
+        if wanted(i) {
+            counts[bucket(key)] += 1;
+        }
     }
     let mut at = 0u32;
     for c in counts.iter_mut() {
@@ -128,15 +136,18 @@ pub fn shade_vertices(
     }
     let order = &mut scratch.order;
     order.clear();
-    order.resize(n, 0);
+    order.resize(at as usize, 0);
     for (i, &key) in keys.iter().enumerate() {
+        if !wanted(i) {
+            continue;
+        }
         let slot = &mut counts[bucket(key)];
         order[*slot as usize] = i as u32;
         *slot += 1;
     }
     let shaded = &mut scratch.shaded;
     shaded.clear();
-    shaded.resize(n, Vec3::ZERO);
+    shaded.resize(order.len(), Vec3::ZERO);
     let ambient = hair_ambient(fiber, lighting);
     shaded
         .par_chunks_mut(CHUNK)
