@@ -89,6 +89,18 @@ mod tests {
     const W: usize = 96;
     const H: usize = 64;
 
+    /// Eye on +Z looking at the origin, 0.9 rad vertical fov, W × H.
+    fn camera() -> Camera {
+        Camera::look_at(
+            Vec3::new(0.0, 0.0, 2.0),
+            Vec3::ZERO,
+            Vec3::Y,
+            0.9,
+            W as u32,
+            H as u32,
+        )
+    }
+
     /// Opaque depth per 4 × 4 block from `blocks` (row-major, 24 × 16 of them, smaller than
     /// a tile so a tile mixes depths); `None` is background.
     fn depth_of(blocks: &[Option<f32>]) -> Vec<f32> {
@@ -104,14 +116,7 @@ mod tests {
     /// the pixel loop would have emitted no fragment from it. Returns how many (segment,
     /// band) pairs were dropped and how many were not.
     fn check(points: &[Vec3], width_m: f32, bundle: bool, depth: &[f32]) -> (usize, usize) {
-        let cam = Camera::look_at(
-            Vec3::new(0.0, 0.0, 2.0),
-            Vec3::ZERO,
-            Vec3::Y,
-            0.9,
-            W as u32,
-            H as u32,
-        );
+        let cam = camera();
         let disc: Vec<Vec2> = (0..12)
             .map(|k| {
                 let (r, a) = (((k as f32 + 0.5) / 12.0).sqrt(), k as f32 * 2.4);
@@ -232,18 +237,11 @@ mod tests {
         }
     }
 
-    /// Non-finite and empty inputs keep the segment (never drop what might show).
+    /// With no tiles (nothing built) every segment is kept: never drop what might show.
     #[test]
     fn empty_band_drops_nothing() {
         let far = FarDepth::default();
-        let cam = Camera::look_at(
-            Vec3::new(0.0, 0.0, 2.0),
-            Vec3::ZERO,
-            Vec3::Y,
-            0.9,
-            W as u32,
-            H as u32,
-        );
+        let cam = camera();
         let pts = [Vec3::ZERO, Vec3::X * 0.1];
         let lines = Polylines {
             points: &pts,
