@@ -25,6 +25,7 @@
 //! times them.
 
 mod config;
+mod hair_lines;
 mod map_reuse;
 mod setup;
 
@@ -43,13 +44,14 @@ use crate::interp::{StrandGeometry, interpolate_among};
 use crate::map::{CountModel, LightMap, MapGeometry, MapStats, OccluderMesh, Solid};
 use crate::motion::{CharacterPose, Motion, Pose};
 use crate::raster::{
-    Bundle, Camera, Framebuffer, LineScratch, Mesh, MeshScratch, Polylines, Surface, Texture,
-    draw_ellipsoid, draw_mesh, draw_polylines, seen_points,
+    Camera, Framebuffer, LineScratch, Mesh, MeshScratch, Surface, Texture, draw_ellipsoid,
+    draw_mesh, draw_polylines, seen_points,
 };
 use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};
 use crate::shade::{Lighting, ShadeScratch, shade_skin, shade_vertices};
 use crate::sim::{Colliders, SimState, Simulator, StepStats};
 use glam::Vec3;
+use hair_lines::{hair_lines, strand_widths_m};
 use map_reuse::{MapInputs, MapInputsView};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -450,14 +452,7 @@ impl Engine {
 
     /// Each point's physical width: its strand's fibres side by side, thinning where they end.
     fn update_widths(&mut self) {
-        let strand_width_m = self.style.strands.fibers_per_strand * 2.0 * self.style.fiber.radius_m;
-        self.widths_m.clear();
-        self.widths_m.extend(
-            self.strands
-                .fibre_share
-                .iter()
-                .map(|share| strand_width_m * share),
-        );
+        strand_widths_m(&self.style, &self.strands, &mut self.widths_m);
     }
 
     /// The hair over what is drawn, with the current colours and widths.
@@ -693,28 +688,5 @@ impl Engine {
                 self.config.height,
             );
         }
-    }
-}
-
-/// The render strands as the raster draws them: their points, colours and physical widths, and
-/// with F ≥ 2 fibres a bundle whose fibres spread over half the strand spacing (as the map's
-/// surface texture and the exact reference spread them).
-fn hair_lines<'a>(
-    strands: &'a StrandGeometry,
-    colors: &'a [Vec3],
-    widths_m: &'a [f32],
-    bundle_points: &'a [glam::Vec2],
-    style: &Hairstyle,
-) -> Polylines<'a> {
-    Polylines {
-        points: &strands.positions,
-        colors,
-        widths_m,
-        points_per_line: strands.points_per_strand,
-        bundle: (!bundle_points.is_empty()).then_some(Bundle {
-            radius_m: 0.5 * style.strand_spacing_m(),
-            fibre_radius_m: style.fiber.radius_m,
-            points: bundle_points,
-        }),
     }
 }

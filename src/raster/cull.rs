@@ -30,8 +30,8 @@ const MARGIN: f32 = 1e-5;
 /// The farthest opaque depth (metres) in each tile of one band.
 #[derive(Debug, Default)]
 pub(super) struct FarDepth {
-    /// One value per tile, left to right (`lines.rs` grows it with the other per-thread
-    /// buffers, so a warmed-up frame allocates nothing).
+    /// One value per tile, left to right (rebuilt each call in place, so a warmed-up frame
+    /// allocates nothing).
     pub(super) tiles: Vec<f32>,
 }
 

@@ -103,8 +103,9 @@ pub struct LineScratch {
     /// With bundles, each segment's [`Fibres`] (by segment index): grown to the largest call,
     /// never cleared; an entry is read only for a segment whose set-up wrote it this call.
     fibres: Vec<Fibres>,
-    /// [`seen_points`]: every band's farthest opaque depth per tile, and a colour per point
-    /// for the set-up (which reads colours only to reject non-finite ones).
+    /// Every band's farthest opaque depth per tile (`cull.rs`), rebuilt by each call from
+    /// the framebuffer's depth; and for [`seen_points`] a colour per point for the set-up
+    /// (which reads colours only to reject non-finite ones; always zero).
     far_bands: Vec<FarDepth>,
     blank_colours: Vec<Vec3>,
 }
@@ -123,8 +124,6 @@ struct BandScratch {
     starts: Vec<u32>,
     /// One out-of-order pixel's sort keys.
     run_keys: Vec<u64>,
-    /// The band's farthest opaque depth per tile, to drop segments behind the solids.
-    far: FarDepth,
 }
 
 impl LineScratch {
@@ -145,7 +144,6 @@ impl LineScratch {
                     + (t.frags.capacity() + t.sorted.capacity()) * size_of::<Frag>()
                     + t.starts.capacity() * 4
                     + t.run_keys.capacity() * 8
-                    + t.far.tiles.capacity() * 4
             })
             .sum();
         let far: usize = self.far_bands.iter().map(|f| f.tiles.capacity() * 4).sum();
@@ -290,6 +288,8 @@ pub fn draw_polylines(
     if scratch.threads.len() < threads {
         scratch.threads.resize_with(threads, Default::default);
     }
+    build_far_bands(fb, &mut scratch.far_bands);
+    let far_bands = &scratch.far_bands;
     let chunks = &scratch.chunks[..chunk_count];
     let fibres = &scratch.fibres[..];
     let pool = &scratch.threads;
@@ -313,15 +313,14 @@ pub fn draw_polylines(
                 sorted,
                 starts,
                 run_keys,
-                far,
             } = &mut *guard;
             // Segments behind the solids at every pixel they could touch are left out
             // (`cull.rs`: the same fragments in the same order, without the walk).
-            far.build(depth, width);
+            let far = far_bands.get(b);
             segs.clear();
             for bins in chunks {
                 if let Some(bin) = bins.get(b) {
-                    segs.extend(bin.iter().filter(|s| !far.hides(s)));
+                    segs.extend(bin.iter().filter(|s| far.is_none_or(|f| !f.hides(s))));
                 }
             }
             keys.clear();
@@ -341,6 +340,19 @@ pub fn draw_polylines(
     // capacities any of them needed, so a warmed-up frame allocates nothing whichever bands
     // its threads get.
     equalise_capacities(&mut scratch.threads);
+}
+
+/// Every band's farthest opaque depth per tile, from `fb`'s depth (parallel over bands).
+fn build_far_bands(fb: &Framebuffer, far_bands: &mut Vec<FarDepth>) {
+    let width = fb.width as usize;
+    far_bands.resize_with((fb.height as usize).div_ceil(BAND_ROWS), FarDepth::default);
+    if width == 0 {
+        return;
+    }
+    far_bands
+        .par_iter_mut()
+        .zip(fb.depth.par_chunks(width * BAND_ROWS))
+        .for_each(|(far, depth)| far.build(depth, width));
 }
 
 /// Marks in `seen` (one flag per point of `lines`, resized to match) the points whose colour
@@ -363,18 +375,11 @@ pub fn seen_points(
     seen.resize(lines.points.len(), false);
     let n = lines.points_per_line;
     let segs_per_line = n.saturating_sub(1);
-    let width = fb.width as usize;
-    let band_count = (fb.height as usize).div_ceil(BAND_ROWS);
-    if segs_per_line == 0 || width == 0 {
+    if segs_per_line == 0 || fb.width == 0 {
         return;
     }
-    scratch.far_bands.resize_with(band_count, FarDepth::default);
-    scratch
-        .far_bands
-        .par_iter_mut()
-        .zip(fb.depth.par_chunks(width * BAND_ROWS))
-        .for_each(|(far, depth)| far.build(depth, width));
-    scratch.blank_colours.clear();
+    build_far_bands(fb, &mut scratch.far_bands);
+    // Zero whatever the length: only its length needs setting.
     scratch.blank_colours.resize(lines.points.len(), Vec3::ZERO);
     let blank = Polylines {
         colors: &scratch.blank_colours,
@@ -416,7 +421,7 @@ fn grow_to<T>(v: &mut Vec<T>, cap: usize) {
 
 /// Grows every thread's buffers to the largest capacity among them (a no-op once warm).
 fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
-    let mut need = [0usize; 8];
+    let mut need = [0usize; 7];
     let caps = |t: &BandScratch| {
         [
             t.keys.capacity(),
@@ -426,7 +431,6 @@ fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
             t.sorted.capacity(),
             t.starts.capacity(),
             t.run_keys.capacity(),
-            t.far.tiles.capacity(),
         ]
     };
     for t in threads.iter_mut() {
@@ -450,7 +454,6 @@ fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
         grow_to(&mut t.sorted, need[4]);
         grow_to(&mut t.starts, need[5]);
         grow_to(&mut t.run_keys, need[6]);
-        grow_to(&mut t.far.tiles, need[7]);
     }
 }
 
