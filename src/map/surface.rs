@@ -35,6 +35,11 @@ pub const TEXELS_PER_COLUMN: f32 = 2.0;
 const MAX_TEXELS_PER_AXIS: usize = 1024;
 /// Texel rows per parallel band.
 const BAND_ROWS: usize = 16;
+/// Texels per side of the tiles that keep their deepest limit, so a piece lying behind the
+/// first solid at every texel it can touch is dropped before it is summed and deposited.
+/// Smooth under the default light at t = 2 s: 4 catches 31,238 of the 32,661 pieces behind
+/// (per-texel maximum over each piece's box), 8 catches 29,736, 16 catches 25,853.
+const LIMIT_TILE: usize = 4;
 
 /// How wide a render strand's shadow is across the light: its fibres' spread. The exact
 /// reference places F fibres uniformly in a disc of radius R (half the strand spacing); the
@@ -250,6 +255,50 @@ impl Piece {
     }
 }
 
+/// The deepest limit (`SurfaceShadow::limit`) of each [`LIMIT_TILE`]² tile of texels, so a
+/// piece lying behind the first solid at every texel its box holds can be found without
+/// visiting them.
+#[derive(Clone, Debug, Default)]
+struct LimitTiles {
+    cols: usize,
+    deepest: Vec<f32>,
+}
+
+impl LimitTiles {
+    /// The tiles of a `dims` texture's per-texel `limit` (row-major). Reuses its memory.
+    fn build(&mut self, limit: &[f32], dims: [usize; 2]) {
+        self.cols = dims[1].div_ceil(LIMIT_TILE);
+        self.deepest.clear();
+        self.deepest
+            .resize(dims[0].div_ceil(LIMIT_TILE) * self.cols, f32::NEG_INFINITY);
+        for (x, row) in limit.chunks_exact(dims[1]).enumerate() {
+            let tiles = &mut self.deepest[(x / LIMIT_TILE) * self.cols..][..self.cols];
+            for (deepest, block) in tiles.iter_mut().zip(row.chunks(LIMIT_TILE)) {
+                for &l in block {
+                    *deepest = deepest.max(l);
+                }
+            }
+        }
+    }
+
+    /// Whether `piece` is deeper than the limit at every texel of its box, so
+    /// [`Piece::deposit`] keeps none of them. Conservative: it may answer `false` for such a
+    /// piece (its box's tiles reach beyond it), never `true` for one that deposits.
+    fn behind_all(&self, piece: &Piece) -> bool {
+        let mut deepest = f32::NEG_INFINITY;
+        let ys = piece.y0 as usize / LIMIT_TILE..=(piece.y1 as usize - 1) / LIMIT_TILE;
+        for tx in piece.x0 as usize / LIMIT_TILE..=(piece.x1 as usize - 1) / LIMIT_TILE {
+            for &l in &self.deepest[tx * self.cols..][ys.clone()] {
+                deepest = deepest.max(l);
+            }
+        }
+        // A texel's depth interpolates between the ends' (`Piece::depth_at`): never nearer
+        // than the nearer end by more than its rounding, far within this margin.
+        let nearest = piece.depth.0.min(piece.depth.1);
+        nearest - 1e-5 * (1.0 + nearest.abs()) > deepest
+    }
+}
+
 /// The texture (see the module doc).
 #[derive(Clone, Debug, Default)]
 pub struct SurfaceShadow {
@@ -266,6 +315,8 @@ pub struct SurfaceShadow {
     /// (dims[0] + 1) × (dims[1] + 1), so a piece can ask in O(1) whether any surface will read
     /// what it deposits.
     solid_sat: Vec<u32>,
+    /// Scratch: the deepest `limit` per tile of texels.
+    limit_tiles: LimitTiles,
     /// Scratch: the pieces, sorted by first row.
     pieces: Vec<Piece>,
     /// Scratch: per band, the range of `pieces` that may reach it.
@@ -354,6 +405,11 @@ impl SurfaceShadow {
                 sat[(x + 1) * cols1 + y + 1] = sat[x * cols1 + y + 1] + run;
             }
         }
+        // Which pieces lie behind the first solid at every texel they touch: such a piece
+        // deposits nothing, so it is dropped before it is summed (46% of smooth's pieces
+        // under the default light: hair behind the head as the light sees it).
+        self.limit_tiles.build(&self.limit, dims);
+        let tiles = &self.limit_tiles;
         let sat = &self.solid_sat;
         let reads_any = |p: &Piece| {
             let (x0, x1) = (
@@ -431,7 +487,7 @@ impl SurfaceShadow {
                         return None;
                     }
                     let mut piece = Piece::new(a, b, (depth_a, depth_b), half_w, dims)?;
-                    if !reads_any(&piece) {
+                    if !reads_any(&piece) || tiles.behind_all(&piece) {
                         return None;
                     }
                     piece.loss = loss;
@@ -568,6 +624,101 @@ mod tests {
             );
         }
         assert!(within >= 40, "only {within} ribbons within one band");
+    }
+
+    /// A `dims` limit field of 3 × 3-texel blocks (not aligned with the tiles) from `blocks`,
+    /// a value above 0.6 standing for no solid (an infinite limit).
+    fn block_limits(dims: [usize; 2], blocks: &[f32]) -> Vec<f32> {
+        let block_cols = dims[1].div_ceil(3);
+        let mut limit = Vec::with_capacity(dims[0] * dims[1]);
+        for x in 0..dims[0] {
+            for y in 0..dims[1] {
+                let v = blocks[(x / 3) * block_cols + y / 3];
+                limit.push(if v > 0.6 { f32::INFINITY } else { v });
+            }
+        }
+        limit
+    }
+
+    /// What `piece` deposits band by band into a `dims` texture with `limit`.
+    fn deposited(piece: &Piece, dims: [usize; 2], limit: &[f32]) -> Vec<Vec3> {
+        let piece = Piece {
+            sum: piece.overlap_sum(),
+            ..*piece
+        };
+        let mut out = Vec::new();
+        let mut touched = Vec::new();
+        for b in 0..dims[0].div_ceil(BAND_ROWS) {
+            let band = b * BAND_ROWS..((b + 1) * BAND_ROWS).min(dims[0]);
+            let mut rows = vec![Vec3::ZERO; band.len() * dims[1]];
+            piece.deposit(band, dims[1], limit, 1.0, &mut rows, &mut touched);
+            out.extend(rows);
+        }
+        out
+    }
+
+    proptest::proptest! {
+        /// A piece the limit tiles call behind every solid deposits nothing, whatever its
+        /// angle, length, width, depths and the field of limits (solids at any depth, holes
+        /// with none): dropping it changes no texel.
+        #[test]
+        fn a_piece_the_tiles_call_behind_deposits_nothing(
+            angle in 0f32..std::f32::consts::TAU,
+            len in 0.3f32..12.0,
+            half_w in 0.1f32..3.0,
+            (ax, ay) in (2f32..46.0, 2f32..38.0),
+            (d0, d1) in (0.3f32..0.8, 0.3f32..0.8),
+            blocks in proptest::collection::vec(0.4f32..0.62, 16 * 14),
+        ) {
+            let dims = [48, 40];
+            let limit = block_limits(dims, &blocks);
+            let mut tiles = LimitTiles::default();
+            tiles.build(&limit, dims);
+            let a = Vec2::new(ax, ay);
+            let Some(mut piece) =
+                Piece::new(a, a + Vec2::from_angle(angle) * len, (d0, d1), half_w, dims)
+            else {
+                return Ok(());
+            };
+            piece.loss = Vec3::new(0.3, 0.5, 0.9);
+            if tiles.behind_all(&piece) {
+                let rows = deposited(&piece, dims, &limit);
+                proptest::prop_assert!(rows.iter().all(|v| *v == Vec3::ZERO), "{piece:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_tiles_find_pieces_behind_a_wall_and_keep_those_in_front_or_over_a_hole() {
+        // A wall at depth 0.5 over the whole texture but a hole of 8 × 8 texels: ribbons at
+        // depth 0.6–0.7 away from the hole are dropped, the same ribbons at 0.3–0.4 or over
+        // the hole are kept, and every kept one deposits something.
+        let dims = [48, 40];
+        let mut limit = vec![0.5f32; dims[0] * dims[1]];
+        for x in 20..28 {
+            for y in 16..24 {
+                limit[x * dims[1] + y] = f32::INFINITY;
+            }
+        }
+        let mut tiles = LimitTiles::default();
+        tiles.build(&limit, dims);
+        let ribbon = |a: Vec2, depth| {
+            let mut p = Piece::new(a, a + Vec2::new(3.0, 1.0), depth, 1.0, dims).unwrap();
+            p.loss = Vec3::ONE;
+            p
+        };
+        let (far_from_hole, over_hole) = (Vec2::new(5.0, 5.0), Vec2::new(22.0, 18.0));
+        assert!(tiles.behind_all(&ribbon(far_from_hole, (0.6, 0.7))));
+        for p in [
+            ribbon(far_from_hole, (0.3, 0.4)),
+            ribbon(over_hole, (0.6, 0.7)),
+            // Crossing the wall: its near end in front.
+            ribbon(far_from_hole, (0.45, 0.7)),
+        ] {
+            assert!(!tiles.behind_all(&p), "{p:?}");
+            let total: Vec3 = deposited(&p, dims, &limit).iter().sum();
+            assert!(total.min_element() > 0.0, "{p:?} deposits {total}");
+        }
     }
 
     #[test]
