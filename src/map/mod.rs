@@ -75,6 +75,7 @@ mod budget;
 mod build;
 mod column;
 pub mod contact;
+mod entry_depths;
 pub mod exact;
 mod lateral_bins;
 mod lookup;

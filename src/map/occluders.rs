@@ -349,6 +349,12 @@ impl OccluderGrid {
         shallowest
     }
 
+    /// The grid as [`super::entry_depths::EntryDepths`] reads it: entry depths (row-major),
+    /// dims, texel (0, 0)'s corner and the texel's width, metres.
+    pub(super) fn depth_grid(&self) -> (&[f32], [usize; 2], Vec2, f32) {
+        (&self.depth, self.dims, self.origin, self.texel_m)
+    }
+
     /// The texel's width, metres.
     pub fn texel_m(&self) -> f32 {
         self.texel_m

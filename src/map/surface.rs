@@ -24,6 +24,7 @@
 //! that reach it in one fixed order (by first row, then input order), so it is the same bits
 //! for any thread count.
 
+use super::entry_depths::EntryDepths;
 use super::occluders::OccluderGrid;
 use super::{MapBuildInput, Projection};
 use glam::{Vec2, Vec3};
@@ -315,6 +316,8 @@ pub struct SurfaceShadow {
     /// (dims[0] + 1) × (dims[1] + 1), so a piece can ask in O(1) whether any surface will read
     /// what it deposits.
     solid_sat: Vec<u32>,
+    /// Scratch: the solids' entry depths over the texture (`limit` before its tolerance).
+    entry: EntryDepths,
     /// Scratch: the deepest `limit` per tile of texels.
     limit_tiles: LimitTiles,
     /// Scratch: the pieces, sorted by first row.
@@ -383,10 +386,15 @@ impl SurfaceShadow {
         self.limit.resize(texels, 0.0);
         let origin = self.origin;
         let tolerance = 2.0 * solids.texel_m();
-        self.limit.par_iter_mut().enumerate().for_each(|(k, l)| {
+        let centre = |k: usize| {
             let (x, y) = ((k / dims[1]) as f32 + 0.5, (k % dims[1]) as f32 + 0.5);
-            let m = origin + Vec2::new(x, y) * texel_m;
-            *l = solids.entry_depth(Vec3::new(0.0, m.x, m.y)) + tolerance;
+            origin + Vec2::new(x, y) * texel_m
+        };
+        self.entry.fill(solids, centre(0), centre(texels - 1));
+        let entry = &self.entry;
+        self.limit.par_iter_mut().enumerate().for_each(|(k, l)| {
+            let m = centre(k);
+            *l = entry.at(solids, Vec3::new(0.0, m.x, m.y)) + tolerance;
         });
         // Which texels any surface reads: a point on a solid reads the four texels around it
         // (bilinear), all within one texel of a texel whose ray meets that solid (its limit is
