@@ -39,18 +39,25 @@ impl EntryDepths {
             return;
         }
         // The texels of the window's corners, as `entry_depth` finds them, one more each side
-        // for rounding; a point outside falls back to `entry_depth` (`Self::at`).
+        // for rounding; a point outside the window falls back to `entry_depth` (`Self::at`).
         let texel_of = |p: Vec2| {
             let t = (p - origin) / texel_m;
             (t.x.floor() as i64, t.y.floor() as i64)
         };
         let ((i_lo, j_lo), (i_hi, j_hi)) = (texel_of(lo), texel_of(hi));
-        let limit = 4 * (dims[0].max(dims[1]) as i64 + 2 * REACH);
-        if i_hi < i_lo || j_hi < j_lo || i_hi - i_lo > limit || j_hi - j_lo > limit {
+        // Clipped to the texels whose neighbourhood reaches the grid (further out the entry
+        // depth is +∞, which the fallback answers at once), so the window is never larger
+        // than the grid and its rim.
+        let (i_lo, j_lo) = ((i_lo - 1).max(-REACH), (j_lo - 1).max(-REACH));
+        let (i_hi, j_hi) = (
+            (i_hi + 1).min(dims[0] as i64 - 1 + REACH),
+            (j_hi + 1).min(dims[1] as i64 - 1 + REACH),
+        );
+        if i_hi < i_lo || j_hi < j_lo {
             return;
         }
-        let first = (i_lo - 1, j_lo - 1);
-        let (rows, cols) = ((i_hi - i_lo + 3) as usize, (j_hi - j_lo + 3) as usize);
+        let first = (i_lo, j_lo);
+        let (rows, cols) = ((i_hi - i_lo + 1) as usize, (j_hi - j_lo + 1) as usize);
         // Grid rows the window's neighbourhoods reach, clipped to the grid.
         let grid_rows =
             (first.0 - REACH).max(0)..(first.0 + rows as i64 + REACH).min(dims[0] as i64);

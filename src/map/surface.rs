@@ -335,7 +335,9 @@ impl SurfaceShadow {
     pub fn estimated_bytes(columns: u64, samples: u64) -> u64 {
         let per_axis =
             ((columns as f32 * TEXELS_PER_COLUMN) as u64).min(MAX_TEXELS_PER_AXIS as u64) + 4;
-        let texel = (std::mem::size_of::<Vec3>() + 2 * std::mem::size_of::<f32>()) as u64;
+        // Per texel: the sums, the limit, the solids' count and the two passes of the entry
+        // depths (`EntryDepths`, at most the texture's texels); the tiles are a sixteenth.
+        let texel = (std::mem::size_of::<Vec3>() + 5 * std::mem::size_of::<f32>()) as u64;
         (per_axis * per_axis * texel)
             .saturating_add(samples.saturating_mul(std::mem::size_of::<Piece>() as u64))
     }
