@@ -192,14 +192,25 @@ pub fn draw_mesh(
                 y0: b * BAND_ROWS,
                 rows: depth.len() / w,
                 w,
+                span: (0, w),
             };
             if bins[b].is_empty() {
                 return;
             }
+            // Only the columns the band's triangles can touch (the union of their boxes) are
+            // set up and shaded: the rest of the band keeps what is there, as it would with
+            // every sample missed (the character fills about a third of a frame's width).
+            let span = bins[b]
+                .iter()
+                .map(|&t| band.columns(&tris[t as usize]))
+                .fold((w, 0), |(a, b), (x0, x1)| (a.min(x0), b.max(x1)));
+            let band = Band { span, ..band };
             // Samples start at the opaque depth already there.
-            for (px, d) in depth.iter().enumerate() {
-                s_depth[px * SAMPLES..(px + 1) * SAMPLES].fill(*d);
-                s_tri[px * SAMPLES..(px + 1) * SAMPLES].fill(NONE);
+            for row in 0..band.rows {
+                for px in row * w + span.0..row * w + span.1 {
+                    s_depth[px * SAMPLES..(px + 1) * SAMPLES].fill(depth[px]);
+                    s_tri[px * SAMPLES..(px + 1) * SAMPLES].fill(NONE);
+                }
             }
             for &t in &bins[b] {
                 band.rasterise(&tris[t as usize], t, s_depth, s_tri);
@@ -311,6 +322,8 @@ struct Band {
     y0: usize,
     rows: usize,
     w: usize,
+    /// The columns `span.0 .. span.1` that its triangles can touch.
+    span: (usize, usize),
 }
 
 /// Screen-space edge functions of a triangle at `q`: e[i] is twice the signed area of the
@@ -326,12 +339,21 @@ fn edges(t: &ScreenTri, q: Vec2) -> [f32; 3] {
 }
 
 impl Band {
-    /// Keeps, per sample of the band, the nearest triangle.
-    fn rasterise(&self, t: &ScreenTri, index: u32, s_depth: &mut [f32], s_tri: &mut [u32]) {
+    /// The columns `x0 .. x1` whose samples triangle `t` can cover: its screen box.
+    #[inline]
+    fn columns(&self, t: &ScreenTri) -> (usize, usize) {
         let lo = t.p[0].min(t.p[1]).min(t.p[2]);
         let hi = t.p[0].max(t.p[1]).max(t.p[2]);
         let x0 = lo.x.max(0.0).floor() as usize;
         let x1 = (hi.x.min(self.w as f32).max(0.0).ceil() as usize).min(self.w);
+        (x0, x1)
+    }
+
+    /// Keeps, per sample of the band, the nearest triangle.
+    fn rasterise(&self, t: &ScreenTri, index: u32, s_depth: &mut [f32], s_tri: &mut [u32]) {
+        let lo = t.p[0].min(t.p[1]).min(t.p[2]);
+        let hi = t.p[0].max(t.p[1]).max(t.p[2]);
+        let (x0, x1) = self.columns(t);
         let r0 = (lo.y.max(self.y0 as f32).floor() as usize).max(self.y0);
         let r1 = (hi.y.min((self.y0 + self.rows) as f32).ceil() as usize).min(self.y0 + self.rows);
         let inv_area = 1.0 / t.area2;
@@ -371,7 +393,8 @@ impl Band {
         depth: &mut [f32],
         coverage: &mut [f32],
     ) {
-        for px in 0..self.rows * self.w {
+        let (x_lo, x_hi) = self.span;
+        for px in (0..self.rows).flat_map(|row| row * self.w + x_lo..row * self.w + x_hi) {
             let samples = &s_tri[px * SAMPLES..(px + 1) * SAMPLES];
             let covered = samples.iter().filter(|&&t| t != NONE).count();
             let Some(first) = samples.iter().position(|&t| t != NONE) else {
