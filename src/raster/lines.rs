@@ -30,10 +30,10 @@
 //!    with a radix sort, and walks each segment over its rows, visiting only pixel centres in
 //!    the segment's expanded rectangle, emitting one fragment (pixel, 1/depth, α, colour) per
 //!    covered centre nearer than the opaque depth (`fragment.rs`, branch-free: each centre
-//!    writes a slot, kept only when covered and in front). A counting sort groups the
-//!    fragments by pixel, inserting each into its pixel's run by 1/depth as it scatters (runs
-//!    are nearly in order from the segment sort, so the insertion is cheap), and each pixel
-//!    composites its own back to front, two pixels interleaved. Bands are whole rows so each
+//!    writes a slot, kept only when covered and in front). A stable counting sort groups the
+//!    fragments by pixel; each pixel's run is put in depth order by an insertion sort (runs
+//!    are nearly in order from the segment sort), or by a key sort where it is far from
+//!    order, and composited back to front, two pixels interleaved. Bands are whole rows so each
 //!    owns a disjoint `&mut` slice of the framebuffer (no `unsafe`); the working buffers are
 //!    per worker thread (an uncontended lock each).
 //!
@@ -124,6 +124,8 @@ struct BandScratch {
     frags: Vec<Frag>,
     sorted: Vec<Frag>,
     starts: Vec<u32>,
+    /// One out-of-order pixel's sort keys, when its insertion sort gives up.
+    run_keys: Vec<u64>,
 }
 
 impl LineScratch {
@@ -143,6 +145,7 @@ impl LineScratch {
                     + (t.keys.capacity() + t.tmp.capacity()) * 8
                     + (t.frags.capacity() + t.sorted.capacity()) * size_of::<Frag>()
                     + t.starts.capacity() * 4
+                    + t.run_keys.capacity() * 8
             })
             .sum();
         let far: usize = self.far_bands.iter().map(|f| f.tiles.capacity() * 4).sum();
@@ -311,6 +314,7 @@ pub fn draw_polylines(
                 frags,
                 sorted,
                 starts,
+                run_keys,
             } = &mut *guard;
             // Segments behind the solids at every pixel they could touch are left out
             // (`cull.rs`: the same fragments in the same order, without the walk).
@@ -332,7 +336,8 @@ pub fn draw_polylines(
             };
             emit_fragments(&params, segs, fibres, keys, &band, frags);
             sort_by_pixel(frags, sorted, starts, band.color.len());
-            composite(sorted, starts, band);
+            // The emitted fragments are spent: their buffer is the composite's spare.
+            composite(sorted, starts, run_keys, frags, band);
         });
     // Which thread draws which band varies between frames: give every thread the largest
     // capacities any of them needed, so a warmed-up frame allocates nothing whichever bands
@@ -419,7 +424,7 @@ fn grow_to<T>(v: &mut Vec<T>, cap: usize) {
 
 /// Grows every thread's buffers to the largest capacity among them (a no-op once warm).
 fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
-    let mut need = [0usize; 6];
+    let mut need = [0usize; 7];
     let caps = |t: &BandScratch| {
         [
             t.keys.capacity(),
@@ -428,6 +433,7 @@ fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
             t.frags.capacity(),
             t.sorted.capacity(),
             t.starts.capacity(),
+            t.run_keys.capacity(),
         ]
     };
     for t in threads.iter_mut() {
@@ -450,6 +456,7 @@ fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
         grow_to(&mut t.frags, need[3]);
         grow_to(&mut t.sorted, need[4]);
         grow_to(&mut t.starts, need[5]);
+        grow_to(&mut t.run_keys, need[6]);
     }
 }
 
