@@ -104,7 +104,14 @@ impl LightMap {
         if !m.is_finite() {
             return Vec3::ONE;
         }
-        let tf = (-surface.optical_depth(m)).exp() * self.occluders.visibility(m);
+        // No hair in front (most of the body): exp(−0) is exactly 1, without three `exp`s.
+        let depth = surface.optical_depth(m);
+        let hair = if depth == Vec3::ZERO {
+            Vec3::ONE
+        } else {
+            (-depth).exp()
+        };
+        let tf = hair * self.occluders.visibility(m);
         tf.clamp(Vec3::ZERO, Vec3::ONE)
     }
 
