@@ -324,7 +324,10 @@ fn sort_run(run: &mut [Frag], run_keys: &mut Vec<u64>, spare: &mut [Frag]) {
             .map(|(i, f)| (u64::from(f.iz_bits) << 32) | i as u64),
     );
     run_keys.sort_unstable();
+    // `spare` is always long enough in the raster (it is the band's emitted fragments, as
+    // many as all its runs together); the guard only keeps a misuse from panicking.
     let Some(copy) = spare.get_mut(..run.len()) else {
+        debug_assert!(false, "spare shorter than a run");
         return;
     };
     copy.copy_from_slice(run);
@@ -380,8 +383,8 @@ mod tests {
         /// Grouping by pixel, then sorting each run, gives what a stable library sort by
         /// (pixel, 1/depth) gives, fragment for fragment, with each run where `starts` says.
         /// Fragments carry their emission index in `alpha` to tell ties apart. Depths come from
-        /// a few values (many ties) on a slope or not at all, so runs both stay within the
-        /// insertion budget and exceed it (`within` counts the first kind).
+        /// a few values (many ties), rising along the emission order or not at all, so runs
+        /// both stay within the insertion budget and exceed it.
         #[test]
         fn pixel_runs_sort_stably_by_pixel_then_depth(
             raw in proptest::collection::vec((0u32..9, 0u32..6), 0..400),

@@ -203,7 +203,7 @@ pub fn draw_mesh(
             let span = bins[b]
                 .iter()
                 .map(|&t| band.columns(&tris[t as usize]))
-                .fold((w, 0), |(a, b), (x0, x1)| (a.min(x0), b.max(x1)));
+                .fold((w, 0), |(lo, hi), (x0, x1)| (lo.min(x0), hi.max(x1)));
             let band = Band { span, ..band };
             // Samples start at the opaque depth already there.
             for row in 0..band.rows {
