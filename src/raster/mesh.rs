@@ -202,7 +202,7 @@ pub fn draw_mesh(
             // every sample missed (the character fills about a third of a frame's width).
             let span = bins[b]
                 .iter()
-                .map(|&t| band.columns(&tris[t as usize]))
+                .map(|&t| band.columns(screen_box(&tris[t as usize])))
                 .fold((w, 0), |(lo, hi), (x0, x1)| (lo.min(x0), hi.max(x1)));
             let band = Band { span, ..band };
             // Samples start at the opaque depth already there.
@@ -301,8 +301,7 @@ fn set_up(view: &View, mesh: &Mesh, scratch: &mut MeshScratch) {
             {
                 continue;
             }
-            let lo = p0.min(p1).min(p2);
-            let hi = p0.max(p1).max(p2);
+            let (lo, hi) = screen_box(&st);
             if !(hi.x >= 0.0 && lo.x <= view.width as f32 && hi.y >= 0.0 && lo.y <= h as f32) {
                 continue;
             }
@@ -326,6 +325,15 @@ struct Band {
     span: (usize, usize),
 }
 
+/// A triangle's screen box: its corners' minimum and maximum.
+#[inline]
+fn screen_box(t: &ScreenTri) -> (Vec2, Vec2) {
+    (
+        t.p[0].min(t.p[1]).min(t.p[2]),
+        t.p[0].max(t.p[1]).max(t.p[2]),
+    )
+}
+
 /// Screen-space edge functions of a triangle at `q`: e[i] is twice the signed area of the
 /// sub-triangle opposite corner i, so e / area2 are the screen barycentrics.
 #[inline]
@@ -339,11 +347,9 @@ fn edges(t: &ScreenTri, q: Vec2) -> [f32; 3] {
 }
 
 impl Band {
-    /// The columns `x0 .. x1` whose samples triangle `t` can cover: its screen box.
+    /// The columns `x0 .. x1` whose samples a triangle with screen box `(lo, hi)` can cover.
     #[inline]
-    fn columns(&self, t: &ScreenTri) -> (usize, usize) {
-        let lo = t.p[0].min(t.p[1]).min(t.p[2]);
-        let hi = t.p[0].max(t.p[1]).max(t.p[2]);
+    fn columns(&self, (lo, hi): (Vec2, Vec2)) -> (usize, usize) {
         let x0 = lo.x.max(0.0).floor() as usize;
         let x1 = (hi.x.min(self.w as f32).max(0.0).ceil() as usize).min(self.w);
         (x0, x1)
@@ -351,9 +357,8 @@ impl Band {
 
     /// Keeps, per sample of the band, the nearest triangle.
     fn rasterise(&self, t: &ScreenTri, index: u32, s_depth: &mut [f32], s_tri: &mut [u32]) {
-        let lo = t.p[0].min(t.p[1]).min(t.p[2]);
-        let hi = t.p[0].max(t.p[1]).max(t.p[2]);
-        let (x0, x1) = self.columns(t);
+        let (lo, hi) = screen_box(t);
+        let (x0, x1) = self.columns((lo, hi));
         let r0 = (lo.y.max(self.y0 as f32).floor() as usize).max(self.y0);
         let r1 = (hi.y.min((self.y0 + self.rows) as f32).ceil() as usize).min(self.y0 + self.rows);
         let inv_area = 1.0 / t.area2;
