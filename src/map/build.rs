@@ -1,18 +1,25 @@
 //! Building the map each frame: fill (Bertails 2005 §3.1) and transmittance sweep (§3.2, Eq. 3).
 //!
 //! 1. Fill, in parallel over samples: each sample's statistics once (expected fibre crossings,
-//!    their forward-scattering losses and variance, hair volume), and per piece and column a
-//!    24-byte entry (slice, column, sample, bilinear share, depth range).
-//! 2. Counting sort of the entries by column, in parallel over fixed chunks (O(entries + N²)),
-//!    which keeps sample order inside a column.
-//! 3. Per column, in parallel: a stable counting sort along the light (ties stay in sample
-//!    order, so the float sums below always add in the same order whatever the thread count),
-//!    then merge the entries into the column's cells, written compactly column after column,
-//!    and sweep from the first slice accumulating Eq. 3 in its dual-scattering form
-//!    (`column.rs`).
+//!    their forward-scattering losses and variance, hair volume), and per piece one record
+//!    (slice, the first of the 2 × 2 columns it is splatted to, its place in that square, its
+//!    depth range).
+//! 2. Counting sort of the pieces by that base column, in parallel over fixed chunks
+//!    (O(pieces + N²)), which keeps piece order inside a column and carries each sample's
+//!    statistics beside its pieces (read in sample order here, not at random in step 3).
+//! 3. Per base column, in parallel: a stable counting sort along the light (ties stay in piece
+//!    order, so the float sums below always add in the same order whatever the thread count).
+//!    Then per column: count its cells (the distinct slices its four base columns bring),
+//!    lay the cells out column after column, and merge the four base columns' pieces into
+//!    them, each with its bilinear share, sweeping from the first slice to accumulate Eq. 3 in
+//!    its dual-scattering form (`column.rs`). Sorting pieces instead of one entry per piece
+//!    and column moves a quarter of the bytes; the merge adds in the order that sort of
+//!    entries would give, so the cells are the same bits.
 //! 4. Slot tables and the per-column lookup index.
 
-use super::column::{Entry, PieceStats, merge_and_sweep, sort_column};
+use super::column::{
+    Piece, PieceStats, Placed, SPLAT, column_cells, merge_column, sort_column, splat_weight,
+};
 use super::{Cell, ColumnIndex, LightFrame, LightMap, MAX_CELL_COORD};
 use crate::fiber::Fiber;
 use glam::{Vec2, Vec3};
@@ -184,10 +191,14 @@ pub(super) struct Scratch {
     /// Per sample: the forward attenuation ā_f (clamped to [0, 1]) its pieces carry, NaN for a
     /// sample the fill skipped; the skin's texture reads it instead of evaluating it again.
     pub(super) forward_a: Vec<Vec3>,
-    /// Per sample piece and column: the fill's output, in sample order.
-    entries: Vec<Entry>,
-    /// The filled entries grouped by column (counting sort), each column in sample order.
-    sorted: Vec<Entry>,
+    /// Per sample piece: the fill's output, in piece order.
+    entries: Vec<Piece>,
+    /// The filled pieces grouped by base column (counting sort), each column in piece order.
+    sorted: Vec<Placed>,
+    /// Where each base column's pieces start in `sorted` (N² + 1).
+    base_start: Vec<u32>,
+    /// Per piece of `sorted`: its [`Placed::mark`] (what counting a column's cells reads).
+    marks: Vec<u32>,
     col_count: Vec<u32>,
 }
 
@@ -195,8 +206,16 @@ pub(super) struct Scratch {
 /// search): bounds the tables by the cells, whatever the span of a column.
 pub(super) const SLOT_SPAN_PER_CELL: usize = 4;
 
-/// Columns a piece is shared between (2 × 2, bilinear weights).
-pub(super) const SPLAT: usize = 4;
+/// Columns sorted, counted or merged by one parallel task.
+const COLUMNS_PER_TASK: usize = 1024;
+
+/// The columns `c0..c1` of merge task `task` of `cols`.
+fn task_columns(task: usize, cols: usize) -> (usize, usize) {
+    (
+        task * COLUMNS_PER_TASK,
+        ((task + 1) * COLUMNS_PER_TASK).min(cols),
+    )
+}
 
 /// Most pieces a sample is split into (a sample longer than 8 cells still makes 8).
 pub(super) const MAX_PIECES: usize = 8;
@@ -235,11 +254,11 @@ impl LightMap {
         let pieces = ((max_len / ds).ceil() as usize).clamp(1, MAX_PIECES);
         let entries = &mut self.scratch.entries;
         let stats = &mut self.scratch.stats;
-        let per_sample = pieces * SPLAT;
+        let per_sample = pieces;
         // Exact reservations: a vector that grows by `resize` may double its capacity, which
         // the memory budget would have to count twice.
         entries.reserve_exact((count * per_sample).saturating_sub(entries.len()));
-        entries.resize(count * per_sample, Entry::default());
+        entries.resize(count * per_sample, Piece::default());
         stats.reserve_exact(count.saturating_sub(stats.len()));
         stats.resize(count, PieceStats::default());
         let forward_a = &mut self.scratch.forward_a;
@@ -291,7 +310,7 @@ impl LightMap {
                 // strand, also where a tapered tip has fewer fibres).
                 let half_depth = 0.5 * (u_cells.x * span_total / pieces as f32).abs();
                 let mut ext = Extent::EMPTY;
-                for (q, quad) in out.chunks_exact_mut(SPLAT).enumerate() {
+                for (q, e) in out.iter_mut().enumerate() {
                     let along = ((q as f32 + 0.5) / pieces as f32 - 0.5) * span_total;
                     // The piece's offset, in cells, is rounded to 1/1024 of a cell (7 µm at the
                     // default size): then moving the hair by whole cells moves every piece by
@@ -309,35 +328,27 @@ impl LightMap {
                     // Across the light, the piece is shared by the four nearest columns with
                     // bilinear (tent) weights about their centres, so a strand moving across
                     // a column boundary changes the light smoothly (a box fill shows the cell
-                    // grid as blotches on hair lying side by side).
+                    // grid as blotches on hair lying side by side). The piece keeps the first
+                    // of them and its place in their square; the merge takes the shares.
                     let lat = Vec2::new(at.y, at.z) - Vec2::splat(0.5);
                     let l0 = lat.floor();
-                    let w = lat - l0;
+                    let frac = (lat - l0).to_array();
                     let (j0, k0) = (l0.x as i64, l0.y as i64);
                     ext.include([i, j0, k0]);
                     ext.include([i, j0 + 1, k0 + 1]);
-                    // The wrapped column indices of j0, j0 + 1, k0, k0 + 1: one integer
-                    // division per axis, the next index by a compare.
-                    let wrap_next = |m: i64| if m + 1 == ncol { 0 } else { m + 1 };
-                    let (jm, km) = (j0.rem_euclid(ncol), k0.rem_euclid(ncol));
-                    let (jw, kw) = ([jm, wrap_next(jm)], [km, wrap_next(km)]);
-                    for (t, e) in quad.iter_mut().enumerate() {
-                        let (dj, dk) = (t >> 1, t & 1);
-                        let wt = if dj == 0 { 1.0 - w.x } else { w.x }
-                            * if dk == 0 { 1.0 - w.y } else { w.y };
-                        // A share of exactly 0 (a piece on a column centre line) makes no cell.
-                        *e = Entry {
-                            slice: i,
-                            col: if wt > 0.0 {
-                                (jw[dj] * ncol + kw[dk]) as u32
-                            } else {
-                                u32::MAX
-                            },
-                            sample: s as u32,
-                            weight: wt,
-                            depth,
-                        };
-                    }
+                    let shared = (0..SPLAT).any(|t| splat_weight(frac, t) > 0.0);
+                    *e = Piece {
+                        slice: i,
+                        col: if shared {
+                            (j0.rem_euclid(ncol) * ncol + k0.rem_euclid(ncol)) as u32
+                        } else {
+                            u32::MAX
+                        },
+                        sample: s as u32,
+                        id: (s * pieces + q) as u32,
+                        frac,
+                        depth,
+                    };
                 }
                 (ext, 0usize)
             })
@@ -346,30 +357,30 @@ impl LightMap {
                 |a, b| (Extent::union(a.0, b.0), a.1 + b.1),
             );
         let (extent, skipped) = extent;
-        let filled_entries = entries.par_iter().filter(|e| e.col != u32::MAX).count();
-        self.first_slice = if filled_entries > 0 { extent.lo[0] } else { 0 };
+        let filled_pieces = entries.par_iter().filter(|e| e.col != u32::MAX).count();
+        self.first_slice = if filled_pieces > 0 { extent.lo[0] } else { 0 };
         // Where the hair is, unwrapped: a lookup outside it must not read hair that the
         // modulo indexing aliases there (a dancer's body reaches far beyond the hair's span).
-        self.hair_lo = if filled_entries > 0 {
+        self.hair_lo = if filled_pieces > 0 {
             extent.lo
         } else {
             [i64::MAX; 3]
         };
-        self.hair_hi = if filled_entries > 0 {
+        self.hair_hi = if filled_pieces > 0 {
             extent.hi
         } else {
             [i64::MIN; 3]
         };
-        let overflow = filled_entries > 0
+        let overflow = filled_pieces > 0
             && (extent.hi[0] - extent.lo[0] >= n
                 || (1..3).any(|a| extent.hi[a] - extent.lo[a] >= ncol));
         let samples = count - skipped;
 
-        // 2. Counting sort by column, in parallel over fixed chunks of the entries: each chunk
-        // counts its entries per column, the counts become per-chunk write cursors (chunk k
-        // writes after chunks 0..k in every column), and the chunks scatter side by side into
-        // disjoint places. Within a column the entries keep their order, so the result is the
-        // sequential sort's whatever the chunking or the thread count.
+        // 2. Counting sort by base column, in parallel over fixed chunks of the pieces: each
+        // chunk counts its pieces per column, the counts become per-chunk write cursors (chunk
+        // k writes after chunks 0..k in every column), and the chunks scatter side by side
+        // into disjoint places. Within a column the pieces keep their order, so the result is
+        // the sequential sort's whatever the chunking or the thread count.
         let cols = (ncol * ncol) as usize;
         let chunks = sort_chunks(entries.len(), cols);
         let chunk_len = entries.len().div_ceil(chunks).max(1);
@@ -386,18 +397,22 @@ impl LightMap {
             });
         // Per-chunk counts become write cursors, in passes that walk the counters in memory
         // order (a column-major walk strides over the chunks' rows): column totals, their
-        // exclusive prefix, then each chunk's cursor after the earlier chunks' entries.
-        let col_base = &mut self.col_start[..cols];
-        col_base.fill(0);
+        // exclusive prefix, then each chunk's cursor after the earlier chunks' pieces.
+        let base_start = &mut self.scratch.base_start;
+        base_start.clear();
+        base_start.resize(cols + 1, 0);
         for row in col_count.chunks_exact(cols) {
-            for (base, n) in col_base.iter_mut().zip(row) {
+            for (base, n) in base_start.iter_mut().zip(row) {
                 *base += n;
             }
         }
         let mut acc = 0u32;
-        for base in col_base.iter_mut() {
+        for base in base_start.iter_mut() {
             (*base, acc) = (acc, acc + *base);
         }
+        // The cursors run in `col_start`, which takes the cells' offsets afterwards.
+        let col_base = &mut self.col_start[..cols];
+        col_base.copy_from_slice(&base_start[..cols]);
         for row in col_count.chunks_exact_mut(cols) {
             for (base, count) in col_base.iter_mut().zip(row) {
                 let n_k = *count;
@@ -406,9 +421,10 @@ impl LightMap {
             }
         }
         let sorted = &mut self.scratch.sorted;
-        sorted.reserve_exact(filled_entries.saturating_sub(sorted.len()));
-        sorted.resize(filled_entries, Entry::default());
+        sorted.reserve_exact(filled_pieces.saturating_sub(sorted.len()));
+        sorted.resize(filled_pieces, Placed::default());
         let first = self.first_slice;
+        let stats = &self.scratch.stats;
         let out = SharedSlice(sorted.as_mut_ptr());
         let out = &out;
         col_count
@@ -419,36 +435,94 @@ impl LightMap {
                     let at = cursor[e.col as usize] as usize;
                     cursor[e.col as usize] += 1;
                     // Relative slice, wrapping modulo N (Bertails Figure 3).
-                    let rel = Entry {
-                        slice: (e.slice - first).rem_euclid(n),
-                        ..*e
-                    };
-                    // SAFETY: `at` < filled_entries (the cursors partition 0..filled_entries:
+                    let rel = (e.slice - first).rem_euclid(n) as u32;
+                    // SAFETY: `at` < filled_pieces (the cursors partition 0..filled_pieces:
                     // chunk k's cursor in column c runs over its own count of places after the
                     // column's start and the earlier chunks' counts), so every place is written
                     // by exactly one chunk, once, and `sorted` is not otherwise touched here.
-                    unsafe { out.0.add(at).write(rel) };
+                    let placed = Placed::new(e, rel, stats[e.sample as usize]);
+                    unsafe { out.0.add(at).write(placed) };
                 }
             });
 
-        // 3. Per column: sort along the light (ties by sample index, so the float sums below
-        // always add in the same order whatever the thread count) and count its cells; the
-        // cells are laid out column after column, then each column merges its entries into
-        // its cells and sweeps them.
-        // The cursors are spent: the first N² counters now take each column's cell count.
-        let col_cells = &mut col_count[..cols];
-        col_cells.fill(0);
-        let counts_out = SharedSlice(col_cells.as_mut_ptr());
-        let counts_out = &counts_out;
-        let ncols = sorted
-            .par_chunk_by_mut(|a, b| a.col == b.col)
-            .map(|col| {
+        // 3. Per base column: sort along the light (ties in piece order, so the float sums
+        // below always add in the same order whatever the thread count). Then per column: merge
+        // the pieces of the four base columns that share into it into its cells and sweep them
+        // (`column.rs`), into a buffer per run of columns; the cells are then laid out column
+        // after column.
+        let tasks = cols.div_ceil(COLUMNS_PER_TASK);
+        let base_start = &self.scratch.base_start;
+        let marks = &mut self.scratch.marks;
+        marks.reserve_exact(filled_pieces.saturating_sub(marks.len()));
+        marks.resize(filled_pieces, 0);
+        let out = SharedSlice(sorted.as_mut_ptr());
+        let out = &out;
+        let marks_out = SharedSlice(marks.as_mut_ptr());
+        let marks_out = &marks_out;
+        (0..tasks).into_par_iter().for_each(|task| {
+            let (c0, c1) = task_columns(task, cols);
+            for c in c0..c1 {
+                let (a, b) = (base_start[c] as usize, base_start[c + 1] as usize);
+                // SAFETY: base columns own disjoint ranges a..b of `sorted` and `marks` (the
+                // prefix sums of their counts), each is handled by one task only, and neither
+                // is otherwise touched here.
+                let (col, col_marks) = unsafe {
+                    (
+                        std::slice::from_raw_parts_mut(out.0.add(a), b - a),
+                        std::slice::from_raw_parts_mut(marks_out.0.add(a), b - a),
+                    )
+                };
                 sort_column(col);
-                let cells = 1 + col.windows(2).filter(|w| w[0].slice != w[1].slice).count();
-                // SAFETY: each column is one chunk, so every counter is written at most once,
-                // and `col_count` is not otherwise touched here.
-                unsafe { counts_out.0.add(col[0].col as usize).write(cells as u32) };
-                1usize
+                for (m, p) in col_marks.iter_mut().zip(col.iter()) {
+                    *m = p.mark();
+                }
+            }
+        });
+        let (sorted, marks) = (&self.scratch.sorted[..], &self.scratch.marks[..]);
+        let ncol_u = ncol as usize;
+        // Where the four base columns whose pieces share into column (j, k) lie, by share
+        // index.
+        let sources = |j: usize, k: usize| {
+            let back = |m: usize| if m == 0 { ncol_u - 1 } else { m - 1 };
+            let base = |j: usize, k: usize| {
+                let c = j * ncol_u + k;
+                base_start[c] as usize..base_start[c + 1] as usize
+            };
+            [
+                base(j, k),
+                base(j, back(k)),
+                base(back(j), k),
+                base(back(j), back(k)),
+            ]
+        };
+        let col_cells = &mut col_count[..cols];
+        let columns = col_cells
+            .par_chunks_mut(COLUMNS_PER_TASK)
+            .enumerate()
+            .map(|(task, counts)| {
+                let c0 = task_columns(task, cols).0;
+                let mut filled_columns = 0;
+                // Row by row of columns; a row whose base rows (its own and the one before)
+                // hold no piece has no cell.
+                let mut at = 0;
+                while at < counts.len() {
+                    let (j, k0) = ((c0 + at) / ncol_u, (c0 + at) % ncol_u);
+                    let run = (ncol_u - k0).min(counts.len() - at);
+                    let row_pieces =
+                        |j: usize| base_start[(j + 1) * ncol_u] - base_start[j * ncol_u];
+                    let back_j = if j == 0 { ncol_u - 1 } else { j - 1 };
+                    let row = &mut counts[at..at + run];
+                    if row_pieces(j) == 0 && row_pieces(back_j) == 0 {
+                        row.fill(0);
+                    } else {
+                        for (k, count) in (k0..).zip(row.iter_mut()) {
+                            *count = column_cells(sources(j, k).map(|r| &marks[r])) as u32;
+                            filled_columns += usize::from(*count > 0);
+                        }
+                    }
+                    at += run;
+                }
+                filled_columns
             })
             .sum::<usize>();
         let mut acc = 0u32;
@@ -464,21 +538,21 @@ impl LightMap {
         let cells_out = SharedSlice(self.cells.as_mut_ptr());
         let cells_out = &cells_out;
         let col_start = &self.col_start;
-        let stats = &self.scratch.stats;
-        sorted.par_chunk_by(|a, b| a.col == b.col).for_each(|col| {
-            let c = col[0].col as usize;
-            let (a, b) = (col_start[c] as usize, col_start[c + 1] as usize);
-            // SAFETY: columns own disjoint ranges a..b of `cells` (the prefix sums of
-            // their cell counts above), each column is one chunk, and `cells` is not
-            // otherwise touched here.
-            let cells = unsafe { std::slice::from_raw_parts_mut(cells_out.0.add(a), b - a) };
-            merge_and_sweep(col, stats, cells);
+        (0..tasks).into_par_iter().for_each(|task| {
+            let (c0, c1) = task_columns(task, cols);
+            for c in c0..c1 {
+                let (a, b) = (col_start[c] as usize, col_start[c + 1] as usize);
+                if a < b {
+                    // SAFETY: columns own disjoint ranges a..b of `cells` (the prefix sums of
+                    // their cell counts), each column is merged by one task only, and `cells`
+                    // is not otherwise touched here.
+                    let cells =
+                        unsafe { std::slice::from_raw_parts_mut(cells_out.0.add(a), b - a) };
+                    merge_column(sources(c / ncol_u, c % ncol_u).map(|r| &sorted[r]), cells);
+                }
+            }
         });
 
-        // The lookup index, one record per column, and the slot tables: per column, the last
-        // filled cell at or before each slice of its span. A sparse column (span over
-        // SLOT_SPAN_PER_CELL slices per filled cell) gets none and is read by binary search,
-        // so the tables never hold more than that many slots per cell.
         self.slots.clear();
         self.index.resize(cols, ColumnIndex::EMPTY);
         for c in 0..cols {
@@ -521,7 +595,7 @@ impl LightMap {
             samples,
             skipped: count - samples,
             filled_cells: filled,
-            columns: ncols,
+            columns,
             peak_volume_fraction: peak,
             hair_volume_m3: filled as f32 * ds * dc * dc,
             overflow,

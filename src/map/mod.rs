@@ -9,10 +9,10 @@
 //!
 //! ## Sparse storage: cost O(samples + touched cells)
 //! Instead of N³ voxels, the map stores only filled cells, grouped by column (j, k) in a
-//! compressed-row layout: a counting sort of the samples by column (N² counters, the only
-//! per-frame cost that depends on N) followed, per column and in parallel, by a sort of its
-//! samples along X (relative to the first slice, wrapping modulo N as in Bertails Figure 3),
-//! a merge of samples falling in the same cell, and the sweep of Eq. 3. An empty cell has the
+//! compressed-row layout: a counting sort of the sample pieces by column (N² counters, the
+//! only per-frame cost that depends on N) followed, per column and in parallel, by a sort of
+//! its pieces along X (relative to the first slice, wrapping modulo N as in Bertails Figure
+//! 3), a merge of pieces falling in the same cell, and the sweep of Eq. 3 (`build.rs`). An empty cell has the
 //! value of the last filled cell before it in its column (Bertails §3.2: "otherwise cell (i,j,k)
 //! is given the transmittance prevTrans"); a lookup finds it through a per-column slot table. A dense N³ grid
 //! at N = 128 would clear and sweep 2M cells (56 MB at 7 floats) each frame for ~30K filled.
@@ -41,7 +41,8 @@
 //! same weights. A box fill (each piece into one column) makes the light jump where a strand
 //! crosses a column boundary, which shows the grid as cell-sized blotches on front-lit hair
 //! lying side by side; the splat removes them (measured on smooth at N = 129 against the exact
-//! reference: T_f MAE 0.025 → 0.021, ACCURACY.md), at four entries per piece.
+//! reference: T_f MAE 0.025 → 0.021, ACCURACY.md), at four shares per piece, taken as the
+//! columns are merged (`build.rs`).
 //!
 //! ## Along the light: where a cell's hair lies, and what a point receives
 //! A cell stores the running sums of the sweep up to its *far face* (the face away from the
