@@ -428,6 +428,11 @@ pub fn estimate(
                 crate::map::surface::SurfaceShadow::estimated_bytes(
                     geom.columns_per_axis() as u64,
                     points,
+                    crate::map::surface::SurfaceShadow::ribbon_texel_bound(
+                        geom.column_m(),
+                        0.5 * style.strand_spacing_m(),
+                        sample_len_m as f32,
+                    ),
                 )
                 .saturating_mul(lights)
             } else {

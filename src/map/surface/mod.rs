@@ -20,9 +20,11 @@
 //!
 //! (the Poisson reading of the map, `map` module doc), with L the texture's optical depth
 //! and V the solids' own visibility. A point in a solid's shadow has V = 0 whatever L says.
-//! The texture is filled in parallel over bands of texel rows, each band adding the pieces
-//! that reach it in one fixed order (by first row, then input order), so it is the same bits
-//! for any thread count.
+//! Each piece's texels are visited once, in parallel over runs of pieces (their overlaps, and
+//! the sum that normalises them), then the texture is filled in parallel over bands of texel
+//! rows, each band adding the pieces that reach it in one fixed order (by first row, then
+//! input order), so it is the same bits for any thread count. Pieces go through both steps in
+//! waves, so only one wave's texels are held at once.
 
 use super::entry_depths::EntryDepths;
 use super::occluders::OccluderGrid;
@@ -36,6 +38,10 @@ pub const TEXELS_PER_COLUMN: f32 = 2.0;
 const MAX_TEXELS_PER_AXIS: usize = 1024;
 /// Texel rows per parallel band.
 const BAND_ROWS: usize = 16;
+/// Sorted pieces whose texels one parallel task gathers.
+const GATHER_RUN: usize = 256;
+/// Pieces whose texels are gathered and deposited at a time (a multiple of [`GATHER_RUN`]).
+const WAVE_PIECES: usize = 64 * GATHER_RUN;
 /// Texels per side of the tiles that keep their deepest limit, so a piece lying behind the
 /// first solid at every texel it can touch is dropped before it is summed and deposited.
 /// Smooth under the default light at t = 2 s: 4 catches 31,238 of the 32,661 pieces behind
@@ -63,9 +69,9 @@ struct Piece {
     half_w: f32,
     depth: (f32, f32),
     loss: Vec3,
-    /// The overlap sum, or 0 while it is not known yet: a piece within one band of rows is
-    /// summed there, as its texels are visited to deposit ([`SurfaceShadow::build`], step 3).
-    sum: f32,
+    /// Where its gathered texels ([`Piece::gather`]) lie in its chunk's buffer
+    /// ([`SurfaceShadow::build`], step 3).
+    texels: [u32; 2],
     /// The sample it stands for (its place in the fixed order of the sums).
     index: u32,
     /// Texel box the ribbon touches: rows `x0..x1`, columns `y0..y1` (`x0` = `u32::MAX`: no
@@ -85,7 +91,7 @@ impl Piece {
         half_w: 0.0,
         depth: (0.0, 0.0),
         loss: Vec3::ZERO,
-        sum: 0.0,
+        texels: [0, 0],
         index: u32::MAX,
         x0: u32::MAX,
         x1: 0,
@@ -125,7 +131,7 @@ impl Piece {
             half_w,
             depth,
             loss: Vec3::ZERO,
-            sum: 0.0,
+            texels: [0, 0],
             index: 0,
             x0: x0 as u32,
             x1: x1 as u32,
@@ -192,8 +198,9 @@ impl Piece {
         y0..y1.max(y0)
     }
 
-    /// Sum of the overlaps over the texels the ribbon touches (rows, then columns: the order
-    /// [`Piece::deposit`] adds them in too, so both give the same bits).
+    /// Sum of the overlaps over the texels the ribbon touches, rows then columns: the order
+    /// [`Piece::gather`] adds them in (its reference in the tests).
+    #[cfg(test)]
     fn overlap_sum(&self) -> f32 {
         let mut sum = 0.0;
         for x in self.x0 as usize..self.x1 as usize {
@@ -204,55 +211,41 @@ impl Piece {
         sum
     }
 
-    /// Whether the ribbon's rows lie within one band of [`BAND_ROWS`] rows.
-    fn within_one_band(&self) -> bool {
-        self.x0 as usize / BAND_ROWS == (self.x1 as usize - 1) / BAND_ROWS
-    }
-
-    /// Adds the ribbon's rows within `band` to `rows` (the band's texels, `cols` per row;
-    /// `limit` is the whole texture's), where its depth is at most the texel's limit: the
-    /// piece's loss × the texel's overlap ÷ the ribbon's overlap sum, per texel area
-    /// (`inv_texel_area`, 1/m²). The overlaps are gathered into `touched` (scratch) first; a
-    /// piece whose sum is not known yet lies within the band, and is summed on the way in
-    /// [`Piece::overlap_sum`]'s order, so it deposits the same bits as with the sum taken
-    /// beforehand.
-    fn deposit(
-        &self,
-        band: std::ops::Range<usize>,
-        cols: usize,
-        limit: &[f32],
-        inv_texel_area: f32,
-        rows: &mut [Vec3],
-        touched: &mut Vec<(u32, f32)>,
-    ) {
-        let (x0, x1) = (
-            (self.x0 as usize).max(band.start),
-            (self.x1 as usize).min(band.end),
-        );
-        let first = band.start * cols;
-        touched.clear();
+    /// Visits the ribbon's texels once, rows then columns, in a texture of `cols` columns:
+    /// appends to `out` each texel (row-major index) with a positive overlap where the
+    /// ribbon's depth is at most the texel's `limit`, with that overlap, and returns the sum
+    /// of the overlaps over all its texels (what normalises its deposit).
+    fn gather(&self, cols: usize, limit: &[f32], out: &mut Vec<(u32, f32)>) -> f32 {
         let mut sum = 0.0;
-        for x in x0..x1 {
+        for x in self.x0 as usize..self.x1 as usize {
             for y in self.row_span(x) {
                 let (w, along) = self.at(x, y);
                 sum += w;
                 let k = x * cols + y;
                 if w > 0.0 && self.depth_at(along) <= limit[k] {
-                    touched.push(((k - first) as u32, w));
+                    out.push((k as u32, w));
                 }
             }
         }
-        if self.sum > 0.0 {
-            sum = self.sum;
-        } else {
-            debug_assert!(self.x0 as usize >= band.start && self.x1 as usize <= band.end);
-        }
-        if sum > 0.0 {
-            let per = self.loss * (inv_texel_area / sum);
-            for &(k, w) in touched.iter() {
-                rows[k as usize] += per * w;
-            }
-        }
+        sum
+    }
+}
+
+/// Adds a ribbon's gathered `texels` (row-major index, overlap) that lie in `band` (rows) to
+/// `rows` (the band's texels, `cols` per row): `per` × the overlap each, `per` being the
+/// piece's loss ÷ its overlap sum, per texel area.
+fn deposit(
+    per: Vec3,
+    texels: &[(u32, f32)],
+    band: std::ops::Range<usize>,
+    cols: usize,
+    rows: &mut [Vec3],
+) {
+    let (first, end) = ((band.start * cols) as u32, (band.end * cols) as u32);
+    // The texels are in row-major order: those of earlier bands first.
+    let from = texels.partition_point(|&(k, _)| k < first);
+    for &(k, w) in texels[from..].iter().take_while(|&&(k, _)| k < end) {
+        rows[(k - first) as usize] += per * w;
     }
 }
 
@@ -324,22 +317,48 @@ pub struct SurfaceShadow {
     pieces: Vec<Piece>,
     /// Scratch: per band, the range of `pieces` that may reach it.
     band_first: Vec<u32>,
-    /// Scratch: per band, the overlaps of the piece it is depositing (at most a piece's
-    /// texels within one band: pieces are at most a map cell long).
-    touched: Vec<Vec<(u32, f32)>>,
+    /// Scratch: per run of [`GATHER_RUN`] sorted pieces, their gathered texels (row-major
+    /// index, overlap), each piece's at its `texels` range.
+    gathered: Vec<Vec<(u32, f32)>>,
 }
 
 impl SurfaceShadow {
     /// Bytes the texture keeps for an extent of `columns` map columns per axis and `samples`
-    /// map samples.
-    pub fn estimated_bytes(columns: u64, samples: u64) -> u64 {
+    /// map samples, each gathering at most `ribbon_texels` texels
+    /// ([`SurfaceShadow::ribbon_texel_bound`]).
+    pub fn estimated_bytes(columns: u64, samples: u64, ribbon_texels: u64) -> u64 {
         let per_axis =
             ((columns as f32 * TEXELS_PER_COLUMN) as u64).min(MAX_TEXELS_PER_AXIS as u64) + 4;
         // Per texel: the sums, the limit, the solids' count and the two passes of the entry
         // depths (`EntryDepths`, at most the texture's texels); the tiles are a sixteenth.
         let texel = (std::mem::size_of::<Vec3>() + 5 * std::mem::size_of::<f32>()) as u64;
+        // The gathered texels of one wave of pieces, in buffers that grow by `push` (so up to
+        // twice their length).
+        let gathered = samples
+            .min(WAVE_PIECES as u64)
+            .saturating_mul(ribbon_texels)
+            .saturating_mul(2 * std::mem::size_of::<(u32, f32)>() as u64);
         (per_axis * per_axis * texel)
             .saturating_add(samples.saturating_mul(std::mem::size_of::<Piece>() as u64))
+            .saturating_add(gathered)
+    }
+
+    /// Most texels one ribbon gathers, for map columns `column_m` wide, render strands whose
+    /// fibres spread over `bundle_radius_m` and samples at most `sample_len_m` long. A texel
+    /// with overlap has its centre strictly inside the ribbon widened by half a texel, a
+    /// rectangle a × b texels (a = length + 1, b = width + 1 at the finest texels, a column
+    /// over [`TEXELS_PER_COLUMN`]), which holds at most ab + a + b + 1 = (a + 1)(b + 1) lattice
+    /// points (a convex set of area A and perimeter P holds at most A + P/2 + 1).
+    pub fn ribbon_texel_bound(column_m: f32, bundle_radius_m: f32, sample_len_m: f32) -> u64 {
+        let texel_m = column_m / TEXELS_PER_COLUMN;
+        let length = (sample_len_m / texel_m).max(1.0);
+        let width = ribbon_width_m(bundle_radius_m) / texel_m;
+        let bound = ((length + 2.0) * (width + 2.0)).ceil();
+        if bound.is_finite() {
+            bound as u64
+        } else {
+            u64::MAX
+        }
     }
 
     /// Fills the texture from `input`'s samples in the map's light frame `proj`, over the
@@ -502,14 +521,6 @@ impl SurfaceShadow {
                     }
                     piece.loss = loss;
                     piece.index = s as u32;
-                    // A ribbon within one band is summed there, as it is deposited (its
-                    // texels visited once); one that crosses bands needs its sum in each.
-                    if !piece.within_one_band() {
-                        piece.sum = piece.overlap_sum();
-                        if piece.sum <= 0.0 {
-                            return None;
-                        }
-                    }
                     Some(piece)
                 })()
                 .unwrap_or(Piece::NONE);
@@ -527,22 +538,54 @@ impl SurfaceShadow {
             let from = (b * BAND_ROWS).saturating_sub(tallest) as u32;
             pieces.partition_point(|p| p.x0 < from) as u32
         }));
-        // 3. Each band adds its pieces in that order (a piece within the band is summed as it
-        // is deposited, `Piece::deposit`).
-        let (pieces, band_first, limit) = (&self.pieces, &self.band_first, &self.limit);
+        // 3. In waves of at most WAVE_PIECES pieces (in their order, so what a texel adds
+        // keeps the pieces' order; a wave's texels are held at once, the whole texture's
+        // would be: 14 M for the dense preset): each piece's texels gathered once, in parallel
+        // over runs of pieces, each run into its own buffer (its overlaps in front of the
+        // solids, and their sum, which turns its loss into what a unit of overlap deposits
+        // per texel area); then each band adds the wave's pieces that reach it.
+        let limit = &self.limit;
         let inv_texel_area = inv_texel * inv_texel;
-        self.touched.resize_with(bands, Vec::new);
-        self.sums
-            .par_chunks_mut(BAND_ROWS * dims[1])
-            .zip(self.touched.par_iter_mut())
-            .enumerate()
-            .for_each(|(b, (rows, touched))| {
-                let (r0, r1) = (b * BAND_ROWS, ((b + 1) * BAND_ROWS).min(dims[0]));
-                let last = pieces.partition_point(|p| (p.x0 as usize) < r1);
-                for piece in &pieces[band_first[b] as usize..last] {
-                    piece.deposit(r0..r1, dims[1], limit, inv_texel_area, rows, touched);
-                }
-            });
+        let band_first = &self.band_first;
+        let gathered = &mut self.gathered;
+        for wave in (0..pieces.len()).step_by(WAVE_PIECES) {
+            let wave_end = (wave + WAVE_PIECES).min(pieces.len());
+            let runs = (wave_end - wave).div_ceil(GATHER_RUN);
+            if gathered.len() < runs {
+                gathered.resize_with(runs, Vec::new);
+            }
+            pieces[wave..wave_end]
+                .par_chunks_mut(GATHER_RUN)
+                .zip(gathered.par_iter_mut())
+                .for_each(|(run, texels)| {
+                    texels.clear();
+                    for piece in run.iter_mut() {
+                        let start = texels.len();
+                        let sum = piece.gather(dims[1], limit, texels);
+                        if sum > 0.0 {
+                            piece.loss *= inv_texel_area / sum;
+                            piece.texels = [start as u32, texels.len() as u32];
+                        } else {
+                            texels.truncate(start);
+                            piece.texels = [start as u32; 2];
+                        }
+                    }
+                });
+            let (pieces, gathered) = (&*pieces, &*gathered);
+            self.sums
+                .par_chunks_mut(BAND_ROWS * dims[1])
+                .enumerate()
+                .for_each(|(b, rows)| {
+                    let (r0, r1) = (b * BAND_ROWS, ((b + 1) * BAND_ROWS).min(dims[0]));
+                    let first = (band_first[b] as usize).max(wave);
+                    let last = pieces[..wave_end].partition_point(|p| (p.x0 as usize) < r1);
+                    for (i, piece) in pieces.iter().enumerate().take(last).skip(first) {
+                        let [a, b] = piece.texels.map(|t| t as usize);
+                        let texels = &gathered[(i - wave) / GATHER_RUN][a..b];
+                        deposit(piece.loss, texels, r0..r1, dims[1], rows);
+                    }
+                });
+        }
     }
 
     /// The optical depth (R, G, B) of the hair along the ray through map point `m`, bilinear
