@@ -254,11 +254,10 @@ impl LightMap {
         let pieces = ((max_len / ds).ceil() as usize).clamp(1, MAX_PIECES);
         let entries = &mut self.scratch.entries;
         let stats = &mut self.scratch.stats;
-        let per_sample = pieces;
         // Exact reservations: a vector that grows by `resize` may double its capacity, which
         // the memory budget would have to count twice.
-        entries.reserve_exact((count * per_sample).saturating_sub(entries.len()));
-        entries.resize(count * per_sample, Piece::default());
+        entries.reserve_exact((count * pieces).saturating_sub(entries.len()));
+        entries.resize(count * pieces, Piece::default());
         stats.reserve_exact(count.saturating_sub(stats.len()));
         stats.resize(count, PieceStats::default());
         let forward_a = &mut self.scratch.forward_a;
@@ -268,7 +267,7 @@ impl LightMap {
         // the filled cells (first slice, overflow check) comes from an exact min/max reduce,
         // so the reduction order does not matter.
         let extent = entries
-            .par_chunks_mut(per_sample)
+            .par_chunks_mut(pieces)
             .zip(stats.par_iter_mut().zip(forward_a.par_iter_mut()))
             .enumerate()
             .with_min_len(512)
@@ -446,10 +445,11 @@ impl LightMap {
             });
 
         // 3. Per base column: sort along the light (ties in piece order, so the float sums
-        // below always add in the same order whatever the thread count). Then per column: merge
-        // the pieces of the four base columns that share into it into its cells and sweep them
-        // (`column.rs`), into a buffer per run of columns; the cells are then laid out column
-        // after column.
+        // below always add in the same order whatever the thread count), and mark each piece
+        // with its slice and which of its shares are positive. Then per column: count its
+        // cells from the marks of the four base columns that share into it, lay the cells out
+        // column after column, and merge those base columns' pieces into them and sweep them
+        // (`column.rs`).
         let tasks = cols.div_ceil(COLUMNS_PER_TASK);
         let base_start = &self.scratch.base_start;
         let marks = &mut self.scratch.marks;

@@ -57,9 +57,7 @@ impl Placed {
     fn key(&self) -> u64 {
         ((self.slice as u64) << 32) | self.id as u64
     }
-}
 
-impl Placed {
     /// `piece` with its slice made relative (`slice`) and its sample's `stats`.
     #[inline]
     pub(super) fn new(piece: &Piece, slice: u32, stats: PieceStats) -> Placed {

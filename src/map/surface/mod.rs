@@ -58,9 +58,10 @@ pub fn ribbon_width_m(bundle_radius_m: f32) -> f32 {
 /// A sample's piece of strand drawn as a ribbon across the light, in texel coordinates: from
 /// `a` along unit `dir` for `len` (≥ 1) texels, `half_w` either side, its depth along the
 /// light (map metres) running from `depth.0` to `depth.1`, its crossings' losses Σ n(1 − ā_f)
-/// times their cross-section (`loss`, m²; over a texel's area it is an optical depth) and its
-/// ribbon's summed box overlap (`sum`), so a texel of overlap w gets loss · w / sum over its
-/// area: the whole ribbon deposits the piece's own.
+/// times their cross-section (`loss`, m²; over a texel's area it is an optical depth; once
+/// gathered, what a unit of overlap deposits per texel area) and its ribbon's summed box
+/// overlap (the sum [`Piece::gather`] returns), so a texel of overlap w gets loss · w / sum
+/// over its area: the whole ribbon deposits the piece's own.
 #[derive(Clone, Copy, Debug)]
 struct Piece {
     a: Vec2,
@@ -69,7 +70,7 @@ struct Piece {
     half_w: f32,
     depth: (f32, f32),
     loss: Vec3,
-    /// Where its gathered texels ([`Piece::gather`]) lie in its chunk's buffer
+    /// Where its gathered texels ([`Piece::gather`]) lie in its run's buffer
     /// ([`SurfaceShadow::build`], step 3).
     texels: [u32; 2],
     /// The sample it stands for (its place in the fixed order of the sums).
