@@ -553,6 +553,10 @@ impl LightMap {
             }
         });
 
+        // The lookup index, one record per column, and the slot tables: per column, the last
+        // filled cell at or before each slice of its span. A sparse column (span over
+        // SLOT_SPAN_PER_CELL slices per filled cell) gets none and is read by binary search,
+        // so the tables never hold more than that many slots per cell.
         self.slots.clear();
         self.index.resize(cols, ColumnIndex::EMPTY);
         for c in 0..cols {

@@ -170,18 +170,12 @@ pub(super) fn column_cells(sources: [&[u32]; SPLAT]) -> usize {
     BITS.with_borrow_mut(|bits| {
         bits.clear();
         bits.resize(((hi - lo) / 64 + 1) as usize, 0);
-        // A source is sorted by slice: its bits gather in a register word by word.
         for (t, source) in sources.iter().enumerate() {
-            let (mut word, mut acc) = (0usize, 0u64);
             for &m in source.iter() {
                 let at = slice(m) - lo;
-                if (at / 64) as usize != word {
-                    bits[word] |= acc;
-                    (word, acc) = ((at / 64) as usize, 0);
-                }
-                acc |= u64::from(m >> (MARK_SLICE_BITS as usize + t) & 1) << (at % 64);
+                let set = u64::from(m >> (MARK_SLICE_BITS as usize + t) & 1);
+                bits[(at / 64) as usize] |= set << (at % 64);
             }
-            bits[word] |= acc;
         }
         bits.iter().map(|w| w.count_ones() as usize).sum()
     })

@@ -12,10 +12,11 @@
 //! compressed-row layout: a counting sort of the sample pieces by column (N² counters, the
 //! only per-frame cost that depends on N) followed, per column and in parallel, by a sort of
 //! its pieces along X (relative to the first slice, wrapping modulo N as in Bertails Figure
-//! 3), a merge of pieces falling in the same cell, and the sweep of Eq. 3 (`build.rs`). An empty cell has the
-//! value of the last filled cell before it in its column (Bertails §3.2: "otherwise cell (i,j,k)
-//! is given the transmittance prevTrans"); a lookup finds it through a per-column slot table. A dense N³ grid
-//! at N = 128 would clear and sweep 2M cells (56 MB at 7 floats) each frame for ~30K filled.
+//! 3), a merge of pieces falling in the same cell, and the sweep of Eq. 3 (`build.rs`). An
+//! empty cell has the value of the last filled cell before it in its column (Bertails §3.2:
+//! "otherwise cell (i,j,k) is given the transmittance prevTrans"); a lookup finds it through
+//! a per-column slot table. A dense N³ grid at N = 128 would clear and sweep 2M cells (56 MB
+//! at 7 floats) each frame for ~30K filled.
 //!
 //! ## What a cell holds (DESIGN.md "Fill")
 //! Each render-strand sample stands for a length ℓ of F real fibres of radius r. A light ray

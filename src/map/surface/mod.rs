@@ -581,8 +581,8 @@ impl SurfaceShadow {
                     let first = (band_first[b] as usize).max(wave);
                     let last = pieces[..wave_end].partition_point(|p| (p.x0 as usize) < r1);
                     for (i, piece) in pieces.iter().enumerate().take(last).skip(first) {
-                        let [a, b] = piece.texels.map(|t| t as usize);
-                        let texels = &gathered[(i - wave) / GATHER_RUN][a..b];
+                        let [from, to] = piece.texels.map(|t| t as usize);
+                        let texels = &gathered[(i - wave) / GATHER_RUN][from..to];
                         deposit(piece.loss, texels, r0..r1, dims[1], rows);
                     }
                 });
