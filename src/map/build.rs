@@ -459,7 +459,9 @@ impl LightMap {
         let out = &out;
         let marks_out = SharedSlice(marks.as_mut_ptr());
         let marks_out = &marks_out;
-        (0..tasks).into_par_iter().for_each(|task| {
+        // One job per task: the hair fills few of the columns (`raster::lines` on rayon's
+        // splitting); the same below.
+        (0..tasks).into_par_iter().with_max_len(1).for_each(|task| {
             let (c0, c1) = task_columns(task, cols);
             for c in c0..c1 {
                 let (a, b) = (base_start[c] as usize, base_start[c + 1] as usize);
@@ -499,6 +501,7 @@ impl LightMap {
         let columns = col_cells
             .par_chunks_mut(COLUMNS_PER_TASK)
             .enumerate()
+            .with_max_len(1)
             .map(|(task, counts)| {
                 let c0 = task_columns(task, cols).0;
                 let mut filled_columns = 0;
@@ -538,7 +541,7 @@ impl LightMap {
         let cells_out = SharedSlice(self.cells.as_mut_ptr());
         let cells_out = &cells_out;
         let col_start = &self.col_start;
-        (0..tasks).into_par_iter().for_each(|task| {
+        (0..tasks).into_par_iter().with_max_len(1).for_each(|task| {
             let (c0, c1) = task_columns(task, cols);
             for c in c0..c1 {
                 let (a, b) = (col_start[c] as usize, col_start[c + 1] as usize);

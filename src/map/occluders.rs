@@ -273,6 +273,8 @@ impl OccluderGrid {
         self.depth
             .par_chunks_mut(RASTER_BAND_ROWS * cols)
             .enumerate()
+            // One job per band, as the solids cover few of them (`raster::lines` says why).
+            .with_max_len(1)
             .for_each(|(b, rows)| {
                 let band = b * RASTER_BAND_ROWS..(b * RASTER_BAND_ROWS + rows.len() / cols);
                 for t in &setups {

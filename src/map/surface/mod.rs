@@ -558,6 +558,9 @@ impl SurfaceShadow {
             pieces[wave..wave_end]
                 .par_chunks_mut(GATHER_RUN)
                 .zip(gathered.par_iter_mut())
+                // One job per run or band: their work is uneven (`raster::lines` on rayon's
+                // splitting).
+                .with_max_len(1)
                 .for_each(|(run, texels)| {
                     texels.clear();
                     for piece in run.iter_mut() {
@@ -576,6 +579,7 @@ impl SurfaceShadow {
             self.sums
                 .par_chunks_mut(BAND_ROWS * dims[1])
                 .enumerate()
+                .with_max_len(1)
                 .for_each(|(b, rows)| {
                     let (r0, r1) = (b * BAND_ROWS, ((b + 1) * BAND_ROWS).min(dims[0]));
                     let first = (band_first[b] as usize).max(wave);
