@@ -187,7 +187,7 @@ pub fn draw_mesh(
         .zip(scratch.sample_tri.par_chunks_mut(rows * SAMPLES))
         .enumerate()
         .take(bands)
-        // One job per band (the character covers a few of them; `lines.rs` says why).
+        // One job per band: the character's bands cost unevenly (`lines.rs` says why).
         .with_max_len(1)
         .for_each(|(b, ((((color, depth), coverage), s_depth), s_tri))| {
             let band = Band {

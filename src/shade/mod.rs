@@ -152,8 +152,8 @@ pub fn shade_vertices(
     shaded
         .par_chunks_mut(CHUNK)
         .zip(order.par_chunks(CHUNK))
-        // One job per chunk: the unseen vertices cost nothing, so chunks are uneven
-        // (`raster::lines` on rayon's splitting).
+        // One job per chunk: chunks cost unevenly (a lookup takes its opposition taps only
+        // where the view and light rays share fibres; `raster::lines` on rayon's splitting).
         .with_max_len(1)
         .for_each(|(out, indices)| {
             let mut contact = ContactScratch::default();
