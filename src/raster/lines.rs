@@ -82,7 +82,7 @@ use rayon::prelude::*;
 use super::bundle::Profiles;
 use super::camera::Camera;
 use super::cull::FarDepth;
-use super::fragment::{Band, Frag, composite, emit_fragments, sort_by_pixel};
+use super::fragment::{Band, Frag, composite, emit_fragments, sort_by_pixel, sort_keys};
 use super::framebuffer::Framebuffer;
 use super::polyline::{LineStyle, LineWidth, Polylines};
 use super::segment::{Fibres, Params, Seg, setup_segment};
@@ -341,7 +341,7 @@ pub fn draw_polylines(
             emit_fragments(&params, segs, fibres, keys, &band, frags);
             sort_by_pixel(frags, sorted, starts, band.color.len());
             // The emitted fragments are spent: their buffer is the composite's spare.
-            composite(sorted, starts, run_keys, frags, band);
+            composite(sorted, starts, run_keys, tmp, frags, band);
         });
     // Which thread draws which band varies between frames: give every thread the largest
     // capacities any of them needed, so a warmed-up frame allocates nothing whichever bands
@@ -464,65 +464,10 @@ fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
     }
 }
 
-/// Sorts band keys ascending. Positions (the low 32 bits) are already ascending, so a stable
-/// LSD radix sort on the high 32 bits (8-bit digits, a pass skipped when all keys share its
-/// digit, as the exponent byte usually does) gives exactly what a comparison sort would, in
-/// about a fifth of the instructions: callgrind counted `sort_unstable` at 15% of a frame.
-fn sort_keys(keys: &mut Vec<u64>, tmp: &mut Vec<u64>) {
-    if keys.len() < 64 {
-        keys.sort_unstable();
-        return;
-    }
-    tmp.clear();
-    tmp.resize(keys.len(), 0);
-    for shift in [32, 40, 48, 56] {
-        let mut offsets = [0usize; 256];
-        for &k in keys.iter() {
-            offsets[((k >> shift) & 0xFF) as usize] += 1;
-        }
-        if offsets.contains(&keys.len()) {
-            continue;
-        }
-        let mut sum = 0;
-        for o in offsets.iter_mut() {
-            (*o, sum) = (sum, sum + *o);
-        }
-        for &k in keys.iter() {
-            let o = &mut offsets[((k >> shift) & 0xFF) as usize];
-            if let Some(slot) = tmp.get_mut(*o) {
-                *slot = k;
-            }
-            *o += 1;
-        }
-        std::mem::swap(keys, tmp);
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use glam::Vec3;
-
-    #[test]
-    fn radix_sort_matches_comparison_sort() {
-        let mut state = 0x1234_5678_9ABC_DEF1_u64;
-        for n in [0, 5, 63, 64, 1000, 5000] {
-            let mut keys: Vec<u64> = (0..n)
-                .map(|pos| {
-                    state ^= state << 13;
-                    state ^= state >> 7;
-                    state ^= state << 17;
-                    // Depth-like keys: one exponent, few distinct values (ties by position).
-                    let depth = 1.0 + (state % 97) as f32 * 0.01;
-                    (u64::from(depth.to_bits()) << 32) | pos
-                })
-                .collect();
-            let mut expected = keys.clone();
-            expected.sort_unstable();
-            sort_keys(&mut keys, &mut Vec::new());
-            assert_eq!(keys, expected, "n {n}");
-        }
-    }
 
     /// After a warm-up frame, drawing the same scene again allocates nothing, whichever thread
     /// draws which band.
