@@ -482,10 +482,11 @@ impl LightMap {
         });
         let (sorted, marks) = (&self.scratch.sorted[..], &self.scratch.marks[..]);
         let ncol_u = ncol as usize;
+        // The row or column before `m`, wrapping.
+        let back = |m: usize| if m == 0 { ncol_u - 1 } else { m - 1 };
         // Where the four base columns whose pieces share into column (j, k) lie, by share
         // index.
         let sources = |j: usize, k: usize| {
-            let back = |m: usize| if m == 0 { ncol_u - 1 } else { m - 1 };
             let base = |j: usize, k: usize| {
                 let c = j * ncol_u + k;
                 base_start[c] as usize..base_start[c + 1] as usize
@@ -513,9 +514,8 @@ impl LightMap {
                     let run = (ncol_u - k0).min(counts.len() - at);
                     let row_pieces =
                         |j: usize| base_start[(j + 1) * ncol_u] - base_start[j * ncol_u];
-                    let back_j = if j == 0 { ncol_u - 1 } else { j - 1 };
                     let row = &mut counts[at..at + run];
-                    if row_pieces(j) == 0 && row_pieces(back_j) == 0 {
+                    if row_pieces(j) == 0 && row_pieces(back(j)) == 0 {
                         row.fill(0);
                     } else {
                         for (k, count) in (k0..).zip(row.iter_mut()) {
