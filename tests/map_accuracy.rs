@@ -38,11 +38,24 @@ fn engine_at_4s(style: Hairstyle) -> Engine {
 }
 
 fn rows(engine: &Engine, ns: &[u32], fp: Footprint) -> Vec<Row> {
+    rows_against(engine, ns, fp, 2000, 1)
+}
+
+/// The rows against the reference averaged over `placements` placements of each bundle's
+/// fibres, at `vertices` vertices.
+fn rows_against(
+    engine: &Engine,
+    ns: &[u32],
+    fp: Footprint,
+    vertices: usize,
+    placements: u32,
+) -> Vec<Row> {
     measure_map(
         engine,
         &sweep_geometries(engine, ns),
-        2000,
+        vertices,
         &fp,
+        placements,
         1,
         ContactShadowing::WindowM(DEFAULT_CONTACT_WINDOW_M),
     )
@@ -171,6 +184,46 @@ fn tapered_presets_stay_calibrated() {
 }
 
 #[test]
+fn tapered_presets_meet_the_targets_against_the_placement_ensemble() {
+    // Issue 7's targets on the presets as they are (tapered tips), against the reference
+    // averaged over 8 placements of each bundle's 30 fibres: the light a render strand
+    // receives when where its fibres lie is not known, which is all the map (or any model of
+    // the render strands) knows. Against one placement the lit bin cannot meet ±0.03 even for
+    // the reference itself (another placement reads −0.03 to −0.045 there); against the
+    // ensemble another placement reads −0.004 to −0.007 (ACCURACY.md §1, "One placement or the
+    // ensemble"). Measured at 30,000 vertices × 128 rays: smooth MAE 0.0119, bins +0.001 /
+    // −0.010 / −0.013 / −0.023; curly 0.0051, +0.001 / +0.002 / −0.006 / −0.029. Here 6,000
+    // vertices and 32 rays asked per placement (2 on each fibre, a quarter piece either side
+    // of the vertex) keep it to about a minute; bins of fewer than 40 vertices are not asserted
+    // (their mean's standard error exceeds 0.01). N = 128 fails the same bounds (lit bins −0.06
+    // to −0.08), so they discriminate.
+    for style in [Hairstyle::default_smooth(), Hairstyle::default_curly()] {
+        let name = style.name.clone();
+        let engine = engine_at_4s(style);
+        let rows = rows_against(&engine, &[128], Footprint::Fibres { rays: 32 }, 6000, 8);
+        let default = rows.iter().find(|r| r.is_default).expect("default row");
+        check_default(&name, default, &PRESET_BOUNDS);
+        let c = &default.comparison;
+        assert!(c.by_truth[3].count >= 40, "{name}: {:?}", c.by_truth);
+        assert!(
+            c.worst_bin_bias(true, 40) <= 0.03,
+            "{name}: binned by truth {:?}",
+            c.by_truth
+        );
+        let coarse = &rows
+            .iter()
+            .find(|r| r.n == 128)
+            .expect("N = 128")
+            .comparison;
+        assert!(
+            coarse.worst_bin_bias(true, 40) > 0.03,
+            "{name}: N = 128 meets the bounds too, so they do not discriminate: {:?}",
+            coarse.by_truth
+        );
+    }
+}
+
+#[test]
 fn one_fibre_per_strand_meets_the_targets_with_contact_shadows() {
     // With one fibre per strand the light a fibre receives depends on the few single fibres
     // right in front of it, which no grid resolves: the map alone reads MAE 0.052 and the lit
@@ -283,4 +336,39 @@ fn fibres_the_camera_sees_near_the_light_are_lit_as_the_exact_rays_say() {
             );
         }
     }
+}
+
+#[test]
+fn the_ensemble_is_the_mean_of_its_placements_and_one_fibre_has_one() {
+    use wisp::accuracy::{ensemble_light, exact_reference_placed, key_light, placements_used};
+    let engine = engine_at_4s(Hairstyle::default_smooth());
+    let (style, strands, fiber) = (&engine.style, &engine.strands, &engine.fiber);
+    let light = key_light(&engine);
+    let verts = wisp::map::accuracy::sample_vertices(strands.positions.len(), 300);
+    let fp = Footprint::Fibres { rays: 30 };
+    let placed = |seed| {
+        exact_reference_placed(style, strands, fiber, light, seed).light_at_vertices(&verts, &fp)
+    };
+    let (a, b) = (placed(0), placed(1));
+    let both = ensemble_light(style, strands, fiber, light, &verts, &fp, 2);
+    let mut moved = 0;
+    for ((x, y), m) in a.iter().zip(&b).zip(&both) {
+        let mean = (x.tf + y.tf) * 0.5;
+        assert!(
+            (m.tf - mean).abs().max_element() < 1e-6,
+            "{m:?} against {x:?}, {y:?}"
+        );
+        let direct = (x.direct_fraction + y.direct_fraction) * 0.5;
+        assert!((m.direct_fraction - direct).abs() < 1e-6);
+        moved += usize::from(x.tf != y.tf);
+    }
+    // Two placements of 30-fibre bundles light some of the vertices differently, or the mean
+    // would average nothing.
+    assert!(
+        moved > 30,
+        "only {moved} of 300 vertices differ between placements"
+    );
+    assert_eq!(placements_used(style, 8), 8);
+    let single = single_fibre_variant(style, 2);
+    assert_eq!(placements_used(&single, 8), 1);
 }

@@ -206,6 +206,7 @@ fn point_light_map_against_the_exact_reference() {
         1500,
         &fp,
         1,
+        1,
         engine.config.contact,
     )
     .rows;

@@ -51,9 +51,15 @@ pub struct AccuracyArgs {
     /// to this PNG file.
     #[arg(long, requires = "skin")]
     pub skin_image: Option<std::path::PathBuf>,
+    /// Placements of each bundle's fibres the reference averages (`accuracy::ensemble_light`):
+    /// 1 is the documented placement alone; more average the same bundles turned by other
+    /// angles, the light a render strand receives when where its fibres lie is not known (as
+    /// the map does not know it). Each costs one reference; ignored with one fibre per strand.
+    #[arg(long, default_value_t = wisp::accuracy::DEFAULT_PLACEMENTS, value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub placements: u32,
     /// Also measure the reference's own floor: the exact reference with each bundle's fibres
-    /// placed otherwise (2 other placements; `accuracy::placement_floor`) against the
-    /// documented one, in the table's terms. Costs two more references.
+    /// placed otherwise (2 placements outside the reference's; `accuracy::placement_floor`)
+    /// against the reference, in the table's terms. Costs two more references.
     #[arg(long)]
     pub placement_floor: bool,
     /// Timed repetitions per map resolution.
@@ -116,12 +122,13 @@ pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
         &geometries,
         args.vertices as usize,
         &footprint,
+        args.placements,
         args.repeats,
         contact,
     );
     println!(
         "wisp accuracy: {}, {} strands × {} fibres, {} vertices of {}, t = {} s, footprint {:?}; \
-         exact reference {:.0} ms",
+         exact reference over {} placement{} of the fibres, {:.0} ms",
         style.name,
         style.wisps.count as u64 * style.wisps.strands_per_wisp as u64,
         style.strands.fibers_per_strand,
@@ -129,17 +136,20 @@ pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
         engine.strands.positions.len(),
         args.at_s,
         footprint,
+        measured.placements,
+        if measured.placements == 1 { "" } else { "s" },
         measured.reference_ms
     );
     println!();
     print!("{}", markdown(&measured.rows));
     if args.placement_floor {
-        let seeds = [1, 2];
+        let first = measured.placements as u64;
+        let seeds = [first, first + 1];
         let floors = placement_floor(&engine, &measured, &seeds);
         println!(
             "\nPlacement floor (the exact reference with each bundle's fibres turned by other \
-             angles, against the documented placement; no estimate from the render strands can \
-             know which placement is the hair's):\n"
+             angles, against the reference; no estimate from the render strands can know which \
+             placement is the hair's):\n"
         );
         println!(
             "| placement seed | T_f MAE | overall bias | bias, true T_f 0.0–0.2 / 0.2–0.5 / \

@@ -303,7 +303,14 @@ fn accuracy_part(args: &BenchArgs, at_s: f64, scene: &BenchScene, json: &mut Jso
     engine.frame(at_s);
     let default_n = engine.map_geometry().n;
     let geometries = wisp::accuracy::sweep_geometries(&engine, &args.map_res_list);
-    let footprint = Footprint::Fibres { rays: 128 };
+    // Bundles: 32 rays asked on each of 8 placements (2 on each of 30 fibres, a quarter piece
+    // either side of the vertex), at about the cost of 2.5 references of 128 (building a
+    // placement's fibres, not its rays, is most of a reference's time). One fibre per strand
+    // has one placement: 128 rays on it.
+    let placements =
+        wisp::accuracy::placements_used(&engine.style, wisp::accuracy::DEFAULT_PLACEMENTS);
+    let rays = if placements > 1 { 32 } else { 128 };
+    let footprint = Footprint::Fibres { rays };
     let wisp::accuracy::MapMeasurement {
         rows, reference_ms, ..
     } = wisp::accuracy::measure_map(
@@ -311,15 +318,18 @@ fn accuracy_part(args: &BenchArgs, at_s: f64, scene: &BenchScene, json: &mut Jso
         &geometries,
         2000,
         &footprint,
+        placements,
         args.repeats,
         engine.config.contact,
     );
     println!(
         "\nspeed against error at t = {} s: map build + a lookup at all {} vertices, against the \
-         exact reference (ray shooting through the placed fibres, 2,000 vertices, 128 rays each, \
-         {:.0} ms; see ACCURACY.md); the scene's own choice is N = {default_n}:\n",
+         exact reference (ray shooting through the placed fibres, 2,000 vertices, {} rays asked \
+         on each of {placements} placement(s) of the fibres, {:.0} ms; see ACCURACY.md); the \
+         scene's own choice is N = {default_n}:\n",
         at_s,
         engine.strands.positions.len(),
+        rays,
         reference_ms,
     );
     print!("{}", wisp::accuracy::markdown(&rows));
@@ -337,4 +347,5 @@ fn accuracy_part(args: &BenchArgs, at_s: f64, scene: &BenchScene, json: &mut Jso
         .collect();
     json.insert("speed_vs_error".into(), rows.into());
     json.insert("reference_ms".into(), reference_ms.into());
+    json.insert("reference_placements".into(), placements.into());
 }
