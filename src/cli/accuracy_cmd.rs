@@ -117,6 +117,18 @@ pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
         return skin(&mut engine, &args);
     }
     let geometries = sweep_geometries(&engine, &args.map_res_list);
+    let placements = wisp::accuracy::placements_used(&style, args.placements);
+    // The reference is most of the run (seconds per placement): say what is being waited for.
+    eprintln!(
+        "wisp accuracy: shooting {} rays at {} vertices through {} placement{} of the fibres, \
+         then the map at {} resolution{}…",
+        args.rays,
+        args.vertices,
+        placements,
+        if placements == 1 { "" } else { "s" },
+        geometries.len(),
+        if geometries.len() == 1 { "" } else { "s" },
+    );
     let measured = measure_map(
         &engine,
         &geometries,
