@@ -38,6 +38,7 @@ pub mod groom;
 pub mod hairstyle;
 pub mod input;
 pub mod interp;
+mod keysort;
 pub mod light;
 pub mod map;
 pub mod motion;

@@ -4,6 +4,7 @@
 //! the fibres near a ray. A counting sort, then each bin sorted in parallel; the total order
 //! makes the lists independent of the thread count.
 
+use crate::keysort::{sort_keys, total_order_bits};
 use rayon::prelude::*;
 
 /// An item's bins: rows `x0..=x1` and columns `y0..=y1`, or `None` for no bin.
@@ -51,29 +52,23 @@ pub(super) fn list_by_depth(
         rest = b;
     }
     // Each item's depth read once into a key whose integer order is (depth by `total_cmp`,
-    // index): the same total order as comparing depths in the sort, without reading an
-    // item's record at every comparison.
-    bins.into_par_iter()
-        .for_each_init(Vec::new, |keys: &mut Vec<u64>, bin| {
+    // index), the items already in index order: the same total order as comparing depths in
+    // the sort, without reading an item's record at every comparison.
+    bins.into_par_iter().for_each_init(
+        || (Vec::new(), Vec::new()),
+        |(keys, tmp): &mut (Vec<u64>, Vec<u64>), bin| {
             keys.clear();
             keys.extend(
                 bin.iter()
-                    .map(|&i| (u64::from(ordered_bits(x_min(i))) << 32) | u64::from(i)),
+                    .map(|&i| (u64::from(total_order_bits(x_min(i))) << 32) | u64::from(i)),
             );
-            keys.sort_unstable();
+            sort_keys(keys, tmp);
             for (slot, key) in bin.iter_mut().zip(keys.iter()) {
                 *slot = *key as u32;
             }
-        });
+        },
+    );
     (start, items)
-}
-
-/// `x`'s bits turned so that unsigned order is `f32::total_cmp`'s: negatives (sign bit set)
-/// inverted, so a larger magnitude sorts lower; non-negatives above every negative.
-#[inline]
-fn ordered_bits(x: f32) -> u32 {
-    let b = x.to_bits();
-    if b >> 31 == 1 { !b } else { b | 0x8000_0000 }
 }
 
 #[cfg(test)]
@@ -82,25 +77,19 @@ mod tests {
     use proptest::prelude::*;
 
     proptest! {
-        /// The key's order is `total_cmp`'s for any two floats, NaNs, infinities and signed
-        /// zeros included.
-        #[test]
-        fn ordered_bits_keeps_total_order(a in proptest::num::f32::ANY, b in proptest::num::f32::ANY) {
-            prop_assert_eq!(ordered_bits(a).cmp(&ordered_bits(b)), a.total_cmp(&b));
-        }
-
         /// Each bin lists exactly the items whose box touches it, in (depth, index) order, as
         /// a comparison sort on the depths gives.
         #[test]
         fn bins_hold_their_items_by_depth_then_index(
-            boxes in proptest::collection::vec((0usize..4, 0usize..2, 0usize..3, 0usize..2, -3i32..3), 0..60)
+            boxes in proptest::collection::vec((0usize..4, 0usize..2, 0usize..3, 0usize..2, -3i32..3), 0..300)
         ) {
             let dims = [5, 4];
             let rect = |i: usize| {
                 let (x0, dx, y0, dy, _) = boxes[i];
                 Some(([x0, y0], [(x0 + dx).min(4), (y0 + dy).min(3)]))
             };
-            // Few distinct depths, so ties (broken by index) are common.
+            // Few distinct depths, so ties (broken by index) are common; up to 300 items, so
+            // some bins hold 64 or more and take the radix passes.
             let depth = |i: u32| boxes[i as usize].4 as f32 * 0.5;
             let (start, items) = list_by_depth(dims, boxes.len(), rect, depth);
             for bx in 0..dims[0] {

@@ -5,6 +5,7 @@
 use glam::Vec3;
 
 use super::segment::{Fibres, NO_FIBRES, Params, Seg};
+use crate::keysort::sort_keys;
 
 /// One segment's coverage of one pixel centre: 24 bytes.
 #[derive(Clone, Copy, Debug, Default)]
@@ -244,7 +245,7 @@ pub(super) fn sort_by_pixel(
 /// (smooth at 1280×720: 38 fragments a pixel, 0.74 insertion shifts per fragment), and a
 /// stable insertion sort costs O(length + inversions). Where a run is far from order (dense
 /// hair: hundreds of crossing fibres a pixel), the insertion stops after [`SHIFT_BUDGET`]
-/// shifts per fragment and a radix sort of (1/depth, position) keys ([`sort_keys`]) finishes it,
+/// shifts per fragment and a radix sort of (1/depth, position) keys ([`crate::keysort::sort_keys`]) finishes it,
 /// using `spare` (at least as long as the longest run) to permute. A stable sort by one key
 /// has one result, so the order is the same whichever way a run is sorted; the insertion
 /// keeps equal depths in their order, so the keys' positions still tell emission order.
@@ -371,41 +372,6 @@ fn insertion_sort_by_depth(run: &mut [Frag], budget: usize) -> bool {
     true
 }
 
-/// Sorts keys ascending whose positions (the low 32 bits) are already ascending: a band's
-/// segments by depth, a pixel's fragments by depth. A stable LSD radix sort on the high 32
-/// bits (8-bit digits, a pass skipped when all keys share its digit, as the exponent byte
-/// usually does) gives exactly what a comparison sort would, in about a fifth of the
-/// instructions: callgrind counted `sort_unstable` at 15% of a frame. `tmp` is scratch.
-pub(super) fn sort_keys(keys: &mut Vec<u64>, tmp: &mut Vec<u64>) {
-    if keys.len() < 64 {
-        keys.sort_unstable();
-        return;
-    }
-    tmp.clear();
-    tmp.resize(keys.len(), 0);
-    for shift in [32, 40, 48, 56] {
-        let mut offsets = [0usize; 256];
-        for &k in keys.iter() {
-            offsets[((k >> shift) & 0xFF) as usize] += 1;
-        }
-        if offsets.contains(&keys.len()) {
-            continue;
-        }
-        let mut sum = 0;
-        for o in offsets.iter_mut() {
-            (*o, sum) = (sum, sum + *o);
-        }
-        for &k in keys.iter() {
-            let o = &mut offsets[((k >> shift) & 0xFF) as usize];
-            if let Some(slot) = tmp.get_mut(*o) {
-                *slot = k;
-            }
-            *o += 1;
-        }
-        std::mem::swap(keys, tmp);
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -414,27 +380,6 @@ mod tests {
     #[test]
     fn fragment_is_24_bytes() {
         assert_eq!(size_of::<Frag>(), 24);
-    }
-
-    #[test]
-    fn radix_sort_matches_comparison_sort() {
-        let mut state = 0x1234_5678_9ABC_DEF1_u64;
-        for n in [0, 5, 63, 64, 1000, 5000] {
-            let mut keys: Vec<u64> = (0..n)
-                .map(|pos| {
-                    state ^= state << 13;
-                    state ^= state >> 7;
-                    state ^= state << 17;
-                    // Depth-like keys: one exponent, few distinct values (ties by position).
-                    let depth = 1.0 + (state % 97) as f32 * 0.01;
-                    (u64::from(depth.to_bits()) << 32) | pos
-                })
-                .collect();
-            let mut expected = keys.clone();
-            expected.sort_unstable();
-            sort_keys(&mut keys, &mut Vec::new());
-            assert_eq!(keys, expected, "n {n}");
-        }
     }
 
     proptest::proptest! {

@@ -82,10 +82,11 @@ use rayon::prelude::*;
 use super::bundle::Profiles;
 use super::camera::Camera;
 use super::cull::FarDepth;
-use super::fragment::{Band, Frag, composite, emit_fragments, sort_by_pixel, sort_keys};
+use super::fragment::{Band, Frag, composite, emit_fragments, sort_by_pixel};
 use super::framebuffer::Framebuffer;
 use super::polyline::{LineStyle, LineWidth, Polylines};
 use super::segment::{Fibres, Params, Seg, setup_segment};
+use crate::keysort::sort_keys;
 
 /// Image rows per band (the unit of parallel work and of binning).
 pub(super) const BAND_ROWS: usize = 16;
