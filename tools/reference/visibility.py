@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Where the light reaches the hair the camera sees, path traced (not run by CI).
 
-    visibility.py SCENE_DIR [--spp 64] [--passes 4] [--decompose] [--variant llvm_ad_rgb]
+    visibility.py SCENE_DIR [--spp 64] [--passes 4] [--decompose [--kernel point|piece]]
+                  [--variant llvm_ad_rgb]
 
 Single scattering is the fibre's BCSDF times the share of the seen fibre that the light reaches
 through no fibre. This script measures that share alone, with no fibre model: camera rays
@@ -17,9 +18,11 @@ Compare it with the EXR of `wisp export --shading visibility` (the shadows alone
 compare.py. `--decompose` (SCENE_DIR must be such an export: it reads its vertex_rgb.f32 and
 wisp.exr) splits wisp / path traced, over pixels covered >= 0.99, into three factors:
 
-    along the fibre  exact shadow rays from the seen fibres, but averaged as wisp averages
-                     light along a fibre (each point's piece, half a segment to each side,
-                     then linear between the points), against the seen point's own
+    along the fibre  exact shadow rays from the seen fibres, but taken as wisp takes light
+                     along a fibre (`--kernel point`, contact shadows since 2026-12-05: at
+                     the points, then linear between them; `--kernel piece`, before: each
+                     point's piece, half a segment to each side, then linear), against the
+                     seen point's own
     the light        wisp's per-point values on the fibres the path tracer sees, against
                      the exact rays averaged the same way (the map and contact shadows)
     the raster       wisp's image, against its per-point values on the fibres the path
@@ -56,7 +59,7 @@ def unit(v):
     return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-12)
 
 
-def one_pass(mi, dr, mscene, scene, strands, vertex_value, spp, seed, decompose):
+def one_pass(mi, dr, mscene, scene, strands, vertex_value, spp, seed, decompose, kernel="point"):
     """Per pixel: [seen-and-lit, coverage] and, with `decompose`, [exact light averaged as
     wisp averages it, wisp's point values on the seen fibres]."""
     w, h = scene["image"]["width"], scene["image"]["height"]
@@ -86,15 +89,17 @@ def one_pass(mi, dr, mscene, scene, strands, vertex_value, spp, seed, decompose)
     u = np.clip(((p - a) * d).sum(1) / np.maximum((d * d).sum(1), 1e-30), 0.0, 1.0)
     # wisp's colour there: linear between the segment's two points.
     wisp_here = (1.0 - u) * vertex_value[k] + u * vertex_value[k + 1]
-    # Exact light with wisp's averaging: point k or k+1 (weights 1-u, u), then a point
-    # uniformly on its piece (half a segment to one side or the other), a ray from a point
+    # Exact light with wisp's averaging: point k or k+1 (weights 1-u, u), then that point
+    # (`point`) or a point uniformly on its piece (`piece`: half a segment to one side or the
+    # other), a ray from a point
     # across the fibre's width as the light sees it, started on the fibre's lit surface.
     v = k + (rng.random(n) < u)
     toward_prev = rng.random(n) < 0.5
     other = np.where(toward_prev, v - 1, v + 1)
     ok = np.where(toward_prev, v > strands.first[v], v < strands.last[v])
     other = np.where(ok, other, v)
-    q = strands.points[v] + (0.5 * rng.random(n))[:, None] * (strands.points[other] - strands.points[v])
+    reach = 0.5 * rng.random(n) if kernel == "piece" else np.zeros(n)
+    q = strands.points[v] + reach[:, None] * (strands.points[other] - strands.points[v])
     tangent = unit(strands.points[np.minimum(v + 1, strands.last[v])]
                    - strands.points[np.maximum(v - 1, strands.first[v])])
     to_light = -unit(np.array(scene["light"]["direction"], np.float64))
@@ -120,6 +125,8 @@ def main():
     ap.add_argument("--passes", type=int, default=4)
     ap.add_argument("--decompose", action="store_true",
                     help="split wisp / path traced into along-the-fibre, light and raster factors")
+    ap.add_argument("--kernel", choices=["point", "piece"], default="point",
+                    help="how wisp's point values stand for the light along a fibre (--decompose)")
     ap.add_argument("--variant", default="llvm_ad_rgb")
     ap.add_argument("--cache", default=os.path.join(os.environ.get("TMPDIR", "/tmp"), "wisp-reference-cache"))
     args = ap.parse_args()
@@ -147,7 +154,8 @@ def main():
     per_pass = max(1, args.spp // args.passes)
     mscene = build_scene(mi, scene, curves, per_pass, 2)
     t0 = time.time()
-    passes = [one_pass(mi, dr, mscene, scene, strands, vertex_value, per_pass, s, args.decompose)
+    passes = [one_pass(mi, dr, mscene, scene, strands, vertex_value, per_pass, s, args.decompose,
+                       args.kernel)
               for s in range(args.passes)]
     seconds = time.time() - t0
     stack = np.stack([np.stack([irradiance * p[0]] * 3 + [p[1]], axis=-1) for p in passes])

@@ -12,35 +12,41 @@
 //! are replaced by the real ones: unbiased wherever the map is, and exact as the window grows.
 //!
 //! ## What a vertex receives
-//! The vertex stands for the piece of fibre half a segment to each side (the exact reference's
-//! `Footprint::Fibres`). Along each half, the light-frame point o(u), u ∈ [0, 1], moves on a
-//! straight line. A fibre segment S of radius r shadows o(u) where (all linear in u, so their
-//! intersection is one interval of u):
-//! - the perpendicular distance across the light from o(u) to S's axis is below r, at a
-//!   parameter t ∈ [0, 1) along S (joints are shared half-open, as in the exact reference);
-//! - the crossing lies in front of o(u) and at most `window_m` in front of it.
+//! The light at the vertex's own point on the fibre's axis, along one ray toward the light.
+//! The raster draws each segment with its two vertices' colours interpolated linearly, so the
+//! light it shows at a point between them is the interpolation of the vertices' values: point
+//! values are what that reconstruction needs. (Until 2026-12-05 a vertex took the exact
+//! average over its piece, half a segment to each side, `Footprint::Fibres`; interpolating
+//! piece averages filters the light along the fibre twice, and where fibres weave over and
+//! under each other every few millimetres the camera sees mostly the lit parts, which the
+//! double average dims: dense hair side-lit read single scattering 0.84 of the path tracer with
+//! it, 0.92 with point values; ACCURACY.md §2, "Contact light at the vertex".)
 //!
-//! The half's light is then the exact average over u of ∏ ā_f over the segments covering u
-//! (a sweep over the intervals' ends), its direct fraction the share of u that no segment
-//! covers, its σ̄f² the share-weighted sum of β̄_f²: what infinitely many rays along the piece
-//! would give, with no sampling noise. The vertex's own strand does not shadow it within two
-//! segments (as the exact reference excludes them). Fibres end where the strand's fibre share
-//! falls below one half, as the reference places them.
+//! A fibre segment S of radius r shadows the point o when:
+//! - the perpendicular distance across the light from o to S's axis is below r, at a
+//!   parameter t ∈ [0, 1) along S (joints are shared half-open, as in the exact reference);
+//! - the crossing lies in front of o and at most `window_m` in front of it.
+//!
+//! The light is then ∏ ā_f over the covering segments, its direct fraction 1 when none covers
+//! (0 otherwise), its σ̄f² the sum of their β̄_f²: what the exact reference's ray from the
+//! vertex gives (`Footprint::Fibres` with one ray per fibre). The vertex's own strand does not
+//! shadow it within two segments (as the exact reference excludes them). Fibres end where the
+//! strand's fibre share falls below one half, as the reference places them. The query code
+//! (`query.rs`) integrates a straight piece exactly, of which a point is the case of zero
+//! length.
 //!
 //! ## Cost
 //! Segments are cut into parts of at most a bin across and along the light and binned across
 //! the light (a uniform grid, counting sort; index lists), each bin sorted by the parts'
-//! nearest depth; a half of a piece is cut the same way, and each of its parts visits the bins
-//! it touches and, in each, only the parts whose depth range meets the window (binary search,
-//! then a scan). A part listed in several bins is taken in the first bin the query part and it
-//! share. The number of fibres a query must take is inherent: every fibre crossing the
-//! "curtain" the piece sweeps toward the light inside the window, about (piece length / fibre
-//! width) × the expected crossings along one ray; hence the window's shortening with depth
-//! (`LightMap::light_at_vertex_seen`). The result does not depend on the thread count.
+//! nearest depth; a query visits the bin holding its point and, there, only the parts whose
+//! depth range meets the window (binary search, then a scan). The number of fibres a query
+//! must take is inherent: every fibre crossing the ray inside the window; hence the window's
+//! shortening with depth (`LightMap::light_at_vertex_seen`). The result does not depend on the
+//! thread count.
 //!
 //! ## The camera
-//! A vertex's colour is the average over its piece, but the camera sees only the parts of the
-//! piece its view ray reaches; with the light near the camera those are the lit parts. Each
+//! The camera sees the vertex only where its view ray reaches it; with the light near the
+//! camera, the view and light rays cross the same fibres near the point. Each
 //! fibre in the window is therefore counted with the probability that it is there given that
 //! the point is seen (`q` = min(1, s / s_c) for a fibre at distance s, s_c the length over
 //! which the view and light rays share fibres; `LightMap::light_at_seen`).
@@ -138,38 +144,22 @@ pub struct ContactShadows {
     bin_items: Vec<u32>,
 }
 
-/// The light a vertex receives from the fibres inside its window: exact averages over its
-/// piece of fibre.
+/// The light a vertex receives from the fibres inside its window, at its point (exact; 0 or 1
+/// for the direct fraction). [`ContactShadows`]' general query integrates a piece of fibre,
+/// and then each field is its mean over the piece.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NearLight {
-    /// Share of the piece no fibre in the window covers.
+    /// 1 when no fibre in the window covers the point (share of the piece uncovered).
     pub direct_fraction: f32,
-    /// Mean ∏ ā_f over the piece, RGB.
+    /// ∏ ā_f of the covering fibres, RGB.
     pub tf: Vec3,
-    /// Mean Σ β̄_f² over the piece, RGB (rad²).
+    /// Σ β̄_f² of the covering fibres, RGB (rad²).
     pub sigma_f2: Vec3,
-    /// Mean number of crossings over the piece.
+    /// Number of covering fibres (its mean over a piece).
     pub crossings: f32,
 }
 
 impl NearLight {
-    /// All zero: the start of a weighted sum.
-    const ZERO: Self = Self {
-        direct_fraction: 0.0,
-        tf: Vec3::ZERO,
-        sigma_f2: Vec3::ZERO,
-        crossings: 0.0,
-    };
-
-    /// Adds `w` × `other` (averages over parts of a piece).
-    #[inline]
-    fn add_weighted(&mut self, w: f32, other: &Self) {
-        self.direct_fraction += w * other.direct_fraction;
-        self.tf += w * other.tf;
-        self.sigma_f2 += w * other.sigma_f2;
-        self.crossings += w * other.crossings;
-    }
-
     /// Nothing in the window.
     pub const CLEAR: Self = Self {
         direct_fraction: 1.0,

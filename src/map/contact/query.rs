@@ -9,7 +9,7 @@ use glam::{Vec2, Vec3};
 
 impl ContactShadows {
     /// The light render-strand point `vertex` receives from the fibres within the window in
-    /// front of it: the exact average over the piece of fibre it stands for. `scratch` is
+    /// front of it, at its own point on the fibre's axis. `scratch` is
     /// reused between calls (no allocation once warm).
     pub fn near_light(
         &self,
@@ -27,13 +27,6 @@ impl ContactShadows {
         if !p.is_finite() {
             return NearLight::CLEAR;
         }
-        // The two halves of the piece (a point where the strand ends), half the weight each.
-        let before = if k > 0 { p.lerp(pts[k - 1], 0.5) } else { p };
-        let after = if k + 1 < ppl {
-            p.lerp(pts[k + 1], 0.5)
-        } else {
-            p
-        };
         let own = (strand as u32, k as i64);
         let reach = Reach {
             window_m: window_m.clamp(0.0, self.window_m),
@@ -43,37 +36,12 @@ impl ContactShadows {
                 0.0
             },
         };
-        let mut sum = NearLight::ZERO;
-        sum.add_weighted(0.5, &self.half(p, before, own, reach, scratch));
-        sum.add_weighted(0.5, &self.half(p, after, own, reach, scratch));
-        sum
+        // The vertex's own point (module doc, "What a vertex receives"): a piece of zero length.
+        self.part(p, p, own, reach, scratch)
     }
 
-    /// The exact average light along the straight half from `a` to `b` (light frame): the mean
-    /// of its parts of at most a bin across and along the light (`parts`), each visiting the
-    /// few bins it touches.
-    fn half(
-        &self,
-        a: Vec3,
-        b: Vec3,
-        own: (u32, i64),
-        reach: Reach,
-        scratch: &mut ContactScratch,
-    ) -> NearLight {
-        let n = self.parts(Vec2::new(b.y - a.y, b.z - a.z).length(), b.x - a.x);
-        if n == 1 {
-            return self.part(a, b, own, reach, scratch);
-        }
-        let mut sum = NearLight::ZERO;
-        let inv = 1.0 / n as f32;
-        for i in 0..n {
-            let (from, to) = (a.lerp(b, i as f32 * inv), a.lerp(b, (i + 1) as f32 * inv));
-            sum.add_weighted(inv, &self.part(from, to, own, reach, scratch));
-        }
-        sum
-    }
-
-    /// [`Self::half`] for one part (a straight piece within about a bin).
+    /// The exact average light along the straight piece from `a` to `b` (light frame; within
+    /// about a bin), visiting the bins it touches; a point when `a == b`.
     fn part(
         &self,
         a: Vec3,
