@@ -234,8 +234,9 @@ fn one_fibre_per_strand_meets_the_targets_with_contact_shadows() {
     // receives"), so the reference is the ray from that point: one ray for one fibre. Its
     // light is exact, so the truly lit vertices (truth 1) bin by truth against the map's
     // expectation for the light beyond the window, and the window must be longer than it was
-    // against the piece average for that bin: at 40 mm (the CLI's default) it reads −0.047,
-    // at 80 mm −0.030, at 120 mm (here) −0.026 (2,000 vertices).
+    // against the piece average for that bin: at 40 mm it reads −0.047, at 80 mm −0.030, at
+    // 120 mm (the default window) −0.026 (these 2,000 vertices; ACCURACY.md §1: −0.035 at
+    // 3,000).
     let style = single_fibre_variant(&untapered(Hairstyle::default_smooth()), 12);
     let engine = engine_at_4s(style);
     let rows = measure_map(
@@ -245,7 +246,7 @@ fn one_fibre_per_strand_meets_the_targets_with_contact_shadows() {
         &Footprint::Fibres { rays: 1 },
         1,
         1,
-        ContactShadowing::WindowM(0.12),
+        ContactShadowing::WindowM(DEFAULT_CONTACT_WINDOW_M),
     )
     .rows;
     check_default(

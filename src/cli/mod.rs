@@ -204,8 +204,8 @@ pub struct SceneArgs {
     pub map_res: Option<u32>,
     /// Contact shadows for one-fibre-per-strand hair: the fibres within this many millimetres
     /// in front of each vertex (toward the light) are taken exactly, the map gives the rest
-    /// (40 is what ACCURACY.md measures; 0 or absent: off, except `wisp accuracy`, which uses
-    /// 40 unless given 0). Bundles of fibres never use them.
+    /// (120 is what ACCURACY.md recommends; 0 or absent: off, except `wisp accuracy`, which
+    /// uses 120 unless given 0). Bundles of fibres never use them.
     #[arg(long, value_name = "MM", value_parser = parse_contact_mm, allow_hyphen_values = true)]
     pub contact_mm: Option<f32>,
     /// Fibre shader.
