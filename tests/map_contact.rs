@@ -10,7 +10,7 @@ use glam::Vec3;
 use proptest::prelude::*;
 use wisp::hairstyle::SplitMix64;
 use wisp::map::MapLight;
-use wisp::map::contact::{ContactInput, ContactScratch, ContactShadows};
+use wisp::map::contact::{ContactInput, ContactShadows};
 use wisp::map::exact::{ExactInput, ExactReference, Footprint};
 
 /// Contact shadows of `positions` (strands of `ppl` points) for light travelling along `light`.
@@ -52,12 +52,11 @@ fn a_crossing_fibre_shadows_the_vertex_it_passes_over() {
     let r = fiber.params().radius_m;
     let a_f = fiber.forward_scatter(0.0).a_f;
     let beta = fiber.forward_scatter(0.0).beta_f2;
-    let mut scratch = ContactScratch::default();
     // The occluder (radius r) lies 5 mm in front of vertex 2 (at z = 0), inside a 10 mm
     // window. Passing within r of the vertex's point, it covers it: one crossing, the light
     // its ā_f, no direct light.
     let c = contact(&crossing(0.005, 0.3 * r), 5, Vec3::X, 0.01, &fiber);
-    let l = c.near_light(2, 1.0, 0.0, &mut scratch);
+    let l = c.near_light(2, 1.0, 0.0);
     println!("covered: {l:?}");
     assert_eq!(l.direct_fraction, 0.0);
     assert!((l.tf - a_f).abs().max_element() < 1e-6, "{} vs {a_f}", l.tf);
@@ -66,18 +65,18 @@ fn a_crossing_fibre_shadows_the_vertex_it_passes_over() {
     // 1.5 r beside the point it misses it, though it crosses the vertex's piece.
     let c = contact(&crossing(0.005, 1.5 * r), 5, Vec3::X, 0.01, &fiber);
     assert_eq!(
-        c.near_light(2, 1.0, 0.0, &mut scratch),
+        c.near_light(2, 1.0, 0.0),
         wisp::map::contact::NearLight::CLEAR
     );
     // Over vertex 3's point (z = 4 mm) it shadows vertex 3, not vertex 2.
     let c = contact(&crossing(0.005, 0.004), 5, Vec3::X, 0.01, &fiber);
-    assert_eq!(c.near_light(2, 1.0, 0.0, &mut scratch).direct_fraction, 1.0);
-    assert_eq!(c.near_light(3, 1.0, 0.0, &mut scratch).direct_fraction, 0.0);
+    assert_eq!(c.near_light(2, 1.0, 0.0).direct_fraction, 1.0);
+    assert_eq!(c.near_light(3, 1.0, 0.0).direct_fraction, 0.0);
     // Outside the window (15 mm in front of a 10 mm window) or behind the vertex: no shadow.
     for x in [-0.005, 0.02] {
         let c = contact(&crossing(x, 0.0), 5, Vec3::X, 0.01, &fiber);
         assert_eq!(
-            c.near_light(2, 1.0, 0.0, &mut scratch),
+            c.near_light(2, 1.0, 0.0),
             wisp::map::contact::NearLight::CLEAR,
             "{x}"
         );
@@ -87,7 +86,6 @@ fn a_crossing_fibre_shadows_the_vertex_it_passes_over() {
 #[test]
 fn a_strand_does_not_shadow_itself_nearby_but_does_when_it_curls_back() {
     let fiber = default_fiber();
-    let mut scratch = ContactScratch::default();
     // A strand along Z at x = 0.01, then turning toward the light and back across its own
     // first point's piece 6 mm in front: points 0..3 along Z, 4.. a hairpin in front.
     let mut p: Vec<Vec3> = (0..4)
@@ -99,11 +97,11 @@ fn a_strand_does_not_shadow_itself_nearby_but_does_when_it_curls_back() {
     let c = contact(&p, p.len(), Vec3::X, 0.02, &fiber);
     // Point 1's neighbours (segments 0..=2) are its own; segment 5 passes right in front of
     // point 0 and 1 along their own line (the same y): it shadows them.
-    let l0 = c.near_light(0, 1.0, 0.0, &mut scratch);
+    let l0 = c.near_light(0, 1.0, 0.0);
     assert!(l0.direct_fraction < 1.0, "{l0:?}");
     // Point 3 is not crossed by the hairpin's later segments (they lie beside its piece), and
     // its neighbouring segments are excluded: clear.
-    let l3 = c.near_light(3, 1.0, 0.0, &mut scratch);
+    let l3 = c.near_light(3, 1.0, 0.0);
     assert_eq!(l3.direct_fraction, 1.0, "{l3:?}");
 }
 
@@ -147,10 +145,9 @@ fn with_everything_in_the_window_it_is_the_exact_reference() {
         },
         0.0005,
     );
-    let mut scratch = ContactScratch::default();
     let (mut worst, mut shadowed) = (0.0f32, 0);
     for v in (0..pos.len()).step_by(3) {
-        let near = c.near_light(v, 1.0, 0.0, &mut scratch);
+        let near = c.near_light(v, 1.0, 0.0);
         let truth = reference.light_at_vertex(v, &Footprint::Fibres { rays: 1 });
         assert!(near.tf.is_finite() && near.sigma_f2.is_finite());
         worst = worst.max((near.tf - truth.tf).abs().max_element());
@@ -174,9 +171,8 @@ proptest! {
         let pos = tangle(seed, 60, 6);
         let windows = [0.001f32, 0.003, 0.01];
         let maps: Vec<_> = windows.iter().map(|w| contact(&pos, 6, light, *w, &fiber)).collect();
-        let mut scratch = ContactScratch::default();
         for v in 0..pos.len() {
-            let l: Vec<_> = maps.iter().map(|m| m.near_light(v, 1.0, 0.0, &mut scratch)).collect();
+            let l: Vec<_> = maps.iter().map(|m| m.near_light(v, 1.0, 0.0)).collect();
             for x in &l {
                 prop_assert!(x.tf.is_finite() && x.tf.min_element() >= 0.0 && x.tf.max_element() <= 1.0);
                 prop_assert!(x.direct_fraction <= x.tf.min_element() + 1e-6);
@@ -192,7 +188,6 @@ proptest! {
 #[test]
 fn degenerate_strands_read_clear_or_finite() {
     let fiber = default_fiber();
-    let mut scratch = ContactScratch::default();
     // A strand with coincident points, one along the light, one with a NaN point.
     let pos = vec![
         Vec3::ZERO,
@@ -207,11 +202,11 @@ fn degenerate_strands_read_clear_or_finite() {
     ];
     let c = contact(&pos, 3, Vec3::X, 0.05, &fiber);
     for v in 0..pos.len() + 3 {
-        let l = c.near_light(v, 1.0, 0.0, &mut scratch);
+        let l = c.near_light(v, 1.0, 0.0);
         assert!(l.tf.is_finite() && l.direct_fraction.is_finite() && l.sigma_f2.is_finite());
     }
     assert_eq!(
-        c.near_light(7, 1.0, 0.0, &mut scratch),
+        c.near_light(7, 1.0, 0.0),
         wisp::map::contact::NearLight::CLEAR
     );
 }

@@ -17,7 +17,7 @@ use crate::frame::{ContactShadowing, Engine};
 use crate::hairstyle::Hairstyle;
 use crate::interp::StrandGeometry;
 use crate::map::accuracy::{BIN_EDGES, Bin, Comparison, sample_vertices};
-use crate::map::contact::{ContactInput, ContactScratch};
+use crate::map::contact::ContactInput;
 use crate::map::exact::{ExactInput, ExactReference, Footprint};
 use crate::map::{CountModel, LightMap, MapBuildInput, MapGeometry, MapLight};
 use crate::shade::{Lighting, shade_vertices_with};
@@ -154,9 +154,7 @@ pub fn measure_map(
         let away = map.frame().x;
         let list: Vec<usize> = vertices.collect();
         list.par_iter()
-            .map_init(ContactScratch::default, |scratch, &v| {
-                map.light_at_vertex_seen(v, strands.positions[v], away, Vec3::X, 0.0, scratch)
-            })
+            .map(|&v| map.light_at_vertex_seen(v, strands.positions[v], away, Vec3::X, 0.0))
             .collect()
     };
     let mut rows = Vec::new();

@@ -1,7 +1,6 @@
 //! Reading the map: the trilinear filter of Bertails 2005 §3.3 and the cell density used by
 //! self-collision (§4.1).
 
-use super::contact::ContactScratch;
 use super::{Cell, LightMap, on_map};
 use crate::fiber::LightAtPoint;
 use glam::Vec3;
@@ -161,12 +160,13 @@ impl LightMap {
     /// window let through. The opposition effect (the camera sees the point, and its view ray
     /// shares the light ray's fibres over a length s_c) applies on both sides: a fibre at a
     /// distance s in front counts with weight min(s, s_c)/s_c, inside the window as each real
-    /// fibre's probability of being there (`contact::sweep`), beyond it as the far sums
+    /// fibre's probability of being there (`ContactShadows::near_light`), beyond it as the far sums
     /// averaged with weight δ/s_c at the window's end and over shifts in [δ, s_c] (two Gauss
-    /// nodes) with the rest. The exact fibres alone would not do it: a vertex's colour is the
-    /// average over its piece of fibre, whose parts hidden from the camera are the ones in
-    /// shadow when the light comes from near the camera (measured: dense blond, front light,
-    /// single scattering 0.71 of the path tracer without this, 0.91 with the map alone).
+    /// nodes) with the rest. The exact fibres alone would not do it: the view ray crosses the
+    /// same fibres near the point as the light ray, so with the light near the camera a seen
+    /// point is lit more often than the exact light of an unseen one says (measured, with piece
+    /// averages: dense blond, front light, single scattering 0.71 of the path tracer without
+    /// this, 0.91 with the map alone).
     /// Points darker than 1e-3 on the map are not queried: they read [`Self::light_at_seen`].
     pub fn light_at_vertex_seen(
         &self,
@@ -175,7 +175,6 @@ impl LightMap {
         to_eye: Vec3,
         tangent: Vec3,
         fibre_radius_m: f32,
-        scratch: &mut ContactScratch,
     ) -> LightAtPoint {
         let Some(contact) = &self.contact else {
             return self.light_at_seen(p, to_eye, tangent, fibre_radius_m);
@@ -213,7 +212,7 @@ impl LightMap {
         if far.tf.max_element() <= DARK {
             return far;
         }
-        let near = contact.near_light(vertex, delta, s_c, scratch);
+        let near = contact.near_light(vertex, delta, s_c);
         LightAtPoint {
             direct_fraction: (far.direct_fraction * near.direct_fraction).clamp(0.0, 1.0),
             tf: (far.tf * near.tf).clamp(Vec3::ZERO, Vec3::ONE),

@@ -12,7 +12,6 @@
 use crate::fiber::{Fiber, LightAtPoint, ShadingMode};
 use crate::light::{Light, default_light};
 use crate::map::LightMap;
-use crate::map::contact::ContactScratch;
 use glam::Vec3;
 use rayon::prelude::*;
 
@@ -156,7 +155,6 @@ pub fn shade_vertices(
         // where the view and light rays share fibres; `raster::lines` on rayon's splitting).
         .with_max_len(1)
         .for_each(|(out, indices)| {
-            let mut contact = ContactScratch::default();
             for (c, &i) in out.iter_mut().zip(indices) {
                 let i = i as usize;
                 *c = shade_one(
@@ -167,9 +165,7 @@ pub fn shade_vertices(
                     positions[i],
                     tangents[i],
                     |k, p| match maps.get(k) {
-                        Some(map) => {
-                            map.light_at_vertex_seen(i, p, eye - p, tangents[i], r, &mut contact)
-                        }
+                        Some(map) => map.light_at_vertex_seen(i, p, eye - p, tangents[i], r),
                         None => LightAtPoint::UNSHADOWED,
                     },
                 );

@@ -31,9 +31,7 @@
 //! (0 otherwise), its σ̄f² the sum of their β̄_f²: what the exact reference's ray from the
 //! vertex gives (`Footprint::Fibres` with one ray per fibre). The vertex's own strand does not
 //! shadow it within two segments (as the exact reference excludes them). Fibres end where the
-//! strand's fibre share falls below one half, as the reference places them. The query code
-//! (`query.rs`) integrates a straight piece exactly, of which a point is the case of zero
-//! length.
+//! strand's fibre share falls below one half, as the reference places them.
 //!
 //! ## Cost
 //! Segments are cut into parts of at most a bin across and along the light and binned across
@@ -118,7 +116,7 @@ const OWN_AFTER: i64 = 1;
 /// Most bins a side (a hostile extent gets coarser bins, never a huge grid).
 const MAX_BINS: f32 = 4096.0;
 
-/// Most parts a segment or a half-piece is cut into (longer ones get longer parts).
+/// Most parts a segment is cut into (longer ones get longer parts).
 const MAX_PARTS: usize = 64;
 
 /// The fibres near the hair, binned across the light, ready for per-vertex queries.
@@ -144,18 +142,17 @@ pub struct ContactShadows {
     bin_items: Vec<u32>,
 }
 
-/// The light a vertex receives from the fibres inside its window, at its point (exact; 0 or 1
-/// for the direct fraction). [`ContactShadows`]' general query integrates a piece of fibre,
-/// and then each field is its mean over the piece.
+/// The light a vertex receives from the fibres inside its window, at its point (exact without
+/// a camera: the direct fraction is then 0 or 1).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NearLight {
-    /// 1 when no fibre in the window covers the point (share of the piece uncovered).
+    /// 1 when no fibre in the window covers the point (with a camera, the probability).
     pub direct_fraction: f32,
     /// ∏ ā_f of the covering fibres, RGB.
     pub tf: Vec3,
     /// Σ β̄_f² of the covering fibres, RGB (rad²).
     pub sigma_f2: Vec3,
-    /// Number of covering fibres (its mean over a piece).
+    /// Number of covering fibres (with a camera, the expected number).
     pub crossings: f32,
 }
 
@@ -167,33 +164,6 @@ impl NearLight {
         sigma_f2: Vec3::ZERO,
         crossings: 0.0,
     };
-}
-
-/// Reusable buffer of [`ContactShadows::near_light`] (one per worker).
-#[derive(Clone, Debug, Default)]
-pub struct ContactScratch {
-    covers: Vec<Cover>,
-    events: Vec<(f32, u32)>,
-}
-
-/// One segment's shadow on a half: the interval of u it covers and what it does there.
-#[derive(Clone, Copy, Debug)]
-struct Cover {
-    u0: f32,
-    u1: f32,
-    a_f: Vec3,
-    beta2: Vec3,
-    /// Probability that the fibre is there given that the camera sees the point (1 − the
-    /// share of it the view ray would have crossed too; 1 without a camera).
-    q: f32,
-}
-
-/// What a query takes in front of the point: the window, and the length over which the ray
-/// toward the camera shares the light ray's fibres.
-#[derive(Clone, Copy, Debug)]
-struct Reach {
-    window_m: f32,
-    shared_m: f32,
 }
 
 impl ContactShadows {
