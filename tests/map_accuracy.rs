@@ -239,16 +239,7 @@ fn one_fibre_per_strand_meets_the_targets_with_contact_shadows() {
     // 3,000).
     let style = single_fibre_variant(&untapered(Hairstyle::default_smooth()), 12);
     let engine = engine_at_4s(style);
-    let rows = measure_map(
-        &engine,
-        &sweep_geometries(&engine, &[]),
-        2000,
-        &Footprint::Fibres { rays: 1 },
-        1,
-        1,
-        ContactShadowing::WindowM(DEFAULT_CONTACT_WINDOW_M),
-    )
-    .rows;
+    let rows = rows(&engine, &[], Footprint::Fibres { rays: 1 });
     check_default(
         "smooth, 1 fibre per strand",
         &rows[0],

@@ -1,8 +1,8 @@
 //! Contact shadows (`map::contact`): the exact light a one-fibre vertex receives from the fibres
 //! in a window in front of it. Checked against geometry (a fibre passing over the vertex's
-//! point or beside it, the window's ends, the own-strand exclusion) and against the exact reference's ray
-//! from the same point (`map::exact`, `Footprint::Fibres` with one ray for one fibre), which it
-//! must equal when the window holds everything.
+//! point or beside it, the window's ends, the own-strand exclusion) and against the exact
+//! reference's ray from the same point (`map::exact`, `Footprint::Fibres` with one ray for one
+//! fibre), which it must equal when the window holds everything.
 
 mod common;
 use common::*;

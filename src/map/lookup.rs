@@ -160,9 +160,9 @@ impl LightMap {
     /// window let through. The opposition effect (the camera sees the point, and its view ray
     /// shares the light ray's fibres over a length s_c) applies on both sides: a fibre at a
     /// distance s in front counts with weight min(s, s_c)/s_c, inside the window as each real
-    /// fibre's probability of being there (`ContactShadows::near_light`), beyond it as the far sums
-    /// averaged with weight δ/s_c at the window's end and over shifts in [δ, s_c] (two Gauss
-    /// nodes) with the rest. The exact fibres alone would not do it: the view ray crosses the
+    /// fibre's probability of being there (`ContactShadows::near_light`), beyond it as the far
+    /// sums averaged with weight δ/s_c at the window's end and over shifts in [δ, s_c] (two
+    /// Gauss nodes) with the rest. The exact fibres alone would not do it: the view ray crosses the
     /// same fibres near the point as the light ray, so with the light near the camera a seen
     /// point is lit more often than the exact light of an unseen one says (measured, with piece
     /// averages: dense blond, front light, single scattering 0.71 of the path tracer without

@@ -245,10 +245,11 @@ pub(super) fn sort_by_pixel(
 /// (smooth at 1280×720: 38 fragments a pixel, 0.74 insertion shifts per fragment), and a
 /// stable insertion sort costs O(length + inversions). Where a run is far from order (dense
 /// hair: hundreds of crossing fibres a pixel), the insertion stops after [`SHIFT_BUDGET`]
-/// shifts per fragment and a radix sort of (1/depth, position) keys ([`crate::keysort::sort_keys`]) finishes it,
-/// using `spare` (at least as long as the longest run) to permute. A stable sort by one key
-/// has one result, so the order is the same whichever way a run is sorted; the insertion
-/// keeps equal depths in their order, so the keys' positions still tell emission order.
+/// shifts per fragment and a radix sort of (1/depth, position) keys
+/// ([`crate::keysort::sort_keys`]) finishes it, using `spare` (at least as long as the
+/// longest run) to permute. A stable sort by one key has one result, so the order is the same
+/// whichever way a run is sorted; the insertion keeps equal depths in their order, so the
+/// keys' positions still tell emission order.
 pub(super) fn composite(
     sorted: &mut [Frag],
     starts: &[u32],
