@@ -1,0 +1,177 @@
+#!/usr/bin/env python3
+"""Where single scattering's error lies: the fibre model, the shadows, or their product (not run
+by CI).
+
+    single_split.py CASE_DIR VIS_DIR [--wisp-single DIR] [--spp 16] [--passes 2]
+                    [--bands 0] [--variant llvm_ad_rgb]
+
+CASE_DIR is a single-scattering case that `run_table.py` rendered (its scene.json carries the
+Mitsuba `hair` BSDF, its mitsuba_d2.exr the path-traced single scattering). VIS_DIR is a
+`wisp export --shading visibility` of the same strands and camera (`visibility.py` says how);
+the two .hair files must be byte-identical.
+
+Mitsuba's single scattering is the mean over a pixel's camera rays of f(h) V(x): the near-field
+BSDF at the offset h where the ray meets the fibre, times the shadow ray from that surface
+point x. wisp takes the far field (f averaged over h) times the light at the point's axis, and
+composites per-vertex products. Per pixel this script traces the same rays and reports, as
+ratios to the path tracer's own sum of f(h) V(x) over pixels covered >= 0.99 in both:
+
+    far field, exact light  f(h) times a shadow ray from a point across the fibre's lit side
+                            (as wisp's exact reference takes it), independent of h: what a
+                            far-field renderer with exact shadows would read. Below 1 where
+                            the BSDF's share of h is lit more often than the fibre as a whole
+                            (the lit surface facing the half vector reflects R side-lit).
+    wisp's shadows          the path tracer's per-pixel mean of f times wisp's visibility
+                            image: wisp's single scattering if its fibre model and its
+                            compositing of products were exact.
+    wisp, Mitsuba's fibres  wisp's per-vertex single scattering (vertex_rgb.f32, linear along
+                            each segment) on the fibres the path tracer's camera rays hit:
+                            wisp's image if its raster showed exactly the fibres seen.
+    wisp's single           wisp's own single-scattering image.
+
+The wisp single-scattering export is CASE_DIR's own, or a re-run by `rerun_case.py` passed as
+`--wisp-single OUT/dense-brown-side-single` (same strands: checked).
+
+`--bands N` prints the last two per band of N image rows as well: the error of the shadows is
+spatial (too dark in one band, too bright in the next) even where their mean is right.
+"""
+
+import argparse
+import json
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import hairfile  # noqa: E402
+from render import build_scene  # noqa: E402
+from visibility import Strands, unit  # noqa: E402
+
+
+def one_pass(mi, dr, mscene, scene, strands, vertex_rgb, spp, seed):
+    """Per pixel: [f·V(hit) (3), f·V(lit side) (3), f (3), wisp's vertex values at the hit
+    (3), coverage]."""
+    w, h = scene["image"]["width"], scene["image"]["height"]
+    n = w * h * spp
+    sampler = mi.load_dict({"type": "independent"})
+    sampler.seed(seed, n)
+    pixel = dr.arange(mi.UInt32, n) // spp
+    pos = mi.Point2f((mi.Float(pixel % w) + sampler.next_1d()) / w,
+                     (mi.Float(pixel // w) + sampler.next_1d()) / h)
+    ray, _ = mscene.sensors()[0].sample_ray(0.0, 0.0, pos, mi.Point2f(0.5, 0.5))
+    si = mscene.ray_intersect(ray)
+    hit = si.is_valid()
+    ds, spec = mscene.sample_emitter_direction(si, sampler.next_2d(), True, hit)
+    f = si.bsdf(ray).eval(mi.BSDFContext(), si, si.to_local(ds.d), hit)
+    hit_np = np.array(hit, bool)
+    f = np.where(hit_np[:, None], np.array(f, np.float64).T, 0.0)
+    v_hit = np.array(hit & (dr.max(spec) > 0.0), bool).astype(np.float64)
+    # The same cross-section of the fibre, a shadow ray from a point across its lit side
+    # (uniform across the width as the light sees it), as visibility.py's exact reference.
+    rng = np.random.default_rng(2000 + seed)
+    prim = np.where(hit_np, np.array(si.prim_index, np.int64), 0)
+    k = strands.seg_first[prim]
+    a, b = strands.points[k], strands.points[k + 1]
+    d = b - a
+    p = np.array(si.p, np.float64).T
+    u = np.clip(((p - a) * d).sum(1) / np.maximum((d * d).sum(1), 1e-30), 0.0, 1.0)
+    axis = a + u[:, None] * d
+    tangent = unit(d)
+    to_light = -unit(np.array(scene["light"]["direction"], np.float64))
+    across = unit(np.cross(to_light, tangent))
+    lit_side = unit(to_light - (tangent @ to_light)[:, None] * tangent)
+    r = scene["fiber_radius_m"]
+    off = (2.0 * rng.random(n) - 1.0) * r
+    o = (axis + off[:, None] * across
+         + lit_side * (np.sqrt(np.maximum(r * r - off * off, 0.0)) * 1.02 + 1e-6)[:, None])
+    o = o.astype(np.float32)
+    shadow = mi.Ray3f(mi.Point3f(o[:, 0], o[:, 1], o[:, 2]),
+                      mi.Vector3f(*(float(x) for x in to_light)))
+    v_side = hit_np & ~np.array(mscene.ray_test(shadow, hit), bool)
+    wisp_here = (1.0 - u)[:, None] * vertex_rgb[k] + u[:, None] * vertex_rgb[k + 1]
+    wisp_here[~hit_np] = 0.0
+    cols = np.concatenate([f * v_hit[:, None], f * v_side[:, None], f, wisp_here,
+                           hit_np[:, None].astype(np.float64)], axis=1)
+    return cols.reshape(h, w, spp, 13).mean(axis=2)
+
+
+def ratio(num, den):
+    return " / ".join(f"{x:.3f}" for x in num / np.maximum(den, 1e-30))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("case_dir")
+    ap.add_argument("vis_dir")
+    ap.add_argument("--wisp-single", help="a wisp single-scattering export of the same strands "
+                    "(default CASE_DIR)")
+    ap.add_argument("--spp", type=int, default=16)
+    ap.add_argument("--passes", type=int, default=2)
+    ap.add_argument("--bands", type=int, default=0)
+    ap.add_argument("--variant", default="llvm_ad_rgb")
+    ap.add_argument("--cache", default=os.path.join(os.environ.get("TMPDIR", "/tmp"), "wisp-reference-cache"))
+    args = ap.parse_args()
+
+    import drjit as dr
+    import mitsuba as mi
+
+    mi.set_variant(args.variant)
+    scene = json.load(open(os.path.join(args.case_dir, "scene.json")))
+    vis_scene = json.load(open(os.path.join(args.vis_dir, "scene.json")))
+    if vis_scene.get("shading") != "Visibility":
+        sys.exit(f"single_split.py: {args.vis_dir}/scene.json: needs an export made with "
+                 f"--shading visibility (this one is {vis_scene.get('shading')!r})")
+    single_dir = args.wisp_single or args.case_dir
+    single_scene = json.load(open(os.path.join(single_dir, "scene.json")))
+    if single_scene.get("shading") != "SingleScattering":
+        sys.exit(f"single_split.py: {single_dir}/scene.json: needs an export made with "
+                 f"--shading single (this one is {single_scene.get('shading')!r})")
+    hair = [os.path.join(x, s["hair_file"]) for x, s in
+            ((args.case_dir, scene), (args.vis_dir, vis_scene), (single_dir, single_scene))]
+    for other in hair[1:]:
+        with open(hair[0], "rb") as x, open(other, "rb") as y:
+            if x.read() != y.read():
+                sys.exit(f"single_split.py: {other} differs from {hair[0]}: not the same strands")
+    strands = Strands(hair[0])
+    vertex_rgb = np.fromfile(os.path.join(single_dir, "vertex_rgb.f32"), "<f4").reshape(-1, 3)
+    if len(vertex_rgb) != len(strands.points):
+        sys.exit(f"single_split.py: {single_dir}/vertex_rgb.f32: {len(vertex_rgb)} points, "
+                 f"the .hair has {len(strands.points)}")
+    vertex_rgb = vertex_rgb.astype(np.float64)
+    curves = hairfile.curve_file(hair[0], args.cache)
+    mscene = build_scene(mi, scene, curves, args.spp, 2)
+    acc = np.mean([one_pass(mi, dr, mscene, scene, strands, vertex_rgb, args.spp, s)
+                   for s in range(args.passes)], axis=0)
+    fv_hit, fv_side, f = acc[..., 0:3], acc[..., 3:6], acc[..., 6:9]
+    seen, cover = acc[..., 9:12], acc[..., 12]
+    irradiance = float(scene["light"]["irradiance"][0])
+    vis = np.array(mi.Bitmap(os.path.join(args.vis_dir, vis_scene["wisp_image"])), np.float64)
+    single = np.array(mi.Bitmap(os.path.join(single_dir, single_scene["wisp_image"])), np.float64)
+    both = (cover > 0.99) & (vis[..., 3] > 0.99) & (single[..., 3] > 0.99)
+    pt = fv_hit[both].sum(0)
+    shadows = f * (vis[..., :1] / irradiance)
+    print(f"| pixels | far field, exact light | wisp's shadows | wisp, Mitsuba's fibres "
+          f"| wisp's single |\n|---|---|---|---|---|\n"
+          f"| {both.sum()} | {ratio(fv_side[both].sum(0), pt)} | {ratio(shadows[both].sum(0), pt)} "
+          f"| {ratio(seen[both].sum(0) / irradiance, pt)} "
+          f"| {ratio(single[both, :3].sum(0) / irradiance, pt)} |")
+    if args.bands > 0:
+        print("\n| rows | pixels | share of the light | wisp's shadows | wisp, Mitsuba's fibres "
+              "| wisp's single |\n|---|---|---|---|---|---|")
+        h = both.shape[0]
+        for y0 in range(0, h, args.bands):
+            band = both.copy()
+            band[:y0] = False
+            band[y0 + args.bands:] = False
+            if band.sum() < 50:
+                continue
+            ref = fv_hit[band].sum(0)
+            print(f"| {y0}–{min(y0 + args.bands, h) - 1} | {band.sum()} | "
+                  f"{ref.sum() / pt.sum():.3f} | {ratio(shadows[band].sum(0), ref)} | "
+                  f"{ratio(seen[band].sum(0) / irradiance, ref)} | "
+                  f"{ratio(single[band, :3].sum(0) / irradiance, ref)} |")
+
+
+if __name__ == "__main__":
+    main()
