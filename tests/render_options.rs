@@ -32,7 +32,9 @@ fn small() -> EngineConfig {
 /// started reading the hair's shadow from the surface texture (`map::surface`; 164 skin
 /// pixels at the hairline changed, no hair pixel), and again when the forward-scattered
 /// light's gain was taken at the light's inclination (`dual::window_fluence_inclined`; 1,211
-/// pixels, at most 2 levels). The options added since (camera setup,
+/// pixels, at most 2 levels), and when corners of strands were shaded along both their
+/// segments (`shade::bend`; 532 pixels on the crown, at most 49 levels). The options added
+/// since (camera setup,
 /// solids switch, coverage channel, EXR output) must not change a single byte of that
 /// configuration, whose lines are 1 px at opacity 0.85 (`LineStyle::pixels`).
 /// Tolerance 0. On failure a diff image (|a − b| × 16) is written to the target's temp dir.

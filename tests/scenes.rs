@@ -290,8 +290,11 @@ fn shading_in_map_order_is_shading_in_vertex_order() {
         &e.fiber,
         &e.config.lighting,
         eye,
-        &e.strands.positions,
-        &tangents,
+        wisp::shade::VertexGeometry {
+            positions: &e.strands.positions,
+            tangents: &tangents,
+            points_per_strand: e.strands.points_per_strand,
+        },
         |k, i, p| maps[k].light_at_seen(p, eye - p, tangents[i], r),
         &mut natural,
     );

@@ -20,7 +20,7 @@ use crate::map::accuracy::{BIN_EDGES, Bin, Comparison, sample_vertices};
 use crate::map::contact::ContactInput;
 use crate::map::exact::{ExactInput, ExactReference, Footprint};
 use crate::map::{CountModel, LightMap, MapBuildInput, MapGeometry, MapLight};
-use crate::shade::{Lighting, shade_vertices_with};
+use crate::shade::{Lighting, VertexGeometry, shade_vertices_with};
 use glam::Vec3;
 use rayon::prelude::*;
 use std::time::Instant;
@@ -117,8 +117,12 @@ pub fn measure_map(
             &engine.fiber,
             lighting,
             eye,
-            &pos,
-            &tan,
+            // A sample of vertices, each on its own: shaded at its tangent.
+            VertexGeometry {
+                positions: &pos,
+                tangents: &tan,
+                points_per_strand: 1,
+            },
             |_, i, _| light[i],
             &mut colors,
         );

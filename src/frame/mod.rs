@@ -48,7 +48,7 @@ use crate::raster::{
     draw_mesh, draw_polylines, seen_points,
 };
 use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};
-use crate::shade::{Lighting, ShadeScratch, shade_skin, shade_vertices};
+use crate::shade::{Lighting, ShadeScratch, VertexGeometry, shade_skin, shade_vertices};
 use crate::sim::{Colliders, SimState, Simulator, StepStats};
 use glam::Vec3;
 use hair_lines::{hair_lines, strand_widths_m};
@@ -425,8 +425,11 @@ impl Engine {
             &self.maps,
             &self.config.lighting,
             eye,
-            &self.strands.positions,
-            &self.strands.tangents,
+            VertexGeometry {
+                positions: &self.strands.positions,
+                tangents: &self.strands.tangents,
+                points_per_strand: self.strands.points_per_strand,
+            },
             only_seen.then_some(&self.seen[..]),
             &mut self.colors,
             &mut self.shade_scratch,

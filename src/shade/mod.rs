@@ -9,9 +9,12 @@
 //! Work is split over vertices in fixed-size chunks; each vertex is independent, so the
 //! result does not depend on the thread count.
 
+mod bend;
+
 use crate::fiber::{Fiber, LightAtPoint, ShadingMode};
 use crate::light::{Light, default_light};
 use crate::map::LightMap;
+use bend::{BendTest, Directions};
 use glam::Vec3;
 use rayon::prelude::*;
 
@@ -52,6 +55,18 @@ pub fn fibre_tint(fiber: &Fiber) -> Vec3 {
     (-2.0 * Vec3::from(fiber.params().sigma_a)).exp()
 }
 
+/// The render strands' vertices as the shader reads them.
+#[derive(Clone, Copy, Debug)]
+pub struct VertexGeometry<'a> {
+    /// Vertex positions, metres; strand after strand.
+    pub positions: &'a [Vec3],
+    /// Unit tangents (central differences), one per position.
+    pub tangents: &'a [Vec3],
+    /// Points per render strand: vertex i's neighbours along its strand are i ± 1, except at
+    /// the strand's ends (i mod this = 0 or this − 1).
+    pub points_per_strand: usize,
+}
+
 /// Reusable buffers of [`shade_vertices`]: the vertices in map order and their colours in
 /// that order. Allocation-free once warmed up.
 #[derive(Clone, Debug, Default)]
@@ -85,25 +100,30 @@ pub fn shade_vertices(
     maps: &[LightMap],
     lighting: &Lighting,
     eye: Vec3,
-    positions: &[Vec3],
-    tangents: &[Vec3],
+    strands: VertexGeometry,
     seen: Option<&[bool]>,
     colors: &mut Vec<Vec3>,
     scratch: &mut ShadeScratch,
 ) {
-    let r = fiber.params().radius_m;
     let Some(first) = maps.first() else {
         shade_vertices_with(
             fiber,
             lighting,
             eye,
-            positions,
-            tangents,
+            strands,
             |_, _, _| LightAtPoint::UNSHADOWED,
             colors,
         );
         return;
     };
+    let VertexGeometry {
+        positions,
+        tangents,
+        points_per_strand,
+    } = strands;
+    let r = fiber.params().radius_m;
+    let bend = BendTest::for_beta_r_deg(fiber.params().beta_r_deg);
+    let dirs = |i: usize| bend.directions(positions, tangents[i], points_per_strand, i);
     let n = positions.len().min(tangents.len());
     let wanted = |i: usize| seen.is_none_or(|s| s.get(i).copied().unwrap_or(false));
     // Vertices by (key, index): a counting sort by key (the map's column, or one bucket for
@@ -163,7 +183,7 @@ pub fn shade_vertices(
                     ambient,
                     eye,
                     positions[i],
-                    tangents[i],
+                    dirs(i),
                     |k, p| match maps.get(k) {
                         Some(map) => map.light_at_vertex_seen(i, p, eye - p, tangents[i], r),
                         None => LightAtPoint::UNSHADOWED,
@@ -191,8 +211,9 @@ fn hair_ambient(fiber: &Fiber, lighting: &Lighting) -> Vec3 {
 /// Vertices per parallel work item.
 const CHUNK: usize = 4096;
 
-/// The colour of one vertex at `p` with tangent `u`: every light's contribution (its
-/// statistics from `light(k, p)`) plus ambient, clamped at 0, black if not finite.
+/// The colour of one vertex at `p` along the fibre directions `dirs` (`bend`: one, or the two
+/// segments of a bent vertex, averaged): every light's contribution (its statistics from
+/// `light(k, p)`, once per light) plus ambient, clamped at 0, black if not finite.
 #[inline]
 fn shade_one(
     fiber: &Fiber,
@@ -200,7 +221,7 @@ fn shade_one(
     ambient: Vec3,
     eye: Vec3,
     p: Vec3,
-    u: Vec3,
+    dirs: Directions,
     mut light: impl FnMut(usize, Vec3) -> LightAtPoint,
 ) -> Vec3 {
     let mut v = Vec3::ZERO;
@@ -210,7 +231,19 @@ fn shade_one(
     for (li, l) in lighting.lights.iter().enumerate() {
         let (wi, irradiance) = l.toward_and_irradiance(p);
         let wo = if to_eye == Vec3::ZERO { wi } else { to_eye };
-        v += irradiance * fiber.shade(lighting.mode, u, wi, wo, &light(li, p));
+        let at = light(li, p);
+        let f = match dirs {
+            Directions::One(u) => fiber.shade(lighting.mode, u, wi, wo, &at),
+            // The shadows alone do not depend on the direction.
+            Directions::Two(u, _) if lighting.mode == ShadingMode::Visibility => {
+                fiber.shade(lighting.mode, u, wi, wo, &at)
+            }
+            Directions::Two(a, b) => {
+                0.5 * (fiber.shade(lighting.mode, a, wi, wo, &at)
+                    + fiber.shade(lighting.mode, b, wi, wo, &at))
+            }
+        };
+        v += irradiance * f;
     }
     let v = v + ambient;
     if v.is_finite() {
@@ -221,28 +254,61 @@ fn shade_one(
 }
 
 /// [`shade_vertices`] with the light statistics of vertex `i` at `p` from light `k` given by
-/// `light(k, i, p)` (the maps, or a reference for measuring a map's error), in vertex order.
+/// `light(k, i, p)` (the maps, or a reference for measuring a map's error), in vertex order,
+/// corners along both their segments as there (`bend`). A list of separate points (a sample
+/// of vertices) is `points_per_strand: 1`: each is shaded at its tangent.
 pub fn shade_vertices_with<L>(
     fiber: &Fiber,
     lighting: &Lighting,
     eye: Vec3,
-    positions: &[Vec3],
-    tangents: &[Vec3],
+    strands: VertexGeometry,
     light: L,
     colors: &mut Vec<Vec3>,
 ) where
+    L: Fn(usize, usize, Vec3) -> LightAtPoint + Sync,
+{
+    let VertexGeometry {
+        positions,
+        tangents,
+        points_per_strand,
+    } = strands;
+    let n = positions.len().min(tangents.len());
+    let bend = BendTest::for_beta_r_deg(fiber.params().beta_r_deg);
+    shade_in_order(
+        fiber,
+        lighting,
+        eye,
+        &positions[..n],
+        |i| bend.directions(&positions[..n], tangents[i], points_per_strand, i),
+        light,
+        colors,
+    );
+}
+
+/// Every vertex of `positions` in vertex order, along `dirs(i)`, with the light of
+/// `light(k, i, p)`.
+fn shade_in_order<D, L>(
+    fiber: &Fiber,
+    lighting: &Lighting,
+    eye: Vec3,
+    positions: &[Vec3],
+    dirs: D,
+    light: L,
+    colors: &mut Vec<Vec3>,
+) where
+    D: Fn(usize) -> Directions + Sync,
     L: Fn(usize, usize, Vec3) -> LightAtPoint + Sync,
 {
     colors.resize(positions.len(), Vec3::ZERO);
     let ambient = hair_ambient(fiber, lighting);
     colors
         .par_chunks_mut(CHUNK)
-        .zip(positions.par_chunks(CHUNK).zip(tangents.par_chunks(CHUNK)))
+        .zip(positions.par_chunks(CHUNK))
         .enumerate()
-        .for_each(|(chunk, (out, (pos, tan)))| {
-            for (k, ((c, p), u)) in out.iter_mut().zip(pos).zip(tan).enumerate() {
+        .for_each(|(chunk, (out, pos))| {
+            for (k, (c, p)) in out.iter_mut().zip(pos).enumerate() {
                 let i = chunk * CHUNK + k;
-                *c = shade_one(fiber, lighting, ambient, eye, *p, *u, |li, p| {
+                *c = shade_one(fiber, lighting, ambient, eye, *p, dirs(i), |li, p| {
                     light(li, i, p)
                 });
             }

@@ -1,0 +1,233 @@
+//! Bent strands: the directions a vertex's colour stands for.
+//!
+//! The raster draws a render strand as straight segments between its points and colours each
+//! linearly between its two vertices, so a vertex's colour covers half a segment to each side,
+//! along the segment before it and the segment after it. Shaded once at its central tangent,
+//! between the two, a vertex stands for a direction the drawn strand does not have there.
+//! Where the strand curves evenly this does not bias the picture: the vertices' tangents are
+//! the segments' directions shifted half a step along the curve, the same directions drawn a
+//! little further on. At a corner it does: the dense scene's strands leave the scalp and turn
+//! 60–120° within one or two segments onto the head, all alike, so the crown's vertices sample
+//! directions between the segments', phase-locked, and miss the highlights of the segments the
+//! path tracer draws. There the vertices' fibre term read 0.93–0.95 of the exact far field at
+//! the same hits, and 0.98 with this module (the rest of the picture 0.98–1.00 before and
+//! after); side-lit single scattering of dense brown went from 0.89 / 0.88 / 0.87 to
+//! 0.91 / 0.91 / 0.90 of the path tracer (ACCURACY.md §2, "Bent strands").
+//!
+//! So a corner is shaded along each of its two segments and the two colours are averaged,
+//! with the light it receives looked up once (the light depends on the point, not the
+//! direction). With every inner vertex so shaded and equal segments, the raster's integral
+//! along a strand is exactly the sum of each segment shaded along its own direction
+//! (`tests/shade_bend.rs`). A vertex is a corner where its segments turn by more than β_R
+//! (below that its half turn is within the narrowest lobe's width, TT's β_R/2 in θh:
+//! Marschner 2003 Table 1, the Chiang model's v₀/4 in `fiber::chiang`) and by more than twice
+//! the smaller of its neighbours' turns (a strand's end counts as straight). Rejected,
+//! measured: every vertex turning by more than β_R, corner or not, read the same table within
+//! 0.01 and cost the curly preset, whose curls turn about 21° per segment, 45 ms more shading
+//! a frame instead of 6 (BENCHMARKS.md).
+
+use glam::Vec3;
+
+/// The fibre directions one vertex's colour averages over.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Directions {
+    /// Straight enough: the vertex's tangent alone.
+    One(Vec3),
+    /// Bent: the directions of the segment before and the segment after the vertex (unit).
+    Two(Vec3, Vec3),
+}
+
+/// When a vertex counts as bent (module doc): the cosine of the largest angle between its two
+/// segments that one evaluation at its tangent stands for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct BendTest {
+    cos_max_bend: f32,
+}
+
+impl BendTest {
+    /// For a fibre whose R lobe has longitudinal width `beta_r_deg` (degrees, validated in
+    /// (0.5°, 45°)): two directions where the segments turn by more than β_R.
+    pub(super) fn for_beta_r_deg(beta_r_deg: f32) -> Self {
+        let max_bend_rad = beta_r_deg.to_radians();
+        Self {
+            cos_max_bend: if max_bend_rad.is_finite() {
+                max_bend_rad.clamp(0.0, std::f32::consts::FRAC_PI_2).cos()
+            } else {
+                1.0
+            },
+        }
+    }
+
+    /// The directions of vertex `i` of render strands of `points_per_strand` points each,
+    /// `tangent` its central tangent. Strand ends, degenerate segments and non-finite points
+    /// have one direction, the tangent.
+    #[inline]
+    pub(super) fn directions(
+        &self,
+        positions: &[Vec3],
+        tangent: Vec3,
+        points_per_strand: usize,
+        i: usize,
+    ) -> Directions {
+        if points_per_strand < 3 {
+            return Directions::One(tangent);
+        }
+        let k = i % points_per_strand;
+        if k == 0 || k + 1 == points_per_strand {
+            return Directions::One(tangent);
+        }
+        let (Some(&prev), Some(&here), Some(&next)) =
+            (positions.get(i - 1), positions.get(i), positions.get(i + 1))
+        else {
+            return Directions::One(tangent);
+        };
+        let before = (here - prev).normalize_or_zero();
+        let after = (next - here).normalize_or_zero();
+        if before == Vec3::ZERO || after == Vec3::ZERO {
+            return Directions::One(tangent);
+        }
+        // A non-finite point keeps its one direction (NaN is not less).
+        let cos_turn = before.dot(after);
+        if cos_turn.is_nan() || cos_turn >= self.cos_max_bend {
+            return Directions::One(tangent);
+        }
+        // A corner: the turn here is more than twice the smaller of its neighbours' turns (a
+        // strand's end counts as straight). Where the strand curves evenly the vertices'
+        // tangents are its segments' directions shifted half a step along the curve, the
+        // same directions drawn in other places, and one evaluation stands (module doc).
+        // In cosines, with c the larger neighbour cosine: turn > 2·acos c ⇔ c > 0 and
+        // cos(turn) < 2c² − 1.
+        let cos_before = match positions.get(i.wrapping_sub(2)) {
+            Some(&p2) if k >= 2 => cos_or_straight((prev - p2).normalize_or_zero(), before),
+            _ => 1.0,
+        };
+        let cos_after = match positions.get(i + 2) {
+            Some(&n2) if k + 2 < points_per_strand => {
+                cos_or_straight(after, (n2 - next).normalize_or_zero())
+            }
+            _ => 1.0,
+        };
+        let c = cos_before.max(cos_after);
+        if c > 0.0 && cos_turn < 2.0 * c * c - 1.0 {
+            Directions::Two(before, after)
+        } else {
+            Directions::One(tangent)
+        }
+    }
+}
+
+/// The cosine of the turn between two unit directions; 1 (straight) when either is zero.
+#[inline]
+fn cos_or_straight(a: Vec3, b: Vec3) -> f32 {
+    if a == Vec3::ZERO || b == Vec3::ZERO {
+        1.0
+    } else {
+        a.dot(b).clamp(-1.0, 1.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Three points turning by `deg` degrees at the middle one.
+    fn corner(deg: f32) -> Vec<Vec3> {
+        let t = deg.to_radians();
+        vec![
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(0.0, -0.01, 0.0),
+            Vec3::new(0.01 * t.sin(), -0.01 - 0.01 * t.cos(), 0.0),
+        ]
+    }
+
+    #[test]
+    fn a_vertex_is_bent_beyond_beta_r() {
+        let test = BendTest::for_beta_r_deg(7.5);
+        let t = Vec3::NEG_Y;
+        assert_eq!(test.directions(&corner(7.3), t, 3, 1), Directions::One(t));
+        let Directions::Two(a, b) = test.directions(&corner(7.7), t, 3, 1) else {
+            panic!("a 7.7° bend is two directions at β_R = 7.5°");
+        };
+        assert!((a - Vec3::NEG_Y).length() < 1e-6);
+        assert!((a.dot(b) - 7.7f32.to_radians().cos()).abs() < 1e-6);
+        // A wider lobe tolerates the same bend.
+        assert_eq!(
+            BendTest::for_beta_r_deg(10.0).directions(&corner(7.7), t, 3, 1),
+            Directions::One(t)
+        );
+        // A reversal is bent whatever the lobe.
+        assert!(matches!(
+            BendTest::for_beta_r_deg(45.0).directions(&corner(170.0), t, 3, 1),
+            Directions::Two(..)
+        ));
+    }
+
+    /// Points turning by `turns[k]` degrees at inner vertex k + 1, in one plane.
+    fn curve(turns: &[f32]) -> Vec<Vec3> {
+        let mut p = vec![Vec3::ZERO, Vec3::new(0.0, -0.01, 0.0)];
+        let mut a = 0.0f32;
+        for t in turns {
+            a += t.to_radians();
+            let last = p[p.len() - 1];
+            p.push(last + 0.01 * Vec3::new(a.sin(), -a.cos(), 0.0));
+        }
+        p
+    }
+
+    #[test]
+    fn an_even_curve_is_shaded_once_and_its_corners_twice() {
+        let test = BendTest::for_beta_r_deg(7.5);
+        let t = Vec3::NEG_Y;
+        // An even curl of 20° a segment: one direction inside; the vertices next to the
+        // ends turn more than twice an end's (straight) and are corners.
+        let curl = curve(&[20.0; 8]);
+        let n = curl.len();
+        for i in 2..n - 2 {
+            assert_eq!(
+                test.directions(&curl, t, n, i),
+                Directions::One(t),
+                "vertex {i}"
+            );
+        }
+        assert!(matches!(
+            test.directions(&curl, t, n, 1),
+            Directions::Two(..)
+        ));
+        assert!(matches!(
+            test.directions(&curl, t, n, n - 2),
+            Directions::Two(..)
+        ));
+        // A 70° turn between gentle ones (the dense scene's roots), and the 30° after it.
+        let root = curve(&[5.0, 70.0, 30.0, 6.0, 6.0, 6.0]);
+        let n = root.len();
+        let two = |i| matches!(test.directions(&root, t, n, i), Directions::Two(..));
+        assert_eq!(
+            (1..n - 1).map(two).collect::<Vec<_>>(),
+            [false, true, true, false, false, false]
+        );
+    }
+
+    #[test]
+    fn ends_degenerate_and_non_finite_points_keep_the_tangent() {
+        let test = BendTest::for_beta_r_deg(7.5);
+        let t = Vec3::NEG_Y;
+        let p = corner(30.0);
+        assert_eq!(test.directions(&p, t, 3, 0), Directions::One(t));
+        assert_eq!(test.directions(&p, t, 3, 2), Directions::One(t));
+        // Two strands of 3: vertex 3 starts the second strand.
+        let two: Vec<Vec3> = p.iter().chain(p.iter()).copied().collect();
+        assert_eq!(test.directions(&two, t, 3, 3), Directions::One(t));
+        assert!(matches!(
+            test.directions(&two, t, 3, 4),
+            Directions::Two(..)
+        ));
+        let mut same = p.clone();
+        same[1] = same[0];
+        assert_eq!(test.directions(&same, t, 3, 1), Directions::One(t));
+        let mut nan = p.clone();
+        nan[2] = Vec3::new(f32::NAN, 0.0, 0.0);
+        assert_eq!(test.directions(&nan, t, 3, 1), Directions::One(t));
+        assert_eq!(test.directions(&p, t, 2, 1), Directions::One(t));
+        assert_eq!(test.directions(&p[..2], t, 3, 1), Directions::One(t));
+    }
+}
