@@ -90,47 +90,44 @@ impl Case {
         colors
     }
 
+    /// Unshadowed colours of `points` with `tangents`, strands of `points_per_strand`.
+    fn unshadowed(
+        &self,
+        points: &[Vec3],
+        tangents: &[Vec3],
+        points_per_strand: usize,
+    ) -> Vec<Vec3> {
+        let mut c = Vec::new();
+        shade_vertices_with(
+            &self.fiber,
+            &self.lighting,
+            self.eye,
+            VertexGeometry {
+                positions: points,
+                tangents,
+                points_per_strand,
+            },
+            |_, _, _| wisp::fiber::LightAtPoint::UNSHADOWED,
+            &mut c,
+        );
+        c
+    }
+
     /// Every segment shaded as a straight strand of its own two points.
     fn segments_alone(&self) -> Vec3 {
         self.points
             .windows(2)
             .map(|w| {
                 let d = (w[1] - w[0]).normalize();
-                let mut c = Vec::new();
-                shade_vertices_with(
-                    &self.fiber,
-                    &self.lighting,
-                    self.eye,
-                    VertexGeometry {
-                        positions: w,
-                        tangents: &[d, d],
-                        points_per_strand: 2,
-                    },
-                    |_, _, _| wisp::fiber::LightAtPoint::UNSHADOWED,
-                    &mut c,
-                );
-                0.5 * (c[0] + c[1])
+                drawn(&self.unshadowed(w, &[d, d], 2))
             })
             .sum()
     }
 
-    /// The same vertices shaded once each at their tangent (before bent strands).
+    /// The same vertices shaded once each at their tangent (before bent strands): each point
+    /// as a strand of its own.
     fn at_tangents(&self) -> Vec3 {
-        let mut c = Vec::new();
-        shade_vertices_with(
-            &self.fiber,
-            &self.lighting,
-            self.eye,
-            // Each point on its own: shaded at its tangent.
-            VertexGeometry {
-                positions: &self.points,
-                tangents: &tangents(&self.points),
-                points_per_strand: 1,
-            },
-            |_, _, _| wisp::fiber::LightAtPoint::UNSHADOWED,
-            &mut c,
-        );
-        drawn(&c)
+        drawn(&self.unshadowed(&self.points, &tangents(&self.points), 1))
     }
 }
 

@@ -46,23 +46,14 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hairfile  # noqa: E402
 from render import build_scene  # noqa: E402
-from visibility import Strands, unit  # noqa: E402
+from visibility import Strands, camera_hits, lit_from_surface, seen_segment, unit  # noqa: E402
 
 
 def one_pass(mi, dr, mscene, scene, strands, vertex_rgb, spp, seed):
     """Per pixel: [f·V(hit) (3), f·V(lit side) (3), f (3), wisp's vertex values at the hit
     (3), coverage]."""
     w, h = scene["image"]["width"], scene["image"]["height"]
-    n = w * h * spp
-    sampler = mi.load_dict({"type": "independent"})
-    sampler.seed(seed, n)
-    pixel = dr.arange(mi.UInt32, n) // spp
-    pos = mi.Point2f((mi.Float(pixel % w) + sampler.next_1d()) / w,
-                     (mi.Float(pixel // w) + sampler.next_1d()) / h)
-    ray, _ = mscene.sensors()[0].sample_ray(0.0, 0.0, pos, mi.Point2f(0.5, 0.5))
-    si = mscene.ray_intersect(ray)
-    hit = si.is_valid()
-    ds, spec = mscene.sample_emitter_direction(si, sampler.next_2d(), True, hit)
+    ray, si, hit, ds, spec = camera_hits(mi, dr, mscene, scene, spp, seed)
     f = si.bsdf(ray).eval(mi.BSDFContext(), si, si.to_local(ds.d), hit)
     hit_np = np.array(hit, bool)
     f = np.where(hit_np[:, None], np.array(f, np.float64).T, 0.0)
@@ -70,25 +61,8 @@ def one_pass(mi, dr, mscene, scene, strands, vertex_rgb, spp, seed):
     # The same cross-section of the fibre, a shadow ray from a point across its lit side
     # (uniform across the width as the light sees it), as visibility.py's exact reference.
     rng = np.random.default_rng(2000 + seed)
-    prim = np.where(hit_np, np.array(si.prim_index, np.int64), 0)
-    k = strands.seg_first[prim]
-    a, b = strands.points[k], strands.points[k + 1]
-    d = b - a
-    p = np.array(si.p, np.float64).T
-    u = np.clip(((p - a) * d).sum(1) / np.maximum((d * d).sum(1), 1e-30), 0.0, 1.0)
-    axis = a + u[:, None] * d
-    tangent = unit(d)
-    to_light = -unit(np.array(scene["light"]["direction"], np.float64))
-    across = unit(np.cross(to_light, tangent))
-    lit_side = unit(to_light - (tangent @ to_light)[:, None] * tangent)
-    r = scene["fiber_radius_m"]
-    off = (2.0 * rng.random(n) - 1.0) * r
-    o = (axis + off[:, None] * across
-         + lit_side * (np.sqrt(np.maximum(r * r - off * off, 0.0)) * 1.02 + 1e-6)[:, None])
-    o = o.astype(np.float32)
-    shadow = mi.Ray3f(mi.Point3f(o[:, 0], o[:, 1], o[:, 2]),
-                      mi.Vector3f(*(float(x) for x in to_light)))
-    v_side = hit_np & ~np.array(mscene.ray_test(shadow, hit), bool)
+    k, u, a, d = seen_segment(strands, si, hit_np)
+    v_side = hit_np & lit_from_surface(mi, mscene, scene, a + u[:, None] * d, unit(d), hit, rng)
     wisp_here = (1.0 - u)[:, None] * vertex_rgb[k] + u[:, None] * vertex_rgb[k + 1]
     wisp_here[~hit_np] = 0.0
     cols = np.concatenate([f * v_hit[:, None], f * v_side[:, None], f, wisp_here,

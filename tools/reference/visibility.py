@@ -59,9 +59,10 @@ def unit(v):
     return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-12)
 
 
-def one_pass(mi, dr, mscene, scene, strands, vertex_value, spp, seed, decompose, kernel="point"):
-    """Per pixel: [seen-and-lit, coverage] and, with `decompose`, [exact light averaged as
-    wisp averages it, wisp's point values on the seen fibres]."""
+def camera_hits(mi, dr, mscene, scene, spp, seed):
+    """`spp` camera rays through each pixel's area (box filter, as render.py), in pixel order,
+    their first hits and a shadow-tested emitter sample at each, as Mitsuba's path integrator
+    takes it: (ray, si, hit, ds, spec)."""
     w, h = scene["image"]["width"], scene["image"]["height"]
     n = w * h * spp
     sampler = mi.load_dict({"type": "independent"})
@@ -72,21 +73,53 @@ def one_pass(mi, dr, mscene, scene, strands, vertex_value, spp, seed, decompose,
     ray, _ = mscene.sensors()[0].sample_ray(0.0, 0.0, pos, mi.Point2f(0.5, 0.5))
     si = mscene.ray_intersect(ray)
     hit = si.is_valid()
-    _, spec = mscene.sample_emitter_direction(si, sampler.next_2d(), True, hit)
+    ds, spec = mscene.sample_emitter_direction(si, sampler.next_2d(), True, hit)
+    return ray, si, hit, ds, spec
+
+
+def seen_segment(strands, si, hit_np):
+    """The polyline segment of each hit (render.py writes one curve per segment, in order) and
+    where along it, from the hit point projected on its axis: (k, u, a, d) with a the
+    segment's first point and d its vector."""
+    prim = np.where(hit_np, np.array(si.prim_index, np.int64), 0)
+    k = strands.seg_first[prim]
+    a, b = strands.points[k], strands.points[k + 1]
+    d = b - a
+    p = np.array(si.p, np.float64).T
+    u = np.clip(((p - a) * d).sum(1) / np.maximum((d * d).sum(1), 1e-30), 0.0, 1.0)
+    return k, u, a, d
+
+
+def lit_from_surface(mi, mscene, scene, q, tangent, active, rng):
+    """Whether the light reaches the fibres through points `q` on their axes (unit `tangent`
+    each) past every other fibre: a shadow ray from a point across the fibre's width as the
+    light sees it (uniform, from `rng`), started on the fibre's lit surface."""
+    to_light = -unit(np.array(scene["light"]["direction"], np.float64))
+    across = unit(np.cross(to_light, tangent))
+    lit_side = unit(to_light - (tangent @ to_light)[:, None] * tangent)
+    r = scene["fiber_radius_m"]
+    off = (2.0 * rng.random(len(q)) - 1.0) * r
+    o = (q + off[:, None] * across
+         + lit_side * (np.sqrt(np.maximum(r * r - off * off, 0.0)) * 1.02 + 1e-6)[:, None])
+    o = o.astype(np.float32)
+    shadow = mi.Ray3f(mi.Point3f(o[:, 0], o[:, 1], o[:, 2]),
+                      mi.Vector3f(*(float(x) for x in to_light)))
+    return ~np.array(mscene.ray_test(shadow, active), bool)
+
+
+def one_pass(mi, dr, mscene, scene, strands, vertex_value, spp, seed, decompose, kernel="point"):
+    """Per pixel: [seen-and-lit, coverage] and, with `decompose`, [exact light averaged as
+    wisp averages it, wisp's point values on the seen fibres]."""
+    w, h = scene["image"]["width"], scene["image"]["height"]
+    n = w * h * spp
+    _, si, hit, _, spec = camera_hits(mi, dr, mscene, scene, spp, seed)
     per_pixel = lambda x: np.asarray(x, np.float64).reshape(h, w, spp).mean(axis=2)
     hit_np = np.array(hit, bool)
     out = [per_pixel(np.array(hit & (dr.max(spec) > 0.0), bool)), per_pixel(hit_np)]
     if not decompose:
         return out
     rng = np.random.default_rng(1000 + seed)
-    # The segment hit (render.py writes one curve per polyline segment, in order) and where
-    # along it, from the hit point projected on its axis.
-    prim = np.where(hit_np, np.array(si.prim_index, np.int64), 0)
-    k = strands.seg_first[prim]
-    a, b = strands.points[k], strands.points[k + 1]
-    d = b - a
-    p = np.array(si.p).T
-    u = np.clip(((p - a) * d).sum(1) / np.maximum((d * d).sum(1), 1e-30), 0.0, 1.0)
+    k, u, _, _ = seen_segment(strands, si, hit_np)
     # wisp's colour there: linear between the segment's two points.
     wisp_here = (1.0 - u) * vertex_value[k] + u * vertex_value[k + 1]
     # Exact light with wisp's averaging: point k or k+1 (weights 1-u, u), then that point
@@ -102,18 +135,7 @@ def one_pass(mi, dr, mscene, scene, strands, vertex_value, spp, seed, decompose,
     q = strands.points[v] + reach[:, None] * (strands.points[other] - strands.points[v])
     tangent = unit(strands.points[np.minimum(v + 1, strands.last[v])]
                    - strands.points[np.maximum(v - 1, strands.first[v])])
-    to_light = -unit(np.array(scene["light"]["direction"], np.float64))
-    across = unit(np.cross(to_light, tangent))
-    lit_side = unit(to_light - (tangent @ to_light)[:, None] * tangent)
-    r = scene["fiber_radius_m"]
-    off = (2.0 * rng.random(n) - 1.0) * r
-    o = (q + off[:, None] * across
-         + lit_side * (np.sqrt(np.maximum(r * r - off * off, 0.0)) * 1.02 + 1e-6)[:, None])
-    o = o.astype(np.float32)
-    shadow = mi.Ray3f(mi.Point3f(o[:, 0], o[:, 1], o[:, 2]),
-                      mi.Vector3f(*(float(x) for x in to_light)))
-    blocked = np.array(mscene.ray_test(shadow, hit), bool)
-    out.append(per_pixel(hit_np & ~blocked))
+    out.append(per_pixel(hit_np & lit_from_surface(mi, mscene, scene, q, tangent, hit, rng)))
     out.append(per_pixel(np.where(hit_np, wisp_here, 0.0)))
     return out
 
