@@ -24,7 +24,7 @@
 //! the smaller of its neighbours' turns (a strand's end counts as straight). Rejected,
 //! measured: every vertex turning by more than β_R, corner or not, read the same table within
 //! 0.01 and cost the curly preset, whose curls turn about 21° per segment, 45 ms more shading
-//! a frame instead of 6 (BENCHMARKS.md).
+//! a frame instead of 9 (BENCHMARKS.md).
 
 use glam::Vec3;
 
