@@ -97,9 +97,11 @@ impl BendTest {
         // same directions drawn in other places, and one evaluation stands (module doc).
         // In cosines, with c the larger neighbour cosine: turn > 2·acos c ⇔ c > 0 and
         // cos(turn) < 2c² − 1.
-        let cos_before = match positions.get(i.wrapping_sub(2)) {
-            Some(&p2) if k >= 2 => cos_or_straight((prev - p2).normalize_or_zero(), before),
-            _ => 1.0,
+        // k ≥ 2 puts i − 2 on this strand (and i − 1 exists, so it does too).
+        let cos_before = if k >= 2 {
+            cos_or_straight((prev - positions[i - 2]).normalize_or_zero(), before)
+        } else {
+            1.0
         };
         let cos_after = match positions.get(i + 2) {
             Some(&n2) if k + 2 < points_per_strand => {

@@ -234,10 +234,6 @@ fn shade_one(
         let at = light(li, p);
         let f = match dirs {
             Directions::One(u) => fiber.shade(lighting.mode, u, wi, wo, &at),
-            // The shadows alone do not depend on the direction.
-            Directions::Two(u, _) if lighting.mode == ShadingMode::Visibility => {
-                fiber.shade(lighting.mode, u, wi, wo, &at)
-            }
             Directions::Two(a, b) => {
                 0.5 * (fiber.shade(lighting.mode, a, wi, wo, &at)
                     + fiber.shade(lighting.mode, b, wi, wo, &at))
