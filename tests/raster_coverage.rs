@@ -67,27 +67,51 @@ fn sum(v: &[f32]) -> f64 {
     v.iter().map(|a| f64::from(*a)).sum()
 }
 
-/// Horizontal line, 150 px long at depth 2 (f = 100 px): exact up to float error, for widths
-/// from 1/100 px (an isolated 80 µm fibre is about 0.05 px in the scene) to 20 px,
-/// on both sides of the minimum width.
+/// Horizontal line, 150 px long at depth 2 (f = 100 px), for widths from 1/100 px (an
+/// isolated 80 µm fibre is about 0.05 px in the scene) to 20 px, on both sides of
+/// the minimum width. Its pixels' 16 sub-samples count the coverage: a horizontal strip w px
+/// wide holds ⌊16w⌋ or ⌈16w⌉ of a column's 16 sub-sample heights (the sixteenths), so the
+/// summed α is within (150 + 2)/16 of 150 × w for one line, and, averaged over 64 heights
+/// spaced a sixteenth / 64 apart (the sub-samples' period), within (150 + 2)/512. Below the
+/// 1 px minimum the line is drawn 1 px wide, all 16 heights, at opacity w: exact up to
+/// float error.
 #[test]
 fn summed_alpha_is_the_projected_area_for_thin_and_wide_lines() {
     for w_px in [0.01_f32, 0.053, 0.5, 0.99, 1.0, 1.7, 6.0, 20.0] {
         let w_m = w_px * 2.0 / 100.0;
-        let fb = draw_line((25.3, 80.4), (175.3, 80.4), 2.0, w_m, 1.0, 9);
         let expected = 150.0 * f64::from(w_px);
-        let got = sum(&fb.coverage);
+        let steps = 64;
+        let mut mean = 0.0;
+        for k in 0..steps {
+            let y = 80.4 + k as f32 / (16.0 * steps as f32);
+            let fb = draw_line((25.3, y), (175.3, y), 2.0, w_m, 1.0, 9);
+            let got = sum(&fb.coverage);
+            let bound = if w_px < 1.0 {
+                1e-4 * expected
+            } else {
+                152.0 / 16.0
+            };
+            assert!(
+                (got - expected).abs() <= bound,
+                "w {w_px} px at y {y}: summed alpha {got} vs area {expected}"
+            );
+            mean += got / f64::from(steps);
+            // White over black: the colour is the coverage (up to float rounding: one sums
+            // each layer's seen share, the other is one minus what is left).
+            let colour: f64 = fb.color.iter().map(|c| f64::from(c.y)).sum();
+            assert!(
+                (colour - got).abs() < 1e-5 * got.max(1.0),
+                "{colour} vs {got}"
+            );
+            // Thin lines keep the minimum footprint: 1 px wide covers a row's worth of
+            // sub-samples across, in one or two rows, never fewer pixels than its length.
+            let touched = fb.coverage.iter().filter(|a| **a > 0.0).count();
+            assert!(touched >= 150, "w {w_px}: {touched} pixels");
+        }
         assert!(
-            (got - expected).abs() < 1e-3 * expected,
-            "w {w_px} px: summed alpha {got} vs area {expected}"
+            (mean - expected).abs() <= 152.0 / 512.0 + 1e-4 * expected,
+            "w {w_px} px: mean summed alpha {mean} vs area {expected}"
         );
-        // White over black: the colour is the coverage.
-        let colour: f64 = fb.color.iter().map(|c| f64::from(c.y)).sum();
-        assert!((colour - got).abs() < 1e-6 * got.max(1.0));
-        // Thin lines keep the minimum footprint: 1 px min width with the tent across covers
-        // the two rows around the axis, never fewer.
-        let touched = fb.coverage.iter().filter(|a| **a > 0.0).count();
-        assert!(touched >= 150, "w {w_px}: {touched} pixels");
     }
 }
 

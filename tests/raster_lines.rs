@@ -49,61 +49,69 @@ fn coverage_sum(fb: &Framebuffer) -> f64 {
     fb.color.iter().map(|c| f64::from(c.x)).sum()
 }
 
-/// The box filter integrates to length × width; on a pixel grid the sum of unit-box overlaps
-/// is exact for a horizontal line (partition of unity), so the tolerance is float error only.
-/// The polyline has joints, which the half-open partition must not double count.
+/// Coverage of a horizontal 7-point polyline from x = 20.3 to 171.9 at height `y`.
+fn horizontal_coverage(cam: &Camera, width: f32, y: f32, opacity: f32) -> f64 {
+    let (xa, xb) = (20.3_f32, 171.9_f32);
+    let n = 7;
+    let pts: Vec<Vec3> = (0..n)
+        .map(|i| {
+            let x = xa + (xb - xa) * i as f32 / (n - 1) as f32;
+            unproject(cam, x, y, 1.5)
+        })
+        .collect();
+    let cols = vec![Vec3::ONE; n];
+    let mut fb = Framebuffer::new(200, 100, Vec3::ZERO);
+    let style = LineStyle {
+        width: LineWidth::Pixels(width),
+        opacity,
+    };
+    draw(&mut fb, cam, &pts, &cols, n, style);
+    coverage_sum(&fb)
+}
+
+/// A line covers length × width, as the pixels' 16 sub-samples count it. A horizontal strip
+/// w px wide holds ⌊16w⌋ or ⌈16w⌉ of the 16 sub-sample heights of each pixel column it
+/// crosses (they are the sixteenths, n-rooks), so one line is within (length + 2)/16 of
+/// length × width (one sixteenth per column, plus the ends). Averaged over 64 heights one
+/// sixteenth apart / 64 (the sub-sample lattice's period in 64 steps) the count is exact to
+/// 2/64 sub-samples per column: within (length + 2)/512. The polyline has joints, which
+/// the half-open partition along the line must not double count. Opacity scales the
+/// coverage linearly on black.
 #[test]
 fn horizontal_line_coverage_is_length_times_width() {
     let cam = axis_camera(200, 100);
+    let length = 171.9 - 20.3;
     for (width, y) in [
         (1.0_f32, 40.3_f32),
         (1.0, 40.5),
         (2.0, 61.77),
         (0.5, 20.1),
         (3.3, 50.0),
+        (0.13, 30.2),
     ] {
-        let (xa, xb) = (20.3_f32, 171.9_f32);
-        let n = 7;
-        let pts: Vec<Vec3> = (0..n)
-            .map(|i| {
-                let x = xa + (xb - xa) * i as f32 / (n - 1) as f32;
-                unproject(&cam, x, y, 1.5)
-            })
-            .collect();
-        let cols = vec![Vec3::ONE; n];
-        let mut fb = Framebuffer::new(200, 100, Vec3::ZERO);
-        draw(
-            &mut fb,
-            &cam,
-            &pts,
-            &cols,
-            n,
-            LineStyle {
-                width: LineWidth::Pixels(width),
-                opacity: 1.0,
-            },
-        );
-        let expected = f64::from((xb - xa) * width);
-        let got = coverage_sum(&fb);
+        let expected = f64::from(length * width);
+        let steps = 64;
+        let mut mean = 0.0;
+        for k in 0..steps {
+            let yk = y + k as f32 / (16.0 * steps as f32);
+            let got = horizontal_coverage(&cam, width, yk, 1.0);
+            assert!(
+                (got - expected).abs() <= f64::from(length + 2.0) / 16.0,
+                "w {width} at y {yk}: {got} vs {expected}"
+            );
+            if k % 16 == 0 {
+                let quarter = horizontal_coverage(&cam, width, yk, 0.25);
+                assert!(
+                    (quarter - 0.25 * got).abs() < 1e-4 * got,
+                    "{quarter} vs {got}"
+                );
+            }
+            mean += got / f64::from(steps);
+        }
         assert!(
-            (got - expected).abs() < 1e-3 * expected,
-            "w {width}: {got} vs {expected}"
+            (mean - expected).abs() <= f64::from(length + 2.0) / 512.0 + 1e-4 * expected,
+            "w {width}: mean {mean} vs {expected}"
         );
-        // Opacity scales coverage linearly on black.
-        let mut fb = Framebuffer::new(200, 100, Vec3::ZERO);
-        draw(
-            &mut fb,
-            &cam,
-            &pts,
-            &cols,
-            n,
-            LineStyle {
-                width: LineWidth::Pixels(width),
-                opacity: 0.25,
-            },
-        );
-        let got = coverage_sum(&fb);
-        assert!((got - 0.25 * expected).abs() < 1e-3 * expected);
     }
 }
 
@@ -221,6 +229,52 @@ fn nearer_hair_is_on_top_in_any_order() {
     {
         assert_eq!(fb.pixel(32, 32).unwrap(), Vec3::X, "order {k}");
     }
+}
+
+/// Fibres side by side hide what is behind them as their summed width does. Sixteen white
+/// lines a quarter pixel wide, a quarter pixel apart, tile the rows 40..44 in front of a red
+/// line 8 px wide: every sub-sample of those rows lies in a white strip (neighbouring strips
+/// share their edges), so no red shows there. Composited as independent layers, each pixel
+/// would let (3/4)⁴ ≈ 0.32 of the red through its four quarter-pixel lines.
+#[test]
+fn fibres_side_by_side_hide_what_is_behind_them() {
+    let cam = axis_camera(64, 64);
+    let (xa, xb) = (4.0, 60.0);
+    let mut pts = Vec::new();
+    let mut cols = Vec::new();
+    for i in 0..16 {
+        let y = 40.0 + 0.25 * (i as f32 + 0.5);
+        pts.extend([unproject(&cam, xa, y, 1.0), unproject(&cam, xb, y, 1.0)]);
+        cols.extend([Vec3::ONE; 2]);
+    }
+    // The red line behind, 8 px wide, drawn first in a call of its own.
+    let red = [
+        unproject(&cam, xa, 42.0, 2.0),
+        unproject(&cam, xb, 42.0, 2.0),
+    ];
+    let mut fb = Framebuffer::new(64, 64, Vec3::ZERO);
+    draw(
+        &mut fb,
+        &cam,
+        &red,
+        &[Vec3::X; 2],
+        2,
+        LineStyle::pixels(8.0, 1.0),
+    );
+    assert_eq!(fb.pixel(32, 42).unwrap(), Vec3::X);
+    draw(&mut fb, &cam, &pts, &cols, 2, LineStyle::pixels(0.25, 1.0));
+    for x in 8..56 {
+        for y in 40..44 {
+            let px = fb.pixel(x, y).unwrap();
+            // White: green and blue as high as red (independent layers: green 0.68).
+            assert!(
+                (px - Vec3::ONE).abs().max_element() < 1e-5,
+                "pixel ({x}, {y}): {px}"
+            );
+        }
+    }
+    // Rows just outside the tiled band still show the red.
+    assert!(fb.pixel(32, 39).unwrap().y < 0.5 && fb.pixel(32, 39).unwrap().x > 0.99);
 }
 
 /// Two opaque lines on the same pixels whose depths cross halfway (one runs near to far, the

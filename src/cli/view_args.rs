@@ -40,7 +40,7 @@ pub struct ViewArgs {
     /// `exposure_stops`).
     #[arg(long, value_parser = parse_finite_f32, allow_hyphen_values = true)]
     pub exposure_stops: Option<f32>,
-    /// Narrowest hair line in pixels (default 1); thinner strands are drawn this wide at an
+    /// Narrowest hair line in pixels (default 0.5); thinner strands are drawn this wide at an
     /// opacity that conserves their coverage.
     #[arg(long, value_parser = parse_positive_f32)]
     pub min_line_width_px: Option<f32>,

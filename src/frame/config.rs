@@ -156,7 +156,14 @@ impl ContactShadowing {
 }
 
 /// Narrowest drawn hair line in pixels; thinner strands are drawn this wide at lower opacity.
-pub const DEFAULT_MIN_LINE_WIDTH_PX: f32 = 1.0;
+/// Half a pixel: eight of a pixel's 16 sub-samples across, so a thin line's coverage moves
+/// in steps of an eighth of its α as it slides. Fibres side by side then hide what is behind
+/// them nearly as their summed width does; 1 px (before 2026-12-05) drew each fibre over a
+/// whole pixel row at a fraction of the opacity, so neighbours overlapped as independent
+/// layers: side-lit dense single scattering read 0.91 of the path tracer at 1 px, 0.92 at
+/// 0.5 px and at 0.25 px, brown front 0.97 / 0.95 / 0.94 at 1 px and 1.00 / 0.98 / 0.97 at
+/// 0.5 px (ACCURACY.md §2).
+pub const DEFAULT_MIN_LINE_WIDTH_PX: f32 = 0.5;
 
 impl Default for EngineConfig {
     fn default() -> Self {

@@ -27,7 +27,7 @@ impl LineScratch {
     /// each segment is binned once per band it touches (`Seg` in its chunk's list, then
     /// gathered into a band's list) with two `u64` sort keys, plus one list header per chunk
     /// and band; and per worker thread, the fragments of the densest band twice (emitted, then
-    /// grouped by pixel; `Frag` is 24 bytes). A segment covers about 3 pixel centres per row it
+    /// grouped by pixel; `Frag` is 28 bytes). A segment covers about 3 pixel centres per row it
     /// crosses at the 1 px minimum width; the densest band is taken as 8 times the mean band,
     /// at most the whole frame (the hair's screen rows hold it all in a fraction of the bands).
     /// Lines that stand for `bundles` of fibres add a table of how each segment draws them.

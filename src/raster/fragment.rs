@@ -1,21 +1,24 @@
 //! The per-pixel part of the line raster (`lines.rs` for the scheme): a band's segments become
-//! fragments (one per covered pixel centre: coverage, 1/depth, colour), grouped by pixel and
-//! composited in each pixel's own depth order.
+//! fragments (one per covered pixel: its covered sub-samples, opacity, 1/depth, colour),
+//! grouped by pixel and composited in each pixel's own depth order, per sub-sample.
 
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
 use super::segment::{Fibres, NO_FIBRES, Params, Seg};
 use crate::keysort::sort_keys;
 
-/// One segment's coverage of one pixel centre: 24 bytes.
+/// One segment's coverage of one pixel: 28 bytes.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Frag {
     /// Pixel index within the band.
     pixel: u32,
     /// Bits of 1/depth at the pixel centre (positive, so they order like the value).
     iz_bits: u32,
-    /// Coverage × opacity, in (0, 1].
+    /// Opacity over the sub-samples it covers, in (0, 1].
     alpha: f32,
+    /// The pixel's sub-samples it covers, one bit each (sample `4g + l` is lane l of
+    /// [`SAMPLE_X`]`[g]`).
+    mask: u16,
     /// Linear RGB at the pixel centre.
     color: Vec3,
 }
@@ -50,8 +53,73 @@ fn fmax(a: f32, b: f32) -> f32 {
     if a > b { a } else { b }
 }
 
-/// Fills `frags` with one fragment per pixel centre that a segment covers in this band and
-/// that lies nearer than the opaque depth: segments in `keys` order (far to near by mid-point
+/// Sub-samples per pixel: a coverage mask per fragment, so fibres side by side hide what is
+/// behind them as much as their summed width, not as independent layers.
+pub(super) const SAMPLE_COUNT: usize = 16;
+
+/// Every sub-sample.
+const ALL_SAMPLES: u16 = u16::MAX;
+
+/// How far from a pixel's centre its farthest sub-sample lies along any direction, pixels
+/// (at most 15/32 · √2).
+pub(super) const SAMPLE_REACH: f32 = 0.67;
+
+/// How far from a pixel's centre its sub-samples lie across and along a line of unit screen
+/// direction (ux, uy), pixels: |ux·oy − uy·ox| and |ux·ox + uy·oy| are at most
+/// (|ux| + |uy|)·15/32 for offsets within ±15/32, plus a little slack for rounding.
+pub(super) fn sample_reach(ux: f32, uy: f32) -> f32 {
+    (ux.abs() + uy.abs()) * (15.0 / 32.0) + 1e-3
+}
+
+/// Sub-sample offsets from the pixel centre, pixels, four lanes per group (`x`, `y`): one per
+/// cell of a 4 × 4 grid and one per sixteenth in x and in y (n-rooks), so thin lines of any
+/// direction cross them evenly. Sample `4g + l` is lane l of group g, bit `4g + l` of a mask.
+const SAMPLE_X: [Vec4; 4] = sample_lanes(true);
+const SAMPLE_Y: [Vec4; 4] = sample_lanes(false);
+
+const fn sample_lanes(x: bool) -> [Vec4; 4] {
+    let mut out = [Vec4::ZERO; 4];
+    let mut g = 0;
+    while g < 4 {
+        let mut v = [0.0f32; 4];
+        let mut l = 0;
+        while l < 4 {
+            // Cell (g, l) of the grid; its sixteenths in x and y.
+            let xi = 4 * g + l;
+            let yi = 4 * l + (g + 2 * l) % 4;
+            let i = if x { xi } else { yi };
+            v[l] = (i as f32 + 0.5) / 16.0 - 0.5;
+            l += 1;
+        }
+        out[g] = Vec4::from_array(v);
+        g += 1;
+    }
+    out
+}
+
+/// Lane masks of a 4-bit nibble: lane l is 1 where bit l is set.
+const NIBBLE_LANES: [Vec4; 16] = {
+    let mut out = [Vec4::ZERO; 16];
+    let mut n = 0;
+    while n < 16 {
+        let mut v = [0.0f32; 4];
+        let mut l = 0;
+        while l < 4 {
+            v[l] = ((n >> l) & 1) as f32;
+            l += 1;
+        }
+        out[n] = Vec4::from_array(v);
+        n += 1;
+    }
+    out
+};
+
+/// Transmittance below which a sub-sample counts as hidden (front-to-back compositing stops
+/// when all are): 1/1024.
+const HIDDEN: f32 = 1.0 / 1024.0;
+
+/// Fills `frags` with one fragment per pixel of this band whose sub-samples a segment covers
+/// and whose centre it passes nearer than the opaque depth: segments in `keys` order (far to near by mid-point
 /// depth, ties in input order), pixels in row order within a segment.
 pub(super) fn emit_fragments(
     p: &Params,
@@ -74,7 +142,7 @@ pub(super) fn emit_fragments(
         };
         match fib {
             Some((prof, f)) => {
-                let cover = |d: f32, qx: f32, ry: f32, _along: f32| {
+                let cover = |d: f32, qx: f32, ry: f32, along: f32| {
                     // Its fibres' summed overlap with the pixel (`bundle.rs`), plus the band
                     // it is blended from; joints on the mitre (`Fibres::b0`).
                     let (ua, ub) = ((d - 0.5) * f.inv_r, (d + 0.5) * f.inv_r);
@@ -82,37 +150,56 @@ pub(super) fn emit_fragments(
                     let (e, bw) = (d.abs(), f.band_hw);
                     let band = fmax(fmin(e + 0.5, bw) - fmax(e - 0.5, -bw), 0.0);
                     let (ex, ey) = (qx - f.e.0, ry - f.e.1);
-                    (
-                        fmin(a * f.cov_scale + band * f.band_scale, 1.0),
-                        f.b0.0 * qx + f.b0.1 * ry >= 0.0,
-                        f.b1.0 * ex + f.b1.1 * ey < 0.0,
-                    )
+                    let across = fmin(a * f.cov_scale + band * f.band_scale, 1.0);
+                    let lo = if s.cap0 {
+                        fmin(fmax(along + 0.5, 0.0), 1.0)
+                    } else {
+                        f32::from(u8::from(f.b0.0 * qx + f.b0.1 * ry >= 0.0))
+                    };
+                    let hi = if s.cap1 {
+                        fmin(fmax(s.len - along + 0.5, 0.0), 1.0)
+                    } else {
+                        f32::from(u8::from(f.b1.0 * ex + f.b1.1 * ey < 0.0))
+                    };
+                    (ALL_SAMPLES, across * fmax(lo + hi - 1.0, 0.0) * s.opacity)
                 };
                 emit_segment(p, s, (f.ext0, f.ext1), band, cover, frags);
             }
             None => {
-                let hw = s.half_w;
+                let hw = Vec4::splat(s.half_w);
+                let len = Vec4::splat(s.len);
+                // Each sub-sample's offset across and along the line, four lanes at a time.
+                let (mut off_d, mut off_a) = ([Vec4::ZERO; 4], [Vec4::ZERO; 4]);
+                for g in 0..4 {
+                    let (ox, oy) = (SAMPLE_X[g], SAMPLE_Y[g]);
+                    off_d[g] = s.ux * oy - s.uy * ox;
+                    off_a[g] = s.ux * ox + s.uy * oy;
+                }
                 let cover = |d: f32, _qx: f32, _ry: f32, along: f32| {
-                    // The box overlap across; joints square to the axis.
-                    let d = d.abs();
-                    (
-                        fmax(fmin(d + 0.5, hw) - fmax(d - 0.5, -hw), 0.0),
-                        along >= 0.0,
-                        along < s.len,
-                    )
+                    // The sub-samples inside the strip; ends and joints cut square.
+                    let (d, a) = (Vec4::splat(d), Vec4::splat(along));
+                    let mut mask = 0u16;
+                    for g in 0..4 {
+                        let ak = a + off_a[g];
+                        let inside =
+                            (d + off_d[g]).abs().cmple(hw) & ak.cmpge(Vec4::ZERO) & ak.cmplt(len);
+                        mask |= (inside.bitmask() as u16) << (4 * g);
+                    }
+                    (mask, s.opacity)
                 };
-                emit_segment(p, s, (0.0, 0.0), band, cover, frags);
+                let ext = sample_reach(s.ux, s.uy);
+                emit_segment(p, s, (ext, ext), band, cover, frags);
             }
         }
     }
 }
 
-/// [`emit_fragments`] for one segment: `cover(d, qx, ry, along)` gives a pixel centre's
-/// coverage across the line and whether it lies on the segment's side of its first and last
-/// joint (d signed across, along from the first end, (qx, ry) the centre relative to it, all
-/// in pixels); `ext` is how far past its ends a joint may reach along the axis.
+/// [`emit_fragments`] for one segment: `cover(d, qx, ry, along)` gives a pixel's covered
+/// sub-samples and their opacity (d signed across, along from the first end, (qx, ry) the
+/// centre relative to it, all in pixels); `ext` is how far past its ends a pixel centre may
+/// be covered along the axis.
 #[inline(always)]
-fn emit_segment<C: Fn(f32, f32, f32, f32) -> (f32, bool, bool)>(
+fn emit_segment<C: Fn(f32, f32, f32, f32) -> (u16, f32)>(
     p: &Params,
     s: &Seg,
     (ext0, ext1): (f32, f32),
@@ -124,10 +211,9 @@ fn emit_segment<C: Fn(f32, f32, f32, f32) -> (f32, bool, bool)>(
     let rows = band.color.len() / w;
     let (row0, row_end) = (band.row0, band.row0 + rows);
     let last_col = (w - 1) as f32;
-    let opacity = s.opacity;
     // Along-axis extent in which a pixel centre can have coverage.
-    let s_lo = if s.cap0 { -0.5 } else { -ext0 };
-    let s_hi = s.len + if s.cap1 { 0.5 } else { ext1 };
+    let s_lo = if s.cap0 { -0.5f32.max(ext0) } else { -ext0 };
+    let s_hi = s.len + if s.cap1 { 0.5f32.max(ext1) } else { ext1 };
     let (j0, j1) = (
         (s.row_lo as usize).max(row0),
         (s.row_hi as usize + 1).min(row_end),
@@ -166,23 +252,12 @@ fn emit_segment<C: Fn(f32, f32, f32, f32) -> (f32, bool, bool)>(
             rx += 1.0;
             let d = s.ux * ry - s.uy * qx;
             let along = s.ux * qx + s.uy * ry;
-            let (across, in0, in1) = cover(d, qx, ry, along);
-            let lo = if s.cap0 {
-                fmin(fmax(along + 0.5, 0.0), 1.0)
-            } else {
-                f32::from(u8::from(in0))
-            };
-            let hi = if s.cap1 {
-                fmin(fmax(s.len - along + 0.5, 0.0), 1.0)
-            } else {
-                f32::from(u8::from(in1))
-            };
-            let alpha = across * fmax(lo + hi - 1.0, 0.0) * opacity;
+            let (mask, alpha) = cover(d, qx, ry, along);
             let t = fmin(fmax(along * s.inv_len, 0.0), 1.0);
             let iz = s.iz0 + (s.iz1 - s.iz0) * t;
             // Covered, and nearer than the opaque surface: 1/z_hair > 1/z_buffer, without a
             // division.
-            let keep = (alpha > 0.0) & (iz * z > 1.0);
+            let keep = (alpha > 0.0) & (mask != 0) & (iz * z > 1.0);
             if let Some(slot) = frags.get_mut(n) {
                 *slot = Frag {
                     pixel: px as u32,
@@ -192,6 +267,7 @@ fn emit_segment<C: Fn(f32, f32, f32, f32) -> (f32, bool, bool)>(
                     // The box overlap can exceed 1 by float rounding (a few 1e-7 for wide
                     // lines); α must stay in [0, 1].
                     alpha: fmin(alpha, 1.0),
+                    mask,
                     color: s.c0 + (s.c1 - s.c0) * t,
                 };
             }
@@ -237,10 +313,14 @@ pub(super) fn sort_by_pixel(
     starts[0] = 0;
 }
 
-/// Composites every pixel's fragments back to front with "over": by 1/depth ascending (far
-/// first), ties in emission order.
+/// Composites every pixel's fragments in depth order, nearest first (by 1/depth descending;
+/// equal depths in reverse emission order), each of the pixel's [`SAMPLE_COUNT`] sub-samples
+/// with its own transmittance T_k: a fragment of opacity α adds `colour · α · Σ T_k / 16`
+/// over the sub-samples k in its mask and multiplies their T_k by 1 − α. What was in the
+/// pixel before (the background, the solids) is seen through the mean T. A pixel stops where
+/// every T_k is under [`HIDDEN`], and then counts as fully covered.
 ///
-/// Each pixel's run is first put in that order in place. The fragments were emitted from
+/// Each pixel's run is first put in order in place, far first. The fragments were emitted from
 /// segments sorted far to near by mid-point depth, so a run is usually nearly in order
 /// (smooth at 1280×720: 38 fragments a pixel, 0.74 insertion shifts per fragment), and a
 /// stable insertion sort costs O(length + inversions). Where a run is far from order (dense
@@ -261,56 +341,41 @@ pub(super) fn composite(
     let pixels = band.color.len();
     for p in 0..pixels {
         let (a, b) = (starts[p] as usize, starts[p + 1] as usize);
-        if let Some(run) = sorted.get_mut(a..b) {
-            sort_run(run, run_keys, key_tmp, spare);
-        }
-    }
-    let sorted = &*sorted;
-    let run = |p: usize| {
-        sorted
-            .get(starts[p] as usize..starts[p + 1] as usize)
-            .unwrap_or(&[])
-    };
-    // Two pixels at a time, their layers interleaved: each pixel's "over" is a chain of
-    // dependent operations, so one pixel alone leaves the core waiting on latency. Each pixel
-    // still composites its own layers in its own order: the same arithmetic, the same bits.
-    let mut pending: Option<usize> = None;
-    for p in 0..pixels {
-        if starts[p] == starts[p + 1] {
-            continue;
-        }
-        let Some(q) = pending.take() else {
-            pending = Some(p);
+        let Some(run) = sorted.get_mut(a..b) else {
             continue;
         };
-        let (lo, hi) = band.color.split_at_mut(p);
-        let (clo, chi) = band.coverage.split_at_mut(p);
-        let (mut d0, mut c0, mut d1, mut c1) = (lo[q], clo[q], hi[0], chi[0]);
-        let (r0, r1) = (run(q), run(p));
-        let common = r0.len().min(r1.len());
-        for (f0, f1) in r0[..common].iter().zip(&r1[..common]) {
-            d0 += (f0.color - d0) * f0.alpha;
-            c0 += (1.0 - c0) * f0.alpha;
-            d1 += (f1.color - d1) * f1.alpha;
-            c1 += (1.0 - c1) * f1.alpha;
+        if run.is_empty() {
+            continue;
         }
-        for f in &r0[common..] {
-            d0 += (f.color - d0) * f.alpha;
-            c0 += (1.0 - c0) * f.alpha;
+        sort_run(run, run_keys, key_tmp, spare);
+        // Front to back, each sub-sample with its own transmittance, four lanes at a time.
+        let mut trans = [Vec4::ONE; 4];
+        let mut acc = Vec3::ZERO;
+        for f in run.iter().rev() {
+            let mut seen = Vec4::ZERO;
+            let alpha = f.alpha;
+            let a = Vec4::splat(alpha);
+            for (g, t) in trans.iter_mut().enumerate() {
+                let m = NIBBLE_LANES[usize::from((f.mask >> (4 * g)) & 15)];
+                seen += m * *t;
+                *t -= *t * (m * a);
+            }
+            acc += f.color * (alpha * seen.element_sum() * (1.0 / SAMPLE_COUNT as f32));
+            // Stop where every sub-sample is hidden: what is behind (farther hair, and the
+            // background) would add under 1/1024 of itself, and the pixel counts as covered.
+            let most = trans[0]
+                .max(trans[1])
+                .max(trans[2].max(trans[3]))
+                .max_element();
+            if most < HIDDEN {
+                trans = [Vec4::ZERO; 4];
+                break;
+            }
         }
-        for f in &r1[common..] {
-            d1 += (f.color - d1) * f.alpha;
-            c1 += (1.0 - c1) * f.alpha;
-        }
-        (lo[q], clo[q], hi[0], chi[0]) = (d0, c0, d1, c1);
-    }
-    if let Some(q) = pending {
-        let (mut d, mut c) = (band.color[q], band.coverage[q]);
-        for f in run(q) {
-            d += (f.color - d) * f.alpha;
-            c += (1.0 - c) * f.alpha;
-        }
-        (band.color[q], band.coverage[q]) = (d, c);
+        let t_mean =
+            (trans[0] + trans[1] + trans[2] + trans[3]).element_sum() * (1.0 / SAMPLE_COUNT as f32);
+        band.color[p] = acc + band.color[p] * t_mean;
+        band.coverage[p] = 1.0 - (1.0 - band.coverage[p]) * t_mean;
     }
 }
 
@@ -377,10 +442,10 @@ fn insertion_sort_by_depth(run: &mut [Frag], budget: usize) -> bool {
 mod tests {
     use super::*;
 
-    /// A fragment stays 24 bytes: the per-thread buffers hold millions of them a frame.
+    /// A fragment stays 28 bytes: the per-thread buffers hold millions of them a frame.
     #[test]
-    fn fragment_is_24_bytes() {
-        assert_eq!(size_of::<Frag>(), 24);
+    fn fragment_is_28_bytes() {
+        assert_eq!(size_of::<Frag>(), 28);
     }
 
     proptest::proptest! {
@@ -402,6 +467,7 @@ mod tests {
                     pixel,
                     iz_bits: (0.5 + 0.1 * (depth + slope * i as u32) as f32).to_bits(),
                     alpha: i as f32,
+                    mask: ALL_SAMPLES,
                     color: Vec3::ZERO,
                 })
                 .collect();
@@ -435,6 +501,7 @@ mod tests {
                     pixel: 0,
                     iz_bits: (1.0 + d as f32).to_bits(),
                     alpha: i as f32,
+                    mask: ALL_SAMPLES,
                     color: Vec3::ZERO,
                 })
                 .collect()
@@ -456,6 +523,32 @@ mod tests {
             sort_run(&mut got, &mut Vec::new(), &mut Vec::new(), &mut run.clone());
             let order = |v: &[Frag]| v.iter().map(|f| f.alpha.to_bits()).collect::<Vec<_>>();
             assert_eq!(order(&got), order(&expected));
+        }
+    }
+
+    /// The sub-samples are n-rooks on the 4 × 4 grid: every sixteenth of x and of y holds one,
+    /// every cell of the grid one, and each lies at its sixteenth's centre within ±15/32 of
+    /// the pixel centre (what `sample_reach` assumes).
+    #[test]
+    fn sub_samples_are_n_rooks_on_a_grid() {
+        let (mut xs, mut ys, mut cells) = ([0; 16], [0; 16], [0; 16]);
+        for g in 0..4 {
+            for l in 0..4 {
+                let (x, y) = (SAMPLE_X[g][l], SAMPLE_Y[g][l]);
+                let (xi, yi) = ((x + 0.5) * 16.0 - 0.5, (y + 0.5) * 16.0 - 0.5);
+                assert_eq!(xi, xi.round(), "{x}");
+                assert_eq!(yi, yi.round(), "{y}");
+                assert!(x.abs() <= 15.0 / 32.0 && y.abs() <= 15.0 / 32.0);
+                xs[xi as usize] += 1;
+                ys[yi as usize] += 1;
+                cells[(xi as usize / 4) * 4 + yi as usize / 4] += 1;
+            }
+        }
+        assert_eq!((xs, ys, cells), ([1; 16], [1; 16], [1; 16]));
+        for (n, lanes) in NIBBLE_LANES.iter().enumerate() {
+            for l in 0..4 {
+                assert_eq!(lanes[l], ((n >> l) & 1) as f32);
+            }
         }
     }
 

@@ -3,13 +3,14 @@
 //! What: [`draw_polylines`] draws every segment of equally long polylines with per-vertex
 //! colours, a width (fixed in pixels, or a physical per-vertex width projected at its depth,
 //! see [`LineWidth`]) and an opacity, hidden where the opaque depth buffer (the head) is
-//! nearer, and composited back to front over whatever is already in the colour buffer; the
-//! coverage channel composites the same α with "over".
+//! nearer, and composited per sub-sample over whatever is already in the colour buffer; the
+//! coverage channel is one minus the light the hair lets through.
 //!
 //! Physical width: a line whose projected width is under the minimum is drawn at the minimum
 //! width with its opacity lowered in proportion, which conserves its summed coverage
 //! (length × projected width) while keeping sub-pixel lines free of aliasing; dense thin lines
-//! then accumulate toward full coverage as `1 − Π(1 − αᵢ)` (`tests/raster_coverage.rs`).
+//! then accumulate toward full coverage (`tests/raster_coverage.rs`), and lines side by side
+//! hide what is behind them as their summed width does (`tests/raster_lines.rs`).
 //!
 //! How, in two parallel passes:
 //! 1. **Set-up and binning** (parallel over fixed chunks of `SETUP_CHUNK` segments): each
@@ -28,12 +29,12 @@
 //!    depth; the same fragments in the same order), sorts keys — mid-point 1/depth bits high,
 //!    position low: far to near, ties in input order, a total order fixed by the input alone —
 //!    with a radix sort, and walks each segment over its rows, visiting only pixel centres in
-//!    the segment's expanded rectangle, emitting one fragment (pixel, 1/depth, α, colour) per
-//!    covered centre nearer than the opaque depth (`fragment.rs`, branch-free: each centre
-//!    writes a slot, kept only when covered and in front). A stable counting sort groups the
-//!    fragments by pixel; each pixel's run is put in depth order by an insertion sort (runs
-//!    are nearly in order from the segment sort), or by a key sort where it is far from
-//!    order, and composited back to front, two pixels interleaved. Bands are whole rows so each
+//!    the segment's expanded rectangle, emitting one fragment (pixel, 1/depth, sub-sample
+//!    mask, α, colour) per covered pixel whose centre is nearer than the opaque depth
+//!    (`fragment.rs`, branch-free: each pixel writes a slot, kept only when covered and in
+//!    front). A stable counting sort groups the fragments by pixel; each pixel's run is put in
+//!    depth order by an insertion sort (runs are nearly in order from the segment sort), or by
+//!    a key sort where it is far from order, and composited front to back. Bands are whole rows so each
 //!    owns a disjoint `&mut` slice of the framebuffer (no `unsafe`); the working buffers are
 //!    per worker thread (an uncontended lock each).
 //!
@@ -45,17 +46,44 @@
 //! row — at 36 ms; 8-row bands at +10%; `sort_unstable` alone was 15% of all instructions
 //! (callgrind), the radix sort about 3%.
 //!
-//! Coverage is a box filter in line-aligned coordinates: across the line, the overlap of the
-//! pixel's unit box with the line's width (`max(0, min(|d| + ½, w/2) − max(|d| − ½, −w/2))`,
-//! which integrates to exactly `w`); along the line, the overlap of the unit box with
-//! the segment at the two free ends of a polyline, and a hard half-open partition
-//! `0 ≤ s < len` at the joints, so that consecutive segments of one hair tile it without
-//! double-blending the joint pixel (box ramps at joints would composite two 50% layers into
-//! 75%, a visible beading of opaque lines). Depth is 1/depth interpolated linearly in screen
-//! space (exact for perspective), compared without division as `(1/z)·z_buffer > 1`; colour is
-//! interpolated linearly in screen space within a segment (segments are a few pixels long),
-//! perspective-correctly at clip points.
+//! Coverage is counted on 16 sub-samples per pixel (one per cell of a 4 × 4 grid and one per
+//! sixteenth in x and in y, so thin lines of any direction cross them evenly): a plain line
+//! covers the sub-samples within half its width of its axis and, along it, those with
+//! `0 ≤ s < len` (ends and joints cut square), so consecutive segments of one hair tile it
+//! without double-blending the joint pixel. A horizontal line of width w covers ⌊16w⌋ or
+//! ⌈16w⌉ sixteenths of each column, exact on average over positions. A bundle's segment drawn
+//! as its fibres (`bundle.rs`) keeps the analytic box filter of its fibres' profile and
+//! covers all 16 sub-samples at that α. Depth is 1/depth interpolated linearly in screen
+//! space (exact for perspective) at the pixel centre, compared without division as
+//! `(1/z)·z_buffer > 1`; colour is interpolated linearly in screen space within a segment
+//! (segments are a few pixels long), perspective-correctly at clip points.
 //!
+//! Hair over hair: hair does not write depth. Each pixel composites the fragments that cover
+//! it front to back by 1/depth at the pixel centre, each sub-sample with its own
+//! transmittance (a fragment adds `colour · α · Σ T_k / 16` over the sub-samples k it covers,
+//! and multiplies their T_k by 1 − α), ties in the segment order above, so nearer hair is on
+//! top at every pixel regardless of input order, and the result depends only on the input,
+//! never on the thread count (each pixel belongs to one band, processed by one thread in one
+//! order). A pixel whose sub-samples all pass under 1/1024 stops there and counts as opaque.
+//! Until 2026-12-05 each fragment was one α over the whole pixel ("over", α = box-filtered
+//! coverage × opacity), which treats fibres as covering a pixel independently: fibres side by
+//! side (a wisp's layer) then let through as much of the darker hair behind as crossing ones,
+//! and against a path tracer's first-hit fibres the raster read 0.93–0.96 of its own vertex
+//! values side- and front-lit (ACCURACY.md §2). Sub-samples take it to 0.98, for about 4 ms
+//! more on smooth and 12 on curly at 1280×720 (dense: 6% less, the pixels stop early;
+//! BENCHMARKS.md). Until 2026-12-04 whole segments were composited in mid-point depth order
+//! (the classic approach, as Sintorn & Assarsson 2008 sort hair segments); that misorders
+//! any two segments whose depths cross where they overlap, which dense hair does all the time
+//! (one fibre weaves over and under its neighbours within a segment): against a path tracer's
+//! first-hit fibres, the raster showed side-lit dense hair 3.6% darker than its own vertex
+//! values on those fibres (0.964), per-pixel order 1.0% (0.990). Rejected: a hair z-buffer
+//! (depth write + "over" in input order) drops hair behind the anti-aliased fringe of nearer
+//! hair, leaving dark halos, and makes the picture depend on strand order; weighted blended
+//! OIT is order independent but does not make near hair opaque over far hair, so dense hair
+//! turns into an average colour. Known approximation: the head's anti-aliased edge pixels
+//! (centre outside the silhouette) hold no depth, so hair behind the head shows through that
+//! one-pixel fringe.
+
 //! Hair over hair: hair does not write depth. Each pixel composites the fragments that cover
 //! it with "over" (`dst += (src − dst)·α`, α = coverage × opacity) back to front by 1/depth at
 //! the pixel centre, ties in the segment order above, so nearer hair is on top at every pixel

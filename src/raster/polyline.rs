@@ -59,7 +59,8 @@ pub enum LineWidth {
     /// wider one is drawn `w_px` wide (at most [`MAX_WIDTH_PX`]) at full opacity. `min_px`
     /// ≤ 0 or NaN draws nothing, and so does a point without a finite width > 0.
     Projected {
-        /// Narrowest drawn width in pixels (1 px gives a tent footprint across the line).
+        /// Narrowest drawn width in pixels (1 px covers a full row of a pixel's sub-samples
+        /// across the line, so thin lines stay smooth; narrower keeps more of their shape).
         min_px: f32,
     },
 }

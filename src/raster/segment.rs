@@ -17,6 +17,7 @@ use glam::Vec3;
 
 use super::bundle::Profiles;
 use super::camera::View;
+use super::fragment::{SAMPLE_REACH, sample_reach};
 use super::polyline::{LineWidth, MAX_WIDTH_PX, Polylines};
 
 /// A segment ready to rasterise, in pixel coordinates.
@@ -174,7 +175,6 @@ pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<(
             pattern = Profiles::pattern_of(line);
         }
     }
-    let reach = half_w + 0.5;
     let (mut x0, mut y0) = view.view_to_pixel(v0);
     let (mut x1, mut y1) = view.view_to_pixel(v1);
     let (mut iz0, mut iz1) = (1.0 / v0.z, 1.0 / v1.z);
@@ -185,7 +185,7 @@ pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<(
     }
 
     // Guard rectangle, in float, before anything becomes an integer (Liang-Barsky).
-    let g = reach + 2.0;
+    let g = half_w + SAMPLE_REACH + 2.0;
     let (lo_x, hi_x) = (-g, p.width as f32 + g);
     let (lo_y, hi_y) = (-g, p.height as f32 + g);
     let inside = |x: f32, y: f32| x >= lo_x && x <= hi_x && y >= lo_y && y <= hi_y;
@@ -241,6 +241,14 @@ pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<(
     } else {
         (1.0, 0.0, 0.0, 0.0)
     };
+    // How far from the axis a pixel centre can be covered: a plain line covers sub-samples
+    // up to `sample_reach` from its centre, a bundle's fibres a box half a pixel wide.
+    let reach = half_w
+        + if inv_r > 0.0 {
+            0.5
+        } else {
+            sample_reach(ux, uy)
+        };
     // Mitred joints for bundles: the parallel stripes of consecutive segments meet on the
     // bisector of their joint, so cutting each segment there (instead of square to its axis)
     // tiles the joint without the notch outside and overlap inside a wide line would show.
