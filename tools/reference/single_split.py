@@ -34,6 +34,18 @@ The wisp single-scattering export is CASE_DIR's own, or a re-run by `rerun_case.
 
 `--bands N` prints the last two per band of N image rows as well: the error of the shadows is
 spatial (too dark in one band, too bright in the next) even where their mean is right.
+
+Then "wisp, Mitsuba's fibres" is split in two on the same hits, with wisp's per-vertex light
+from VIS_DIR's vertex_rgb.f32 (V) and its fibre term as the single-scattering value over it
+(f = single / V, where V > 0.001 at both ends of the hit's segment: "lit hits"):
+
+    fibre term              wisp's f against the path tracer's f(h) at the lit hits, weighted
+                            by wisp's light, and by the exact light (the shadow ray from the
+                            lit side): 1 if wisp's far field, evaluated per vertex and linear
+                            along each segment, were the path tracer's fibre.
+    light                   wisp's V against the exact light, weighted by the path tracer's
+                            f(h), over every hit: 1 if wisp's shadows were exact at the fibres
+                            the camera sees.
 """
 
 import argparse
@@ -49,9 +61,16 @@ from render import build_scene  # noqa: E402
 from visibility import Strands, camera_hits, lit_from_surface, seen_segment, unit  # noqa: E402
 
 
-def one_pass(mi, dr, mscene, scene, strands, vertex_rgb, spp, seed):
-    """Per pixel: [f·V(hit) (3), f·V(lit side) (3), f (3), wisp's vertex values at the hit
-    (3), coverage]."""
+# Columns of one_pass, three each but coverage.
+COLUMNS = ["fv_hit", "fv_side", "f", "wisp", "cover", "f_vw", "fw_vside_lit", "f_vside_lit",
+           "fw_vw_lit", "f_vw_lit"]
+
+
+def one_pass(mi, dr, mscene, scene, strands, vertex_rgb, vertex_v, spp, seed):
+    """Per pixel, the means over its camera rays of COLUMNS: f·V(hit), f·V(lit side), f,
+    wisp's vertex values at the hit, coverage; then with wisp's vertex light V_w and fibre term
+    f_w = value / V_w at the hit: f·V_w, and over the lit hits f_w·V(lit side), f·V(lit side),
+    f_w·V_w, f·V_w."""
     w, h = scene["image"]["width"], scene["image"]["height"]
     ray, si, hit, ds, spec = camera_hits(mi, dr, mscene, scene, spp, seed)
     f = si.bsdf(ray).eval(mi.BSDFContext(), si, si.to_local(ds.d), hit)
@@ -65,9 +84,19 @@ def one_pass(mi, dr, mscene, scene, strands, vertex_rgb, spp, seed):
     v_side = hit_np & lit_from_surface(mi, mscene, scene, a + u[:, None] * d, unit(d), hit, rng)
     wisp_here = (1.0 - u)[:, None] * vertex_rgb[k] + u[:, None] * vertex_rgb[k + 1]
     wisp_here[~hit_np] = 0.0
-    cols = np.concatenate([f * v_hit[:, None], f * v_side[:, None], f, wisp_here,
-                           hit_np[:, None].astype(np.float64)], axis=1)
-    return cols.reshape(h, w, spp, 13).mean(axis=2)
+    # wisp's light and fibre term at the hit, linear along the segment as its colour is.
+    lit_vertex = vertex_v > 1e-3
+    f_vertex = np.where(lit_vertex[:, None],
+                        vertex_rgb / np.maximum(vertex_v, 1e-3)[:, None], 0.0)
+    v_w = np.where(hit_np, (1.0 - u) * vertex_v[k] + u * vertex_v[k + 1], 0.0)
+    lit = (hit_np & lit_vertex[k] & lit_vertex[k + 1])[:, None].astype(np.float64)
+    f_w = ((1.0 - u)[:, None] * f_vertex[k] + u[:, None] * f_vertex[k + 1]) * lit
+    side = v_side[:, None].astype(np.float64)
+    cols = np.concatenate([f * v_hit[:, None], f * side, f, wisp_here,
+                           hit_np[:, None].astype(np.float64),
+                           f * v_w[:, None], f_w * side, f * side * lit,
+                           f_w * v_w[:, None], f * v_w[:, None] * lit], axis=1)
+    return cols.reshape(h, w, spp, cols.shape[1]).mean(axis=2)
 
 
 def ratio(num, den):
@@ -112,14 +141,24 @@ def main():
     if len(vertex_rgb) != len(strands.points):
         sys.exit(f"single_split.py: {single_dir}/vertex_rgb.f32: {len(vertex_rgb)} points, "
                  f"the .hair has {len(strands.points)}")
-    vertex_rgb = vertex_rgb.astype(np.float64)
+    irradiance = float(scene["light"]["irradiance"][0])
+    vertex_rgb = vertex_rgb.astype(np.float64) / irradiance
+    vertex_v = np.fromfile(os.path.join(args.vis_dir, "vertex_rgb.f32"), "<f4").reshape(-1, 3)
+    if len(vertex_v) != len(strands.points):
+        sys.exit(f"single_split.py: {args.vis_dir}/vertex_rgb.f32: {len(vertex_v)} points, "
+                 f"the .hair has {len(strands.points)}")
+    vertex_v = vertex_v[:, 0].astype(np.float64) / irradiance
     curves = hairfile.curve_file(hair[0], args.cache)
     mscene = build_scene(mi, scene, curves, args.spp, 2)
-    acc = np.mean([one_pass(mi, dr, mscene, scene, strands, vertex_rgb, args.spp, s)
+    acc = np.mean([one_pass(mi, dr, mscene, scene, strands, vertex_rgb, vertex_v, args.spp, s)
                    for s in range(args.passes)], axis=0)
-    fv_hit, fv_side, f = acc[..., 0:3], acc[..., 3:6], acc[..., 6:9]
-    seen, cover = acc[..., 9:12], acc[..., 12]
-    irradiance = float(scene["light"]["irradiance"][0])
+    col, at = {}, 0
+    for name in COLUMNS:
+        width = 1 if name == "cover" else 3
+        col[name] = acc[..., at] if width == 1 else acc[..., at:at + width]
+        at += width
+    fv_hit, fv_side, f = col["fv_hit"], col["fv_side"], col["f"]
+    seen, cover = col["wisp"] * irradiance, col["cover"]
     vis = np.array(mi.Bitmap(os.path.join(args.vis_dir, vis_scene["wisp_image"])), np.float64)
     single = np.array(mi.Bitmap(os.path.join(single_dir, single_scene["wisp_image"])), np.float64)
     both = (cover > 0.99) & (vis[..., 3] > 0.99) & (single[..., 3] > 0.99)
@@ -130,6 +169,12 @@ def main():
           f"| {both.sum()} | {ratio(fv_side[both].sum(0), pt)} | {ratio(shadows[both].sum(0), pt)} "
           f"| {ratio(seen[both].sum(0) / irradiance, pt)} "
           f"| {ratio(single[both, :3].sum(0) / irradiance, pt)} |")
+    total = lambda name: col[name][both].sum(0)
+    print(f"\n| wisp, Mitsuba's fibres, split | R / G / B |\n|---|---|\n"
+          f"| fibre term, under wisp's light (lit hits) | {ratio(total('fw_vw_lit'), total('f_vw_lit'))} |\n"
+          f"| fibre term, under the exact light (lit hits) | {ratio(total('fw_vside_lit'), total('f_vside_lit'))} |\n"
+          f"| light, under the path tracer's f (every hit) | {ratio(total('f_vw'), fv_side[both].sum(0))} |\n"
+          f"| share of the exactly lit f(h) on lit hits | {ratio(total('f_vside_lit'), fv_side[both].sum(0))} |")
     if args.bands > 0:
         print("\n| rows | pixels | share of the light | wisp's shadows | wisp, Mitsuba's fibres "
               "| wisp's single |\n|---|---|---|---|---|---|")
