@@ -52,7 +52,8 @@ impl FarDepth {
 
     /// Whether segment `s` is behind the solids at every pixel of this band it could cover.
     /// Its reach is bounded by `2·half_w + 2` pixels around its axis: its sub-samples' reach
-    /// (under 0.67 px) or a bundle's box filter (half a pixel), plus at most `tan 30°·half_w + ½` of a mitred joint past an end (`segment.rs`).
+    /// (under 0.67 px) or a bundle's box filter (half a pixel), plus at most
+    /// `tan 30°·half_w + ½` of a mitred joint past an end (`segment.rs`).
     #[inline]
     pub(super) fn hides(&self, s: &Seg) -> bool {
         let iz_near = s.iz0.max(s.iz1);

@@ -119,8 +119,8 @@ const NIBBLE_LANES: [Vec4; 16] = {
 const HIDDEN: f32 = 1.0 / 1024.0;
 
 /// Fills `frags` with one fragment per pixel of this band whose sub-samples a segment covers
-/// and whose centre it passes nearer than the opaque depth: segments in `keys` order (far to near by mid-point
-/// depth, ties in input order), pixels in row order within a segment.
+/// and whose centre it passes nearer than the opaque depth: segments in `keys` order (far to
+/// near by mid-point depth, ties in input order), pixels in row order within a segment.
 pub(super) fn emit_fragments(
     p: &Params,
     segs: &[Seg],

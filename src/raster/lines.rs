@@ -34,9 +34,9 @@
 //!    (`fragment.rs`, branch-free: each pixel writes a slot, kept only when covered and in
 //!    front). A stable counting sort groups the fragments by pixel; each pixel's run is put in
 //!    depth order by an insertion sort (runs are nearly in order from the segment sort), or by
-//!    a key sort where it is far from order, and composited front to back. Bands are whole rows so each
-//!    owns a disjoint `&mut` slice of the framebuffer (no `unsafe`); the working buffers are
-//!    per worker thread (an uncontended lock each).
+//!    a key sort where it is far from order, and composited front to back. Bands are whole
+//!    rows so each owns a disjoint `&mut` slice of the framebuffer (no `unsafe`); the working
+//!    buffers are per worker thread (an uncontended lock each).
 //!
 //! Measured before per-pixel order (100K segments of curly hair around a head at 1280x720,
 //! `benches/raster.rs`, the 2 cores shared with other builds): about 27 ms per frame on one core (best of 30; criterion
@@ -76,31 +76,14 @@
 //! any two segments whose depths cross where they overlap, which dense hair does all the time
 //! (one fibre weaves over and under its neighbours within a segment): against a path tracer's
 //! first-hit fibres, the raster showed side-lit dense hair 3.6% darker than its own vertex
-//! values on those fibres (0.964), per-pixel order 1.0% (0.990). Rejected: a hair z-buffer
+//! values on those fibres (0.964), per-pixel order 1.0% (0.990), for about 14 ms more on
+//! smooth at 1280×720 on 2 threads (ACCURACY.md §2, BENCHMARKS.md). Rejected: a hair z-buffer
 //! (depth write + "over" in input order) drops hair behind the anti-aliased fringe of nearer
 //! hair, leaving dark halos, and makes the picture depend on strand order; weighted blended
 //! OIT is order independent but does not make near hair opaque over far hair, so dense hair
 //! turns into an average colour. Known approximation: the head's anti-aliased edge pixels
 //! (centre outside the silhouette) hold no depth, so hair behind the head shows through that
 //! one-pixel fringe.
-
-//! Hair over hair: hair does not write depth. Each pixel composites the fragments that cover
-//! it with "over" (`dst += (src − dst)·α`, α = coverage × opacity) back to front by 1/depth at
-//! the pixel centre, ties in the segment order above, so nearer hair is on top at every pixel
-//! regardless of input order, and the result depends only on the input, never on the thread
-//! count (each pixel belongs to one band, processed by one thread in one order). Until
-//! 2026-12-04 whole segments were composited in mid-point depth order (the classic approach,
-//! as Sintorn & Assarsson 2008 sort hair segments); that misorders any two segments whose
-//! depths cross where they overlap, which dense hair does all the time (one fibre weaves over
-//! and under its neighbours within a segment): against a path tracer's first-hit fibres, the
-//! raster showed side-lit dense hair 3.6% darker than its own vertex values on those fibres
-//! (0.964), per-pixel order 1.0% (0.990); smooth at 1280×720 costs about 14 ms more on 2
-//! threads (ACCURACY.md §2, BENCHMARKS.md). Rejected: a hair z-buffer (depth write + "over" in
-//! input order) drops hair behind the anti-aliased fringe of nearer hair, leaving dark halos,
-//! and makes the picture depend on strand order; weighted blended OIT is order independent but
-//! does not make near hair opaque over far hair, so dense hair turns into an average colour.
-//! Known approximation: the head's anti-aliased edge pixels (centre outside the silhouette)
-//! hold no depth, so hair behind the head shows through that one-pixel fringe.
 
 use std::sync::Mutex;
 
