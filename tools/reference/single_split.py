@@ -46,6 +46,18 @@ from VIS_DIR's vertex_rgb.f32 (V) and its fibre term as the single-scattering va
     light                   wisp's V against the exact light, weighted by the path tracer's
                             f(h), over every hit: 1 if wisp's shadows were exact at the fibres
                             the camera sees.
+
+The light is split once more, along the segment, with the exact light (the same shadow ray from
+the lit side) also taken at each hit's two vertices:
+
+    at the vertex           wisp's V at the hit's nearer vertex against the exact light there:
+                            1 if wisp's per-vertex light were exact.
+    along the segment       the exact vertex values interpolated linearly to the hit against
+                            the exact light at the hit: 1 if linear interpolation between
+                            vertices gave the light on the parts of the fibre the camera sees.
+                            Not 1 where being seen and being lit are correlated along a
+                            segment (back light: the seen parts face the camera, away from
+                            the light); it shrinks as segments shorten.
 """
 
 import argparse
@@ -63,7 +75,7 @@ from visibility import Strands, camera_hits, lit_from_surface, seen_segment, uni
 
 # Columns of one_pass, three each but coverage.
 COLUMNS = ["fv_hit", "fv_side", "f", "wisp", "cover", "f_vw", "fw_vside_lit", "f_vside_lit",
-           "fw_vw_lit", "f_vw_lit"]
+           "fw_vw_lit", "f_vw_lit", "f_vw_near", "f_vside_near", "f_vside_lin"]
 
 
 def one_pass(mi, dr, mscene, scene, strands, vertex_rgb, vertex_v, spp, seed):
@@ -92,10 +104,22 @@ def one_pass(mi, dr, mscene, scene, strands, vertex_rgb, vertex_v, spp, seed):
     lit = (hit_np & lit_vertex[k] & lit_vertex[k + 1])[:, None].astype(np.float64)
     f_w = ((1.0 - u)[:, None] * f_vertex[k] + u[:, None] * f_vertex[k + 1]) * lit
     side = v_side[:, None].astype(np.float64)
+    # The light split along the segment: the exact light at its two vertices (the same
+    # shadow ray from the lit side), wisp's and the exact at the nearer one, and the exact
+    # vertex values interpolated linearly to the hit as wisp interpolates its own.
+    t = unit(d)
+    e0 = hit_np & lit_from_surface(mi, mscene, scene, a, t, hit, rng)
+    e1 = hit_np & lit_from_surface(mi, mscene, scene, a + d, t, hit, rng)
+    near = u < 0.5
+    v_near = np.where(hit_np, np.where(near, vertex_v[k], vertex_v[k + 1]), 0.0)
+    e_near = np.where(near, e0, e1).astype(np.float64)
+    e_lin = (1.0 - u) * e0 + u * e1
     cols = np.concatenate([f * v_hit[:, None], f * side, f, wisp_here,
                            hit_np[:, None].astype(np.float64),
                            f * v_w[:, None], f_w * side, f * side * lit,
-                           f_w * v_w[:, None], f * v_w[:, None] * lit], axis=1)
+                           f_w * v_w[:, None], f * v_w[:, None] * lit,
+                           f * v_near[:, None], f * e_near[:, None],
+                           f * e_lin[:, None]], axis=1)
     return cols.reshape(h, w, spp, cols.shape[1]).mean(axis=2)
 
 
@@ -175,6 +199,9 @@ def main():
           f"| fibre term, under the exact light (lit hits) | {ratio(total('fw_vside_lit'), total('f_vside_lit'))} |\n"
           f"| light, under the path tracer's f (every hit) | {ratio(total('f_vw'), fv_side[both].sum(0))} |\n"
           f"| share of the exactly lit f(h) on lit hits | {ratio(total('f_vside_lit'), fv_side[both].sum(0))} |")
+    print(f"\n| the light, split along the segment | R / G / B |\n|---|---|\n"
+          f"| at the vertex: wisp's ÷ exact, at the nearer vertex of each hit | {ratio(total('f_vw_near'), total('f_vside_near'))} |\n"
+          f"| along the segment: exact at the vertices, linear ÷ exact at the hit | {ratio(total('f_vside_lin'), fv_side[both].sum(0))} |")
     if args.bands > 0:
         print("\n| rows | pixels | share of the light | wisp's shadows | wisp, Mitsuba's fibres "
               "| wisp's single |\n|---|---|---|---|---|---|")

@@ -1,0 +1,116 @@
+#!/usr/bin/env python3
+"""Is wisp's per-vertex light the exact light on the fibre's axis? (not run by CI)
+
+    axis_check.py CASE_DIR VIS_DIR [--vertices 400] [--seed 3]
+
+CASE_DIR is a case `run_table.py` rendered (scene.json, the .hair file); VIS_DIR a
+`wisp export --shading visibility` of the same strands and camera, best with every fibre taken
+exactly (`--contact-mm 1000`). Among the vertices of the segments the camera's rays hit, it
+draws `--vertices` at random and, for each, compares three lights (direct, lit or not):
+
+    wisp        the export's per-vertex value (vertex_rgb.f32), lit when above 1/2;
+    brute       a ray from the vertex's axis point toward the light against every segment of
+                every strand as wisp's contact shadows take them: in the plane across the
+                light, closer than the fibre radius to the segment's axis at a parameter in
+                [0, 1), in front of the point; the vertex's own strand's segments k-2..k+1
+                do not count;
+    Mitsuba     a shadow ray from the axis point, started where it leaves the fibre's own
+                cylinder (r / sin of the light's angle to the fibre, +2%), against the
+                path tracer's curves.
+
+and prints the three means and every disagreement. Agreement says wisp computes its own
+definition exactly; what is left against the path tracer is the definition (one ray from the
+axis; the path tracer lights the fibre's surface), ACCURACY.md section 2, "Converged strands".
+"""
+
+import argparse
+import json
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import hairfile  # noqa: E402
+from render import build_scene  # noqa: E402
+from visibility import Strands, camera_hits, seen_segment, unit  # noqa: E402
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("case_dir")
+    ap.add_argument("vis_dir")
+    ap.add_argument("--vertices", type=int, default=400)
+    ap.add_argument("--seed", type=int, default=3)
+    ap.add_argument("--variant", default="llvm_ad_rgb")
+    ap.add_argument("--cache", default=os.path.join(os.environ.get("TMPDIR", "/tmp"), "wisp-reference-cache"))
+    args = ap.parse_args()
+
+    import drjit as dr
+    import mitsuba as mi
+
+    mi.set_variant(args.variant)
+    scene = json.load(open(os.path.join(args.case_dir, "scene.json")))
+    hair = os.path.join(args.case_dir, scene["hair_file"])
+    segments, points, _ = hairfile.read_hair(hair)
+    if len(set(segments.tolist())) != 1:
+        sys.exit(f"axis_check.py: {hair}: strands of different lengths are not supported")
+    n = int(segments[0]) + 1
+    pts = points.astype(np.float64)
+    vertex_v = np.fromfile(os.path.join(args.vis_dir, "vertex_rgb.f32"), "<f4").reshape(-1, 3)[:, 0]
+    if len(vertex_v) != len(pts):
+        sys.exit(f"axis_check.py: {args.vis_dir}/vertex_rgb.f32: {len(vertex_v)} points, "
+                 f"the .hair has {len(pts)}")
+    vertex_v = vertex_v.astype(np.float64) / float(scene["light"]["irradiance"][0])
+    mscene = build_scene(mi, scene, hairfile.curve_file(hair, args.cache), 4, 2)
+    r = scene["fiber_radius_m"]
+    to_light = -unit(np.array(scene["light"]["direction"], np.float64))
+
+    # The light's frame: depth along the light, (y, z) across it.
+    helper = [0.0, 1.0, 0.0] if abs(to_light[1]) < 0.9 else [1.0, 0.0, 0.0]
+    e1 = unit(np.cross(to_light, helper))
+    e2 = np.cross(to_light, e1)
+    depth, y, z = pts @ to_light, pts @ e1, pts @ e2
+    strands = len(pts) // n
+    a_idx = np.arange(len(pts)).reshape(strands, n)[:, :-1].ravel()
+    b_idx = a_idx + 1
+    strand_of, seg_of = a_idx // n, a_idx % n
+
+    # Vertices of the segments the camera sees.
+    _, si, hit, _, _ = camera_hits(mi, dr, mscene, scene, 4, 0)
+    hit_np = np.array(hit, bool)
+    k, u, _, _ = seen_segment(Strands(hair), si, hit_np)
+    seen = np.unique(np.where(u < 0.5, k, k + 1)[hit_np])
+    rng = np.random.default_rng(args.seed)
+    pick = rng.choice(seen, min(args.vertices, len(seen)), replace=False)
+
+    dy, dz = y[b_idx] - y[a_idx], z[b_idx] - z[a_idx]
+    len2 = dy * dy + dz * dz + 1e-30
+    brute = np.empty(len(pick), bool)
+    for i, v in enumerate(pick):
+        t = ((y[v] - y[a_idx]) * dy + (z[v] - z[a_idx]) * dz) / len2
+        across = np.abs((y[v] - y[a_idx]) * dz - (z[v] - z[a_idx]) * dy) / np.sqrt(len2)
+        ahead = depth[a_idx] + (depth[b_idx] - depth[a_idx]) * t - depth[v]
+        own = (strand_of == v // n) & (seg_of >= v % n - 2) & (seg_of <= v % n + 1)
+        brute[i] = not ((t >= 0) & (t < 1) & (across < r) & (ahead > 0) & ~own).any()
+
+    first = (pick // n) * n
+    tangent = unit(pts[np.minimum(pick + 1, first + n - 1)] - pts[np.maximum(pick - 1, first)])
+    sin_t = np.sqrt(np.maximum(1.0 - (tangent @ to_light) ** 2, 1e-6))
+    o = (pts[pick] + to_light * (r / sin_t * 1.02 + 1e-6)[:, None]).astype(np.float32)
+    ray = mi.Ray3f(mi.Point3f(o[:, 0], o[:, 1], o[:, 2]), mi.Vector3f(*(float(x) for x in to_light)))
+    mitsuba = ~np.array(mscene.ray_test(ray, dr.ones(mi.Bool, len(pick))), bool)
+
+    wisp = vertex_v[pick] > 0.5
+    print(f"{len(pick)} seen vertices: lit by wisp {wisp.mean():.3f}, by brute force "
+          f"{brute.mean():.3f}, by Mitsuba {mitsuba.mean():.3f}")
+    print(f"disagreements: wisp vs brute force {(wisp != brute).sum()}, "
+          f"brute force vs Mitsuba {(brute != mitsuba).sum()}")
+    for i in np.nonzero((wisp != brute) | (brute != mitsuba))[0][:10]:
+        v = pick[i]
+        print(f"  vertex {v} (strand {v // n}, point {v % n}): wisp {vertex_v[v]:.3f}, "
+              f"brute force {int(brute[i])}, Mitsuba {int(mitsuba[i])}")
+
+
+if __name__ == "__main__":
+    main()
