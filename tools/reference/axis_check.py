@@ -4,8 +4,8 @@
     axis_check.py CASE_DIR VIS_DIR [--vertices 400] [--seed 3]
 
 CASE_DIR is a case `run_table.py` rendered (scene.json, the .hair file); VIS_DIR a
-`wisp export --shading visibility` of the same strands and camera, best with every fibre taken
-exactly (`--contact-mm 1000`). Among the vertices of the segments the camera's rays hit, it
+`wisp export --shading visibility` of the same strands and camera with contact shadows on
+(`--contact-mm 120`, as the tables take them; one fibre per strand). Among the vertices of the segments the camera's rays hit, it
 draws `--vertices` at random and, for each, compares three lights (direct, lit or not):
 
     wisp        the export's per-vertex value (vertex_rgb.f32), lit when above 1/2;
