@@ -82,7 +82,8 @@ def one_pass(mi, dr, mscene, scene, strands, vertex_rgb, vertex_v, spp, seed):
     """Per pixel, the means over its camera rays of COLUMNS: f·V(hit), f·V(lit side), f,
     wisp's vertex values at the hit, coverage; then with wisp's vertex light V_w and fibre term
     f_w = value / V_w at the hit: f·V_w, and over the lit hits f_w·V(lit side), f·V(lit side),
-    f_w·V_w, f·V_w."""
+    f_w·V_w, f·V_w; then f times wisp's V and the exact V at the hit's nearer vertex, and f
+    times the exact vertex values interpolated linearly to the hit."""
     w, h = scene["image"]["width"], scene["image"]["height"]
     ray, si, hit, ds, spec = camera_hits(mi, dr, mscene, scene, spp, seed)
     f = si.bsdf(ray).eval(mi.BSDFContext(), si, si.to_local(ds.d), hit)
@@ -93,7 +94,8 @@ def one_pass(mi, dr, mscene, scene, strands, vertex_rgb, vertex_v, spp, seed):
     # (uniform across the width as the light sees it), as visibility.py's exact reference.
     rng = np.random.default_rng(2000 + seed)
     k, u, a, d = seen_segment(strands, si, hit_np)
-    v_side = hit_np & lit_from_surface(mi, mscene, scene, a + u[:, None] * d, unit(d), hit, rng)
+    t = unit(d)
+    v_side = hit_np & lit_from_surface(mi, mscene, scene, a + u[:, None] * d, t, hit, rng)
     wisp_here = (1.0 - u)[:, None] * vertex_rgb[k] + u[:, None] * vertex_rgb[k + 1]
     wisp_here[~hit_np] = 0.0
     # wisp's light and fibre term at the hit, linear along the segment as its colour is.
@@ -107,7 +109,6 @@ def one_pass(mi, dr, mscene, scene, strands, vertex_rgb, vertex_v, spp, seed):
     # The light split along the segment: the exact light at its two vertices (the same
     # shadow ray from the lit side), wisp's and the exact at the nearer one, and the exact
     # vertex values interpolated linearly to the hit as wisp interpolates its own.
-    t = unit(d)
     e0 = hit_np & lit_from_surface(mi, mscene, scene, a, t, hit, rng)
     e1 = hit_np & lit_from_surface(mi, mscene, scene, a + d, t, hit, rng)
     near = u < 0.5
