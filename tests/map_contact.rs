@@ -1,8 +1,8 @@
 //! Contact shadows (`map::contact`): the exact light a one-fibre vertex receives from the fibres
 //! in a window in front of it. Checked against geometry (a fibre passing over the vertex's
 //! point or beside it, the window's ends, the own-strand exclusion) and against the exact
-//! reference's ray from the same point (`map::exact`, `Footprint::Fibres` with one ray for one
-//! fibre), which it must equal when the window holds everything.
+//! reference's ray from the same point (`map::exact`, `Footprint::FibresLitSide` with one ray
+//! for one fibre), which it must equal when the window holds everything.
 
 mod common;
 use common::*;
@@ -17,11 +17,11 @@ use wisp::map::exact::{ExactInput, ExactReference, Footprint};
 fn contact(
     positions: &[Vec3],
     ppl: usize,
-    light: Vec3,
+    light: impl Into<MapLight>,
     window_m: f32,
     fiber: &wisp::fiber::Fiber,
 ) -> ContactShadows {
-    let proj = MapLight::Directional(light).projection(positions);
+    let proj = light.into().projection(positions);
     ContactShadows::build(
         &ContactInput {
             positions,
@@ -84,6 +84,34 @@ fn a_crossing_fibre_shadows_the_vertex_it_passes_over() {
 }
 
 #[test]
+fn the_light_is_read_on_the_fibres_lit_side() {
+    // Light along +X, square to the receiver: its lit side is r toward the light (x − r). An
+    // occluder passing over the point half a radius in front of the axis (render strands may
+    // interpenetrate) shadows the axis but lies behind the lit surface: clear. One touching the
+    // lit side (axis 2r in front) covers the surface where they touch; one r beside the light
+    // ray through the axis misses the lit side's point by the same 1 r (so its own 1.5 r
+    // grazing test above holds on the surface too).
+    let fiber = default_fiber();
+    let r = fiber.params().radius_m;
+    let c = contact(&crossing(0.01 - 0.5 * r, 0.0), 5, Vec3::X, 0.01, &fiber);
+    assert_eq!(
+        c.near_light(2, 1.0, 0.0),
+        wisp::map::contact::NearLight::CLEAR
+    );
+    let c = contact(&crossing(0.01 - 2.0 * r, 0.0), 5, Vec3::X, 0.01, &fiber);
+    assert_eq!(c.near_light(2, 1.0, 0.0).direct_fraction, 0.0);
+    // Light along the receiver (+Z after a turn of the occluder out of its way) has no lit
+    // side across the fibre: the point stays on the axis, so the occluder half a radius in
+    // front along the light still covers it.
+    let mut p: Vec<Vec3> = (0..5)
+        .map(|i| Vec3::new(0.0, 0.0, (i as f32 - 2.0) * 0.004))
+        .collect();
+    p.extend((0..5).map(|i| Vec3::new((i as f32 - 2.0) * 0.004 + 0.001, 0.0, -0.5 * r)));
+    let c = contact(&p, 5, Vec3::Z, 0.01, &fiber);
+    assert_eq!(c.near_light(2, 1.0, 0.0).direct_fraction, 0.0);
+}
+
+#[test]
 fn a_strand_does_not_shadow_itself_nearby_but_does_when_it_curls_back() {
     let fiber = default_fiber();
     // A strand along Z at x = 0.01, then turning toward the light and back across its own
@@ -124,9 +152,9 @@ fn tangle(seed: u64, strands: usize, ppl: usize) -> Vec<Vec3> {
 
 #[test]
 fn with_everything_in_the_window_it_is_the_exact_reference() {
-    // With one fibre per strand and one ray, the reference's ray starts at the vertex's own
-    // point, where contact shadows read the light: the same fibres cross the same ray, so the
-    // two agree to rounding.
+    // With one fibre per strand and one ray, the reference's lit-side ray starts where contact
+    // shadows read the light (the vertex's point moved by r to the fibre's lit side): the same
+    // fibres cross the same ray, so the two agree to rounding.
     let fiber = default_fiber();
     let light = Vec3::new(0.4, -1.0, 0.3);
     let ppl = 8;
@@ -148,7 +176,7 @@ fn with_everything_in_the_window_it_is_the_exact_reference() {
     let (mut worst, mut shadowed) = (0.0f32, 0);
     for v in (0..pos.len()).step_by(3) {
         let near = c.near_light(v, 1.0, 0.0);
-        let truth = reference.light_at_vertex(v, &Footprint::Fibres { rays: 1 });
+        let truth = reference.light_at_vertex(v, &Footprint::FibresLitSide { rays: 1 });
         assert!(near.tf.is_finite() && near.sigma_f2.is_finite());
         worst = worst.max((near.tf - truth.tf).abs().max_element());
         worst = worst.max((near.direct_fraction - truth.direct_fraction).abs());
@@ -156,6 +184,50 @@ fn with_everything_in_the_window_it_is_the_exact_reference() {
     }
     println!("worst |Δ| {worst}, {shadowed} vertices shadowed");
     assert!(shadowed > 50, "the tangle must shadow: {shadowed}");
+    assert!(worst < 1e-4, "contact shadows vs exact reference: {worst}");
+}
+
+#[test]
+fn under_a_point_light_it_is_the_exact_reference_too() {
+    // A point light 5 cm from the tangle, off its axis: the lit side is taken toward the light
+    // itself and narrowed with the projection's lateral scale, in both.
+    let fiber = default_fiber();
+    let light = MapLight::Point {
+        position_m: Vec3::new(-0.03, 0.04, 0.01),
+        aim_m: Vec3::new(0.001, 0.0, -0.001),
+    };
+    let ppl = 8;
+    let pos = tangle(11, 300, ppl);
+    let c = contact(&pos, ppl, light, 1.0, &fiber);
+    let reference = ExactReference::build(
+        &ExactInput {
+            positions: &pos,
+            points_per_strand: ppl,
+            fibers_per_strand: 1,
+            bundle_radius_m: 0.0,
+            placement_seed: 0,
+            fibre_share: &[],
+            light,
+            fiber: &fiber,
+        },
+        0.0005,
+    );
+    let (mut worst, mut shadowed, mut moved) = (0.0f32, 0, 0);
+    for v in (0..pos.len()).step_by(3) {
+        let near = c.near_light(v, 1.0, 0.0);
+        let truth = reference.light_at_vertex(v, &Footprint::FibresLitSide { rays: 1 });
+        let axis = reference.light_at_vertex(v, &Footprint::Fibres { rays: 1 });
+        worst = worst.max((near.tf - truth.tf).abs().max_element());
+        worst = worst.max((near.direct_fraction - truth.direct_fraction).abs());
+        shadowed += (truth.direct_fraction < 0.99) as usize;
+        moved += (axis.direct_fraction != truth.direct_fraction) as usize;
+    }
+    println!("worst |Δ| {worst}, {shadowed} shadowed, {moved} differ from the axis ray");
+    assert!(shadowed > 50, "the tangle must shadow: {shadowed}");
+    assert!(
+        moved > 0,
+        "the lit side must differ from the axis somewhere"
+    );
     assert!(worst < 1e-4, "contact shadows vs exact reference: {worst}");
 }
 

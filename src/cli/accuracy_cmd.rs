@@ -34,7 +34,8 @@ pub struct AccuracyArgs {
     #[arg(long, default_value_t = 128, value_parser = clap::value_parser!(u32).range(1..=65_536))]
     pub rays: u32,
     /// Where the reference's rays start: `fibres` (the fibres the vertex is drawn for, along its
-    /// piece of strand), `ball:R` (all hair within R millimetres) or `disc:R` (a disc of R
+    /// piece of strand), `fibres-lit` (the same, on each fibre's lit side, where contact
+    /// shadows read), `ball:R` (all hair within R millimetres) or `disc:R` (a disc of R
     /// millimetres across the light at the vertex's depth).
     #[arg(long, default_value = "fibres")]
     pub footprint: String,
@@ -79,6 +80,7 @@ fn parse_footprint(s: &str, rays: u32) -> Result<Footprint, AppError> {
     };
     match s.split_once(':') {
         None if s == "fibres" => Ok(Footprint::Fibres { rays }),
+        None if s == "fibres-lit" => Ok(Footprint::FibresLitSide { rays }),
         Some(("ball", r)) => Ok(Footprint::Ball {
             radius_m: mm(r)?,
             rays,
@@ -89,7 +91,7 @@ fn parse_footprint(s: &str, rays: u32) -> Result<Footprint, AppError> {
             exclude_segments: 1,
         }),
         _ => Err(AppError::input(anyhow::anyhow!(
-            "--footprint: `{s}` is not one of fibres, ball:R, disc:R (R in millimetres)"
+            "--footprint: `{s}` is not one of fibres, fibres-lit, ball:R, disc:R (R in millimetres)"
         ))),
     }
 }

@@ -312,6 +312,26 @@ impl Projection {
         }
     }
 
+    /// The point of a fibre's surface nearest the light, in map coordinates: map point `m`
+    /// on the fibre's axis moved by the fibre's radius `radius_m` along the part of the
+    /// direction toward the light that is across the fibre, whose tangent is the chord from
+    /// map point `prev_m` to `next_m`. The path tracer lights a fibre's surface, not its
+    /// axis: a ray from the axis also meets the fibres touching the lit side, which the lit
+    /// side sees past (ACCURACY.md §2, "Converged strands"). Taken in world space, so a point
+    /// light's direction and its lateral scale are exact. Light along the fibre has no lit
+    /// side, and a point the projection cannot take stays at `m`.
+    pub fn lit_side(&self, m: Vec3, prev_m: Vec3, next_m: Vec3, radius_m: f32) -> Vec3 {
+        let p = self.to_world(m);
+        let t = (self.to_world(next_m) - self.to_world(prev_m)).normalize_or_zero();
+        let l = self.toward_light(p);
+        let across = (l - t * t.dot(l)).normalize_or_zero();
+        if across == Vec3::ZERO {
+            return m;
+        }
+        let q = self.point(p + across * radius_m);
+        if q.is_finite() { q } else { m }
+    }
+
     /// A strand of unit tangent `u` at world point `p`, in map coordinates: the image of `u`
     /// (the map displacement per metre along the strand), the share of a metre of strand that
     /// crosses the light's rays (sin ψ for parallel light; the lateral length of the image

@@ -12,8 +12,14 @@
 //! are replaced by the real ones: unbiased wherever the map is, and exact as the window grows.
 //!
 //! ## What a vertex receives
-//! The light at the vertex's own point on the fibre's axis, along one ray toward the light.
-//! The raster draws each segment with its two vertices' colours interpolated linearly, so the
+//! The light at the vertex's point on the fibre's lit side, along one ray toward the light:
+//! the axis point moved by the fibre's radius toward the light, across the fibre
+//! (`Projection::lit_side`, with the chord between the point's neighbours as the tangent). The
+//! path tracer lights the fibre's surface; a ray from the axis also meets the fibres lying
+//! against the lit side (render strands touch and interpenetrate), which the surface sees past.
+//! At the axis, converged strands (91 points) read dense side-lit single scattering 0.84–0.89
+//! and back-lit 0.84–0.92 of the path tracer; on the lit side 0.89–0.93 and 0.94–1.02
+//! (ACCURACY.md §2, "Converged strands"). The raster draws each segment with its two vertices' colours interpolated linearly, so the
 //! light it shows at a point between them is the interpolation of the vertices' values: point
 //! values are what that reconstruction needs. (Until 2026-12-05 a vertex took the exact
 //! average over its piece, half a segment to each side, `Footprint::Fibres`; interpolating
@@ -29,7 +35,8 @@
 //!
 //! The light is then ∏ ā_f over the covering segments, its direct fraction 1 when none covers
 //! (0 otherwise), its σ̄f² the sum of their β̄_f²: what the exact reference's ray from the
-//! vertex gives (`Footprint::Fibres` with one ray per fibre). The vertex's own strand does not
+//! vertex's lit side gives (`Footprint::FibresLitSide` with one ray per fibre). The vertex's
+//! own strand does not
 //! shadow it within two segments (as the exact reference excludes them). Fibres end where the
 //! strand's fibre share falls below one half, as the reference places them.
 //!
@@ -120,10 +127,12 @@ const MAX_BINS: f32 = 4096.0;
 const MAX_PARTS: usize = 64;
 
 /// The fibres near the hair, binned across the light, ready for per-vertex queries.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct ContactShadows {
     window_m: f32,
     radius_m: f32,
+    /// The map's projection (a query's point moves to the fibre's lit side in world space).
+    proj: Projection,
     /// Lateral scale for a point light (`Projection::Central`): r shrinks as ref/x.
     central_ref_m: Option<f32>,
     points_per_strand: usize,
@@ -230,10 +239,18 @@ impl ContactShadows {
         let mut c = Self {
             window_m: input.window_m.max(0.0),
             radius_m: r,
+            proj: *proj,
             central_ref_m,
             points_per_strand: ppl,
             points,
-            ..Default::default()
+            fibres: Vec::new(),
+            segments: Vec::new(),
+            max_dx: 0.0,
+            origin: Vec2::ZERO,
+            inv_bin: 0.0,
+            dims: [0, 0],
+            bin_start: Vec::new(),
+            bin_items: Vec::new(),
         };
         let (fibres, segments): (Vec<FibreSegment>, Vec<Segment>) = pairs
             .into_par_iter()

@@ -7,8 +7,9 @@ use glam::{Vec2, Vec3};
 
 impl ContactShadows {
     /// The light render-strand point `vertex` receives from the fibres within `window_m` in
-    /// front of it (at most the window it was built with), at its own point on the fibre's
-    /// axis. `shared_m` is the length over which the view ray shares fibres with the light
+    /// front of it (at most the window it was built with), on the fibre's lit side
+    /// ([`super::Projection::lit_side`], the chord between the point's neighbours as its
+    /// tangent). `shared_m` is the length over which the view ray shares fibres with the light
     /// ray (0: no camera), for the probability that a fibre is there given that the point is
     /// seen.
     pub fn near_light(&self, vertex: usize, window_m: f32, shared_m: f32) -> NearLight {
@@ -20,6 +21,10 @@ impl ContactShadows {
         if !p.is_finite() {
             return NearLight::CLEAR;
         }
+        let first = strand * ppl;
+        let prev = self.points[first + k.saturating_sub(1)];
+        let next = self.points[first + (k + 1).min(ppl - 1)];
+        let p = self.proj.lit_side(p, prev, next, self.radius_m);
         let window_m = window_m.clamp(0.0, self.window_m);
         let shared_m = if shared_m.is_finite() {
             shared_m.max(0.0)
@@ -35,11 +40,6 @@ impl ContactShadows {
         let c = bx * self.dims[1] + by;
         let items = &self.bin_items[self.bin_start[c] as usize..self.bin_start[c + 1] as usize];
         let (x_lo, x_hi) = (p.x - window_m, p.x);
-        // A point light narrows fibres as it narrows everything at their depth.
-        let r = match self.central_ref_m {
-            None => self.radius_m,
-            Some(ref_m) => self.radius_m * (ref_m / p.x).min(1.0),
-        };
         // Parts whose nearest depth is below x_lo − max_dx lie wholly before the window.
         let first =
             items.partition_point(|&i| self.segments[i as usize].x_min() < x_lo - self.max_dx);
@@ -50,7 +50,7 @@ impl ContactShadows {
             if s.x_min() >= x_hi {
                 break;
             }
-            let Some(dist) = crossing(s, p, r, window_m) else {
+            let Some(dist) = crossing(s, p, self.radius_m, self.central_ref_m, window_m) else {
                 continue;
             };
             let fibre = &self.fibres[s.parent as usize];
@@ -83,14 +83,28 @@ impl ContactShadows {
 /// Whether segment `s` (radius `r`) crosses the ray from `p` toward the light within
 /// `window_m` in front of it: its distance in front, metres, or `None`. The crossing is at
 /// t ∈ [0, 1) along S (joints are shared half-open, as in the exact reference), within r of
-/// the point across the light, strictly in front of it and at most the window ahead.
+/// the point across the light, strictly in front of it and at most the window ahead. A point
+/// light's projection (`central_ref_m`) narrows the fibre as everything at the crossing's depth
+/// x, by ref/x, as the exact reference does (never widened: the bins are padded by r, and no
+/// hair lies nearer the light than ref).
 #[inline]
-fn crossing(s: &Segment, p: Vec3, r: f32, window_m: f32) -> Option<f32> {
+fn crossing(
+    s: &Segment,
+    p: Vec3,
+    r: f32,
+    central_ref_m: Option<f32>,
+    window_m: f32,
+) -> Option<f32> {
     let rel = Vec2::new(p.y, p.z) - s.a;
     let t = rel.dot(s.d) * (s.inv_len * s.inv_len);
     let h = rel.perp_dot(s.d * s.inv_len);
+    let x = s.x_a + s.dx * t;
+    let r = match central_ref_m {
+        None => r,
+        Some(ref_m) => r * (ref_m / x).min(1.0),
+    };
     // Depth of the crossing minus depth of the point.
-    let e = s.x_a + s.dx * t - p.x;
+    let e = x - p.x;
     let hit = (0.0..1.0).contains(&t) && h.abs() < r && e < 0.0 && -e <= window_m;
     hit.then_some(-e)
 }

@@ -109,6 +109,15 @@ pub enum Footprint {
         /// Rays per vertex (spread evenly over the fibres and along the piece).
         rays: u32,
     },
+    /// As [`Footprint::Fibres`], each origin moved onto its fibre's lit side: by the fibre's
+    /// radius toward the light, across the fibre ([`Projection::lit_side`]). The path tracer
+    /// lights the fibre's surface; a ray from the axis also meets fibres lying against the
+    /// lit side, which the surface there sees past. With one ray per fibre this is the ray
+    /// contact shadows take (`map::contact`).
+    FibresLitSide {
+        /// Rays per vertex (spread evenly over the fibres and along the piece).
+        rays: u32,
+    },
     /// On all the hair within a ball around the vertex: rays start at points spread evenly
     /// by length over every placed fibre (of any strand) inside the ball. This is the mean
     /// light received by the hair near the vertex, at the resolution `radius_m`; unlike a disc

@@ -49,7 +49,12 @@ impl ExactReference<'_> {
                 }
             }
             Footprint::Fibres { rays } => {
-                self.for_each_fibre_origin(vertex, rays, |o, own| {
+                self.for_each_fibre_origin(vertex, rays, false, |o, own| {
+                    acc.add(self.trace(o, Some(own)));
+                });
+            }
+            Footprint::FibresLitSide { rays } => {
+                self.for_each_fibre_origin(vertex, rays, true, |o, own| {
                     acc.add(self.trace(o, Some(own)));
                 });
             }
@@ -162,7 +167,7 @@ impl ExactReference<'_> {
             return (0.0, 0.0);
         }
         let (mut n, mut seen, mut both) = (0u32, 0u32, 0u32);
-        self.for_each_fibre_origin(vertex, rays, |o, own| {
+        self.for_each_fibre_origin(vertex, rays, false, |o, own| {
             let o_view = view.proj.point(self.proj.to_world(o));
             let is_seen = view.trace(o_view, Some(own)).0 == 0;
             let is_lit = self.trace(o, Some(own)).0 == 0;
@@ -177,11 +182,14 @@ impl ExactReference<'_> {
     /// The ray origins of [`Footprint::Fibres`] for render-strand point `vertex`: `rays` spread
     /// over the fibres present there, stratified along the piece of fibre the point stands for
     /// (parameter in (−½, ½) segments around it), each with the fibre's own nearby segments
-    /// excluded. Origins are in the map frame.
+    /// excluded. Origins are in the map frame: on the fibre's axis, or with `lit_side` on its
+    /// lit side ([`Projection::lit_side`]; at the point itself the tangent is the chord between
+    /// its neighbours, as contact shadows take it, elsewhere the segment holding the origin).
     fn for_each_fibre_origin(
         &self,
         vertex: usize,
         rays: u32,
+        lit_side: bool,
         mut visit: impl FnMut(Vec3, Exclude),
     ) {
         let ppl = self.points_per_strand;
@@ -201,12 +209,20 @@ impl ExactReference<'_> {
             };
             for j in 0..per_fibre {
                 let t = (j as f32 + 0.5) / per_fibre as f32 - 0.5;
-                let o = if t < 0.0 && k > 0 {
-                    pts[k].lerp(pts[k - 1], -t)
-                } else if t >= 0.0 && k + 1 < ppl {
-                    pts[k].lerp(pts[k + 1], t)
+                let (o, chord) = if t < 0.0 && k > 0 {
+                    (pts[k].lerp(pts[k - 1], -t), (pts[k - 1], pts[k]))
+                } else if t > 0.0 && k + 1 < ppl {
+                    (pts[k].lerp(pts[k + 1], t), (pts[k], pts[k + 1]))
                 } else {
-                    pts[k]
+                    (
+                        pts[k],
+                        (pts[k.saturating_sub(1)], pts[(k + 1).min(ppl - 1)]),
+                    )
+                };
+                let o = if lit_side {
+                    self.proj.lit_side(o, chord.0, chord.1, self.radius_m)
+                } else {
+                    o
                 };
                 visit(o, own);
             }
