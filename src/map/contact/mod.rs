@@ -19,7 +19,9 @@
 //! against the lit side (render strands touch and interpenetrate), which the surface sees past.
 //! At the axis, converged strands (91 points) read dense side-lit single scattering 0.84–0.89
 //! and back-lit 0.84–0.92 of the path tracer; on the lit side 0.89–0.93 and 0.94–1.02
-//! (ACCURACY.md §2, "Converged strands"). The raster draws each segment with its two vertices' colours interpolated linearly, so the
+//! (ACCURACY.md §2, "Converged strands").
+//!
+//! The raster draws each segment with its two vertices' colours interpolated linearly, so the
 //! light it shows at a point between them is the interpolation of the vertices' values: point
 //! values are what that reconstruction needs. (Until 2026-12-05 a vertex took the exact
 //! average over its piece, half a segment to each side, `Footprint::Fibres`; interpolating
@@ -36,9 +38,9 @@
 //! The light is then ∏ ā_f over the covering segments, its direct fraction 1 when none covers
 //! (0 otherwise), its σ̄f² the sum of their β̄_f²: what the exact reference's ray from the
 //! vertex's lit side gives (`Footprint::FibresLitSide` with one ray per fibre). The vertex's
-//! own strand does not
-//! shadow it within two segments (as the exact reference excludes them). Fibres end where the
-//! strand's fibre share falls below one half, as the reference places them.
+//! own strand does not shadow it within two segments (as the exact reference excludes them).
+//! Fibres end where the strand's fibre share falls below one half, as the reference places
+//! them.
 //!
 //! ## Cost
 //! Segments are cut into parts of at most a bin across and along the light and binned across
