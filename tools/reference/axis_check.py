@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Is wisp's per-vertex light the exact light on the fibre's axis? (not run by CI)
+"""Is wisp's per-vertex light the exact light at its point? (not run by CI)
 
-    axis_check.py CASE_DIR VIS_DIR [--vertices 400] [--seed 3]
+    axis_check.py CASE_DIR VIS_DIR [--vertices 400] [--seed 3] [--axis]
 
 CASE_DIR is a case `run_table.py` rendered (scene.json, the .hair file); VIS_DIR a
 `wisp export --shading visibility` of the same strands and camera with contact shadows on
@@ -9,18 +9,21 @@ CASE_DIR is a case `run_table.py` rendered (scene.json, the .hair file); VIS_DIR
 draws `--vertices` at random and, for each, compares three lights (direct, lit or not):
 
     wisp        the export's per-vertex value (vertex_rgb.f32), lit when above 1/2;
-    brute       a ray from the vertex's axis point toward the light against every segment of
+    brute       a ray from the vertex's point toward the light against every segment of
                 every strand as wisp's contact shadows take them: in the plane across the
                 light, closer than the fibre radius to the segment's axis at a parameter in
                 [0, 1), in front of the point; the vertex's own strand's segments k-2..k+1
                 do not count;
-    Mitsuba     a shadow ray from the axis point, started where it leaves the fibre's own
-                cylinder (r / sin of the light's angle to the fibre, +2%), against the
-                path tracer's curves.
+    Mitsuba     a shadow ray from the same point, started where it leaves the fibre's own
+                cylinder, against the path tracer's curves.
+
+The point is the vertex's on the fibre's lit side, where wisp reads contact light since stop 44
+(the axis point moved by r toward the light across the fibre, the tangent the chord between the
+vertex's neighbours); `--axis` takes the axis point, as wisp did before.
 
 and prints the three means and every disagreement. Agreement says wisp computes its own
-definition exactly; what is left against the path tracer is the definition (one ray from the
-axis; the path tracer lights the fibre's surface), ACCURACY.md section 2, "Converged strands".
+definition exactly; what is left against the path tracer is the definition (one ray from one
+point; the path tracer lights the fibre's surface), ACCURACY.md section 2, "Converged strands".
 """
 
 import argparse
@@ -42,6 +45,7 @@ def main():
     ap.add_argument("vis_dir")
     ap.add_argument("--vertices", type=int, default=400)
     ap.add_argument("--seed", type=int, default=3)
+    ap.add_argument("--axis", action="store_true", help="rays from the axis point (wisp before stop 44)")
     ap.add_argument("--variant", default="llvm_ad_rgb")
     ap.add_argument("--cache", default=os.path.join(os.environ.get("TMPDIR", "/tmp"), "wisp-reference-cache"))
     args = ap.parse_args()
@@ -84,20 +88,33 @@ def main():
     rng = np.random.default_rng(args.seed)
     pick = rng.choice(seen, min(args.vertices, len(seen)), replace=False)
 
+    first = (pick // n) * n
+    tangent = unit(pts[np.minimum(pick + 1, first + n - 1)] - pts[np.maximum(pick - 1, first)])
+    cos_t = tangent @ to_light
+    sin_t = np.sqrt(np.maximum(1.0 - cos_t**2, 1e-6))
+    if args.axis:
+        origin = pts[pick]
+    else:
+        # The lit side: r along the part of the direction to the light across the fibre.
+        across = to_light[None, :] - tangent * cos_t[:, None]
+        across /= np.maximum(np.linalg.norm(across, axis=1), 1e-12)[:, None]
+        origin = pts[pick] + r * across
+    oy, oz, od = origin @ e1, origin @ e2, origin @ to_light
+
     dy, dz = y[b_idx] - y[a_idx], z[b_idx] - z[a_idx]
     len2 = dy * dy + dz * dz + 1e-30
     brute = np.empty(len(pick), bool)
     for i, v in enumerate(pick):
-        t = ((y[v] - y[a_idx]) * dy + (z[v] - z[a_idx]) * dz) / len2
-        across = np.abs((y[v] - y[a_idx]) * dz - (z[v] - z[a_idx]) * dy) / np.sqrt(len2)
-        ahead = depth[a_idx] + (depth[b_idx] - depth[a_idx]) * t - depth[v]
+        t = ((oy[i] - y[a_idx]) * dy + (oz[i] - z[a_idx]) * dz) / len2
+        across = np.abs((oy[i] - y[a_idx]) * dz - (oz[i] - z[a_idx]) * dy) / np.sqrt(len2)
+        ahead = depth[a_idx] + (depth[b_idx] - depth[a_idx]) * t - od[i]
         own = (strand_of == v // n) & (seg_of >= v % n - 2) & (seg_of <= v % n + 1)
         brute[i] = not ((t >= 0) & (t < 1) & (across < r) & (ahead > 0) & ~own).any()
 
-    first = (pick // n) * n
-    tangent = unit(pts[np.minimum(pick + 1, first + n - 1)] - pts[np.maximum(pick - 1, first)])
-    sin_t = np.sqrt(np.maximum(1.0 - (tangent @ to_light) ** 2, 1e-6))
-    o = (pts[pick] + to_light * (r / sin_t * 1.02 + 1e-6)[:, None]).astype(np.float32)
+    # From the axis the ray leaves the fibre's own cylinder after r / sin of the light's angle
+    # to the fibre; from the lit side at once (+2% and 1 µm keep it off the surface).
+    leave = (r / sin_t * 1.02 + 1e-6) if args.axis else np.full(len(pick), 0.02 * r + 1e-6)
+    o = (origin + to_light * leave[:, None]).astype(np.float32)
     ray = mi.Ray3f(mi.Point3f(o[:, 0], o[:, 1], o[:, 2]), mi.Vector3f(*(float(x) for x in to_light)))
     mitsuba = ~np.array(mscene.ray_test(ray, dr.ones(mi.Bool, len(pick))), bool)
 

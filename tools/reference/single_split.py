@@ -12,7 +12,7 @@ the two .hair files must be byte-identical.
 
 Mitsuba's single scattering is the mean over a pixel's camera rays of f(h) V(x): the near-field
 BSDF at the offset h where the ray meets the fibre, times the shadow ray from that surface
-point x. wisp takes the far field (f averaged over h) times the light at the point's axis, and
+point x. wisp takes the far field (f averaged over h) times the light on the fibre's lit side, and
 composites per-vertex products. Per pixel this script traces the same rays and reports, as
 ratios to the path tracer's own sum of f(h) V(x) over pixels covered >= 0.99 in both:
 
