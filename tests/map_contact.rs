@@ -150,6 +150,28 @@ fn tangle(seed: u64, strands: usize, ppl: usize) -> Vec<Vec3> {
     pts
 }
 
+/// The exact reference of `positions` with one fibre per strand (the strand itself).
+fn one_fibre_reference<'a>(
+    positions: &'a [Vec3],
+    ppl: usize,
+    light: impl Into<MapLight>,
+    fiber: &'a wisp::fiber::Fiber,
+) -> ExactReference<'a> {
+    ExactReference::build(
+        &ExactInput {
+            positions,
+            points_per_strand: ppl,
+            fibers_per_strand: 1,
+            bundle_radius_m: 0.0,
+            placement_seed: 0,
+            fibre_share: &[],
+            light: light.into(),
+            fiber,
+        },
+        0.0005,
+    )
+}
+
 #[test]
 fn with_everything_in_the_window_it_is_the_exact_reference() {
     // With one fibre per strand and one ray, the reference's lit-side ray starts where contact
@@ -160,19 +182,7 @@ fn with_everything_in_the_window_it_is_the_exact_reference() {
     let ppl = 8;
     let pos = tangle(7, 300, ppl);
     let c = contact(&pos, ppl, light, 1.0, &fiber);
-    let reference = ExactReference::build(
-        &ExactInput {
-            positions: &pos,
-            points_per_strand: ppl,
-            fibers_per_strand: 1,
-            bundle_radius_m: 0.0,
-            placement_seed: 0,
-            fibre_share: &[],
-            light: light.into(),
-            fiber: &fiber,
-        },
-        0.0005,
-    );
+    let reference = one_fibre_reference(&pos, ppl, light, &fiber);
     let (mut worst, mut shadowed) = (0.0f32, 0);
     for v in (0..pos.len()).step_by(3) {
         let near = c.near_light(v, 1.0, 0.0);
@@ -199,19 +209,7 @@ fn under_a_point_light_it_is_the_exact_reference_too() {
     let ppl = 8;
     let pos = tangle(11, 300, ppl);
     let c = contact(&pos, ppl, light, 1.0, &fiber);
-    let reference = ExactReference::build(
-        &ExactInput {
-            positions: &pos,
-            points_per_strand: ppl,
-            fibers_per_strand: 1,
-            bundle_radius_m: 0.0,
-            placement_seed: 0,
-            fibre_share: &[],
-            light,
-            fiber: &fiber,
-        },
-        0.0005,
-    );
+    let reference = one_fibre_reference(&pos, ppl, light, &fiber);
     let (mut worst, mut shadowed, mut moved) = (0.0f32, 0, 0);
     for v in (0..pos.len()).step_by(3) {
         let near = c.near_light(v, 1.0, 0.0);
