@@ -321,6 +321,14 @@ impl Projection {
     /// light's direction and its lateral scale are exact. Light along the fibre has no lit
     /// side, and a point the projection cannot take stays at `m`.
     pub fn lit_side(&self, m: Vec3, prev_m: Vec3, next_m: Vec3, radius_m: f32) -> Vec3 {
+        if let Projection::Parallel { .. } = self {
+            // The frame is orthonormal: the same geometry in map coordinates, the light
+            // toward −X, without the trip through world space.
+            let t = (next_m - prev_m).normalize_or_zero();
+            let across = (Vec3::NEG_X + t * t.x).normalize_or_zero();
+            let q = m + across * radius_m;
+            return if q.is_finite() { q } else { m };
+        }
         let p = self.to_world(m);
         let t = (self.to_world(next_m) - self.to_world(prev_m)).normalize_or_zero();
         let l = self.toward_light(p);
