@@ -317,9 +317,10 @@ impl Projection {
     /// direction toward the light that is across the fibre, whose tangent is the chord from
     /// map point `prev_m` to `next_m`. The path tracer lights a fibre's surface, not its
     /// axis: a ray from the axis also meets the fibres touching the lit side, which the lit
-    /// side sees past (ACCURACY.md §2, "Converged strands"). Taken in world space, so a point
-    /// light's direction and its lateral scale are exact. Light along the fibre has no lit
-    /// side, and a point the projection cannot take stays at `m`.
+    /// side sees past (ACCURACY.md §2, "Converged strands"). For a point light taken in world
+    /// space, so its direction and lateral scale are exact; for parallel light in the
+    /// (orthonormal) map frame. Light along the fibre has no lit side, and a point the
+    /// projection cannot take stays at `m`.
     pub fn lit_side(&self, m: Vec3, prev_m: Vec3, next_m: Vec3, radius_m: f32) -> Vec3 {
         if let Projection::Parallel { .. } = self {
             // The frame is orthonormal: the same geometry in map coordinates, the light
