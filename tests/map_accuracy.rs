@@ -232,12 +232,12 @@ fn one_fibre_per_strand_meets_the_targets_with_contact_shadows() {
     // exactly) the targets hold: MAE ≤ 0.02 and |bias| ≤ 0.03 in every true-T_f bin.
     // Contact shadows read the light at the vertex's point on the fibre's lit side
     // (`map::contact`, "What a vertex receives"), so the reference is the ray from that point:
-    // one lit-side ray for one fibre. Its light is exact, so the truly lit vertices (truth 1) bin by truth against the map's
-    // expectation for the light beyond the window, and the window must be longer than it was
-    // against the piece average for that bin: at 40 mm it reads −0.047, at 80 mm −0.030, at
-    // 120 mm (the default window) −0.026 (these 2,000 vertices; ACCURACY.md §1: −0.035 at
-    // 3,000), all from the axis point; from the lit side (since 2026-12-05, stop 44) −0.020
-    // at 120 mm, MAE 0.0065.
+    // one lit-side ray for one fibre. Its light is exact, so the truly lit vertices (truth 1)
+    // bin by truth against the map's expectation for the light beyond the window, and the
+    // window must be longer than it was against the piece average for that bin: at 40 mm it
+    // reads −0.047, at 80 mm −0.030, at 120 mm (the default window) −0.026 (these 2,000
+    // vertices; ACCURACY.md §1: −0.035 at 3,000), all from the axis point; from the lit side
+    // (since 2026-12-05, stop 44) −0.020 at 120 mm, MAE 0.0065.
     let style = single_fibre_variant(&untapered(Hairstyle::default_smooth()), 12);
     let engine = engine_at_4s(style);
     let rows = rows(&engine, &[], Footprint::FibresLitSide { rays: 1 });

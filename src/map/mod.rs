@@ -312,6 +312,16 @@ impl Projection {
         }
     }
 
+    /// A point light's reference depth (lateral lengths at depth x are scaled by ref/x), or
+    /// `None` for parallel light.
+    #[inline]
+    pub fn central_ref_depth_m(&self) -> Option<f32> {
+        match *self {
+            Projection::Parallel { .. } => None,
+            Projection::Central { ref_depth_m, .. } => Some(ref_depth_m),
+        }
+    }
+
     /// The point of a fibre's surface nearest the light, in map coordinates: map point `m`
     /// on the fibre's axis moved by the fibre's radius `radius_m` along the part of the
     /// direction toward the light that is across the fibre, whose tangent is the chord from

@@ -133,10 +133,9 @@ const MAX_PARTS: usize = 64;
 pub struct ContactShadows {
     window_m: f32,
     radius_m: f32,
-    /// The map's projection (a query's point moves to the fibre's lit side in world space).
+    /// The map's projection: a query's point moves to the fibre's lit side, and a point
+    /// light narrows fibres by ref/x (`Projection::central_ref_depth_m`).
     proj: Projection,
-    /// Lateral scale for a point light (`Projection::Central`): r shrinks as ref/x.
-    central_ref_m: Option<f32>,
     points_per_strand: usize,
     /// Light-frame points of every render strand (NaN for strands with a non-finite point).
     points: Vec<Vec3>,
@@ -234,15 +233,10 @@ impl ContactShadows {
                 })
             })
             .collect();
-        let central_ref_m = match *proj {
-            Projection::Parallel { .. } => None,
-            Projection::Central { ref_depth_m, .. } => Some(ref_depth_m),
-        };
         let mut c = Self {
             window_m: input.window_m.max(0.0),
             radius_m: r,
             proj: *proj,
-            central_ref_m,
             points_per_strand: ppl,
             points,
             fibres: Vec::new(),

@@ -21,9 +21,9 @@ impl ContactShadows {
         if !p.is_finite() {
             return NearLight::CLEAR;
         }
-        let first = strand * ppl;
-        let prev = self.points[first + k.saturating_sub(1)];
-        let next = self.points[first + (k + 1).min(ppl - 1)];
+        let base = strand * ppl;
+        let prev = self.points[base + k.saturating_sub(1)];
+        let next = self.points[base + (k + 1).min(ppl - 1)];
         let p = self.proj.lit_side(p, prev, next, self.radius_m);
         let window_m = window_m.clamp(0.0, self.window_m);
         let shared_m = if shared_m.is_finite() {
@@ -40,6 +40,7 @@ impl ContactShadows {
         let c = bx * self.dims[1] + by;
         let items = &self.bin_items[self.bin_start[c] as usize..self.bin_start[c + 1] as usize];
         let (x_lo, x_hi) = (p.x - window_m, p.x);
+        let central_ref_m = self.proj.central_ref_depth_m();
         // Parts whose nearest depth is below x_lo − max_dx lie wholly before the window.
         let first =
             items.partition_point(|&i| self.segments[i as usize].x_min() < x_lo - self.max_dx);
@@ -50,7 +51,7 @@ impl ContactShadows {
             if s.x_min() >= x_hi {
                 break;
             }
-            let Some(dist) = crossing(s, p, self.radius_m, self.central_ref_m, window_m) else {
+            let Some(dist) = crossing(s, p, self.radius_m, central_ref_m, window_m) else {
                 continue;
             };
             let fibre = &self.fibres[s.parent as usize];
