@@ -4,7 +4,8 @@
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 
-use exr::prelude::{Image, SpecificChannels, Vec2, WritableImage};
+use exr::meta::attribute::LineOrder;
+use exr::prelude::{Encoding, Image, SpecificChannels, Vec2, WritableImage};
 use glam::Vec3;
 
 use super::OutputError;
@@ -16,6 +17,9 @@ use super::OutputError;
 /// The colour is written as given: OpenEXR readers take RGB as premultiplied by A, which holds
 /// when the image was composited over a black background (see `raster::framebuffer`).
 /// Non-finite values are written as they are (a pixel's NaN stays visible to the reader).
+///
+/// The tiles are compressed in parallel and written in increasing order ([`ENCODING`]), so the
+/// same image gives the same bytes on every run and for any thread count.
 pub fn write_exr_rgba_f32(
     path: &Path,
     width: u32,
@@ -39,7 +43,7 @@ pub fn write_exr_rgba_f32(
         let c = rgb[i];
         (c.x, c.y, c.z, alpha[i])
     });
-    let image = Image::from_channels((w, height as usize), channels);
+    let image = Image::from_encoded_channels((w, height as usize), ENCODING, channels);
     super::write_atomically(path, |file| {
         let mut writer = BufWriter::new(file);
         image
@@ -84,6 +88,15 @@ pub fn read_exr_rgba_f32(path: &Path) -> Result<(u32, u32, Vec<Vec3>, Vec<f32>),
     Ok((size.width() as u32, size.height() as u32, rgb, alpha))
 }
 
+/// The crate's fast lossless encoding (RLE, 64 × 64 tiles) with the tiles in increasing order.
+/// Its default order, "unspecified", lets the parallel writer put each tile in the file when
+/// its compression finishes: the same pixels, but bytes that changed from run to run
+/// (found 2026-12-05 comparing two exports of one scene).
+const ENCODING: Encoding = Encoding {
+    line_order: LineOrder::Increasing,
+    ..Encoding::FAST_LOSSLESS
+};
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -114,6 +127,41 @@ mod tests {
             write_exr_rgba_f32(&missing, 4, 3, &rgb, &alpha),
             Err(OutputError::Io { .. })
         ));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn the_same_image_gives_the_same_bytes() {
+        // 300 × 200 is 5 × 4 tiles, compressed in parallel. In increasing line order the writer
+        // sorts them before writing, so every write is the same file; the order is in the
+        // header for any reader to see.
+        let dir = std::env::temp_dir().join(format!("wisp-exr-bytes-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (w, h) = (300u32, 200u32);
+        let rgb: Vec<Vec3> = (0..w * h)
+            .map(|i| {
+                Vec3::new(
+                    (i % 97) as f32 * 0.01,
+                    (i % 13) as f32,
+                    (i / w) as f32 * 1e-3,
+                )
+            })
+            .collect();
+        let alpha: Vec<f32> = (0..w * h).map(|i| (i % 7) as f32 / 6.0).collect();
+        let mut files = Vec::new();
+        for k in 0..4 {
+            let p = dir.join(format!("{k}.exr"));
+            write_exr_rgba_f32(&p, w, h, &rgb, &alpha).unwrap();
+            files.push(std::fs::read(&p).unwrap());
+        }
+        assert!(
+            files.windows(2).all(|f| f[0] == f[1]),
+            "EXR bytes differ between writes"
+        );
+        let meta = exr::meta::MetaData::read_from_file(dir.join("0.exr"), false).unwrap();
+        assert_eq!(meta.headers[0].line_order, LineOrder::Increasing);
+        let (_, _, rgb2, alpha2) = read_exr_rgba_f32(&dir.join("0.exr")).unwrap();
+        assert_eq!((rgb2, alpha2), (rgb, alpha));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }
