@@ -305,7 +305,11 @@ pub fn estimate(
     let points_per_guide = style.guides.links as u64 + 1;
     let particles = guides * points_per_guide;
     let strands = wisps * style.wisps.strands_per_wisp as u64;
-    let points_per_strand = style.strands.points as u64;
+    // Drawn points: the groom's, with each segment cut into the configured pieces.
+    let points_per_strand = crate::interp::subdivided_points(
+        style.strands.points as usize,
+        config.segment_pieces as usize,
+    ) as u64;
     let points = strands * points_per_strand;
     let segments = strands * points_per_strand.saturating_sub(1);
     let pixels = config.width as u64 * config.height as u64;

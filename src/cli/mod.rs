@@ -208,6 +208,11 @@ pub struct SceneArgs {
     /// uses 120 unless given 0). Bundles of fibres never use them.
     #[arg(long, value_name = "MM", value_parser = parse_contact_mm, allow_hyphen_values = true)]
     pub contact_mm: Option<f32>,
+    /// Cut each segment of the render strands into this many straight pieces (1..=16): the
+    /// same drawn hair, its light read this many times per segment (the raster interpolates
+    /// light between points), at about as many times the map, contact and shading cost.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=16))]
+    pub segment_pieces: Option<u32>,
     /// Fibre shader.
     #[arg(long, value_enum, default_value = "dual")]
     pub shading: ShadingArg,
@@ -275,6 +280,9 @@ impl SceneArgs {
         config.lighting.mode = self.shading.into();
         if let Some(mm) = self.contact_mm {
             config.contact = wisp::frame::ContactShadowing::from_mm(mm);
+        }
+        if let Some(n) = self.segment_pieces {
+            config.segment_pieces = n;
         }
         config.self_collision = !self.no_self_collision;
         config.simulate = !self.no_sim;

@@ -112,6 +112,11 @@ pub struct EngineConfig {
     /// Contact shadows (`map::contact`): the fibres in front of each vertex taken exactly
     /// (default off: they cost seconds per frame on dense one-fibre hair, BENCHMARKS.md).
     pub contact: ContactShadowing,
+    /// Each segment of the groom's render strands is cut into this many straight pieces (1:
+    /// as the groom says): the drawn geometry is the same, but the map, the contact shadows
+    /// and the shader read the hair this many times as often along it
+    /// ([`crate::interp::subdivide_in_place`]), at about as many times their cost.
+    pub segment_pieces: u32,
 }
 
 /// Whether the maps take the fibres just in front of each vertex exactly (`map::contact`).
@@ -180,6 +185,7 @@ impl Default for EngineConfig {
             camera: CameraSetup::HeadFollowing,
             draw_solids: true,
             contact: ContactShadowing::Off,
+            segment_pieces: 1,
         }
     }
 }

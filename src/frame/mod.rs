@@ -363,6 +363,7 @@ impl Engine {
             &self.style.curl,
             &self.state.positions,
             Some(&self.frame_colliders),
+            self.config.segment_pieces as usize,
             &mut self.strands,
         );
         let [t0, t1, t2] = marks;

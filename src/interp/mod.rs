@@ -30,6 +30,8 @@ use solids::SolidsView;
 
 mod offset;
 pub use offset::{apply_rest_offsets, rest_offsets_of};
+mod subdivide;
+pub use subdivide::{subdivide_in_place, subdivided_points};
 
 /// Maximum particles per guide (matches `hairstyle::MAX_GUIDE_LINKS + 1`), so control points
 /// fit in a stack buffer.
@@ -70,20 +72,25 @@ pub fn interpolate(
     guide_pos: &[Vec3],
     out: &mut StrandGeometry,
 ) {
-    interpolate_among(guides, layout, curl, guide_pos, None, out);
+    interpolate_among(guides, layout, curl, guide_pos, None, 1, out);
 }
 
-/// [`interpolate`], keeping render points out of `colliders` when given (see [`solids`]).
+/// [`interpolate`], keeping render points out of `colliders` when given (see [`solids`]), with
+/// each segment of the groom's polyline cut into `pieces` straight pieces (1: as the groom
+/// says; see [`subdivide_in_place`]).
 pub fn interpolate_among(
     guides: &GuideSet,
     layout: &StrandLayout,
     curl: &CurlSpec,
     guide_pos: &[Vec3],
     colliders: Option<&Colliders>,
+    pieces: usize,
     out: &mut StrandGeometry,
 ) {
     let view = colliders.map(SolidsView::new);
-    let n = layout.points_per_strand;
+    let coarse = layout.points_per_strand;
+    let pieces = pieces.max(1);
+    let n = subdivided_points(coarse, pieces);
     let total = layout.count() * n;
     out.points_per_strand = n;
     out.positions.resize(total, Vec3::ZERO);
@@ -107,17 +114,20 @@ pub fn interpolate_among(
                 ctrl[i] = g[0][i] * w[0] + g[1][i] * w[1] + g[2][i] * w[2];
             }
             let length = layout.strand_length.get(s).copied().unwrap_or(1.0);
-            catmull_rom_resample_to(&ctrl[..ppg], length, pos);
+            // The groom's points first, in the front of the strand's buffer.
+            let groom = &mut pos[..coarse];
+            catmull_rom_resample_to(&ctrl[..ppg], length, groom);
             let reference = g[1][0] - g[0][0];
-            if let Some(offsets) = layout.rest_offset.get(s * n..(s + 1) * n) {
-                apply_rest_offsets(pos, reference, offsets);
+            if let Some(offsets) = layout.rest_offset.get(s * coarse..(s + 1) * coarse) {
+                apply_rest_offsets(groom, reference, offsets);
             }
             if curl.radius_m > 0.0 {
-                add_curl(pos, reference, curl, layout.strand_phase[s]);
+                add_curl(groom, reference, curl, layout.strand_phase[s]);
             }
             if let Some(v) = &view {
-                v.push_out(pos, len);
+                v.push_out(groom, &mut len[..coarse]);
             }
+            subdivide_in_place(pos, coarse, pieces);
             tangents_and_lengths(pos, tan, len);
             tip_taper(layout.tip_taper, pos, share, len);
         });
