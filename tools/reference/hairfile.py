@@ -75,3 +75,35 @@ def curve_file(hair_path, cache_dir):
             f.write("".join(fmt % tuple(row) for row in block))
     os.replace(tmp, out)
     return out
+
+
+def pieces_of(fine_path, coarse_path, tol_m=2e-6):
+    """How many pieces each segment of `coarse_path`'s strands is cut into in `fine_path`
+    (`wisp export --segment-pieces K` writes the same straight segments with K - 1 points added
+    evenly along each): 1 if the files hold the same points, K if the fine file is the coarse
+    one cut into K pieces (every K-th point the same, the others on their segment within
+    `tol_m`), None if the two are other hair. The drawn geometry is then the same, so a path
+    tracer's render of either compares with a wisp image of the other."""
+    cs, cp, _ = read_hair(coarse_path)
+    fs, fp, _ = read_hair(fine_path)
+    if len(cs) != len(fs) or not np.all(cs > 0) or np.any(fs % cs):
+        return None
+    k = fs // cs
+    if not np.all(k == k[0]):
+        return None
+    k = int(k[0])
+    kept = np.concatenate([np.arange(c + 1) * k + s for c, s in
+                           zip(cs, np.concatenate([[0], np.cumsum(fs + 1)[:-1]]))])
+    if not np.array_equal(fp[kept], cp):
+        return None
+    # Every point on the chord of its coarse segment, at j / k of the way.
+    starts = np.concatenate([[0], np.cumsum(fs + 1)[:-1]])
+    for s, n in zip(starts, fs):
+        strand = fp[s:s + n + 1].astype(np.float64)
+        a = strand[:-1:k][:, None, :]
+        b = strand[k::k][:, None, :]
+        t = (np.arange(k) / k)[None, :, None]
+        want = (a + (b - a) * t).reshape(-1, 3)
+        if np.max(np.abs(strand[:-1] - want)) > tol_m:
+            return None
+    return k
