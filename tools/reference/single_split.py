@@ -8,7 +8,8 @@ by CI).
 CASE_DIR is a single-scattering case that `run_table.py` rendered (its scene.json carries the
 Mitsuba `hair` BSDF, its mitsuba_d2.exr the path-traced single scattering). VIS_DIR is a
 `wisp export --shading visibility` of the same strands and camera (`visibility.py` says how);
-the two .hair files must be byte-identical.
+the two .hair files must be byte-identical (or VIS_DIR's the case's cut into pieces by
+`--segment-pieces`, the same drawn hair).
 
 Mitsuba's single scattering is the mean over a pixel's camera rays of f(h) V(x): the near-field
 BSDF at the offset h where the ray meets the fibre, times the shadow ray from that surface
@@ -157,10 +158,14 @@ def main():
                  f"--shading single (this one is {single_scene.get('shading')!r})")
     hair = [os.path.join(x, s["hair_file"]) for x, s in
             ((args.case_dir, scene), (args.vis_dir, vis_scene), (single_dir, single_scene))]
-    for other in hair[1:]:
-        with open(hair[0], "rb") as x, open(other, "rb") as y:
-            if x.read() != y.read():
-                sys.exit(f"single_split.py: {other} differs from {hair[0]}: not the same strands")
+    # wisp's exports may cut the case's segments into pieces (`--segment-pieces`): the same
+    # drawn hair, whose points (and per-point values) are then the exports'.
+    if hairfile.pieces_of(hair[1], hair[0]) is None:
+        sys.exit(f"single_split.py: {hair[1]} differs from {hair[0]}: not the same strands")
+    with open(hair[1], "rb") as x, open(hair[2], "rb") as y:
+        if x.read() != y.read():
+            sys.exit(f"single_split.py: {hair[2]} differs from {hair[1]}: not the same strands")
+    hair = hair[1:]
     strands = Strands(hair[0])
     vertex_rgb = np.fromfile(os.path.join(single_dir, "vertex_rgb.f32"), "<f4").reshape(-1, 3)
     if len(vertex_rgb) != len(strands.points):
