@@ -46,8 +46,8 @@ fn cut_segments_give_the_same_bytes_with_one_and_two_threads() {
 
 /// Cutting segments moves no hair: the coverage the raster draws is the same up to the
 /// joints the pieces add (measured: 0.035% of the mean coverage moves, the bound is 0.2%),
-/// while the colours change
-/// (the light is read at the midpoints), and nothing invalid reaches a pixel.
+/// while the colours change (the light is read at the midpoints), and nothing invalid
+/// reaches a pixel.
 #[test]
 fn cut_segments_draw_the_same_hair_with_other_light() {
     let (one, two) = (frame(1), frame(2));
