@@ -131,6 +131,9 @@ fn hostile_flags_exit_2_naming_the_flag() {
             "must be 0 (off) to 1000 mm",
         ),
         (args("render --contact-mm nan"), 2, "--contact-mm"),
+        (args("render --segment-pieces 0"), 2, "--segment-pieces"),
+        (args("render --segment-pieces 17"), 2, "not in 1..=16"),
+        (args("render --segment-pieces 1.5"), 2, "--segment-pieces"),
         (args("render --speed 2000"), 2, "at most 1000"),
         (
             args("render --speed 1e308"),
