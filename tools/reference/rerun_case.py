@@ -12,6 +12,7 @@ usage: rerun_case.py OUTDIR TABLEDIR case colour light kind [wisp flags...]
 import json, os, subprocess, sys
 import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import hairfile
 import run_table as rt
 out, table, case, colour, light, kind = sys.argv[1:7]
 extra = sys.argv[7:]
@@ -31,7 +32,6 @@ ref_dir = os.path.join(table, case, f"{colour}-{light}-{kind}")
 # hairstyle that settles the hair differently compares other hair (back light, whose radiance
 # is the silhouette's fringe, moved 12% that way once).
 # The same strands cut into pieces (`--segment-pieces`) are the same drawn hair.
-import hairfile
 if hairfile.pieces_of(os.path.join(d, "hair.hair"), os.path.join(ref_dir, "hair.hair")) is None:
     print(f"warning: {d}/hair.hair differs from the rendered {ref_dir}/hair.hair: "
           "this compares different strands", file=sys.stderr)
