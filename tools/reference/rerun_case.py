@@ -7,7 +7,8 @@ usage: rerun_case.py OUTDIR TABLEDIR case colour light kind [wisp flags...]
   case: dense | isolated | curly; colour: blond | brown | red; light: front | side | back;
   kind: dual | single. TABLEDIR/styles/*.json are the table's hairstyles (edit a copy to try
   other fibre parameters). WISP (environment) is the wisp binary (default target/release/wisp);
-  it must export the same strands as the binary that made the table.
+  it must export the same strands as the binary that made the table. Writes OUTDIR/<case>-
+  <colour>-<light>-<kind>/ (wisp's export) and OUTDIR/cmp-<same>.png and .json (compare.py's).
 """
 import json, os, subprocess, sys
 import numpy as np
@@ -36,5 +37,5 @@ if hairfile.pieces_of(os.path.join(d, "hair.hair"), os.path.join(ref_dir, "hair.
     print(f"warning: {d}/hair.hair differs from the rendered {ref_dir}/hair.hair: "
           "this compares different strands", file=sys.stderr)
 ref = os.path.join(ref_dir, f"mitsuba_d{depth}.exr")
-p = subprocess.run([sys.executable, os.path.join(os.path.dirname(os.path.abspath(__file__)), "compare.py"), os.path.join(d, "wisp.exr"), ref, "--passes", os.path.join(ref_dir, f"mitsuba_d{depth}_passes.npy"), "--png", os.path.join(out, f"cmp-{case}-{colour}-{light}-{kind}.png"), "--label", f"{case} {colour} {light} {kind} {' '.join(extra)}"], capture_output=True, text=True)
+p = subprocess.run([sys.executable, os.path.join(os.path.dirname(os.path.abspath(__file__)), "compare.py"), os.path.join(d, "wisp.exr"), ref, "--passes", os.path.join(ref_dir, f"mitsuba_d{depth}_passes.npy"), "--png", os.path.join(out, f"cmp-{case}-{colour}-{light}-{kind}.png"), "--json", os.path.join(out, f"cmp-{case}-{colour}-{light}-{kind}.json"), "--label", f"{case} {colour} {light} {kind} {' '.join(extra)}"], capture_output=True, text=True)
 print(p.stdout.strip() or p.stderr)
