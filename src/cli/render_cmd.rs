@@ -247,8 +247,12 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
     let setup_s = started.elapsed().as_secs_f64();
     if !args.quiet {
         let g = engine.map_geometry();
+        let pieces = match engine.config.segment_pieces {
+            0 | 1 => String::new(),
+            k => format!(" cut into {k} pieces"),
+        };
         eprintln!(
-            "wisp: {} ({} wisps, {} strands, {} segments), clip \"{}\" {:.2} s, map {}^3 cells of {:.1} mm, {}x{} px, set-up {:.2} s",
+            "wisp: {} ({} wisps, {} strands, {} segments{pieces}), clip \"{}\" {:.2} s, map {}^3 cells of {:.1} mm, {}x{} px, set-up {:.2} s",
             super::printable(&name),
             engine.layout.wisp_guides.len(),
             engine.layout.count(),
