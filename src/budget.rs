@@ -371,7 +371,7 @@ pub fn estimate(
                 RENDER_POINT_BYTES
             ),
             bytes: points * b(RENDER_POINT_BYTES),
-            set_by: "wisps.count × wisps.strands_per_wisp × strands.points",
+            set_by: "wisps.count × wisps.strands_per_wisp × strands.points (× --segment-pieces)",
         },
         MemoryPart {
             what: "map inputs kept for reuse",
@@ -381,18 +381,18 @@ pub fn estimate(
                 2 * size_of::<Vec3>() + size_of::<f32>()
             ),
             bytes: points * b(2 * size_of::<Vec3>() + size_of::<f32>()),
-            set_by: "wisps.count × wisps.strands_per_wisp × strands.points",
+            set_by: "wisps.count × wisps.strands_per_wisp × strands.points (× --segment-pieces)",
         },
         MemoryPart {
             what: "light map",
             product: format!(
-                "{} light(s) × {} render points × {pieces} pieces in a {}³ map",
+                "{} light(s) × {} render points × {pieces} fill piece(s) per segment in a {}³ map",
                 lights,
                 grouped(points),
                 geom.n
             ),
             bytes: geom.estimated_bytes(points, pieces).saturating_mul(lights),
-            set_by: "wisps.count × wisps.strands_per_wisp × strands.points, --map-res and the lights",
+            set_by: "wisps.count × wisps.strands_per_wisp × strands.points (× --segment-pieces), --map-res and the lights",
         },
         MemoryPart {
             what: "contact shadows",
@@ -459,7 +459,7 @@ pub fn estimate(
                 sample_len_m * px_per_m,
                 style.strands.fibers_per_strand.round() >= 2.0,
             ),
-            set_by: "render strands × strands.points, and --height",
+            set_by: "render strands × strands.points (× --segment-pieces), and --height",
         },
         MemoryPart {
             what: "fibre tables",
@@ -575,7 +575,7 @@ pub fn estimate(
                 grouped(points)
             ),
             cpu_s: points as f64 * slices * cost_ns::POINT_INTERP * 1e-9,
-            set_by: "render strands × strands.points, --start-s",
+            set_by: "render strands × strands.points (× --segment-pieces), --start-s",
         },
         WorkPart {
             what: "first frame",
@@ -586,7 +586,7 @@ pub fn estimate(
                 config.height
             ),
             cpu_s: (points as f64 * cost_ns::POINT + pixels as f64 * cost_ns::PIXEL) * 1e-9,
-            set_by: "render strands × strands.points, --width × --height",
+            set_by: "render strands × strands.points (× --segment-pieces), --width × --height",
         },
     ];
     Estimate { memory, work }
