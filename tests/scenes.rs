@@ -294,6 +294,7 @@ fn shading_in_map_order_is_shading_in_vertex_order() {
             positions: &e.strands.positions,
             tangents: &tangents,
             points_per_strand: e.strands.points_per_strand,
+            segment_pieces: e.strands.segment_pieces,
         },
         |k, i, p| maps[k].light_at_seen(p, eye - p, tangents[i], r),
         &mut natural,

@@ -122,6 +122,7 @@ pub fn measure_map(
                 positions: &pos,
                 tangents: &tan,
                 points_per_strand: 1,
+                segment_pieces: 1,
             },
             |_, i, _| light[i],
             &mut colors,

@@ -430,6 +430,7 @@ impl Engine {
                 positions: &self.strands.positions,
                 tangents: &self.strands.tangents,
                 points_per_strand: self.strands.points_per_strand,
+                segment_pieces: self.strands.segment_pieces,
             },
             only_seen.then_some(&self.seen[..]),
             &mut self.colors,

@@ -41,6 +41,9 @@ const MAX_GUIDE_POINTS: usize = crate::hairstyle::MAX_GUIDE_LINKS as usize + 1;
 #[derive(Clone, Debug, Default)]
 pub struct StrandGeometry {
     pub points_per_strand: usize,
+    /// Each segment of the groom's polyline is cut into this many pieces
+    /// ([`subdivide_in_place`]; 0 or 1: none): only every piece-th point can turn.
+    pub segment_pieces: usize,
     /// World positions, metres.
     pub positions: Vec<Vec3>,
     /// Unit tangents from root to tip.
@@ -93,6 +96,7 @@ pub fn interpolate_among(
     let n = subdivided_points(coarse, pieces);
     let total = layout.count() * n;
     out.points_per_strand = n;
+    out.segment_pieces = pieces;
     out.positions.resize(total, Vec3::ZERO);
     out.tangents.resize(total, Vec3::ZERO);
     out.lengths_m.resize(total, 0.0);

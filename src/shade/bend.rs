@@ -59,25 +59,29 @@ impl BendTest {
     }
 
     /// The directions of vertex `i` of render strands of `points_per_strand` points each,
-    /// `tangent` its central tangent. Strand ends, degenerate segments and non-finite points
-    /// have one direction, the tangent.
+    /// `tangent` its central tangent, each segment of the groom cut into `pieces` (0 or 1:
+    /// none; the added points lie on straight segments, so only every piece-th point can
+    /// turn, and the groom's neighbours are that many points away). Strand ends, degenerate
+    /// segments and non-finite points have one direction, the tangent.
     #[inline]
     pub(super) fn directions(
         &self,
         positions: &[Vec3],
         tangent: Vec3,
         points_per_strand: usize,
+        pieces: usize,
         i: usize,
     ) -> Directions {
+        let s = pieces.max(1);
         if points_per_strand < 3 {
             return Directions::One(tangent);
         }
         let k = i % points_per_strand;
-        if k == 0 || k + 1 == points_per_strand {
+        if k % s != 0 || k < s || k + s >= points_per_strand {
             return Directions::One(tangent);
         }
         let (Some(&prev), Some(&here), Some(&next)) =
-            (positions.get(i - 1), positions.get(i), positions.get(i + 1))
+            (positions.get(i - s), positions.get(i), positions.get(i + s))
         else {
             return Directions::One(tangent);
         };
@@ -97,14 +101,14 @@ impl BendTest {
         // same directions drawn in other places, and one evaluation stands (module doc).
         // In cosines, with c the larger neighbour cosine: turn > 2·acos c ⇔ c > 0 and
         // cos(turn) < 2c² − 1.
-        // k ≥ 2 puts i − 2 on this strand (and i − 1 exists, so it does too).
-        let cos_before = if k >= 2 {
-            cos_or_straight((prev - positions[i - 2]).normalize_or_zero(), before)
+        // k ≥ 2s puts i − 2s on this strand (and i − s exists, so it does too).
+        let cos_before = if k >= 2 * s {
+            cos_or_straight((prev - positions[i - 2 * s]).normalize_or_zero(), before)
         } else {
             1.0
         };
-        let cos_after = match positions.get(i + 2) {
-            Some(&n2) if k + 2 < points_per_strand => {
+        let cos_after = match positions.get(i + 2 * s) {
+            Some(&n2) if k + 2 * s < points_per_strand => {
                 cos_or_straight(after, (n2 - next).normalize_or_zero())
             }
             _ => 1.0,
@@ -146,20 +150,23 @@ mod tests {
     fn a_vertex_is_bent_beyond_beta_r() {
         let test = BendTest::for_beta_r_deg(7.5);
         let t = Vec3::NEG_Y;
-        assert_eq!(test.directions(&corner(7.3), t, 3, 1), Directions::One(t));
-        let Directions::Two(a, b) = test.directions(&corner(7.7), t, 3, 1) else {
+        assert_eq!(
+            test.directions(&corner(7.3), t, 3, 1, 1),
+            Directions::One(t)
+        );
+        let Directions::Two(a, b) = test.directions(&corner(7.7), t, 3, 1, 1) else {
             panic!("a 7.7° bend is two directions at β_R = 7.5°");
         };
         assert!((a - Vec3::NEG_Y).length() < 1e-6);
         assert!((a.dot(b) - 7.7f32.to_radians().cos()).abs() < 1e-6);
         // A wider lobe tolerates the same bend.
         assert_eq!(
-            BendTest::for_beta_r_deg(10.0).directions(&corner(7.7), t, 3, 1),
+            BendTest::for_beta_r_deg(10.0).directions(&corner(7.7), t, 3, 1, 1),
             Directions::One(t)
         );
         // A reversal is bent whatever the lobe.
         assert!(matches!(
-            BendTest::for_beta_r_deg(45.0).directions(&corner(170.0), t, 3, 1),
+            BendTest::for_beta_r_deg(45.0).directions(&corner(170.0), t, 3, 1, 1),
             Directions::Two(..)
         ));
     }
@@ -186,27 +193,63 @@ mod tests {
         let n = curl.len();
         for i in 2..n - 2 {
             assert_eq!(
-                test.directions(&curl, t, n, i),
+                test.directions(&curl, t, n, 1, i),
                 Directions::One(t),
                 "vertex {i}"
             );
         }
         assert!(matches!(
-            test.directions(&curl, t, n, 1),
+            test.directions(&curl, t, n, 1, 1),
             Directions::Two(..)
         ));
         assert!(matches!(
-            test.directions(&curl, t, n, n - 2),
+            test.directions(&curl, t, n, 1, n - 2),
             Directions::Two(..)
         ));
         // A 70° turn between gentle ones (the dense scene's roots), and the 30° after it.
         let root = curve(&[5.0, 70.0, 30.0, 6.0, 6.0, 6.0]);
         let n = root.len();
-        let two = |i| matches!(test.directions(&root, t, n, i), Directions::Two(..));
+        let two = |i| matches!(test.directions(&root, t, n, 1, i), Directions::Two(..));
         assert_eq!(
             (1..n - 1).map(two).collect::<Vec<_>>(),
             [false, true, true, false, false, false]
         );
+    }
+
+    /// A strand whose segments are cut into pieces (`interp::subdivide`) bends where the
+    /// groom's polyline bends, and nowhere else: its added points are straight, and a groom
+    /// point's neighbours are read a whole groom segment away, so an even curve stays one
+    /// direction per point as it is uncut (read one point away, a cut curve's neighbours
+    /// would look straight and every point turning by more than β_R would be a corner).
+    #[test]
+    fn cut_segments_bend_where_the_groom_bends() {
+        let test = BendTest::for_beta_r_deg(7.5);
+        let t = Vec3::NEG_Y;
+        for turns in [&[20.0f32; 8][..], &[5.0, 70.0, 30.0, 6.0, 6.0, 6.0][..]] {
+            let coarse = curve(turns);
+            let n = coarse.len();
+            for pieces in [2usize, 3] {
+                let m = crate::interp::subdivided_points(n, pieces);
+                let mut fine = vec![Vec3::ZERO; m];
+                fine[..n].copy_from_slice(&coarse);
+                crate::interp::subdivide_in_place(&mut fine, n, pieces);
+                for i in 0..m {
+                    let got = test.directions(&fine, t, m, pieces, i);
+                    let want = if i % pieces == 0 {
+                        test.directions(&coarse, t, n, 1, i / pieces)
+                    } else {
+                        Directions::One(t)
+                    };
+                    match (got, want) {
+                        (Directions::One(_), Directions::One(_)) => {}
+                        (Directions::Two(a, b), Directions::Two(c, d)) => {
+                            assert!(a.dot(c) > 1.0 - 1e-5 && b.dot(d) > 1.0 - 1e-5, "{i}");
+                        }
+                        _ => panic!("pieces {pieces}, point {i}: {got:?}, uncut {want:?}"),
+                    }
+                }
+            }
+        }
     }
 
     #[test]
@@ -214,22 +257,22 @@ mod tests {
         let test = BendTest::for_beta_r_deg(7.5);
         let t = Vec3::NEG_Y;
         let p = corner(30.0);
-        assert_eq!(test.directions(&p, t, 3, 0), Directions::One(t));
-        assert_eq!(test.directions(&p, t, 3, 2), Directions::One(t));
+        assert_eq!(test.directions(&p, t, 3, 1, 0), Directions::One(t));
+        assert_eq!(test.directions(&p, t, 3, 1, 2), Directions::One(t));
         // Two strands of 3: vertex 3 starts the second strand.
         let two: Vec<Vec3> = p.iter().chain(p.iter()).copied().collect();
-        assert_eq!(test.directions(&two, t, 3, 3), Directions::One(t));
+        assert_eq!(test.directions(&two, t, 3, 1, 3), Directions::One(t));
         assert!(matches!(
-            test.directions(&two, t, 3, 4),
+            test.directions(&two, t, 3, 1, 4),
             Directions::Two(..)
         ));
         let mut same = p.clone();
         same[1] = same[0];
-        assert_eq!(test.directions(&same, t, 3, 1), Directions::One(t));
+        assert_eq!(test.directions(&same, t, 3, 1, 1), Directions::One(t));
         let mut nan = p.clone();
         nan[2] = Vec3::new(f32::NAN, 0.0, 0.0);
-        assert_eq!(test.directions(&nan, t, 3, 1), Directions::One(t));
-        assert_eq!(test.directions(&p, t, 2, 1), Directions::One(t));
-        assert_eq!(test.directions(&p[..2], t, 3, 1), Directions::One(t));
+        assert_eq!(test.directions(&nan, t, 3, 1, 1), Directions::One(t));
+        assert_eq!(test.directions(&p, t, 2, 1, 1), Directions::One(t));
+        assert_eq!(test.directions(&p[..2], t, 3, 1, 1), Directions::One(t));
     }
 }

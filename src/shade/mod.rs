@@ -65,6 +65,10 @@ pub struct VertexGeometry<'a> {
     /// Points per render strand: vertex i's neighbours along its strand are i ± 1, except at
     /// the strand's ends (i mod this = 0 or this − 1).
     pub points_per_strand: usize,
+    /// Each segment of the groom cut into this many pieces (`interp::subdivide`; 0 or 1:
+    /// none): the added points lie on straight segments, so only every piece-th point can be
+    /// a corner, and its neighbours' turns are read that many points away.
+    pub segment_pieces: usize,
 }
 
 /// Reusable buffers of [`shade_vertices`]: the vertices in map order and their colours in
@@ -120,10 +124,12 @@ pub fn shade_vertices(
         positions,
         tangents,
         points_per_strand,
+        segment_pieces,
     } = strands;
     let r = fiber.params().radius_m;
     let bend = BendTest::for_beta_r_deg(fiber.params().beta_r_deg);
-    let dirs = |i: usize| bend.directions(positions, tangents[i], points_per_strand, i);
+    let dirs =
+        |i: usize| bend.directions(positions, tangents[i], points_per_strand, segment_pieces, i);
     let n = positions.len().min(tangents.len());
     let wanted = |i: usize| seen.is_none_or(|s| s.get(i).copied().unwrap_or(false));
     // Vertices by (key, index): a counting sort by key (the map's column, or one bucket for
@@ -267,6 +273,7 @@ pub fn shade_vertices_with<L>(
         positions,
         tangents,
         points_per_strand,
+        segment_pieces,
     } = strands;
     let n = positions.len().min(tangents.len());
     let bend = BendTest::for_beta_r_deg(fiber.params().beta_r_deg);
@@ -275,7 +282,15 @@ pub fn shade_vertices_with<L>(
         lighting,
         eye,
         &positions[..n],
-        |i| bend.directions(&positions[..n], tangents[i], points_per_strand, i),
+        |i| {
+            bend.directions(
+                &positions[..n],
+                tangents[i],
+                points_per_strand,
+                segment_pieces,
+                i,
+            )
+        },
         light,
         colors,
     );
