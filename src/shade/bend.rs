@@ -77,7 +77,7 @@ impl BendTest {
             return Directions::One(tangent);
         }
         let k = i % points_per_strand;
-        if k % s != 0 || k < s || k + s >= points_per_strand {
+        if !k.is_multiple_of(s) || k < s || k + s >= points_per_strand {
             return Directions::One(tangent);
         }
         let (Some(&prev), Some(&here), Some(&next)) =
