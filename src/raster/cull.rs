@@ -25,7 +25,7 @@ use super::segment::Seg;
 pub(super) const TILE_COLS: usize = 16;
 
 /// Relative margin of the test over the pixel loop's rounding (module doc).
-const MARGIN: f32 = 1e-5;
+pub(super) const MARGIN: f32 = 1e-5;
 
 /// The farthest opaque depth (metres) in each tile of one band.
 #[derive(Debug, Default)]
@@ -51,28 +51,37 @@ impl FarDepth {
     }
 
     /// Whether segment `s` is behind the solids at every pixel of this band it could cover.
-    /// Its reach is bounded by `2·half_w + 2` pixels around its axis: its sub-samples' reach
-    /// (under 0.67 px) or a bundle's box filter (half a pixel), plus at most
-    /// `tan 30°·half_w + ½` of a mitred joint past an end (`segment.rs`).
     #[inline]
     pub(super) fn hides(&self, s: &Seg) -> bool {
-        let iz_near = s.iz0.max(s.iz1);
-        let reach = 2.0 * s.half_w + 2.0;
-        let x1 = s.x0 + s.ux * s.len;
-        let (lo, hi) = (s.x0.min(x1) - reach, s.x0.max(x1) + reach);
-        if !(lo <= hi) || self.tiles.is_empty() {
+        let Some((t_lo, t_hi)) = reach_tiles(s, self.tiles.len()) else {
             return false;
-        }
-        // Pixel centres i + ½ in [lo, hi]; the float clamps absorb ±inf before the casts.
-        let last = (self.tiles.len() - 1) as f32;
-        let t_lo = (lo / TILE_COLS as f32).floor().clamp(0.0, last) as usize;
-        let t_hi = (hi / TILE_COLS as f32).floor().clamp(0.0, last) as usize;
+        };
         let Some(tiles) = self.tiles.get(t_lo..=t_hi) else {
             return false;
         };
         let z_far = tiles.iter().fold(0.0f32, |a, &z| a.max(z));
-        iz_near * z_far * (1.0 + MARGIN) <= 1.0
+        s.iz0.max(s.iz1) * z_far * (1.0 + MARGIN) <= 1.0
     }
+}
+
+/// The tiles (of [`TILE_COLS`] columns, `tiles` of them across the band) holding every pixel
+/// segment `s` could cover, first and last; `None` when there are none or its extent is NaN.
+/// Its reach is bounded by `2·half_w + 2` pixels around its axis: its sub-samples' reach
+/// (under 0.67 px) or a bundle's box filter (half a pixel), plus at most `tan 30°·half_w + ½`
+/// of a mitred joint past an end (`segment.rs`).
+#[inline]
+pub(super) fn reach_tiles(s: &Seg, tiles: usize) -> Option<(usize, usize)> {
+    let reach = 2.0 * s.half_w + 2.0;
+    let x1 = s.x0 + s.ux * s.len;
+    let (lo, hi) = (s.x0.min(x1) - reach, s.x0.max(x1) + reach);
+    if !(lo <= hi) || tiles == 0 {
+        return None;
+    }
+    // Pixel centres i + ½ in [lo, hi]; the float clamps absorb ±inf before the casts.
+    let last = (tiles - 1) as f32;
+    let t_lo = (lo / TILE_COLS as f32).floor().clamp(0.0, last) as usize;
+    let t_hi = (hi / TILE_COLS as f32).floor().clamp(0.0, last) as usize;
+    Some((t_lo, t_hi))
 }
 
 #[cfg(test)]
@@ -166,7 +175,15 @@ mod tests {
                     depth: &depth[rows.clone()],
                     coverage: &mut coverage[rows],
                 };
-                emit_fragments(&params, &[seg], &fibres, &[0], &band, &mut frags);
+                emit_fragments(
+                    &params,
+                    &[seg],
+                    &fibres,
+                    &[0],
+                    &band,
+                    &mut Default::default(),
+                    &mut frags,
+                );
                 if far.hides(&seg) {
                     assert!(
                         frags.is_empty(),

@@ -4,6 +4,7 @@
 
 use glam::{Vec3, Vec4};
 
+use super::hiding::Hiding;
 use super::segment::{Fibres, NO_FIBRES, Params, Seg};
 use crate::keysort::sort_keys;
 
@@ -11,14 +12,14 @@ use crate::keysort::sort_keys;
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Frag {
     /// Pixel index within the band.
-    pixel: u32,
+    pub(super) pixel: u32,
     /// Bits of 1/depth at the pixel centre (positive, so they order like the value).
-    iz_bits: u32,
+    pub(super) iz_bits: u32,
     /// Opacity over the sub-samples it covers, in (0, 1].
-    alpha: f32,
+    pub(super) alpha: f32,
     /// The pixel's sub-samples it covers, one bit each (sample `4g + l` is lane l of
     /// [`SAMPLE_X`]`[g]`).
-    mask: u16,
+    pub(super) mask: u16,
     /// Linear RGB at the pixel centre.
     color: Vec3,
 }
@@ -98,7 +99,7 @@ const fn sample_lanes(x: bool) -> [Vec4; 4] {
 }
 
 /// Lane masks of a 4-bit nibble: lane l is 1 where bit l is set.
-const NIBBLE_LANES: [Vec4; 16] = {
+pub(super) const NIBBLE_LANES: [Vec4; 16] = {
     let mut out = [Vec4::ZERO; 16];
     let mut n = 0;
     while n < 16 {
@@ -116,24 +117,31 @@ const NIBBLE_LANES: [Vec4; 16] = {
 
 /// Transmittance below which a sub-sample counts as hidden (front-to-back compositing stops
 /// when all are): 1/1024.
-const HIDDEN: f32 = 1.0 / 1024.0;
+pub(super) const HIDDEN: f32 = 1.0 / 1024.0;
 
 /// Fills `frags` with one fragment per pixel of this band whose sub-samples a segment covers
-/// and whose centre it passes nearer than the opaque depth: segments in `keys` order (far to
-/// near by mid-point depth, ties in input order), pixels in row order within a segment.
+/// and whose centre it passes nearer than the opaque depth and not behind nearer hair that
+/// already hides the pixel (`hiding.rs`, reset here): segments in reverse `keys` order (`keys`
+/// run far to near by mid-point depth, ties in input order, so emission runs near to far),
+/// pixels in row order within a segment.
 pub(super) fn emit_fragments(
     p: &Params,
     segs: &[Seg],
     fibres: &[Fibres],
     keys: &[u64],
     band: &Band,
+    hiding: &mut Hiding,
     frags: &mut Vec<Frag>,
 ) {
     frags.clear();
-    for &key in keys {
+    hiding.reset(band.color.len(), p.width);
+    for &key in keys.iter().rev() {
         let Some(s) = segs.get((key & 0xFFFF_FFFF) as usize) else {
             continue;
         };
+        if hiding.hides(s) {
+            continue;
+        }
         // A bundle drawn as its fibres, with mitred joints; else a plain band. The choice is
         // made once per segment, so each pixel loop is compiled for one kind.
         let fib = match (p.bundle, s.fibres) {
@@ -163,7 +171,7 @@ pub(super) fn emit_fragments(
                     };
                     (ALL_SAMPLES, across * fmax(lo + hi - 1.0, 0.0) * s.opacity)
                 };
-                emit_segment(p, s, (f.ext0, f.ext1), band, cover, frags);
+                emit_segment(p, s, (f.ext0, f.ext1), band, cover, hiding, frags);
             }
             None => {
                 let hw = Vec4::splat(s.half_w);
@@ -188,7 +196,7 @@ pub(super) fn emit_fragments(
                     (mask, s.opacity)
                 };
                 let ext = sample_reach(s.ux, s.uy);
-                emit_segment(p, s, (ext, ext), band, cover, frags);
+                emit_segment(p, s, (ext, ext), band, cover, hiding, frags);
             }
         }
     }
@@ -205,6 +213,7 @@ fn emit_segment<C: Fn(f32, f32, f32, f32) -> (u16, f32)>(
     (ext0, ext1): (f32, f32),
     band: &Band,
     cover: C,
+    hiding: &mut Hiding,
     frags: &mut Vec<Frag>,
 ) {
     let w = p.width;
@@ -238,16 +247,20 @@ fn emit_segment<C: Fn(f32, f32, f32, f32) -> (u16, f32)>(
         // `fa` ≥ 0 and `fb` ≤ last column < 2³¹ here (framebuffer sizes are u32 and fit).
         let (i0, i1) = (ceil_index(fa), fb as i32 as usize);
         let row = (j - row0) * w;
-        let Some(depth) = band.depth.get(row + i0..=row + i1) else {
+        let (Some(depth), Some(cull)) = (
+            band.depth.get(row + i0..=row + i1),
+            hiding.cull_row(row + i0..=row + i1),
+        ) else {
             continue;
         };
         let mut rx = i0 as f32 + 0.5 - s.x0;
         // Branch-free emission: every visited centre writes a fragment into the next slot,
         // and the slot is kept only when the centre is covered and nearer than the opaque
         // depth (a hair crosses 1 to 3 centres a row, so a branch per centre mispredicts often).
-        let mut n = frags.len();
+        let start = frags.len();
+        let mut n = start;
         frags.resize(n + depth.len(), Frag::default());
-        for (px, &z) in (row + i0..).zip(depth) {
+        for ((px, &z), &c) in (row + i0..).zip(depth).zip(cull) {
             let qx = rx;
             rx += 1.0;
             let d = s.ux * ry - s.uy * qx;
@@ -255,9 +268,9 @@ fn emit_segment<C: Fn(f32, f32, f32, f32) -> (u16, f32)>(
             let (mask, alpha) = cover(d, qx, ry, along);
             let t = fmin(fmax(along * s.inv_len, 0.0), 1.0);
             let iz = s.iz0 + (s.iz1 - s.iz0) * t;
-            // Covered, and nearer than the opaque surface: 1/z_hair > 1/z_buffer, without a
-            // division.
-            let keep = (alpha > 0.0) & (mask != 0) & (iz * z > 1.0);
+            // Covered, nearer than the opaque surface (1/z_hair > 1/z_buffer, without a
+            // division), and not behind the hair that hides the pixel.
+            let keep = (alpha > 0.0) & (mask != 0) & (iz * z > 1.0) & (iz >= c);
             if let Some(slot) = frags.get_mut(n) {
                 *slot = Frag {
                     pixel: px as u32,
@@ -274,11 +287,15 @@ fn emit_segment<C: Fn(f32, f32, f32, f32) -> (u16, f32)>(
             n += usize::from(keep);
         }
         frags.truncate(n);
+        if let Some(kept) = frags.get(start..) {
+            hiding.add(kept);
+        }
     }
 }
 
 /// Stable counting sort of `frags` by pixel into `sorted`; on return `starts[p]..starts[p+1]`
-/// is pixel `p`'s run, in emission order.
+/// is pixel `p`'s run, in reverse emission order: [`emit_fragments`] emits near to far, so
+/// the runs come far to near by mid-point depth, in `keys` order.
 pub(super) fn sort_by_pixel(
     frags: &[Frag],
     sorted: &mut Vec<Frag>,
@@ -299,7 +316,7 @@ pub(super) fn sort_by_pixel(
     sorted.resize(frags.len(), Frag::default());
     // `starts[p]` walks pixel p's run while scattering, so afterwards it holds the run's end,
     // which is pixel p + 1's start: shift the table back by one entry.
-    for f in frags {
+    for f in frags.iter().rev() {
         let p = f.pixel as usize;
         if let Some(slot) = starts.get_mut(p) {
             let at = *slot as usize;
@@ -450,7 +467,8 @@ mod tests {
 
     proptest::proptest! {
         /// Grouping by pixel, then sorting each run, gives what a stable library sort by
-        /// (pixel, 1/depth) gives, fragment for fragment, with each run where `starts` says.
+        /// (pixel, 1/depth) of the fragments in reverse emission order gives, fragment for
+        /// fragment, with each run where `starts` says.
         /// Fragments carry their emission index in `alpha` to tell ties apart. Depths come from
         /// a few values (many ties), rising along the emission order or not at all, so runs
         /// both stay within the insertion budget and exceed it.
@@ -471,7 +489,8 @@ mod tests {
                     color: Vec3::ZERO,
                 })
                 .collect();
-            let mut expected = frags.clone();
+            // Runs hold reverse emission order, so ties come latest emitted first.
+            let mut expected: Vec<Frag> = frags.iter().rev().copied().collect();
             expected.sort_by_key(|f| (f.pixel, f.iz_bits));
             let (mut sorted, mut starts, mut keys) = (Vec::new(), Vec::new(), Vec::new());
             sort_by_pixel(&frags, &mut sorted, &mut starts, pixels);

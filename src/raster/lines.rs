@@ -28,13 +28,17 @@
 //!    solids at every pixel they could touch (`cull.rs`, tiles of the band's farthest opaque
 //!    depth; the same fragments in the same order), sorts keys — mid-point 1/depth bits high,
 //!    position low: far to near, ties in input order, a total order fixed by the input alone —
-//!    with a radix sort, and walks each segment over its rows, visiting only pixel centres in
-//!    the segment's expanded rectangle, emitting one fragment (pixel, 1/depth, sub-sample
-//!    mask, α, colour) per covered pixel whose centre is nearer than the opaque depth
-//!    (`fragment.rs`, branch-free: each pixel writes a slot, kept only when covered and in
-//!    front). A stable counting sort groups the fragments by pixel; each pixel's run is put in
-//!    depth order by an insertion sort (runs are nearly in order from the segment sort), or by
-//!    a key sort where it is far from order, and composited front to back. Bands are whole
+//!    with a radix sort, and walks each segment over its rows, near to far, visiting only
+//!    pixel centres in the segment's expanded rectangle, emitting one fragment (pixel,
+//!    1/depth, sub-sample mask, α, colour) per covered pixel whose centre is nearer than the
+//!    opaque depth (`fragment.rs`, branch-free: each pixel writes a slot, kept only when
+//!    covered and in front) and not behind nearer hair that already hides it (`hiding.rs`:
+//!    the fragments the compositing would never reach, 89% of smooth's and 53% of dense
+//!    hair's, and whole segments behind hidden tiles; the same bytes). A stable counting sort
+//!    groups the fragments by pixel, in reverse emission order (far to near again); each
+//!    pixel's run is put in depth order by an insertion sort (runs are nearly in order from
+//!    the segment sort), or by a key sort where it is far from order, and composited front to
+//!    back. Bands are whole
 //!    rows so each owns a disjoint `&mut` slice of the framebuffer (no `unsafe`); the working
 //!    buffers are per worker thread (an uncontended lock each).
 //!
@@ -95,6 +99,7 @@ use super::camera::Camera;
 use super::cull::FarDepth;
 use super::fragment::{Band, Frag, composite, emit_fragments, sort_by_pixel};
 use super::framebuffer::Framebuffer;
+use super::hiding::Hiding;
 use super::polyline::{LineStyle, LineWidth, Polylines};
 use super::segment::{Fibres, Params, Seg, setup_segment};
 use crate::keysort::sort_keys;
@@ -138,6 +143,8 @@ struct BandScratch {
     starts: Vec<u32>,
     /// One out-of-order pixel's sort keys, when its insertion sort gives up.
     run_keys: Vec<u64>,
+    /// Which pixels nearer hair already hides, while the band's fragments are emitted.
+    hiding: Hiding,
 }
 
 impl LineScratch {
@@ -176,7 +183,7 @@ impl LineScratch {
 /// bits of the mid-point 1/depth (positive floats order like their bits), the low 32 bits the
 /// segment's position in the band's list, which is in input order.
 #[inline]
-fn band_key(s: &Seg, pos: usize) -> u64 {
+pub(super) fn band_key(s: &Seg, pos: usize) -> u64 {
     let iz_mid = (0.5 * (s.iz0 + s.iz1)).to_bits();
     (u64::from(iz_mid) << 32) | pos as u64
 }
@@ -331,6 +338,7 @@ pub fn draw_polylines(
                 sorted,
                 starts,
                 run_keys,
+                hiding,
             } = &mut *guard;
             // Segments behind the solids at every pixel they could touch are left out
             // (`cull.rs`: the same fragments in the same order, without the walk).
@@ -350,7 +358,7 @@ pub fn draw_polylines(
                 depth,
                 coverage,
             };
-            emit_fragments(&params, segs, fibres, keys, &band, frags);
+            emit_fragments(&params, segs, fibres, keys, &band, hiding, frags);
             sort_by_pixel(frags, sorted, starts, band.color.len());
             // The emitted fragments are spent: their buffer is the composite's spare.
             composite(sorted, starts, run_keys, tmp, frags, band);

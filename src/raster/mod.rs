@@ -12,7 +12,8 @@
 //!   to front per band of rows, in parallel and bit-identical for any thread count;
 //!   `segment` clips and projects each segment (near plane in view space, then a screen guard
 //!   rectangle in float, before anything becomes an index), `fragment` turns a band's
-//!   segments into per-pixel fragments and composites them, and `bundle` draws a line that
+//!   segments into per-pixel fragments and composites them, `hiding` drops the fragments
+//!   nearer hair hides before they are stored, and `bundle` draws a line that
 //!   stands for a bundle of fibres as its fibres where they are wide enough to see.
 //!
 //! A frame: [`Framebuffer::clear`], [`draw_ellipsoid`] for each solid and [`draw_mesh`] for a
@@ -29,6 +30,7 @@ pub mod camera;
 mod cull;
 mod fragment;
 pub mod framebuffer;
+mod hiding;
 pub mod lines;
 pub mod mesh;
 pub mod polyline;
