@@ -13,12 +13,14 @@
 //!             body spheres)
 //! shading     seen_points(depth, strands),     -> vertex colours, summed over the lights, of
 //!             shade_vertices(maps, fiber)         the points the raster can draw
-//! raster (2)  hair lines                       -> framebuffer
+//! raster (2)  hair lines (the seen segments)   -> framebuffer
 //! ```
 //!
-//! The solids come before the shading so that hair hidden behind them at every pixel (about a
-//! quarter of the default dance's points at 1280 × 720) is not shaded: the frame is the same,
-//! byte for byte. Their time counts as the raster's.
+//! The solids come before the shading so that hair hidden behind them at every pixel, or
+//! behind nearer hair (`raster::seen_points` runs the hair raster's emission without colour:
+//! four fifths of the default dance's points at 1280 × 720, a quarter behind the character),
+//! is neither shaded nor drawn: the frame is the same, byte for byte. The solids' time counts
+//! as the raster's, the search for the seen points as the shading's.
 //!
 //! [`Engine`] owns every buffer, so after the first frame no stage allocates. Each stage is a
 //! plain function of explicit inputs (see the modules); the engine only sequences them and
@@ -45,7 +47,7 @@ use crate::map::{CountModel, LightMap, MapGeometry, MapStats, OccluderMesh, Soli
 use crate::motion::{CharacterPose, Motion, Pose};
 use crate::raster::{
     Camera, Framebuffer, LineScratch, Mesh, MeshScratch, Surface, Texture, draw_ellipsoid,
-    draw_mesh, draw_polylines, seen_points,
+    draw_mesh, draw_polylines, draw_seen_polylines, seen_points,
 };
 use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};
 use crate::shade::{Lighting, ShadeScratch, VertexGeometry, shade_skin, shade_vertices};
@@ -403,7 +405,7 @@ impl Engine {
         );
         self.shade_where(true);
         let t3 = Instant::now();
-        self.draw_hair();
+        self.draw_hair(true);
         let t4 = Instant::now();
         self.timings.map_s = (t1 - t0).as_secs_f64();
         self.timings.shading_s = (t3 - t2).as_secs_f64();
@@ -443,7 +445,7 @@ impl Engine {
     pub fn draw(&mut self) -> &Framebuffer {
         self.draw_solids_layer();
         self.update_widths();
-        self.draw_hair();
+        self.draw_hair(false);
         &self.fb
     }
 
@@ -460,8 +462,9 @@ impl Engine {
         strand_widths_m(&self.style, &self.strands, &mut self.widths_m);
     }
 
-    /// The hair over what is drawn, with the current colours and widths.
-    fn draw_hair(&mut self) {
+    /// The hair over what is drawn, with the current colours and widths; with `only_seen`, the
+    /// segments [`seen_points`] found (the same picture, the rest unshaded).
+    fn draw_hair(&mut self, only_seen: bool) {
         let lines = hair_lines(
             &self.strands,
             &self.colors,
@@ -469,13 +472,24 @@ impl Engine {
             &self.bundle_points,
             &self.style,
         );
-        draw_polylines(
-            &mut self.fb,
-            &self.camera,
-            &lines,
-            &self.config.line,
-            &mut self.scratch,
-        );
+        if only_seen {
+            draw_seen_polylines(
+                &mut self.fb,
+                &self.camera,
+                &lines,
+                &self.config.line,
+                &mut self.scratch,
+                &self.seen,
+            );
+        } else {
+            draw_polylines(
+                &mut self.fb,
+                &self.camera,
+                &lines,
+                &self.config.line,
+                &mut self.scratch,
+            );
+        }
     }
 
     /// The character's mesh (or the head and the body spheres), opaque, lit through the hair's

@@ -92,7 +92,7 @@ mod tests {
     use super::*;
     use crate::raster::bundle::{Bundle, Profiles};
     use crate::raster::camera::Camera;
-    use crate::raster::fragment::{Band, emit_fragments};
+    use crate::raster::fragment::{Band, Rows, emit_fragments};
     use crate::raster::polyline::{LineWidth, Polylines};
     use crate::raster::segment::{Fibres, Params, setup_segment};
 
@@ -180,9 +180,13 @@ mod tests {
                     &[seg],
                     &fibres,
                     &[0],
-                    &band,
+                    Rows {
+                        row0: band.row0,
+                        depth: band.depth,
+                    },
                     &mut Default::default(),
                     &mut frags,
+                    None,
                 );
                 if far.hides(&seg) {
                     assert!(

@@ -4,6 +4,7 @@
 
 use glam::{Vec3, Vec4};
 
+use super::cull::MARGIN;
 use super::hiding::Hiding;
 use super::segment::{Fibres, NO_FIBRES, Params, Seg};
 use crate::keysort::sort_keys;
@@ -22,6 +23,14 @@ pub(super) struct Frag {
     pub(super) mask: u16,
     /// Linear RGB at the pixel centre.
     color: Vec3,
+}
+
+/// One band's opaque depth, what fragments are emitted against: rows `row0 ..` of the
+/// framebuffer, whole rows of [`Params::width`].
+#[derive(Clone, Copy)]
+pub(super) struct Rows<'a> {
+    pub(super) row0: usize,
+    pub(super) depth: &'a [f32],
 }
 
 /// One band's pixels: rows `row0 ..` of the framebuffer.
@@ -124,17 +133,23 @@ pub(super) const HIDDEN: f32 = 1.0 / 1024.0;
 /// already hides the pixel (`hiding.rs`, reset here): segments in reverse `keys` order (`keys`
 /// run far to near by mid-point depth, ties in input order, so emission runs near to far),
 /// pixels in row order within a segment.
+///
+/// With `seen`, only which segments keep a fragment is wanted: their [`Seg::k`] are pushed
+/// onto it in emission order, and `frags` is emptied after each segment (the hiding has taken
+/// its fragments in), so it stays as small as one segment's.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn emit_fragments(
     p: &Params,
     segs: &[Seg],
     fibres: &[Fibres],
     keys: &[u64],
-    band: &Band,
+    band: Rows,
     hiding: &mut Hiding,
     frags: &mut Vec<Frag>,
+    mut seen: Option<&mut Vec<u32>>,
 ) {
     frags.clear();
-    hiding.reset(band.color.len(), p.width);
+    hiding.reset(band.depth.len(), p.width);
     for &key in keys.iter().rev() {
         let Some(s) = segs.get((key & 0xFFFF_FFFF) as usize) else {
             continue;
@@ -142,62 +157,83 @@ pub(super) fn emit_fragments(
         if hiding.hides(s) {
             continue;
         }
-        // A bundle drawn as its fibres, with mitred joints; else a plain band. The choice is
-        // made once per segment, so each pixel loop is compiled for one kind.
-        let fib = match (p.bundle, s.fibres) {
-            (Some(prof), k) if k != NO_FIBRES => fibres.get(k as usize).map(|f| (prof, *f)),
-            _ => None,
-        };
-        match fib {
-            Some((prof, f)) => {
-                let cover = |d: f32, qx: f32, ry: f32, along: f32| {
-                    // Its fibres' summed overlap with the pixel (`bundle.rs`), plus the band
-                    // it is blended from; joints on the mitre (`Fibres::b0`).
-                    let (ua, ub) = ((d - 0.5) * f.inv_r, (d + 0.5) * f.inv_r);
-                    let a = prof.cumulative(f.pattern, ub) - prof.cumulative(f.pattern, ua);
-                    let (e, bw) = (d.abs(), f.band_hw);
-                    let band = fmax(fmin(e + 0.5, bw) - fmax(e - 0.5, -bw), 0.0);
-                    let (ex, ey) = (qx - f.e.0, ry - f.e.1);
-                    let across = fmin(a * f.cov_scale + band * f.band_scale, 1.0);
-                    let lo = if s.cap0 {
-                        fmin(fmax(along + 0.5, 0.0), 1.0)
-                    } else {
-                        f32::from(u8::from(f.b0.0 * qx + f.b0.1 * ry >= 0.0))
-                    };
-                    let hi = if s.cap1 {
-                        fmin(fmax(s.len - along + 0.5, 0.0), 1.0)
-                    } else {
-                        f32::from(u8::from(f.b1.0 * ex + f.b1.1 * ey < 0.0))
-                    };
-                    (ALL_SAMPLES, across * fmax(lo + hi - 1.0, 0.0) * s.opacity)
-                };
-                emit_segment(p, s, (f.ext0, f.ext1), band, cover, hiding, frags);
+        if let Some(seen) = seen.as_deref_mut() {
+            emit_one(p, s, fibres, band, hiding, frags);
+            if !frags.is_empty() {
+                seen.push(s.k);
+                frags.clear();
             }
-            None => {
-                let hw = Vec4::splat(s.half_w);
-                let len = Vec4::splat(s.len);
-                // Each sub-sample's offset across and along the line, four lanes at a time.
-                let (mut off_d, mut off_a) = ([Vec4::ZERO; 4], [Vec4::ZERO; 4]);
+        } else {
+            emit_one(p, s, fibres, band, hiding, frags);
+        }
+    }
+}
+
+/// [`emit_fragments`] for segment `s`: appends its kept fragments to `frags`.
+#[inline(always)]
+fn emit_one(
+    p: &Params,
+    s: &Seg,
+    fibres: &[Fibres],
+    band: Rows,
+    hiding: &mut Hiding,
+    frags: &mut Vec<Frag>,
+) {
+    // A bundle drawn as its fibres, with mitred joints; else a plain band. The choice is
+    // made once per segment, so each pixel loop is compiled for one kind.
+    let fib = match (p.bundle, s.fibres) {
+        (Some(prof), k) if k != NO_FIBRES => fibres.get(k as usize).map(|f| (prof, *f)),
+        _ => None,
+    };
+    match fib {
+        Some((prof, f)) => {
+            let cover = |d: f32, qx: f32, ry: f32, along: f32| {
+                // Its fibres' summed overlap with the pixel (`bundle.rs`), plus the band
+                // it is blended from; joints on the mitre (`Fibres::b0`).
+                let (ua, ub) = ((d - 0.5) * f.inv_r, (d + 0.5) * f.inv_r);
+                let a = prof.cumulative(f.pattern, ub) - prof.cumulative(f.pattern, ua);
+                let (e, bw) = (d.abs(), f.band_hw);
+                let band = fmax(fmin(e + 0.5, bw) - fmax(e - 0.5, -bw), 0.0);
+                let (ex, ey) = (qx - f.e.0, ry - f.e.1);
+                let across = fmin(a * f.cov_scale + band * f.band_scale, 1.0);
+                let lo = if s.cap0 {
+                    fmin(fmax(along + 0.5, 0.0), 1.0)
+                } else {
+                    f32::from(u8::from(f.b0.0 * qx + f.b0.1 * ry >= 0.0))
+                };
+                let hi = if s.cap1 {
+                    fmin(fmax(s.len - along + 0.5, 0.0), 1.0)
+                } else {
+                    f32::from(u8::from(f.b1.0 * ex + f.b1.1 * ey < 0.0))
+                };
+                (ALL_SAMPLES, across * fmax(lo + hi - 1.0, 0.0) * s.opacity)
+            };
+            emit_segment(p, s, (f.ext0, f.ext1), band, cover, hiding, frags);
+        }
+        None => {
+            let hw = Vec4::splat(s.half_w);
+            let len = Vec4::splat(s.len);
+            // Each sub-sample's offset across and along the line, four lanes at a time.
+            let (mut off_d, mut off_a) = ([Vec4::ZERO; 4], [Vec4::ZERO; 4]);
+            for g in 0..4 {
+                let (ox, oy) = (SAMPLE_X[g], SAMPLE_Y[g]);
+                off_d[g] = s.ux * oy - s.uy * ox;
+                off_a[g] = s.ux * ox + s.uy * oy;
+            }
+            let cover = |d: f32, _qx: f32, _ry: f32, along: f32| {
+                // The sub-samples inside the strip; ends and joints cut square.
+                let (d, a) = (Vec4::splat(d), Vec4::splat(along));
+                let mut mask = 0u16;
                 for g in 0..4 {
-                    let (ox, oy) = (SAMPLE_X[g], SAMPLE_Y[g]);
-                    off_d[g] = s.ux * oy - s.uy * ox;
-                    off_a[g] = s.ux * ox + s.uy * oy;
+                    let ak = a + off_a[g];
+                    let inside =
+                        (d + off_d[g]).abs().cmple(hw) & ak.cmpge(Vec4::ZERO) & ak.cmplt(len);
+                    mask |= (inside.bitmask() as u16) << (4 * g);
                 }
-                let cover = |d: f32, _qx: f32, _ry: f32, along: f32| {
-                    // The sub-samples inside the strip; ends and joints cut square.
-                    let (d, a) = (Vec4::splat(d), Vec4::splat(along));
-                    let mut mask = 0u16;
-                    for g in 0..4 {
-                        let ak = a + off_a[g];
-                        let inside =
-                            (d + off_d[g]).abs().cmple(hw) & ak.cmpge(Vec4::ZERO) & ak.cmplt(len);
-                        mask |= (inside.bitmask() as u16) << (4 * g);
-                    }
-                    (mask, s.opacity)
-                };
-                let ext = sample_reach(s.ux, s.uy);
-                emit_segment(p, s, (ext, ext), band, cover, hiding, frags);
-            }
+                (mask, s.opacity)
+            };
+            let ext = sample_reach(s.ux, s.uy);
+            emit_segment(p, s, (ext, ext), band, cover, hiding, frags);
         }
     }
 }
@@ -211,13 +247,13 @@ fn emit_segment<C: Fn(f32, f32, f32, f32) -> (u16, f32)>(
     p: &Params,
     s: &Seg,
     (ext0, ext1): (f32, f32),
-    band: &Band,
+    band: Rows,
     cover: C,
     hiding: &mut Hiding,
     frags: &mut Vec<Frag>,
 ) {
     let w = p.width;
-    let rows = band.color.len() / w;
+    let rows = band.depth.len() / w;
     let (row0, row_end) = (band.row0, band.row0 + rows);
     let last_col = (w - 1) as f32;
     // Along-axis extent in which a pixel centre can have coverage.
@@ -227,6 +263,7 @@ fn emit_segment<C: Fn(f32, f32, f32, f32) -> (u16, f32)>(
         (s.row_lo as usize).max(row0),
         (s.row_hi as usize + 1).min(row_end),
     );
+    let iz_near = s.iz0.max(s.iz1) * (1.0 + MARGIN);
     for j in j0..j1 {
         let ry = j as f32 + 0.5 - s.y0;
         // Pixel centres x + 0.5 with |d(x)| ≤ reach: around the axis crossing of this row.
@@ -253,6 +290,11 @@ fn emit_segment<C: Fn(f32, f32, f32, f32) -> (u16, f32)>(
         ) else {
             continue;
         };
+        // Every centre of the row behind the hair that hides it: nothing to keep here (the
+        // segment's nearest 1/depth with `cull.rs`'s margin over the interpolation).
+        if cull.iter().all(|&c| c > iz_near) {
+            continue;
+        }
         let mut rx = i0 as f32 + 0.5 - s.x0;
         // Branch-free emission: every visited centre writes a fragment into the next slot,
         // and the slot is kept only when the centre is covered and nearer than the opaque

@@ -76,6 +76,33 @@ impl Hiding {
         }
     }
 
+    /// Grows the buffers for bands of `pixels` pixels in rows of `width`, so that later bands
+    /// of that size allocate nothing.
+    pub(super) fn reserve(&mut self, pixels: usize, width: usize) {
+        let tiles = width.div_ceil(TILE_COLS);
+        for (v, n) in [
+            (&mut self.cull_iz, pixels),
+            (&mut self.far_iz, pixels),
+            (&mut self.tile_cull_iz, tiles),
+        ] {
+            v.reserve(n.saturating_sub(v.len()));
+        }
+        self.open.reserve(tiles.saturating_sub(self.open.len()));
+        if self.trans.len() < pixels {
+            self.trans.resize(pixels, [Vec4::ONE; 4]);
+        }
+    }
+
+    /// Bytes of heap held.
+    pub(super) fn capacity_bytes(&self) -> usize {
+        (self.cull_iz.capacity()
+            + self.far_iz.capacity()
+            + self.tile_cull_iz.capacity()
+            + self.open.capacity())
+            * 4
+            + self.trans.capacity() * size_of::<[Vec4; 4]>()
+    }
+
     /// The cull depths of pixels `range` (a row's visited pixels): a fragment there is kept
     /// only if its 1/depth is at least this.
     #[inline]
@@ -154,7 +181,7 @@ mod tests {
 
     use super::*;
     use crate::raster::camera::Camera;
-    use crate::raster::fragment::{Band, composite, emit_fragments, sort_by_pixel};
+    use crate::raster::fragment::{Band, Rows, composite, emit_fragments, sort_by_pixel};
     use crate::raster::lines::{BAND_ROWS, band_key};
     use crate::raster::polyline::{LineWidth, Polylines};
     use crate::raster::segment::{Fibres, Params, setup_segment};
@@ -250,15 +277,20 @@ mod tests {
                 };
                 let mut hiding = Hiding::default();
                 let mut frags = Vec::new();
+                let band_rows = Rows {
+                    row0: r0,
+                    depth: band.depth,
+                };
                 if cull {
                     emit_fragments(
                         &params,
                         &segs,
                         &fibres,
                         &keys,
-                        &band,
+                        band_rows,
                         &mut hiding,
                         &mut frags,
+                        None,
                     );
                     out.kept += frags.len();
                     out.tile_hidden += segs.iter().filter(|s| hiding.hides(s)).count();
@@ -266,7 +298,16 @@ mod tests {
                     // Near to far, as the raster emits, each segment alone.
                     let mut one = Vec::new();
                     for &k in keys.iter().rev() {
-                        emit_fragments(&params, &segs, &fibres, &[k], &band, &mut hiding, &mut one);
+                        emit_fragments(
+                            &params,
+                            &segs,
+                            &fibres,
+                            &[k],
+                            band_rows,
+                            &mut hiding,
+                            &mut one,
+                            None,
+                        );
                         frags.extend_from_slice(&one);
                     }
                     out.emitted += frags.len();

@@ -97,7 +97,7 @@ use rayon::prelude::*;
 use super::bundle::Profiles;
 use super::camera::Camera;
 use super::cull::FarDepth;
-use super::fragment::{Band, Frag, composite, emit_fragments, sort_by_pixel};
+use super::fragment::{Band, Frag, Rows, composite, emit_fragments, sort_by_pixel};
 use super::framebuffer::Framebuffer;
 use super::hiding::Hiding;
 use super::polyline::{LineStyle, LineWidth, Polylines};
@@ -113,38 +113,41 @@ pub(super) const SETUP_CHUNK: usize = 4096;
 pub struct LineScratch {
     /// Per set-up chunk, per band: the chunk's visible segments touching the band, in input
     /// order. Inner capacities persist across frames.
-    chunks: Vec<Vec<Vec<Seg>>>,
+    pub(super) chunks: Vec<Vec<Vec<Seg>>>,
     /// Per worker thread: the band being drawn (its segments, fragments and their sort).
     /// Capacities persist; a thread reuses its buffers for every band it draws.
-    threads: Vec<Mutex<BandScratch>>,
+    pub(super) threads: Vec<Mutex<BandScratch>>,
     /// The bundle profiles of the last call that drew bundles (`bundle.rs`).
-    profiles: Profiles,
+    pub(super) profiles: Profiles,
     /// With bundles, each segment's [`Fibres`] (by segment index): grown to the largest call,
     /// never cleared; an entry is read only for a segment whose set-up wrote it this call.
-    fibres: Vec<Fibres>,
+    pub(super) fibres: Vec<Fibres>,
     /// Every band's farthest opaque depth per tile (`cull.rs`), rebuilt by each call from
     /// the framebuffer's depth; and for [`seen_points`] a colour per point for the set-up
     /// (which reads colours only to reject non-finite ones; always zero).
-    far_bands: Vec<FarDepth>,
-    blank_colours: Vec<Vec3>,
+    pub(super) far_bands: Vec<FarDepth>,
+    pub(super) blank_colours: Vec<Vec3>,
 }
 
 #[derive(Debug, Default)]
-struct BandScratch {
+pub(super) struct BandScratch {
     /// The band's segments gathered contiguously in input order, and their sort keys (see
     /// `band_key`) with the radix sort's second buffer.
-    segs: Vec<Seg>,
-    keys: Vec<u64>,
-    tmp: Vec<u64>,
+    pub(super) segs: Vec<Seg>,
+    pub(super) keys: Vec<u64>,
+    pub(super) tmp: Vec<u64>,
     /// Its fragments in emission order, then sorted by pixel (`sorted`, with each pixel's
     /// first index in `starts`).
-    frags: Vec<Frag>,
-    sorted: Vec<Frag>,
-    starts: Vec<u32>,
+    pub(super) frags: Vec<Frag>,
+    pub(super) sorted: Vec<Frag>,
+    pub(super) starts: Vec<u32>,
     /// One out-of-order pixel's sort keys, when its insertion sort gives up.
-    run_keys: Vec<u64>,
+    pub(super) run_keys: Vec<u64>,
     /// Which pixels nearer hair already hides, while the band's fragments are emitted.
-    hiding: Hiding,
+    pub(super) hiding: Hiding,
+    /// For [`super::seen_points`]: the segments that kept a fragment in the bands this thread
+    /// went through, by [`Seg::k`].
+    pub(super) seen: Vec<u32>,
 }
 
 impl LineScratch {
@@ -165,6 +168,8 @@ impl LineScratch {
                     + (t.frags.capacity() + t.sorted.capacity()) * size_of::<Frag>()
                     + t.starts.capacity() * 4
                     + t.run_keys.capacity() * 8
+                    + t.hiding.capacity_bytes()
+                    + t.seen.capacity() * 4
             })
             .sum();
         let far: usize = self.far_bands.iter().map(|f| f.tiles.capacity() * 4).sum();
@@ -194,7 +199,7 @@ pub const MAX_SEGMENTS: usize = u32::MAX as usize;
 /// The per-call constants of drawing `lines` into `fb`, with the bundle profiles prepared in
 /// `profiles`; `None` when nothing would be drawn (an empty or inconsistent framebuffer, no
 /// width or opacity, a camera that projects nowhere).
-fn prepare<'a>(
+pub(super) fn prepare<'a>(
     fb: &Framebuffer,
     cam: &Camera,
     lines: &Polylines,
@@ -247,68 +252,51 @@ pub fn draw_polylines(
     style: &LineStyle,
     scratch: &mut LineScratch,
 ) {
-    let (width, height) = (fb.width as usize, fb.height as usize);
+    draw_where(fb, cam, lines, style, scratch, None);
+}
+
+/// [`draw_polylines`] of only the segments whose two points `seen` marks (one flag per point
+/// of `lines`). With the flags [`super::seen_points`] gave for these lines' geometry over the
+/// same framebuffer, the image is [`draw_polylines`]'s to the bit, whatever the colours of
+/// the unmarked points, as long as the marked ones are finite: the segments left out keep no
+/// fragment (`seen.rs`).
+pub fn draw_seen_polylines(
+    fb: &mut Framebuffer,
+    cam: &Camera,
+    lines: &Polylines,
+    style: &LineStyle,
+    scratch: &mut LineScratch,
+    seen: &[bool],
+) {
+    draw_where(fb, cam, lines, style, scratch, Some(seen));
+}
+
+fn draw_where(
+    fb: &mut Framebuffer,
+    cam: &Camera,
+    lines: &Polylines,
+    style: &LineStyle,
+    scratch: &mut LineScratch,
+    only: Option<&[bool]>,
+) {
+    let width = fb.width as usize;
     let Some(params) = prepare(fb, cam, lines, style, &mut scratch.profiles) else {
         return;
     };
-    let bundles = params.bundle.is_some();
-    let seg_count = lines.segment_count().min(MAX_SEGMENTS);
-    if seg_count == 0 {
+    let Some(chunk_count) = bin_segments(
+        &params,
+        lines,
+        &mut scratch.chunks,
+        &mut scratch.fibres,
+        only,
+    ) else {
         return;
-    }
-    let band_count = height.div_ceil(BAND_ROWS);
-    let chunk_count = seg_count.div_ceil(SETUP_CHUNK);
-
-    // 1. Set-up and binning, parallel over fixed chunks of segments (the chunking is fixed,
-    //    so it does not depend on the thread count): each chunk bins into its own lists, and
-    //    with bundles writes its segments' `Fibres` into its part of the call's table.
-    if scratch.chunks.len() < chunk_count {
-        scratch.chunks.resize_with(chunk_count, Vec::new);
-    }
-    let setup_chunk = |chunk: usize, bins: &mut Vec<Vec<Seg>>, fibres: &mut [Fibres]| {
-        if bins.len() < band_count {
-            bins.resize_with(band_count, Vec::new);
-        }
-        let bins = &mut bins[..band_count];
-        for bin in bins.iter_mut() {
-            bin.clear();
-        }
-        let first = chunk * SETUP_CHUNK;
-        for k in first..(first + SETUP_CHUNK).min(seg_count) {
-            if let Some((seg, f)) = setup_segment(&params, lines, k) {
-                if let Some(slot) = fibres.get_mut(k - first) {
-                    *slot = f;
-                }
-                let (b0, b1) = (
-                    seg.row_lo as usize / BAND_ROWS,
-                    seg.row_hi as usize / BAND_ROWS,
-                );
-                for bin in &mut bins[b0..=b1] {
-                    bin.push(seg);
-                }
-            }
-        }
     };
-    let chunks = scratch.chunks[..chunk_count].par_iter_mut().enumerate();
-    if bundles {
-        // Only grown: a segment's entry is read only when its set-up wrote it this call.
-        if scratch.fibres.len() < seg_count {
-            scratch.fibres.resize(seg_count, Fibres::default());
-        }
-        chunks
-            .zip(scratch.fibres.par_chunks_mut(SETUP_CHUNK))
-            .for_each(|((chunk, bins), fibres)| setup_chunk(chunk, bins, fibres));
-    } else {
-        chunks.for_each(|(chunk, bins)| setup_chunk(chunk, bins, &mut []));
-    }
 
     // 2. Raster, parallel over bands: gather the band's segments contiguously in input order
     //    (the walk then stays within one cache-resident array), turn them into fragments,
     //    sort the fragments by pixel and depth, composite. Working memory is per thread.
-    let threads = rayon::current_num_threads().max(1);
-    if scratch.threads.len() < threads {
-        scratch.threads.resize_with(threads, Default::default);
-    }
+    prepare_threads(&mut scratch.threads, width);
     build_far_bands(fb, &mut scratch.far_bands);
     let far_bands = &scratch.far_bands;
     let chunks = &scratch.chunks[..chunk_count];
@@ -324,44 +312,39 @@ pub fn draw_polylines(
         // idled (smooth at 1280 × 720: 28 ms of bands on 2 threads for 39 ms of work).
         .with_max_len(1)
         .for_each(|(b, ((color, depth), coverage))| {
-            // Each worker thread has its own scratch; the lock is never contended. A poisoned
-            // lock only means another band panicked, and the buffers are cleared before use.
-            let slot = rayon::current_thread_index().unwrap_or(0) % pool.len();
-            let mut guard = pool[slot]
-                .lock()
-                .unwrap_or_else(std::sync::PoisonError::into_inner);
-            let BandScratch {
-                segs,
-                keys,
-                tmp,
-                frags,
-                sorted,
-                starts,
-                run_keys,
-                hiding,
-            } = &mut *guard;
-            // Segments behind the solids at every pixel they could touch are left out
-            // (`cull.rs`: the same fragments in the same order, without the walk).
-            let far = far_bands.get(b);
-            segs.clear();
-            for bins in chunks {
-                if let Some(bin) = bins.get(b) {
-                    segs.extend(bin.iter().filter(|s| far.is_none_or(|f| !f.hides(s))));
-                }
-            }
-            keys.clear();
-            keys.extend(segs.iter().enumerate().map(|(pos, s)| band_key(s, pos)));
-            sort_keys(keys, tmp);
+            let mut guard = lock_thread_scratch(pool);
+            let t = &mut *guard;
+            gather_band(t, b, chunks, far_bands.get(b));
             let band = Band {
                 row0: b * BAND_ROWS,
                 color,
                 depth,
                 coverage,
             };
-            emit_fragments(&params, segs, fibres, keys, &band, hiding, frags);
-            sort_by_pixel(frags, sorted, starts, band.color.len());
+            let rows = Rows {
+                row0: band.row0,
+                depth: band.depth,
+            };
+            emit_fragments(
+                &params,
+                &t.segs,
+                fibres,
+                &t.keys,
+                rows,
+                &mut t.hiding,
+                &mut t.frags,
+                None,
+            );
+            sort_by_pixel(&t.frags, &mut t.sorted, &mut t.starts, band.color.len());
             // The emitted fragments are spent: their buffer is the composite's spare.
-            composite(sorted, starts, run_keys, tmp, frags, band);
+            composite(
+                &mut t.sorted,
+                &t.starts,
+                &mut t.run_keys,
+                &mut t.tmp,
+                &mut t.frags,
+                band,
+            );
         });
     // Which thread draws which band varies between frames: give every thread the largest
     // capacities any of them needed, so a warmed-up frame allocates nothing whichever bands
@@ -369,8 +352,124 @@ pub fn draw_polylines(
     equalise_capacities(&mut scratch.threads);
 }
 
+/// 1. Set-up and binning, parallel over fixed chunks of segments (the chunking is fixed, so it
+///    does not depend on the thread count): each chunk bins into its own lists in
+///    `scratch.chunks`, and with bundles writes its segments' `Fibres` into its part of the
+///    call's table. With `only`, a segment is set up only when both its points are marked.
+///    Returns how many chunks were filled, `None` when there are no segments.
+pub(super) fn bin_segments(
+    params: &Params,
+    lines: &Polylines,
+    chunks: &mut Vec<Vec<Vec<Seg>>>,
+    fibres: &mut Vec<Fibres>,
+    only: Option<&[bool]>,
+) -> Option<usize> {
+    let seg_count = lines.segment_count().min(MAX_SEGMENTS);
+    if seg_count == 0 {
+        return None;
+    }
+    let n = lines.points_per_line;
+    let segs_per_line = n.saturating_sub(1).max(1);
+    let band_count = params.height.div_ceil(BAND_ROWS);
+    let chunk_count = seg_count.div_ceil(SETUP_CHUNK);
+    if chunks.len() < chunk_count {
+        chunks.resize_with(chunk_count, Vec::new);
+    }
+    let setup_chunk = |chunk: usize, bins: &mut Vec<Vec<Seg>>, fibres: &mut [Fibres]| {
+        if bins.len() < band_count {
+            bins.resize_with(band_count, Vec::new);
+        }
+        let bins = &mut bins[..band_count];
+        for bin in bins.iter_mut() {
+            bin.clear();
+        }
+        let first = chunk * SETUP_CHUNK;
+        for k in first..(first + SETUP_CHUNK).min(seg_count) {
+            if let Some(flags) = only {
+                let a = (k / segs_per_line) * n + k % segs_per_line;
+                if flags.get(a..a + 2) != Some(&[true, true]) {
+                    continue;
+                }
+            }
+            if let Some((seg, f)) = setup_segment(params, lines, k) {
+                if let Some(slot) = fibres.get_mut(k - first) {
+                    *slot = f;
+                }
+                let (b0, b1) = (
+                    seg.row_lo as usize / BAND_ROWS,
+                    seg.row_hi as usize / BAND_ROWS,
+                );
+                for bin in &mut bins[b0..=b1] {
+                    bin.push(seg);
+                }
+            }
+        }
+    };
+    let chunks = chunks[..chunk_count].par_iter_mut().enumerate();
+    if params.bundle.is_some() {
+        // Only grown: a segment's entry is read only when its set-up wrote it this call.
+        if fibres.len() < seg_count {
+            fibres.resize(seg_count, Fibres::default());
+        }
+        chunks
+            .zip(fibres.par_chunks_mut(SETUP_CHUNK))
+            .for_each(|((chunk, bins), fibres)| setup_chunk(chunk, bins, fibres));
+    } else {
+        chunks.for_each(|(chunk, bins)| setup_chunk(chunk, bins, &mut []));
+    }
+    Some(chunk_count)
+}
+
+/// One buffer set per worker thread, each with its hiding state sized for bands of `width`.
+pub(super) fn prepare_threads(pool: &mut Vec<Mutex<BandScratch>>, width: usize) {
+    let threads = rayon::current_num_threads().max(1);
+    if pool.len() < threads {
+        pool.resize_with(threads, Default::default);
+    }
+    for t in pool.iter_mut() {
+        t.get_mut()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .hiding
+            .reserve(width * BAND_ROWS, width);
+    }
+}
+
+/// This worker thread's buffers. Each worker thread has its own; the lock is never contended.
+/// A poisoned lock only means another band panicked, and the buffers are cleared before use.
+pub(super) fn lock_thread_scratch(
+    pool: &[Mutex<BandScratch>],
+) -> std::sync::MutexGuard<'_, BandScratch> {
+    let slot = rayon::current_thread_index().unwrap_or(0) % pool.len().max(1);
+    pool[slot]
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+/// A band's segments gathered from every chunk's list in chunk order (= input order) into
+/// `t.segs`, leaving out those behind the solids at every pixel they could touch (`cull.rs`:
+/// the same fragments in the same order, without the walk), and their sort keys, sorted, in
+/// `t.keys`.
+pub(super) fn gather_band(
+    t: &mut BandScratch,
+    b: usize,
+    chunks: &[Vec<Vec<Seg>>],
+    far: Option<&FarDepth>,
+) {
+    t.segs.clear();
+    for bins in chunks {
+        if let Some(bin) = bins.get(b) {
+            t.segs
+                .extend(bin.iter().filter(|s| far.is_none_or(|f| !f.hides(s))));
+        }
+    }
+    t.keys.clear();
+    t.keys
+        .extend(t.segs.iter().enumerate().map(|(pos, s)| band_key(s, pos)));
+    sort_keys(&mut t.keys, &mut t.tmp);
+}
+
 /// Every band's farthest opaque depth per tile, from `fb`'s depth (parallel over bands).
-fn build_far_bands(fb: &Framebuffer, far_bands: &mut Vec<FarDepth>) {
+pub(super) fn build_far_bands(fb: &Framebuffer, far_bands: &mut Vec<FarDepth>) {
     let width = fb.width as usize;
     far_bands.resize_with((fb.height as usize).div_ceil(BAND_ROWS), FarDepth::default);
     if width == 0 {
@@ -380,63 +479,6 @@ fn build_far_bands(fb: &Framebuffer, far_bands: &mut Vec<FarDepth>) {
         .par_iter_mut()
         .zip(fb.depth.par_chunks(width * BAND_ROWS))
         .for_each(|(far, depth)| far.build(depth, width));
-}
-
-/// Marks in `seen` (one flag per point of `lines`, resized to match) the points whose colour
-/// [`draw_polylines`] could put into a pixel of `fb` as it is now: a point of a segment that
-/// is on screen and not behind the opaque depth at every pixel it could touch (`cull.rs`, over
-/// the bands it covers). The rest draw nothing whatever their colour, so a caller may leave
-/// them unshaded (the engine skips shading the hair hidden behind the character: about a
-/// quarter of the default dance's points at 1280 × 720). The same set-up as the raster (clipping, widths, bundles,
-/// mitres), so a point left unmarked is one the raster would leave out; parallel over lines,
-/// the same flags for any thread count. Call it after the solids are drawn.
-pub fn seen_points(
-    fb: &Framebuffer,
-    cam: &Camera,
-    lines: &Polylines,
-    style: &LineStyle,
-    scratch: &mut LineScratch,
-    seen: &mut Vec<bool>,
-) {
-    seen.clear();
-    seen.resize(lines.points.len(), false);
-    let n = lines.points_per_line;
-    let segs_per_line = n.saturating_sub(1);
-    if segs_per_line == 0 || fb.width == 0 {
-        return;
-    }
-    build_far_bands(fb, &mut scratch.far_bands);
-    // Zero whatever the length: only its length needs setting.
-    scratch.blank_colours.resize(lines.points.len(), Vec3::ZERO);
-    let blank = Polylines {
-        colors: &scratch.blank_colours,
-        ..*lines
-    };
-    let Some(params) = prepare(fb, cam, &blank, style, &mut scratch.profiles) else {
-        return;
-    };
-    let far_bands = &scratch.far_bands;
-    let seg_count = blank.segment_count().min(MAX_SEGMENTS);
-    seen.par_chunks_mut(n)
-        .enumerate()
-        .for_each(|(line, flags)| {
-            for i in 0..segs_per_line {
-                let k = line * segs_per_line + i;
-                if k >= seg_count {
-                    return;
-                }
-                let Some((seg, _)) = setup_segment(&params, &blank, k) else {
-                    continue;
-                };
-                let bands = seg.row_lo as usize / BAND_ROWS..=seg.row_hi as usize / BAND_ROWS;
-                let shows = far_bands
-                    .get(bands)
-                    .is_some_and(|b| b.iter().any(|far| !far.hides(&seg)));
-                if shows && let Some(pair) = flags.get_mut(i..i + 2) {
-                    pair.fill(true);
-                }
-            }
-        });
 }
 
 /// Grows `v`'s capacity to at least `cap`, exactly `cap` when it has to grow.

@@ -34,12 +34,14 @@ mod hiding;
 pub mod lines;
 pub mod mesh;
 pub mod polyline;
+mod seen;
 mod segment;
 pub mod solid;
 
 pub use camera::{Camera, DEFAULT_NEAR_M, View};
 pub use framebuffer::Framebuffer;
-pub use lines::{LineScratch, MAX_SEGMENTS, draw_polylines, seen_points};
+pub use lines::{LineScratch, MAX_SEGMENTS, draw_polylines, draw_seen_polylines};
 pub use mesh::{Mesh, MeshScratch, Surface, Texture, draw_mesh};
 pub use polyline::{Bundle, LineStyle, LineWidth, MAX_WIDTH_PX, Polylines};
+pub use seen::seen_points;
 pub use solid::draw_ellipsoid;

@@ -54,6 +54,8 @@ pub(super) struct Seg {
     /// Covered rows, inclusive.
     pub(super) row_lo: u32,
     pub(super) row_hi: u32,
+    /// Its index in the draw call (`k` of [`setup_segment`]).
+    pub(super) k: u32,
 }
 
 /// Projected bundle radius (pixels) from which a bundle's fibres are drawn, blended in until
@@ -349,6 +351,7 @@ pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<(
         cap1,
         row_lo: row_lo as u32,
         row_hi: row_hi as u32,
+        k: k as u32,
     };
     Some((seg, fibres))
 }
