@@ -281,6 +281,8 @@ fn shading_in_map_order_is_shading_in_vertex_order() {
         },
     );
     e.frame(0.5);
+    // A frame shades only the points the raster can show; this shades them all, in map order.
+    e.shade();
     let eye = e.camera().eye();
     let r = e.fiber.params().radius_m;
     let tangents = e.strands.tangents.clone();
