@@ -288,8 +288,8 @@ impl Engine {
     }
     /// Vertex colours of the last render (linear RGB), indexed like `strands.positions`. After
     /// [`Engine::render`] (or [`Engine::frame`]) the points the raster could not draw (behind
-    /// the solids at every pixel their segments touch, or off screen) are black, as they were
-    /// not shaded; after [`Engine::shade`] every point is shaded.
+    /// the solids or nearer hair at every pixel their segments touch, or off screen) are
+    /// black, as they were not shaded; after [`Engine::shade`] every point is shaded.
     pub fn colors(&self) -> &[Vec3] {
         &self.colors
     }
