@@ -22,7 +22,15 @@
 //! multiply the same factors ≤ 1 in another order; rounding moves them by a few ulps, far less
 //! than the factor 2). The compositing therefore stops at or before f*, never reaching a
 //! dropped fragment. Ties are never dropped (the test is strict), so equal depths keep their
-//! order. `tests/raster_lines.rs` and the byte comparisons in BENCHMARKS.md check it.
+//! order. The tests below composite every fragment against the dropped set, bit for bit
+//! (random lines, widths and opacities over a solid); BENCHMARKS.md lists the frames compared
+//! with `cmp`.
+//!
+//! Rows of a segment, and whole segments, are skipped without their pixel loop where every
+//! pixel they could cover is already hidden at a depth nearer than all of the segment (its
+//! larger end 1/depth with `cull.rs`'s margin over the interpolation): per row against the
+//! row's cull depths, per segment against the 16-column tiles of `cull.rs` once all their
+//! pixels are hidden.
 
 use glam::Vec4;
 
