@@ -2,6 +2,8 @@
 //! fragments (one per covered pixel: its covered sub-samples, opacity, 1/depth, colour),
 //! grouped by pixel and composited in each pixel's own depth order, per sub-sample.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use glam::{Vec3, Vec4};
 
 use super::cull::MARGIN;
@@ -134,9 +136,9 @@ pub(super) const HIDDEN: f32 = 1.0 / 1024.0;
 /// run far to near by mid-point depth, ties in input order, so emission runs near to far),
 /// pixels in row order within a segment.
 ///
-/// With `seen`, only which segments keep a fragment is wanted: their [`Seg::k`] are pushed
-/// onto it in emission order, and `frags` is emptied after each segment (the hiding has taken
-/// its fragments in), so it stays as small as one segment's.
+/// With `seen`, only which segments keep a fragment is wanted: `seen[k]` is set for each such
+/// segment ([`Seg::k`]), and `frags` is emptied after each segment (the hiding has taken its
+/// fragments in), so it stays as small as one segment's.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn emit_fragments(
     p: &Params,
@@ -146,7 +148,7 @@ pub(super) fn emit_fragments(
     band: Rows,
     hiding: &mut Hiding,
     frags: &mut Vec<Frag>,
-    mut seen: Option<&mut Vec<u32>>,
+    seen: Option<&[AtomicBool]>,
 ) {
     frags.clear();
     hiding.reset(band.depth.len(), p.width);
@@ -157,10 +159,12 @@ pub(super) fn emit_fragments(
         if hiding.hides(s) {
             continue;
         }
-        if let Some(seen) = seen.as_deref_mut() {
+        if let Some(seen) = seen {
             emit_one(p, s, fibres, band, hiding, frags);
             if !frags.is_empty() {
-                seen.push(s.k);
+                if let Some(flag) = seen.get(s.k as usize) {
+                    flag.store(true, Ordering::Relaxed);
+                }
                 frags.clear();
             }
         } else {

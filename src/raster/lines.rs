@@ -90,6 +90,7 @@
 //! one-pixel fringe.
 
 use std::sync::Mutex;
+use std::sync::atomic::AtomicBool;
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -127,6 +128,9 @@ pub struct LineScratch {
     /// (which reads colours only to reject non-finite ones; always zero).
     pub(super) far_bands: Vec<FarDepth>,
     pub(super) blank_colours: Vec<Vec3>,
+    /// For [`super::seen_points`]: per segment of the call, whether it kept a fragment in some
+    /// band (set from any thread; a union, so the same for any thread count). Only grown.
+    pub(super) seen_segs: Vec<AtomicBool>,
 }
 
 #[derive(Debug, Default)]
@@ -145,9 +149,6 @@ pub(super) struct BandScratch {
     pub(super) run_keys: Vec<u64>,
     /// Which pixels nearer hair already hides, while the band's fragments are emitted.
     pub(super) hiding: Hiding,
-    /// For [`super::seen_points`]: the segments that kept a fragment in the bands this thread
-    /// went through, by [`Seg::k`].
-    pub(super) seen: Vec<u32>,
 }
 
 impl LineScratch {
@@ -169,7 +170,6 @@ impl LineScratch {
                     + t.starts.capacity() * 4
                     + t.run_keys.capacity() * 8
                     + t.hiding.capacity_bytes()
-                    + t.seen.capacity() * 4
             })
             .sum();
         let far: usize = self.far_bands.iter().map(|f| f.tiles.capacity() * 4).sum();
@@ -178,6 +178,7 @@ impl LineScratch {
             + far
             + self.far_bands.capacity() * size_of::<FarDepth>()
             + self.blank_colours.capacity() * size_of::<Vec3>()
+            + self.seen_segs.capacity()
             + per_thread
             + self.chunks.capacity()
             + self.threads.capacity() * size_of::<Mutex<BandScratch>>()
@@ -531,8 +532,8 @@ mod tests {
     use super::*;
     use glam::Vec3;
 
-    /// After a warm-up frame, drawing the same scene again allocates nothing, whichever thread
-    /// draws which band.
+    /// After a warm-up frame (a whole draw, the seen points, the draw of the seen segments),
+    /// drawing the same scene again allocates nothing, whichever thread draws which band.
     #[test]
     fn warmed_up_scratch_does_not_grow() {
         // Two threads, so bands move between the per-thread buffers from frame to frame.
@@ -558,12 +559,20 @@ mod tests {
             };
             let mut fb = Framebuffer::new(160, 120, Vec3::ZERO);
             let mut scratch = LineScratch::default();
-            draw_polylines(&mut fb, &cam, &lines, &LineStyle::default(), &mut scratch);
+            let style = LineStyle::default();
+            // A frame as the engine draws it: the seen points, then their segments.
+            let mut seen = Vec::new();
+            let mut frame = |scratch: &mut LineScratch| {
+                draw_polylines(&mut fb, &cam, &lines, &style, scratch);
+                super::super::seen_points(&fb, &cam, &lines, &style, scratch, &mut seen);
+                draw_seen_polylines(&mut fb, &cam, &lines, &style, scratch, &seen);
+            };
+            frame(&mut scratch);
             let warm = scratch.capacity_bytes();
             assert!(warm > 0);
             // Many frames: the per-thread buffers must not outgrow each other frame after frame.
             for _ in 0..40 {
-                draw_polylines(&mut fb, &cam, &lines, &LineStyle::default(), &mut scratch);
+                frame(&mut scratch);
                 assert_eq!(scratch.capacity_bytes(), warm);
             }
         });

@@ -21,7 +21,7 @@
 //! at t = 2 s shades 20,114 of its 103,850 points (75,609 with the solids' cull alone), and
 //! the hair's raster walks only the seen segments.
 
-use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -30,7 +30,7 @@ use super::camera::Camera;
 use super::fragment::{Rows, emit_fragments};
 use super::framebuffer::Framebuffer;
 use super::lines::{
-    BAND_ROWS, BandScratch, LineScratch, bin_segments, build_far_bands, gather_band,
+    BAND_ROWS, LineScratch, MAX_SEGMENTS, bin_segments, build_far_bands, gather_band,
     lock_thread_scratch, prepare, prepare_threads,
 };
 use super::polyline::{LineStyle, Polylines};
@@ -76,9 +76,16 @@ pub fn seen_points(
         return;
     };
     prepare_threads(&mut scratch.threads, width);
-    for t in scratch.threads.iter_mut() {
-        lock_mut(t).seen.clear();
+    let seg_count = blank.segment_count().min(MAX_SEGMENTS);
+    if scratch.seen_segs.len() < seg_count {
+        scratch
+            .seen_segs
+            .resize_with(seg_count, || AtomicBool::new(false));
     }
+    let flags = &scratch.seen_segs[..seg_count];
+    flags
+        .par_iter()
+        .for_each(|f| f.store(false, Ordering::Relaxed));
     let far_bands = &scratch.far_bands;
     let chunks = &scratch.chunks[..chunk_count];
     let fibres = &scratch.fibres[..];
@@ -103,22 +110,19 @@ pub fn seen_points(
                 rows,
                 &mut t.hiding,
                 &mut t.frags,
-                Some(&mut t.seen),
+                Some(flags),
             );
         });
-    for t in scratch.threads.iter_mut() {
-        for &k in &lock_mut(t).seen {
-            let k = k as usize;
-            let a = (k / segs_per_line) * n + k % segs_per_line;
-            if let Some(pair) = seen.get_mut(a..a + 2) {
-                pair.fill(true);
+    // Each line's points from its segments' flags, in parallel over lines.
+    seen.par_chunks_mut(n)
+        .zip(flags.par_chunks(segs_per_line))
+        .for_each(|(points, segs)| {
+            for (i, f) in segs.iter().enumerate() {
+                if f.load(Ordering::Relaxed)
+                    && let Some(pair) = points.get_mut(i..i + 2)
+                {
+                    pair.fill(true);
+                }
             }
-        }
-    }
-}
-
-/// A thread's buffers outside the parallel loop.
-fn lock_mut(t: &mut Mutex<BandScratch>) -> &mut BandScratch {
-    t.get_mut()
-        .unwrap_or_else(std::sync::PoisonError::into_inner)
+        });
 }
