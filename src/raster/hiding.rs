@@ -35,7 +35,7 @@
 use glam::Vec4;
 
 use super::cull::{MARGIN, TILE_COLS, reach_tiles};
-use super::fragment::{Frag, HIDDEN, NIBBLE_LANES};
+use super::samples::{HIDDEN, NIBBLE_LANES};
 use super::segment::Seg;
 
 /// Transmittance under which a pixel's sub-samples count as hidden here: half the
@@ -118,43 +118,39 @@ impl Hiding {
         self.cull_iz.get(range)
     }
 
-    /// Takes in `kept`, fragments just emitted and kept, each pixel at most once.
+    /// Takes in a fragment just emitted and kept at `pixel` (1/depth `iz`, opacity `alpha`
+    /// over the sub-samples of `mask`); a segment adds at most one per pixel.
     #[inline]
-    pub(super) fn add(&mut self, kept: &[Frag]) {
-        for f in kept {
-            let p = f.pixel as usize;
-            let (Some(far), Some(trans), Some(cull)) = (
-                self.far_iz.get_mut(p),
-                self.trans.get_mut(p),
-                self.cull_iz.get_mut(p),
-            ) else {
-                continue;
-            };
-            if *far == 0.0 {
-                *trans = [Vec4::ONE; 4];
-            }
-            let iz = f32::from_bits(f.iz_bits);
-            *far = if *far == 0.0 || iz < *far { iz } else { *far };
-            let a = Vec4::splat(f.alpha);
-            let mut most = Vec4::ZERO;
-            for (g, t) in trans.iter_mut().enumerate() {
-                let m = NIBBLE_LANES[usize::from((f.mask >> (4 * g)) & 15)];
-                *t -= *t * (m * a);
-                most = most.max(*t);
-            }
-            if most.max_element() < HIDDEN_HERE {
-                if *cull == 0.0 {
-                    // First hidden: one pixel fewer open in its tile.
-                    let t = (p % self.width) / TILE_COLS;
-                    if let (Some(open), Some(tc)) =
-                        (self.open.get_mut(t), self.tile_cull_iz.get_mut(t))
-                    {
-                        *open = open.saturating_sub(1);
-                        *tc = tc.min(*far);
-                    }
+    pub(super) fn add(&mut self, pixel: usize, iz: f32, alpha: f32, mask: u16) {
+        let (Some(far), Some(trans), Some(cull)) = (
+            self.far_iz.get_mut(pixel),
+            self.trans.get_mut(pixel),
+            self.cull_iz.get_mut(pixel),
+        ) else {
+            return;
+        };
+        if *far == 0.0 {
+            *trans = [Vec4::ONE; 4];
+        }
+        *far = if *far == 0.0 || iz < *far { iz } else { *far };
+        let a = Vec4::splat(alpha);
+        let mut most = Vec4::ZERO;
+        for (g, t) in trans.iter_mut().enumerate() {
+            let m = NIBBLE_LANES[usize::from((mask >> (4 * g)) & 15)];
+            *t -= *t * (m * a);
+            most = most.max(*t);
+        }
+        if most.max_element() < HIDDEN_HERE {
+            if *cull == 0.0 {
+                // First hidden: one pixel fewer open in its tile.
+                let t = (pixel % self.width) / TILE_COLS;
+                if let (Some(open), Some(tc)) = (self.open.get_mut(t), self.tile_cull_iz.get_mut(t))
+                {
+                    *open = open.saturating_sub(1);
+                    *tc = tc.min(*far);
                 }
-                *cull = *far;
             }
+            *cull = *far;
         }
     }
 

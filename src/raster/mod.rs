@@ -34,6 +34,7 @@ mod hiding;
 pub mod lines;
 pub mod mesh;
 pub mod polyline;
+mod samples;
 mod seen;
 mod segment;
 pub mod solid;

@@ -17,8 +17,8 @@ use glam::Vec3;
 
 use super::bundle::Profiles;
 use super::camera::View;
-use super::fragment::{SAMPLE_REACH, sample_reach};
 use super::polyline::{LineWidth, MAX_WIDTH_PX, Polylines};
+use super::samples::{SAMPLE_REACH, sample_reach};
 
 /// A segment ready to rasterise, in pixel coordinates.
 #[derive(Clone, Copy, Debug)]
