@@ -12,13 +12,17 @@
 //!   to front per band of rows, in parallel and bit-identical for any thread count;
 //!   `segment` clips and projects each segment (near plane in view space, then a screen guard
 //!   rectangle in float, before anything becomes an index), `fragment` turns a band's
-//!   segments into per-pixel fragments and composites them, `hiding` drops the fragments
-//!   nearer hair hides before they are stored, and `bundle` draws a line that
-//!   stands for a bundle of fibres as its fibres where they are wide enough to see.
+//!   segments into per-pixel fragments (on the sub-samples of `samples`) and composites them,
+//!   `hiding` drops the fragments nearer hair hides before they are stored, and `bundle`
+//!   draws a line that stands for a bundle of fibres as its fibres where they are wide enough
+//!   to see.
+//! - `seen`: [`seen_points`], the points whose segments keep a fragment, found by the lines'
+//!   own emission without colour, so a caller shades only those and draws them with
+//!   [`draw_seen_polylines`] (the same picture).
 //!
 //! A frame: [`Framebuffer::clear`], [`draw_ellipsoid`] for each solid and [`draw_mesh`] for a
-//! mesh, then [`draw_polylines`]
-//! with a [`LineScratch`] kept across frames.
+//! mesh, then [`draw_polylines`] (or [`seen_points`], shading, [`draw_seen_polylines`]) with a
+//! [`LineScratch`] kept across frames.
 
 // `!(a > b)` is used on purpose throughout: unlike `a <= b` it is also true for NaN, so one
 // test rejects both out-of-range and NaN values.
