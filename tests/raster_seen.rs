@@ -66,7 +66,7 @@ fn draw_seen(
         lines,
         style,
         &mut LineScratch::default(),
-        seen,
+        Some(seen),
     );
     let colour = fb.color.iter().flat_map(|c| c.to_array().map(f32::to_bits));
     (

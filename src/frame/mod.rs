@@ -16,11 +16,10 @@
 //! raster (2)  hair lines (the seen segments)   -> framebuffer
 //! ```
 //!
-//! The solids come before the shading so that hair hidden behind them at every pixel, or
-//! behind nearer hair (`raster::seen_points` runs the hair raster's emission without colour:
-//! four fifths of the default dance's points at 1280 × 720, a quarter behind the character),
-//! is neither shaded nor drawn: the frame is the same, byte for byte. The solids' time counts
-//! as the raster's, the search for the seen points as the shading's.
+//! The solids come before the shading so that hair hidden behind them or nearer hair at every
+//! pixel (`raster::seen_points`: four fifths of the dance's points at 1280 × 720) is neither
+//! shaded nor drawn, the same frame byte for byte. The solids' time counts as the raster's,
+//! the search for the seen points as the shading's.
 //!
 //! [`Engine`] owns every buffer, so after the first frame no stage allocates. Each stage is a
 //! plain function of explicit inputs (see the modules); the engine only sequences them and
@@ -47,7 +46,7 @@ use crate::map::{CountModel, LightMap, MapGeometry, MapStats, OccluderMesh, Soli
 use crate::motion::{CharacterPose, Motion, Pose};
 use crate::raster::{
     Camera, Framebuffer, LineScratch, Mesh, MeshScratch, Surface, Texture, draw_ellipsoid,
-    draw_mesh, draw_polylines, draw_seen_polylines, seen_points,
+    draw_mesh, draw_seen_polylines, seen_points,
 };
 use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};
 use crate::shade::{Lighting, ShadeScratch, VertexGeometry, shade_skin, shade_vertices};
@@ -472,24 +471,14 @@ impl Engine {
             &self.bundle_points,
             &self.style,
         );
-        if only_seen {
-            draw_seen_polylines(
-                &mut self.fb,
-                &self.camera,
-                &lines,
-                &self.config.line,
-                &mut self.scratch,
-                &self.seen,
-            );
-        } else {
-            draw_polylines(
-                &mut self.fb,
-                &self.camera,
-                &lines,
-                &self.config.line,
-                &mut self.scratch,
-            );
-        }
+        draw_seen_polylines(
+            &mut self.fb,
+            &self.camera,
+            &lines,
+            &self.config.line,
+            &mut self.scratch,
+            only_seen.then_some(&self.seen[..]),
+        );
     }
 
     /// The character's mesh (or the head and the body spheres), opaque, lit through the hair's

@@ -97,16 +97,14 @@ pub(super) fn emit_fragments(
         if hiding.hides(s) {
             continue;
         }
-        if let Some(seen) = seen {
-            emit_one(p, s, fibres, band, hiding, frags);
-            if !frags.is_empty() {
-                if let Some(flag) = seen.get(s.k as usize) {
-                    flag.store(true, Ordering::Relaxed);
-                }
-                frags.clear();
+        emit_one(p, s, fibres, band, hiding, frags);
+        if let Some(seen) = seen
+            && !frags.is_empty()
+        {
+            if let Some(flag) = seen.get(s.k as usize) {
+                flag.store(true, Ordering::Relaxed);
             }
-        } else {
-            emit_one(p, s, fibres, band, hiding, frags);
+            frags.clear();
         }
     }
 }

@@ -84,23 +84,6 @@ impl Hiding {
         }
     }
 
-    /// Grows the buffers for bands of `pixels` pixels in rows of `width`, so that later bands
-    /// of that size allocate nothing.
-    pub(super) fn reserve(&mut self, pixels: usize, width: usize) {
-        let tiles = width.div_ceil(TILE_COLS);
-        for (v, n) in [
-            (&mut self.cull_iz, pixels),
-            (&mut self.far_iz, pixels),
-            (&mut self.tile_cull_iz, tiles),
-        ] {
-            v.reserve(n.saturating_sub(v.len()));
-        }
-        self.open.reserve(tiles.saturating_sub(self.open.len()));
-        if self.trans.len() < pixels {
-            self.trans.resize(pixels, [Vec4::ONE; 4]);
-        }
-    }
-
     /// Bytes of heap held.
     pub(super) fn capacity_bytes(&self) -> usize {
         (self.cull_iz.capacity()

@@ -253,26 +253,15 @@ pub fn draw_polylines(
     style: &LineStyle,
     scratch: &mut LineScratch,
 ) {
-    draw_where(fb, cam, lines, style, scratch, None);
+    draw_seen_polylines(fb, cam, lines, style, scratch, None);
 }
 
 /// [`draw_polylines`] of only the segments whose two points `seen` marks (one flag per point
-/// of `lines`). With the flags [`super::seen_points`] gave for these lines' geometry over the
-/// same framebuffer, the image is [`draw_polylines`]'s to the bit, whatever the colours of
-/// the unmarked points, as long as the marked ones are finite: the segments left out keep no
-/// fragment (`seen.rs`).
+/// of `lines`), or of every segment with `None`. With the flags [`super::seen_points`] gave
+/// for these lines' geometry over the same framebuffer, the image is [`draw_polylines`]'s to
+/// the bit, whatever the colours of the unmarked points, as long as the marked ones are
+/// finite: the segments left out keep no fragment (`seen.rs`).
 pub fn draw_seen_polylines(
-    fb: &mut Framebuffer,
-    cam: &Camera,
-    lines: &Polylines,
-    style: &LineStyle,
-    scratch: &mut LineScratch,
-    seen: &[bool],
-) {
-    draw_where(fb, cam, lines, style, scratch, Some(seen));
-}
-
-fn draw_where(
     fb: &mut Framebuffer,
     cam: &Camera,
     lines: &Polylines,
@@ -427,11 +416,12 @@ pub(super) fn prepare_threads(pool: &mut Vec<Mutex<BandScratch>>, width: usize) 
     if pool.len() < threads {
         pool.resize_with(threads, Default::default);
     }
+    // Sized for a whole band now, so no band of a warmed-up frame grows them.
     for t in pool.iter_mut() {
         t.get_mut()
             .unwrap_or_else(std::sync::PoisonError::into_inner)
             .hiding
-            .reserve(width * BAND_ROWS, width);
+            .reset(width * BAND_ROWS, width);
     }
 }
 
@@ -565,7 +555,7 @@ mod tests {
             let mut frame = |scratch: &mut LineScratch| {
                 draw_polylines(&mut fb, &cam, &lines, &style, scratch);
                 super::super::seen_points(&fb, &cam, &lines, &style, scratch, &mut seen);
-                draw_seen_polylines(&mut fb, &cam, &lines, &style, scratch, &seen);
+                draw_seen_polylines(&mut fb, &cam, &lines, &style, scratch, Some(&seen));
             };
             frame(&mut scratch);
             let warm = scratch.capacity_bytes();
