@@ -1,9 +1,10 @@
 //! Hair hidden behind the solids or behind nearer hair is neither drawn nor shaded
 //! (`raster::seen_points`, `src/raster/cull.rs`, `src/raster/hiding.rs`): the colour of a
-//! point left unmarked never reaches a pixel, drawing only the marked points' segments
-//! (`draw_seen_polylines`) gives the same bits, so the engine's frame, which shades only the
-//! marked points, is the frame of shading them all, byte for byte; and it does leave out the
-//! hair behind the character and under the hair's surface.
+//! point left unmarked never reaches a pixel, compositing the fragments the seen pass kept
+//! with the marked points' colours (`draw_seen_polylines`) gives the same bits, so the
+//! engine's frame, which shades only the marked points, is the frame of shading them all,
+//! byte for byte; and it does leave out the hair behind the character and under the hair's
+//! surface.
 
 use glam::{Vec2, Vec3};
 use proptest::prelude::*;
@@ -51,23 +52,19 @@ fn draw(fb: &Framebuffer, lines: &Polylines, style: &LineStyle) -> (Vec<u32>, Ve
     )
 }
 
-/// Draws only the segments of `lines` whose points `seen` marks, over a copy of `fb`; the
+/// The engine's two passes over a copy of `fb`: the seen points of `lines` (kept fragments),
+/// then the kept fragments drawn with the colours of `shaded` (the same geometry); the
 /// colour and coverage bits.
 fn draw_seen(
     fb: &Framebuffer,
     lines: &Polylines,
+    shaded: &Polylines,
     style: &LineStyle,
-    seen: &[bool],
 ) -> (Vec<u32>, Vec<u32>) {
     let mut fb = fb.clone();
-    draw_seen_polylines(
-        &mut fb,
-        &camera(),
-        lines,
-        style,
-        &mut LineScratch::default(),
-        Some(seen),
-    );
+    let mut scratch = LineScratch::default();
+    seen_points(&fb, &camera(), lines, style, &mut scratch, &mut Vec::new());
+    draw_seen_polylines(&mut fb, &camera(), shaded, style, &mut scratch);
     let colour = fb.color.iter().flat_map(|c| c.to_array().map(f32::to_bits));
     (
         colour.collect(),
@@ -133,8 +130,8 @@ fn check(
         "an unmarked point's colour reached a pixel"
     );
     assert!(
-        whole == draw_seen(fb, &changed, &style, &seen),
-        "drawing only the marked points' segments changed the frame"
+        whole == draw_seen(fb, &lines, &changed, &style),
+        "drawing the kept fragments with the marked points' colours changed the frame"
     );
     let marked = seen.iter().filter(|&&s| s).count();
     (marked, points.len() - marked)
@@ -255,4 +252,101 @@ fn engine_frame_is_the_frame_of_shading_every_point() {
         unshaded * 2 > n,
         "only {unshaded} of {n} points left unshaded: nothing hidden was skipped"
     );
+}
+
+/// Without fragments kept for lines of this shape on a framebuffer of this size, the second
+/// pass draws every segment itself: with no seen pass at all, after a seen pass of other
+/// lines, and a second time after the kept fragments were spent. A marked point whose shaded
+/// colour is not finite draws black, never NaN.
+#[test]
+fn second_pass_without_its_kept_fragments_draws_everything() {
+    let points: Vec<Vec3> = (0..8)
+        .flat_map(|l| {
+            (0..6).map(move |i| {
+                Vec3::new(
+                    -0.8 + i as f32 * 0.3,
+                    -0.5 + l as f32 * 0.12,
+                    0.1 * l as f32,
+                )
+            })
+        })
+        .collect();
+    let colours: Vec<Vec3> = (0..points.len())
+        .map(|i| Vec3::new(0.1 * (i % 9) as f32, 0.4, 0.7))
+        .collect();
+    let widths = vec![0.01; points.len()];
+    let lines = Polylines {
+        points: &points,
+        colors: &colours,
+        widths_m: &widths,
+        points_per_line: 6,
+        bundle: None,
+    };
+    let style = LineStyle::projected(1.0);
+    let fb = with_solids(&[None; 384]);
+    let whole = draw(&fb, &lines, &style);
+    let second = |scratch: &mut LineScratch| {
+        let mut out = fb.clone();
+        draw_seen_polylines(&mut out, &camera(), &lines, &style, scratch);
+        let colour = out
+            .color
+            .iter()
+            .flat_map(|c| c.to_array().map(f32::to_bits));
+        (
+            colour.collect::<Vec<_>>(),
+            out.coverage.iter().map(|c| c.to_bits()).collect::<Vec<_>>(),
+        )
+    };
+    let mut scratch = LineScratch::default();
+    assert!(second(&mut scratch) == whole, "no seen pass");
+    let other = Polylines {
+        points: &points[..points.len() / 2],
+        colors: &colours[..points.len() / 2],
+        widths_m: &widths[..points.len() / 2],
+        ..lines
+    };
+    seen_points(
+        &fb,
+        &camera(),
+        &other,
+        &style,
+        &mut scratch,
+        &mut Vec::new(),
+    );
+    assert!(
+        second(&mut scratch) == whole,
+        "after a seen pass of other lines"
+    );
+    seen_points(
+        &fb,
+        &camera(),
+        &lines,
+        &style,
+        &mut scratch,
+        &mut Vec::new(),
+    );
+    assert!(second(&mut scratch) == whole, "with the kept fragments");
+    assert!(second(&mut scratch) == whole, "once they are spent");
+
+    // A non-finite shaded colour: the kept fragments of its segments draw black.
+    let mut seen = Vec::new();
+    seen_points(&fb, &camera(), &lines, &style, &mut scratch, &mut seen);
+    let bad: Vec<Vec3> = colours
+        .iter()
+        .zip(&seen)
+        .enumerate()
+        .map(|(i, (c, &s))| if s && i % 3 == 0 { Vec3::NAN } else { *c })
+        .collect();
+    assert!(bad.iter().any(|c| c.is_nan()), "no marked point to spoil");
+    let mut out = fb.clone();
+    let spoiled = Polylines {
+        colors: &bad,
+        ..lines
+    };
+    draw_seen_polylines(&mut out, &camera(), &spoiled, &style, &mut scratch);
+    assert!(
+        out.color.iter().all(|c| c.is_finite()),
+        "a NaN reached a pixel"
+    );
+    assert!(out.coverage.iter().all(|c| c.is_finite()));
 }

@@ -11,15 +11,16 @@
 //!                                                per light, built side by side
 //! raster (1)  character mesh (or the head and  -> framebuffer: colour and opaque depth
 //!             body spheres)
-//! shading     seen_points(depth, strands),     -> vertex colours, summed over the lights, of
-//!             shade_vertices(maps, fiber)         the points the raster can draw
-//! raster (2)  hair lines (the seen segments)   -> framebuffer
+//! shading     seen_points(depth, strands),     -> the hair's fragments (kept) and vertex
+//!             shade_vertices(maps, fiber)         colours, summed over the lights, of the
+//!                                                points the raster can draw
+//! raster (2)  draw_seen_polylines(colours)     -> framebuffer: the kept fragments composited
 //! ```
 //!
 //! The solids come before the shading so that hair hidden behind them or nearer hair at every
 //! pixel (`raster::seen_points`: four fifths of the dance's points at 1280 × 720) is neither
 //! shaded nor drawn, the same frame byte for byte. The solids' time counts as the raster's,
-//! the search for the seen points as the shading's.
+//! the first pass over the hair (emission, which finds the seen points) as the shading's.
 //!
 //! [`Engine`] owns every buffer, so after the first frame no stage allocates. Each stage is a
 //! plain function of explicit inputs (see the modules); the engine only sequences them and
@@ -46,7 +47,7 @@ use crate::map::{CountModel, LightMap, MapGeometry, MapStats, OccluderMesh, Soli
 use crate::motion::{CharacterPose, Motion, Pose};
 use crate::raster::{
     Camera, Framebuffer, LineScratch, Mesh, MeshScratch, Surface, Texture, draw_ellipsoid,
-    draw_mesh, draw_seen_polylines, seen_points,
+    draw_mesh, draw_polylines, draw_seen_polylines, seen_points,
 };
 use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};
 use crate::shade::{Lighting, ShadeScratch, VertexGeometry, shade_skin, shade_vertices};
@@ -462,7 +463,7 @@ impl Engine {
     }
 
     /// The hair over what is drawn, with the current colours and widths; with `only_seen`, the
-    /// segments [`seen_points`] found (the same picture, the rest unshaded).
+    /// fragments [`seen_points`] kept (the same picture, the unseen points unshaded).
     fn draw_hair(&mut self, only_seen: bool) {
         let lines = hair_lines(
             &self.strands,
@@ -471,13 +472,18 @@ impl Engine {
             &self.bundle_points,
             &self.style,
         );
-        draw_seen_polylines(
+        // The seen pass kept the fragments; they take the shaded colours here.
+        let draw = if only_seen {
+            draw_seen_polylines
+        } else {
+            draw_polylines
+        };
+        draw(
             &mut self.fb,
             &self.camera,
             &lines,
             &self.config.line,
             &mut self.scratch,
-            only_seen.then_some(&self.seen[..]),
         );
     }
 

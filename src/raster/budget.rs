@@ -2,7 +2,7 @@
 //! before they exist, from the sizes and constants `framebuffer.rs` and `lines.rs` use.
 
 use super::fragment::Frag;
-use super::segment::{Fibres, Seg};
+use super::segment::{Fibres, Seg, SegColours};
 use super::{Framebuffer, LineScratch};
 use glam::Vec3;
 
@@ -10,7 +10,7 @@ use glam::Vec3;
 const BAND_ROWS: u64 = super::lines::BAND_ROWS as u64;
 /// Segments per set-up chunk, as `lines.rs` bins them.
 const SETUP_CHUNK: u64 = super::lines::SETUP_CHUNK as u64;
-/// Bytes of one fragment (pixel, 1/depth bits, α, sub-sample mask, RGB).
+/// Bytes of one fragment (pixel, 1/depth bits, α, sub-sample mask, segment and place on it).
 const FRAG_BYTES: u64 = size_of::<Frag>() as u64;
 /// The densest band's fragments over the mean band's (see [`LineScratch::estimated_bytes`]).
 const DENSEST_BAND: f64 = 5.0;
@@ -24,12 +24,16 @@ impl Framebuffer {
 }
 
 impl LineScratch {
-    /// Bytes [`draw_polylines`](super::draw_polylines) keeps for `segments` segments on an
+    /// Bytes the line raster keeps ([`draw_polylines`](super::draw_polylines), or
+    /// [`seen_points`](super::seen_points) then
+    /// [`draw_seen_polylines`](super::draw_seen_polylines)) for `segments` segments on an
     /// image `height` rows high, when a segment covers `rows_per_segment` rows on average:
     /// each segment is binned once per band it touches (`Seg` in its chunk's list, then
     /// gathered into a band's list) with two `u64` sort keys, plus one list header per chunk
-    /// and band; and per worker thread, the fragments of the densest band twice (emitted, then
-    /// grouped by pixel; `Frag` is 28 bytes). A segment covers about 3 pixels per row it
+    /// and band, and has its two colours; every band's fragments, kept by the seen pass until
+    /// they are composited (`Frag` is 24 bytes; all it emits, a bound on what it keeps); and
+    /// per worker thread, the fragments of the densest band twice (emitted by a one-pass draw,
+    /// then grouped by pixel). A segment covers about 3 pixels per row it
     /// crosses at the 0.5 px minimum width; the densest band is taken as 5 times the mean
     /// band, at most the whole frame (the hair's screen rows hold it all in a fraction of the
     /// bands; measured over the bands of a frame, the densest holds 3.5 times the mean for
@@ -45,6 +49,7 @@ impl LineScratch {
         let touched = (1.0 + rows_per_segment.max(0.0) / BAND_ROWS as f64).min(bands as f64);
         let binned = (segments as f64 * touched).ceil() as u64;
         let per_binned = 2 * size_of::<Seg>() as u64 + 2 * size_of::<u64>() as u64;
+        let colours = segments.saturating_mul(size_of::<SegColours>() as u64);
         let headers = segments.div_ceil(SETUP_CHUNK) * bands * size_of::<Vec<Seg>>() as u64;
         let fragments = segments as f64 * 3.0 * (rows_per_segment.max(0.0) + 1.0);
         let densest_band = (fragments * DENSEST_BAND / bands as f64)
@@ -52,6 +57,7 @@ impl LineScratch {
             .ceil() as u64;
         let threads = rayon::current_num_threads().max(1) as u64;
         let per_thread = densest_band.saturating_mul(2 * FRAG_BYTES);
+        let kept = (fragments.ceil() as u64).saturating_mul(FRAG_BYTES);
         let fibres = if bundles {
             segments.saturating_mul(size_of::<Fibres>() as u64)
         } else {
@@ -60,6 +66,8 @@ impl LineScratch {
         binned
             .saturating_mul(per_binned)
             .saturating_add(fibres)
+            .saturating_add(colours)
+            .saturating_add(kept)
             .saturating_add(headers)
             .saturating_add(per_thread.saturating_mul(threads))
     }

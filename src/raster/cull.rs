@@ -161,7 +161,7 @@ mod tests {
         let (mut dropped, mut kept) = (0, 0);
         let mut frags = Vec::new();
         for k in 0..points.len() - 1 {
-            let Some((seg, f)) = setup_segment(&params, &lines, k) else {
+            let Some((seg, f, _)) = setup_segment(&params, &lines, k) else {
                 continue;
             };
             fibres[k] = f;
@@ -280,7 +280,7 @@ mod tests {
             height: H,
             bundle: None,
         };
-        let (seg, _) = setup_segment(&params, &lines, 0).expect("on screen");
+        let (seg, _, _) = setup_segment(&params, &lines, 0).expect("on screen");
         assert!(!far.hides(&seg));
     }
 }

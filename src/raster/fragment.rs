@@ -11,10 +11,12 @@ use super::hiding::Hiding;
 use super::samples::{
     ALL_SAMPLES, HIDDEN, NIBBLE_LANES, SAMPLE_COUNT, SAMPLE_X, SAMPLE_Y, sample_reach,
 };
-use super::segment::{Fibres, NO_FIBRES, Params, Seg};
+use super::segment::{Fibres, NO_FIBRES, Params, Seg, SegColours};
 use crate::keysort::sort_keys;
 
-/// One segment's coverage of one pixel: 28 bytes.
+/// One segment's coverage of one pixel: 24 bytes. It holds where on its segment the pixel
+/// centre lies instead of a colour, so fragments can be emitted before the hair is shaded and
+/// take their colour when composited (their segment's [`SegColours`]).
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Frag {
     /// Pixel index within the band.
@@ -26,8 +28,18 @@ pub(super) struct Frag {
     /// The pixel's sub-samples it covers, one bit each (sample `4g + l` is lane l of
     /// [`SAMPLE_X`]`[g]`).
     pub(super) mask: u16,
-    /// Linear RGB at the pixel centre.
-    color: Vec3,
+    /// Its segment's index in the draw call ([`Seg::k`]) and the pixel centre's place along
+    /// the (clipped) segment, in [0, 1].
+    pub(super) seg: u32,
+    pub(super) t: f32,
+}
+
+/// A fragment's linear RGB: its segment's colours at its place along it (black for a segment
+/// the table does not hold).
+#[inline(always)]
+fn colour_of(f: &Frag, colours: &[SegColours]) -> Vec3 {
+    let [c0, c1] = colours.get(f.seg as usize).copied().unwrap_or_default();
+    c0 + (c1 - c0) * f.t
 }
 
 /// One band's opaque depth, what fragments are emitted against: rows `row0 ..` of the
@@ -74,9 +86,7 @@ fn fmax(a: f32, b: f32) -> f32 {
 /// run far to near by mid-point depth, ties in input order, so emission runs near to far),
 /// pixels in row order within a segment.
 ///
-/// With `seen`, only which segments keep a fragment is wanted: `seen[k]` is set for each such
-/// segment ([`Seg::k`]), and `frags` is emptied after each segment (the hiding has taken its
-/// fragments in), so it stays as small as one segment's.
+/// With `seen`, `seen[k]` is also set for each segment ([`Seg::k`]) that keeps a fragment.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn emit_fragments(
     p: &Params,
@@ -97,14 +107,13 @@ pub(super) fn emit_fragments(
         if hiding.hides(s) {
             continue;
         }
+        let before = frags.len();
         emit_one(p, s, fibres, band, hiding, frags);
         if let Some(seen) = seen
-            && !frags.is_empty()
+            && frags.len() > before
+            && let Some(flag) = seen.get(s.k as usize)
         {
-            if let Some(flag) = seen.get(s.k as usize) {
-                flag.store(true, Ordering::Relaxed);
-            }
-            frags.clear();
+            flag.store(true, Ordering::Relaxed);
         }
     }
 }
@@ -263,7 +272,8 @@ fn emit_segment<C: Fn(f32, f32, f32, f32) -> (u16, f32)>(
                     // lines); α must stay in [0, 1].
                     alpha: fmin(alpha, 1.0),
                     mask,
-                    color: s.c0 + (s.c1 - s.c0) * t,
+                    seg: s.k,
+                    t,
                 };
             }
             n += usize::from(keep);
@@ -315,6 +325,7 @@ pub(super) fn sort_by_pixel(
 /// Composites every pixel's fragments in depth order, nearest first (by 1/depth descending;
 /// equal depths in reverse emission order), each of the pixel's [`SAMPLE_COUNT`] sub-samples
 /// with its own transmittance T_k: a fragment of opacity α adds `colour · α · Σ T_k / 16`
+/// (its colour from its segment's in `colours`, [`SegColours`])
 /// over the sub-samples k in its mask and multiplies their T_k by 1 − α. What was in the
 /// pixel before (the background, the solids) is seen through the mean T. A pixel stops where
 /// every T_k is under [`HIDDEN`], and then counts as fully covered.
@@ -329,9 +340,11 @@ pub(super) fn sort_by_pixel(
 /// longest run) to permute. A stable sort by one key has one result, so the order is the same
 /// whichever way a run is sorted; the insertion keeps equal depths in their order, so the
 /// keys' positions still tell emission order.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn composite(
     sorted: &mut [Frag],
     starts: &[u32],
+    colours: &[SegColours],
     run_keys: &mut Vec<u64>,
     key_tmp: &mut Vec<u64>,
     spare: &mut [Frag],
@@ -359,7 +372,8 @@ pub(super) fn composite(
                 seen += m * *t;
                 *t -= *t * (m * a);
             }
-            acc += f.color * (alpha * seen.element_sum() * (1.0 / SAMPLE_COUNT as f32));
+            acc +=
+                colour_of(f, colours) * (alpha * seen.element_sum() * (1.0 / SAMPLE_COUNT as f32));
             // Stop where every sub-sample is hidden: what is behind (farther hair, and the
             // background) would add under 1/1024 of itself, and the pixel counts as covered.
             let most = trans[0]
@@ -441,10 +455,11 @@ fn insertion_sort_by_depth(run: &mut [Frag], budget: usize) -> bool {
 mod tests {
     use super::*;
 
-    /// A fragment stays 28 bytes: the per-thread buffers hold millions of them a frame.
+    /// A fragment stays 24 bytes: a frame keeps millions of them between emission and
+    /// compositing.
     #[test]
-    fn fragment_is_28_bytes() {
-        assert_eq!(size_of::<Frag>(), 28);
+    fn fragment_is_24_bytes() {
+        assert_eq!(size_of::<Frag>(), 24);
     }
 
     proptest::proptest! {
@@ -468,7 +483,8 @@ mod tests {
                     iz_bits: (0.5 + 0.1 * (depth + slope * i as u32) as f32).to_bits(),
                     alpha: i as f32,
                     mask: ALL_SAMPLES,
-                    color: Vec3::ZERO,
+                    seg: 0,
+                    t: 0.0,
                 })
                 .collect();
             // Runs hold reverse emission order, so ties come latest emitted first.
@@ -503,7 +519,8 @@ mod tests {
                     iz_bits: (1.0 + d as f32).to_bits(),
                     alpha: i as f32,
                     mask: ALL_SAMPLES,
-                    color: Vec3::ZERO,
+                    seg: 0,
+                    t: 0.0,
                 })
                 .collect()
         };

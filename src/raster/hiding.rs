@@ -228,8 +228,13 @@ mod tests {
                 }
             })
             .collect();
+        let mut colours = vec![[Vec3::ZERO; 2]; lines.segment_count()];
         let segs_all: Vec<Seg> = (0..lines.segment_count())
-            .filter_map(|k| setup_segment(&params, &lines, k).map(|(s, _)| s))
+            .filter_map(|k| {
+                let (s, _, c) = setup_segment(&params, &lines, k)?;
+                colours[k] = c;
+                Some(s)
+            })
             .collect();
         let fibres: Vec<Fibres> = Vec::new();
         let mut out = Drawn {
@@ -304,6 +309,7 @@ mod tests {
                 composite(
                     &mut sorted,
                     &starts,
+                    &colours,
                     &mut Vec::new(),
                     &mut Vec::new(),
                     &mut frags,

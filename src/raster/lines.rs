@@ -30,7 +30,8 @@
 //!    position low: far to near, ties in input order, a total order fixed by the input alone —
 //!    with a radix sort, and walks each segment over its rows, near to far, visiting only
 //!    pixel centres in the segment's expanded rectangle, emitting one fragment (pixel,
-//!    1/depth, sub-sample mask, α, colour) per covered pixel whose centre is nearer than the
+//!    1/depth, sub-sample mask, α, its segment and place along it: the colour is looked up
+//!    when it is composited) per covered pixel whose centre is nearer than the
 //!    opaque depth (`fragment.rs`, branch-free: each pixel writes a slot, kept only when
 //!    covered and in front) and not behind nearer hair that already hides it (`hiding.rs`:
 //!    the fragments the compositing would never reach, 89% of smooth's and 53% of dense
@@ -102,7 +103,7 @@ use super::fragment::{Band, Frag, Rows, composite, emit_fragments, sort_by_pixel
 use super::framebuffer::Framebuffer;
 use super::hiding::Hiding;
 use super::polyline::{LineStyle, LineWidth, Polylines};
-use super::segment::{Fibres, Params, Seg, setup_segment};
+use super::segment::{Fibres, Params, Seg, SegColours, setup_segment};
 use crate::keysort::sort_keys;
 
 /// Image rows per band (the unit of parallel work and of binning).
@@ -123,6 +124,11 @@ pub struct LineScratch {
     /// With bundles, each segment's [`Fibres`] (by segment index): grown to the largest call,
     /// never cleared; an entry is read only for a segment whose set-up wrote it this call.
     pub(super) fibres: Vec<Fibres>,
+    /// Each segment's colours at its ends (by segment index), what its fragments are
+    /// composited with: written by the set-up, or for the seen segments by
+    /// [`super::draw_seen_polylines`]. Only grown; an entry is read only for a segment that
+    /// kept a fragment this call.
+    pub(super) colours: Vec<SegColours>,
     /// Every band's farthest opaque depth per tile (`cull.rs`), rebuilt by each call from
     /// the framebuffer's depth; and for [`seen_points`] a colour per point for the set-up
     /// (which reads colours only to reject non-finite ones; always zero).
@@ -131,6 +137,19 @@ pub struct LineScratch {
     /// For [`super::seen_points`]: per segment of the call, whether it kept a fragment in some
     /// band (set from any thread; a union, so the same for any thread count). Only grown.
     pub(super) seen_segs: Vec<AtomicBool>,
+    /// Per band, the fragments [`super::seen_points`] kept, in emission order, until
+    /// [`super::draw_seen_polylines`] composites them; and what they were emitted for.
+    pub(super) kept: Vec<Vec<Frag>>,
+    pub(super) kept_for: Option<KeptFor>,
+}
+
+/// What [`LineScratch::kept`] was emitted for: the framebuffer's size and the lines' shape.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct KeptFor {
+    pub(super) width: u32,
+    pub(super) height: u32,
+    pub(super) points: usize,
+    pub(super) points_per_line: usize,
 }
 
 #[derive(Debug, Default)]
@@ -173,7 +192,14 @@ impl LineScratch {
             })
             .sum();
         let far: usize = self.far_bands.iter().map(|f| f.tiles.capacity() * 4).sum();
+        let kept: usize = self
+            .kept
+            .iter()
+            .map(|k| k.capacity() * size_of::<Frag>() + size_of::<Vec<Frag>>())
+            .sum();
         segs * size_of::<Seg>()
+            + self.colours.capacity() * size_of::<SegColours>()
+            + kept
             + self.fibres.capacity() * size_of::<Fibres>()
             + far
             + self.far_bands.capacity() * size_of::<FarDepth>()
@@ -253,22 +279,7 @@ pub fn draw_polylines(
     style: &LineStyle,
     scratch: &mut LineScratch,
 ) {
-    draw_seen_polylines(fb, cam, lines, style, scratch, None);
-}
-
-/// [`draw_polylines`] of only the segments whose two points `seen` marks (one flag per point
-/// of `lines`), or of every segment with `None`. With the flags [`super::seen_points`] gave
-/// for these lines' geometry over the same framebuffer, the image is [`draw_polylines`]'s to
-/// the bit, whatever the colours of the unmarked points, as long as the marked ones are
-/// finite: the segments left out keep no fragment (`seen.rs`).
-pub fn draw_seen_polylines(
-    fb: &mut Framebuffer,
-    cam: &Camera,
-    lines: &Polylines,
-    style: &LineStyle,
-    scratch: &mut LineScratch,
-    only: Option<&[bool]>,
-) {
+    scratch.kept_for = None;
     let width = fb.width as usize;
     let Some(params) = prepare(fb, cam, lines, style, &mut scratch.profiles) else {
         return;
@@ -278,7 +289,7 @@ pub fn draw_seen_polylines(
         lines,
         &mut scratch.chunks,
         &mut scratch.fibres,
-        only,
+        &mut scratch.colours,
     ) else {
         return;
     };
@@ -291,6 +302,7 @@ pub fn draw_seen_polylines(
     let far_bands = &scratch.far_bands;
     let chunks = &scratch.chunks[..chunk_count];
     let fibres = &scratch.fibres[..];
+    let colours = &scratch.colours[..];
     let pool = &scratch.threads;
     fb.color
         .par_chunks_mut(width * BAND_ROWS)
@@ -325,14 +337,13 @@ pub fn draw_seen_polylines(
                 &mut t.frags,
                 None,
             );
-            sort_by_pixel(&t.frags, &mut t.sorted, &mut t.starts, band.color.len());
-            // The emitted fragments are spent: their buffer is the composite's spare.
-            composite(
+            composite_band(
+                &mut t.frags,
                 &mut t.sorted,
-                &t.starts,
+                &mut t.starts,
                 &mut t.run_keys,
                 &mut t.tmp,
-                &mut t.frags,
+                colours,
                 band,
             );
         });
@@ -342,30 +353,48 @@ pub fn draw_seen_polylines(
     equalise_capacities(&mut scratch.threads);
 }
 
+/// Groups a band's emitted fragments `frags` by pixel (into `sorted` and `starts`) and
+/// composites them into `band` with their segments' `colours`; `frags` is spent afterwards
+/// (it is the compositing's spare buffer).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn composite_band(
+    frags: &mut [Frag],
+    sorted: &mut Vec<Frag>,
+    starts: &mut Vec<u32>,
+    run_keys: &mut Vec<u64>,
+    key_tmp: &mut Vec<u64>,
+    colours: &[SegColours],
+    band: Band,
+) {
+    sort_by_pixel(frags, sorted, starts, band.color.len());
+    composite(sorted, starts, colours, run_keys, key_tmp, frags, band);
+}
+
 /// 1. Set-up and binning, parallel over fixed chunks of segments (the chunking is fixed, so it
 ///    does not depend on the thread count): each chunk bins into its own lists in
-///    `scratch.chunks`, and with bundles writes its segments' `Fibres` into its part of the
-///    call's table. With `only`, a segment is set up only when both its points are marked.
-///    Returns how many chunks were filled, `None` when there are no segments.
+///    `scratch.chunks`, writes its segments' colours into its part of the call's `colours`
+///    and with bundles their `Fibres` into `fibres`. Returns how many chunks were filled,
+///    `None` when there are no segments.
 pub(super) fn bin_segments(
     params: &Params,
     lines: &Polylines,
     chunks: &mut Vec<Vec<Vec<Seg>>>,
     fibres: &mut Vec<Fibres>,
-    only: Option<&[bool]>,
+    colours: &mut Vec<SegColours>,
 ) -> Option<usize> {
     let seg_count = lines.segment_count().min(MAX_SEGMENTS);
     if seg_count == 0 {
         return None;
     }
-    let n = lines.points_per_line;
-    let segs_per_line = n.saturating_sub(1).max(1);
     let band_count = params.height.div_ceil(BAND_ROWS);
     let chunk_count = seg_count.div_ceil(SETUP_CHUNK);
     if chunks.len() < chunk_count {
         chunks.resize_with(chunk_count, Vec::new);
     }
-    let setup_chunk = |chunk: usize, bins: &mut Vec<Vec<Seg>>, fibres: &mut [Fibres]| {
+    let setup_chunk = |chunk: usize,
+                       bins: &mut Vec<Vec<Seg>>,
+                       fibres: &mut [Fibres],
+                       colours: &mut [SegColours]| {
         if bins.len() < band_count {
             bins.resize_with(band_count, Vec::new);
         }
@@ -375,15 +404,12 @@ pub(super) fn bin_segments(
         }
         let first = chunk * SETUP_CHUNK;
         for k in first..(first + SETUP_CHUNK).min(seg_count) {
-            if let Some(flags) = only {
-                let a = (k / segs_per_line) * n + k % segs_per_line;
-                if flags.get(a..a + 2) != Some(&[true, true]) {
-                    continue;
-                }
-            }
-            if let Some((seg, f)) = setup_segment(params, lines, k) {
+            if let Some((seg, f, c)) = setup_segment(params, lines, k) {
                 if let Some(slot) = fibres.get_mut(k - first) {
                     *slot = f;
+                }
+                if let Some(slot) = colours.get_mut(k - first) {
+                    *slot = c;
                 }
                 let (b0, b1) = (
                     seg.row_lo as usize / BAND_ROWS,
@@ -395,17 +421,23 @@ pub(super) fn bin_segments(
             }
         }
     };
-    let chunks = chunks[..chunk_count].par_iter_mut().enumerate();
+    // Only grown: a segment's entries are read only when its set-up wrote them this call.
+    if colours.len() < seg_count {
+        colours.resize(seg_count, SegColours::default());
+    }
+    let chunks = chunks[..chunk_count]
+        .par_iter_mut()
+        .zip(colours.par_chunks_mut(SETUP_CHUNK))
+        .enumerate();
     if params.bundle.is_some() {
-        // Only grown: a segment's entry is read only when its set-up wrote it this call.
         if fibres.len() < seg_count {
             fibres.resize(seg_count, Fibres::default());
         }
-        chunks
-            .zip(fibres.par_chunks_mut(SETUP_CHUNK))
-            .for_each(|((chunk, bins), fibres)| setup_chunk(chunk, bins, fibres));
+        chunks.zip(fibres.par_chunks_mut(SETUP_CHUNK)).for_each(
+            |((chunk, (bins, colours)), fibres)| setup_chunk(chunk, bins, fibres, colours),
+        );
     } else {
-        chunks.for_each(|(chunk, bins)| setup_chunk(chunk, bins, &mut []));
+        chunks.for_each(|(chunk, (bins, colours))| setup_chunk(chunk, bins, &mut [], colours));
     }
     Some(chunk_count)
 }
@@ -522,7 +554,7 @@ mod tests {
     use super::*;
     use glam::Vec3;
 
-    /// After a warm-up frame (a whole draw, the seen points, the draw of the seen segments),
+    /// After a warm-up frame (a whole draw, the seen points, the draw of the kept fragments),
     /// drawing the same scene again allocates nothing, whichever thread draws which band.
     #[test]
     fn warmed_up_scratch_does_not_grow() {
@@ -550,12 +582,12 @@ mod tests {
             let mut fb = Framebuffer::new(160, 120, Vec3::ZERO);
             let mut scratch = LineScratch::default();
             let style = LineStyle::default();
-            // A frame as the engine draws it: the seen points, then their segments.
+            // A frame as the engine draws it: the seen points, then the kept fragments.
             let mut seen = Vec::new();
             let mut frame = |scratch: &mut LineScratch| {
                 draw_polylines(&mut fb, &cam, &lines, &style, scratch);
                 super::super::seen_points(&fb, &cam, &lines, &style, scratch, &mut seen);
-                draw_seen_polylines(&mut fb, &cam, &lines, &style, scratch, Some(&seen));
+                super::super::draw_seen_polylines(&mut fb, &cam, &lines, &style, scratch);
             };
             frame(&mut scratch);
             let warm = scratch.capacity_bytes();

@@ -16,9 +16,10 @@
 //!   `hiding` drops the fragments nearer hair hides before they are stored, and `bundle`
 //!   draws a line that stands for a bundle of fibres as its fibres where they are wide enough
 //!   to see.
-//! - `seen`: [`seen_points`], the points whose segments keep a fragment, found by the lines'
-//!   own emission without colour, so a caller shades only those and draws them with
-//!   [`draw_seen_polylines`] (the same picture).
+//! - `seen`: the lines in two passes around shading: [`seen_points`] emits without colour,
+//!   keeps the fragments and marks the points whose segments keep one, so a caller shades
+//!   only those; [`draw_seen_polylines`] composites the kept fragments with the shaded
+//!   colours (the picture of [`draw_polylines`]).
 //!
 //! A frame: [`Framebuffer::clear`], [`draw_ellipsoid`] for each solid and [`draw_mesh`] for a
 //! mesh, then [`draw_polylines`] (or [`seen_points`], shading, [`draw_seen_polylines`]) with a
@@ -45,8 +46,8 @@ pub mod solid;
 
 pub use camera::{Camera, DEFAULT_NEAR_M, View};
 pub use framebuffer::Framebuffer;
-pub use lines::{LineScratch, MAX_SEGMENTS, draw_polylines, draw_seen_polylines};
+pub use lines::{LineScratch, MAX_SEGMENTS, draw_polylines};
 pub use mesh::{Mesh, MeshScratch, Surface, Texture, draw_mesh};
 pub use polyline::{Bundle, LineStyle, LineWidth, MAX_WIDTH_PX, Polylines};
-pub use seen::seen_points;
+pub use seen::{draw_seen_polylines, seen_points};
 pub use solid::draw_ellipsoid;

@@ -1,25 +1,29 @@
-//! Which points of the hair the raster could show, found before they are shaded: the engine
-//! shades only those ([`seen_points`]) and draws only their segments
-//! ([`super::draw_seen_polylines`]), with the same picture to the bit.
+//! The line raster in two passes around shading: which points of the hair the raster could
+//! show is found before they are shaded, so the engine shades only those ([`seen_points`]),
+//! and the fragments that pass emits are kept and composited once the points have their
+//! colours ([`draw_seen_polylines`]), with [`super::draw_polylines`]'s picture to the bit.
 //!
 //! A segment is seen when, drawn as [`super::draw_polylines`] draws it, it keeps at least one
 //! fragment: it is on screen, in front of the solids somewhere (`cull.rs`), and not behind
-//! nearer hair that already hides every pixel it covers (`hiding.rs`). The test runs the
-//! raster's own set-up, binning and emission over every band, with the colours left out
-//! (whether a fragment is kept depends on the geometry, the widths and the opacity, never on
-//! colour) and without storing, sorting or compositing any fragment.
+//! nearer hair that already hides every pixel it covers (`hiding.rs`). The first pass runs the
+//! raster's own set-up, binning and emission over every band with the colours left out:
+//! whether a fragment is kept depends on the geometry, the widths and the opacity, never on
+//! colour, and a fragment holds its segment and its place along it instead of a colour
+//! (`fragment.rs`). So the pass keeps exactly the fragments a whole draw keeps, in the same
+//! order, each band's in its own buffer. The second pass sets up the seen segments again with
+//! the shaded colours (the same clipping, so the same colours at their clipped ends), then
+//! groups each band's fragments by pixel and composites them as the one-pass draw does.
 //!
-//! Why drawing only the seen segments gives the same picture: in each band the raster emits
-//! segments near to far and keeps a fragment by the pixels' hiding state, which only kept
-//! fragments change. A segment left out kept nothing in this pass, so without it every later
-//! segment meets the same state and keeps the same fragments, in the same order (the band's
-//! keys order by depth, then by input position, which leaving segments out keeps). Unseen
-//! points then draw nothing whatever their colour, and need no shading.
+//! Unseen points draw nothing whatever their colour, and need no shading: at 1280 × 720, of
+//! the segment-band pairs left after the solids' cull, 19% keep a fragment on smooth, 10% on
+//! curly and 45% on dense one-fibre hair; the dance's frame at t = 2 s shades 20,114 of its
+//! 103,850 points (75,609 with the solids' cull alone).
 //!
-//! What it saves: at 1280 × 720, of the segment-band pairs left after the solids' cull, 19%
-//! keep a fragment on smooth, 10% on curly and 45% on dense one-fibre hair; the dance's frame
-//! at t = 2 s shades 20,114 of its 103,850 points (75,609 with the solids' cull alone), and
-//! the hair's raster walks only the seen segments.
+//! Rejected, measured (issue 12, stop 47): the first version stored nothing in the first pass
+//! and drew the seen segments again after shading (leaving out the others keeps every other
+//! fragment, in order). Walking them twice cost smooth 12.8 ms of emission a frame (CPU, both
+//! threads) and dense a second emission of 45% of its segments; keeping the fragments costs
+//! 24 bytes each until they are composited (dense at 1280 × 720: 8.3 M, 0.25 GB of peak).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -27,19 +31,22 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::camera::Camera;
-use super::fragment::{Rows, emit_fragments};
+use super::fragment::{Band, Rows, emit_fragments};
 use super::framebuffer::Framebuffer;
 use super::lines::{
-    BAND_ROWS, LineScratch, MAX_SEGMENTS, bin_segments, build_far_bands, gather_band,
-    lock_thread_scratch, prepare, prepare_threads,
+    BAND_ROWS, KeptFor, LineScratch, MAX_SEGMENTS, SETUP_CHUNK, bin_segments, build_far_bands,
+    composite_band, draw_polylines, gather_band, lock_thread_scratch, prepare, prepare_threads,
 };
 use super::polyline::{LineStyle, Polylines};
+use super::segment::{SegColours, setup_segment};
 
 /// Marks in `seen` (one flag per point of `lines`, resized to match) the points of every
 /// segment [`super::draw_polylines`] would keep a fragment of in `fb` as it is now (module
-/// doc); the rest draw nothing whatever their colour, so a caller may leave them unshaded and
-/// draw with [`super::draw_seen_polylines`]. The same flags for any thread count (each band's
-/// pass is the raster's, and the flags are a union). Call it after the solids are drawn.
+/// doc); the rest draw nothing whatever their colour, so a caller may leave them unshaded.
+/// The fragments are kept in `scratch` for [`draw_seen_polylines`], which composites them
+/// once the marked points have their colours. The same flags and fragments for any thread
+/// count (each band's pass is the raster's, and the flags are a union). Call it after the
+/// solids are drawn.
 pub fn seen_points(
     fb: &Framebuffer,
     cam: &Camera,
@@ -50,6 +57,8 @@ pub fn seen_points(
 ) {
     seen.clear();
     seen.resize(lines.points.len(), false);
+    // Nothing kept until this pass has emitted every band.
+    scratch.kept_for = None;
     let n = lines.points_per_line;
     let segs_per_line = n.saturating_sub(1);
     let width = fb.width as usize;
@@ -71,7 +80,7 @@ pub fn seen_points(
         &blank,
         &mut scratch.chunks,
         &mut scratch.fibres,
-        None,
+        &mut scratch.colours,
     ) else {
         return;
     };
@@ -86,15 +95,20 @@ pub fn seen_points(
     flags
         .par_iter()
         .for_each(|f| f.store(false, Ordering::Relaxed));
+    let bands = fb.depth.len().div_ceil(width * BAND_ROWS);
+    if scratch.kept.len() < bands {
+        scratch.kept.resize_with(bands, Vec::new);
+    }
     let far_bands = &scratch.far_bands;
     let chunks = &scratch.chunks[..chunk_count];
     let fibres = &scratch.fibres[..];
     let pool = &scratch.threads;
     fb.depth
         .par_chunks(width * BAND_ROWS)
+        .zip(scratch.kept.par_iter_mut())
         .enumerate()
         .with_max_len(1)
-        .for_each(|(b, depth)| {
+        .for_each(|(b, (depth, kept))| {
             let mut guard = lock_thread_scratch(pool);
             let t = &mut *guard;
             gather_band(t, b, chunks, far_bands.get(b));
@@ -109,10 +123,16 @@ pub fn seen_points(
                 &t.keys,
                 rows,
                 &mut t.hiding,
-                &mut t.frags,
+                kept,
                 Some(flags),
             );
         });
+    scratch.kept_for = Some(KeptFor {
+        width: fb.width,
+        height: fb.height,
+        points: lines.points.len(),
+        points_per_line: n,
+    });
     // Each line's points from its segments' flags, in parallel over lines.
     seen.par_chunks_mut(n)
         .zip(flags.par_chunks(segs_per_line))
@@ -124,5 +144,79 @@ pub fn seen_points(
                     pair.fill(true);
                 }
             }
+        });
+}
+
+/// Draws into `fb` the fragments the last [`seen_points`] kept, with the colours `lines` now
+/// has: [`super::draw_polylines`]'s image to the bit when `lines` has the geometry and widths
+/// `seen_points` was given and `fb` is as it was then (the colours of the points it left
+/// unmarked are never read). A marked point's non-finite colour draws black. Without kept
+/// fragments for lines of this shape on a framebuffer of this size (no `seen_points` since
+/// the last draw), it draws every segment with [`super::draw_polylines`].
+pub fn draw_seen_polylines(
+    fb: &mut Framebuffer,
+    cam: &Camera,
+    lines: &Polylines,
+    style: &LineStyle,
+    scratch: &mut LineScratch,
+) {
+    let shape = KeptFor {
+        width: fb.width,
+        height: fb.height,
+        points: lines.points.len(),
+        points_per_line: lines.points_per_line,
+    };
+    if scratch.kept_for.take() != Some(shape) {
+        return draw_polylines(fb, cam, lines, style, scratch);
+    }
+    let width = fb.width as usize;
+    let Some(params) = prepare(fb, cam, lines, style, &mut scratch.profiles) else {
+        return;
+    };
+    // The seen segments' colours, from the set-up with the shaded colours (the geometry, so
+    // the clipping, is the pass's): parallel over the set-up's fixed chunks.
+    let seg_count = lines.segment_count().min(MAX_SEGMENTS);
+    let flags = &scratch.seen_segs[..seg_count.min(scratch.seen_segs.len())];
+    scratch
+        .colours
+        .par_chunks_mut(SETUP_CHUNK)
+        .zip(flags.par_chunks(SETUP_CHUNK))
+        .enumerate()
+        .for_each(|(chunk, (colours, flags))| {
+            for (i, (c, f)) in colours.iter_mut().zip(flags).enumerate() {
+                if f.load(Ordering::Relaxed) {
+                    *c = setup_segment(&params, lines, chunk * SETUP_CHUNK + i)
+                        .map_or(SegColours::default(), |(_, _, c)| c);
+                }
+            }
+        });
+    prepare_threads(&mut scratch.threads, width);
+    let colours = &scratch.colours[..];
+    let pool = &scratch.threads;
+    fb.color
+        .par_chunks_mut(width * BAND_ROWS)
+        .zip(fb.depth.par_chunks(width * BAND_ROWS))
+        .zip(fb.coverage.par_chunks_mut(width * BAND_ROWS))
+        .zip(scratch.kept.par_iter_mut())
+        .enumerate()
+        .with_max_len(1)
+        .for_each(|(b, (((color, depth), coverage), kept))| {
+            let mut guard = lock_thread_scratch(pool);
+            let t = &mut *guard;
+            let band = Band {
+                row0: b * BAND_ROWS,
+                color,
+                depth,
+                coverage,
+            };
+            composite_band(
+                kept,
+                &mut t.sorted,
+                &mut t.starts,
+                &mut t.run_keys,
+                &mut t.tmp,
+                colours,
+                band,
+            );
         });
 }

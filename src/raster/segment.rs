@@ -40,8 +40,6 @@ pub(super) struct Seg {
     /// 1 / view depth at the two ends, 1/m.
     pub(super) iz0: f32,
     pub(super) iz1: f32,
-    pub(super) c0: Vec3,
-    pub(super) c1: Vec3,
     /// Half the drawn width in pixels, and the coverage multiplier (opacity).
     pub(super) half_w: f32,
     pub(super) opacity: f32,
@@ -108,10 +106,20 @@ pub(super) struct Params<'a> {
     pub(super) bundle: Option<&'a Profiles>,
 }
 
+/// A segment's colours at its two (clipped) ends, linear RGB: its fragments are composited
+/// with `c0 + (c1 − c0)·t`, t their place along it. Kept apart from [`Seg`] (by segment
+/// index), so fragments can be emitted before the hair is shaded.
+pub(super) type SegColours = [Vec3; 2];
+
 /// Clips and projects segment `k` of `lines`; `None` when nothing of it can be seen. A
-/// bundle's segment drawn as its fibres comes with its [`Fibres`] (and [`Seg::fibres`] = k).
+/// bundle's segment drawn as its fibres comes with its [`Fibres`] (and [`Seg::fibres`] = k);
+/// every segment with its colours at its clipped ends.
 #[inline]
-pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<(Seg, Fibres)> {
+pub(super) fn setup_segment(
+    p: &Params,
+    lines: &Polylines,
+    k: usize,
+) -> Option<(Seg, Fibres, SegColours)> {
     let n = lines.points_per_line;
     let segs_per_line = n.checked_sub(1).filter(|&s| s > 0)?;
     let (line, i) = (k / segs_per_line, k % segs_per_line);
@@ -342,8 +350,6 @@ pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<(
         inv_ux,
         iz0,
         iz1,
-        c0,
-        c1,
         half_w,
         opacity,
         fibres: if inv_r > 0.0 { k as u32 } else { NO_FIBRES },
@@ -353,7 +359,7 @@ pub(super) fn setup_segment(p: &Params, lines: &Polylines, k: usize) -> Option<(
         row_hi: row_hi as u32,
         k: k as u32,
     };
-    Some((seg, fibres))
+    Some((seg, fibres, [c0, c1]))
 }
 
 /// A segment's projected width in pixels, from its ends' physical widths over their depths
