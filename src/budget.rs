@@ -455,6 +455,7 @@ pub fn estimate(
             product: format!("{} segments on {} rows", grouped(segments), config.height),
             bytes: LineScratch::estimated_bytes(
                 segments,
+                config.width,
                 config.height,
                 sample_len_m * px_per_m,
                 style.strands.fibers_per_strand.round() >= 2.0,
@@ -613,9 +614,11 @@ mod tests {
             &RunPlan::default(),
         );
         est.check(&Budget::default()).unwrap();
-        // About 270 MB, most of it the light map's per-frame entries (each sample piece is
-        // splatted to 4 columns): a tenth of the default budget.
-        assert!(est.memory_bytes() < DEFAULT_MEMORY_BYTES / 10, "{est:#?}");
+        // About 470 MB: the hair line raster (227 MB at 800 × 800, most of it the fragments
+        // kept from the seen pass to the composite, bounded by all it could emit) and the
+        // light map's per-frame entries (136 MB; each sample piece is splatted to 4
+        // columns): under an eighth of the default budget.
+        assert!(est.memory_bytes() < DEFAULT_MEMORY_BYTES / 8, "{est:#?}");
         assert!(est.work_cpu_s() < DEFAULT_WORK_CPU_S / 100.0, "{est:#?}");
     }
 

@@ -350,3 +350,64 @@ fn second_pass_without_its_kept_fragments_draws_everything() {
     );
     assert!(out.coverage.iter().all(|c| c.is_finite()));
 }
+
+/// A band that would keep more fragments than the seen pass holds for it (64 a pixel of the
+/// band) is emitted again by the second pass: 90 faint wide lines stacked over the same rows
+/// (nothing hides anything), each covering its band's every pixel, give the one-pass draw's
+/// bits, whatever the colours of the points the pass left unmarked.
+#[test]
+fn bands_over_the_kept_bound_are_emitted_again() {
+    // 20 px wide lines (41.5 px a metre at 2 m) across the whole width, at rows 8 to 28.
+    let points: Vec<Vec3> = (0..90)
+        .flat_map(|l| {
+            let z = -0.001 * l as f32;
+            [
+                Vec3::new(-2.0, 0.0, z),
+                Vec3::new(0.0, 0.0, z),
+                Vec3::new(2.0, 0.0, z),
+            ]
+        })
+        .collect();
+    let colours: Vec<Vec3> = (0..points.len())
+        .map(|i| Vec3::new(0.01 * (i % 97) as f32, 0.3, 0.9 - 0.005 * (i % 61) as f32))
+        .collect();
+    let widths = vec![0.48; points.len()];
+    let lines = Polylines {
+        points: &points,
+        colors: &colours,
+        widths_m: &widths,
+        points_per_line: 3,
+        bundle: None,
+    };
+    let style = LineStyle {
+        opacity: 0.02,
+        ..LineStyle::projected(1.0)
+    };
+    let fb = with_solids(&[None; 384]);
+    let whole = draw(&fb, &lines, &style);
+    let mut seen = Vec::new();
+    seen_points(
+        &fb,
+        &camera(),
+        &lines,
+        &style,
+        &mut LineScratch::default(),
+        &mut seen,
+    );
+    assert!(seen.iter().all(|&s| s), "a faint line was hidden");
+    assert!(
+        whole == draw_seen(&fb, &lines, &lines, &style),
+        "the frames differ"
+    );
+    // The stack covers its rows with 90 layers at 0.02 (1 − 0.98⁹⁰ = 0.84).
+    let mut out = fb.clone();
+    draw_polylines(
+        &mut out,
+        &camera(),
+        &lines,
+        &style,
+        &mut LineScratch::default(),
+    );
+    let covered = out.coverage.iter().filter(|&&c| c > 0.8).count();
+    assert!(covered >= 16 * W as usize, "only {covered} pixels covered");
+}

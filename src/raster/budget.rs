@@ -8,6 +8,8 @@ use glam::Vec3;
 
 /// Rows of a band, as `lines.rs` draws them.
 const BAND_ROWS: u64 = super::lines::BAND_ROWS as u64;
+/// Fragments a band keeps per pixel at most, as `seen.rs` keeps them.
+const KEEP_PER_PIXEL: u64 = super::lines::KEEP_PER_PIXEL as u64;
 /// Segments per set-up chunk, as `lines.rs` bins them.
 const SETUP_CHUNK: u64 = super::lines::SETUP_CHUNK as u64;
 /// Bytes of one fragment (pixel, 1/depth bits, α, sub-sample mask, segment and place on it).
@@ -27,13 +29,14 @@ impl LineScratch {
     /// Bytes the line raster keeps ([`draw_polylines`](super::draw_polylines), or
     /// [`seen_points`](super::seen_points) then
     /// [`draw_seen_polylines`](super::draw_seen_polylines)) for `segments` segments on an
-    /// image `height` rows high, when a segment covers `rows_per_segment` rows on average:
+    /// image `width` × `height`, when a segment covers `rows_per_segment` rows on average:
     /// each segment is binned once per band it touches (`Seg` in its chunk's list, then
     /// gathered into a band's list) with two `u64` sort keys, plus one list header per chunk
-    /// and band, and has its two colours; every band's fragments, kept by the seen pass until
-    /// they are composited (`Frag` is 24 bytes; all it emits, a bound on what it keeps); and
-    /// per worker thread, the fragments of the densest band twice (emitted by a one-pass draw,
-    /// then grouped by pixel). A segment covers about 3 pixels per row it
+    /// and band, and has its two colours; the fragments the seen pass keeps until they are
+    /// composited (`Frag` is 24 bytes; all it emits, and at most [`KEEP_PER_PIXEL`] a pixel
+    /// plus one segment's, a band's row span, per band); and per worker thread, the fragments
+    /// of the densest band twice (emitted, then grouped by pixel). A segment covers about 3
+    /// pixels per row it
     /// crosses at the 0.5 px minimum width; the densest band is taken as 5 times the mean
     /// band, at most the whole frame (the hair's screen rows hold it all in a fraction of the
     /// bands; measured over the bands of a frame, the densest holds 3.5 times the mean for
@@ -41,6 +44,7 @@ impl LineScratch {
     /// Lines that stand for `bundles` of fibres add a table of how each segment draws them.
     pub fn estimated_bytes(
         segments: u64,
+        width: u32,
         height: u32,
         rows_per_segment: f64,
         bundles: bool,
@@ -57,7 +61,11 @@ impl LineScratch {
             .ceil() as u64;
         let threads = rayon::current_num_threads().max(1) as u64;
         let per_thread = densest_band.saturating_mul(2 * FRAG_BYTES);
-        let kept = (fragments.ceil() as u64).saturating_mul(FRAG_BYTES);
+        let band_pixels = BAND_ROWS.saturating_mul(width as u64);
+        let kept_at_most = bands.saturating_mul(band_pixels.saturating_mul(KEEP_PER_PIXEL + 1));
+        let kept = (fragments.ceil() as u64)
+            .min(kept_at_most)
+            .saturating_mul(FRAG_BYTES);
         let fibres = if bundles {
             segments.saturating_mul(size_of::<Fibres>() as u64)
         } else {

@@ -86,7 +86,10 @@ fn fmax(a: f32, b: f32) -> f32 {
 /// run far to near by mid-point depth, ties in input order, so emission runs near to far),
 /// pixels in row order within a segment.
 ///
-/// With `seen`, `seen[k]` is also set for each segment ([`Seg::k`]) that keeps a fragment.
+/// With `seen = Some((flags, at_most))`, `flags[k]` is also set for each segment ([`Seg::k`])
+/// that keeps a fragment, and `frags` holds at most `at_most` fragments plus one segment's:
+/// past that it is emptied and the pass goes on for the flags alone. Returns whether `frags`
+/// holds every kept fragment (always without `seen`).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn emit_fragments(
     p: &Params,
@@ -96,10 +99,11 @@ pub(super) fn emit_fragments(
     band: Rows,
     hiding: &mut Hiding,
     frags: &mut Vec<Frag>,
-    seen: Option<&[AtomicBool]>,
-) {
+    seen: Option<(&[AtomicBool], usize)>,
+) -> bool {
     frags.clear();
     hiding.reset(band.depth.len(), p.width);
+    let mut whole = true;
     for &key in keys.iter().rev() {
         let Some(s) = segs.get((key & 0xFFFF_FFFF) as usize) else {
             continue;
@@ -109,13 +113,19 @@ pub(super) fn emit_fragments(
         }
         let before = frags.len();
         emit_one(p, s, fibres, band, hiding, frags);
-        if let Some(seen) = seen
-            && frags.len() > before
-            && let Some(flag) = seen.get(s.k as usize)
-        {
-            flag.store(true, Ordering::Relaxed);
+        if let Some((flags, at_most)) = seen {
+            if frags.len() > before
+                && let Some(flag) = flags.get(s.k as usize)
+            {
+                flag.store(true, Ordering::Relaxed);
+            }
+            if frags.len() > at_most {
+                frags.clear();
+                whole = false;
+            }
         }
     }
+    whole
 }
 
 /// [`emit_fragments`] for segment `s`: appends its kept fragments to `frags`.

@@ -139,17 +139,37 @@ pub struct LineScratch {
     pub(super) seen_segs: Vec<AtomicBool>,
     /// Per band, the fragments [`super::seen_points`] kept, in emission order, until
     /// [`super::draw_seen_polylines`] composites them; and what they were emitted for.
-    pub(super) kept: Vec<Vec<Frag>>,
+    pub(super) kept: Vec<KeptBand>,
     pub(super) kept_for: Option<KeptFor>,
 }
 
-/// What [`LineScratch::kept`] was emitted for: the framebuffer's size and the lines' shape.
+/// Most fragments a band keeps from the seen pass to the composite, per pixel of the band on
+/// average: what bounds their memory (24 bytes each, so 1.5 KB a pixel: 1.4 GB at
+/// 1280 × 720). A band that would keep more is emitted again by the composite instead.
+/// Measured (the most any preset keeps): dense one-fibre hair keeps 12.4 M fragments at
+/// 1280 × 720 (13 a pixel over the frame, 55 in its fullest band, every band kept whole); at
+/// 640 × 480 five of its 30 bands would keep more (and are emitted again). Smooth and curly
+/// keep under one a pixel in any band.
+pub(super) const KEEP_PER_PIXEL: usize = 64;
+
+/// One band's kept fragments.
+#[derive(Debug, Default)]
+pub(super) struct KeptBand {
+    pub(super) frags: Vec<Frag>,
+    /// Whether `frags` holds all of them (else it was over [`KEEP_PER_PIXEL`] and the band is
+    /// emitted again).
+    pub(super) whole: bool,
+}
+
+/// What [`LineScratch::kept`] was emitted for: the framebuffer's size, the lines' shape and the
+/// set-up chunks binned (still in [`LineScratch::chunks`], for bands emitted again).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) struct KeptFor {
     pub(super) width: u32,
     pub(super) height: u32,
     pub(super) points: usize,
     pub(super) points_per_line: usize,
+    pub(super) chunk_count: usize,
 }
 
 #[derive(Debug, Default)]
@@ -195,7 +215,7 @@ impl LineScratch {
         let kept: usize = self
             .kept
             .iter()
-            .map(|k| k.capacity() * size_of::<Frag>() + size_of::<Vec<Frag>>())
+            .map(|k| k.frags.capacity() * size_of::<Frag>() + size_of::<KeptBand>())
             .sum();
         segs * size_of::<Seg>()
             + self.colours.capacity() * size_of::<SegColours>()
@@ -512,7 +532,7 @@ fn grow_to<T>(v: &mut Vec<T>, cap: usize) {
 }
 
 /// Grows every thread's buffers to the largest capacity among them (a no-op once warm).
-fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
+pub(super) fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
     let mut need = [0usize; 7];
     let caps = |t: &BandScratch| {
         [

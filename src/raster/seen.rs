@@ -34,8 +34,9 @@ use super::camera::Camera;
 use super::fragment::{Band, Rows, emit_fragments};
 use super::framebuffer::Framebuffer;
 use super::lines::{
-    BAND_ROWS, KeptFor, LineScratch, MAX_SEGMENTS, SETUP_CHUNK, bin_segments, build_far_bands,
-    composite_band, draw_polylines, gather_band, lock_thread_scratch, prepare, prepare_threads,
+    BAND_ROWS, KEEP_PER_PIXEL, KeptFor, LineScratch, MAX_SEGMENTS, SETUP_CHUNK, bin_segments,
+    build_far_bands, composite_band, draw_polylines, equalise_capacities, gather_band,
+    lock_thread_scratch, prepare, prepare_threads,
 };
 use super::polyline::{LineStyle, Polylines};
 use super::segment::{SegColours, setup_segment};
@@ -97,8 +98,9 @@ pub fn seen_points(
         .for_each(|f| f.store(false, Ordering::Relaxed));
     let bands = fb.depth.len().div_ceil(width * BAND_ROWS);
     if scratch.kept.len() < bands {
-        scratch.kept.resize_with(bands, Vec::new);
+        scratch.kept.resize_with(bands, Default::default);
     }
+    let at_most = KEEP_PER_PIXEL * width * BAND_ROWS;
     let far_bands = &scratch.far_bands;
     let chunks = &scratch.chunks[..chunk_count];
     let fibres = &scratch.fibres[..];
@@ -116,15 +118,15 @@ pub fn seen_points(
                 row0: b * BAND_ROWS,
                 depth,
             };
-            emit_fragments(
+            kept.whole = emit_fragments(
                 &params,
                 &t.segs,
                 fibres,
                 &t.keys,
                 rows,
                 &mut t.hiding,
-                kept,
-                Some(flags),
+                &mut kept.frags,
+                Some((flags, at_most)),
             );
         });
     scratch.kept_for = Some(KeptFor {
@@ -132,6 +134,7 @@ pub fn seen_points(
         height: fb.height,
         points: lines.points.len(),
         points_per_line: n,
+        chunk_count,
     });
     // Each line's points from its segments' flags, in parallel over lines.
     seen.par_chunks_mut(n)
@@ -160,15 +163,21 @@ pub fn draw_seen_polylines(
     style: &LineStyle,
     scratch: &mut LineScratch,
 ) {
-    let shape = KeptFor {
-        width: fb.width,
-        height: fb.height,
-        points: lines.points.len(),
-        points_per_line: lines.points_per_line,
+    let chunk_count = match scratch.kept_for.take() {
+        Some(kept)
+            if kept
+                == (KeptFor {
+                    width: fb.width,
+                    height: fb.height,
+                    points: lines.points.len(),
+                    points_per_line: lines.points_per_line,
+                    chunk_count: kept.chunk_count,
+                }) =>
+        {
+            kept.chunk_count
+        }
+        _ => return draw_polylines(fb, cam, lines, style, scratch),
     };
-    if scratch.kept_for.take() != Some(shape) {
-        return draw_polylines(fb, cam, lines, style, scratch);
-    }
     let width = fb.width as usize;
     let Some(params) = prepare(fb, cam, lines, style, &mut scratch.profiles) else {
         return;
@@ -193,6 +202,10 @@ pub fn draw_seen_polylines(
     prepare_threads(&mut scratch.threads, width);
     let colours = &scratch.colours[..];
     let pool = &scratch.threads;
+    // For bands that kept too many: the pass's bins, bundle table and solids' depth tiles.
+    let chunks = &scratch.chunks[..chunk_count.min(scratch.chunks.len())];
+    let fibres = &scratch.fibres[..];
+    let far_bands = &scratch.far_bands;
     fb.color
         .par_chunks_mut(width * BAND_ROWS)
         .zip(fb.depth.par_chunks(width * BAND_ROWS))
@@ -209,8 +222,29 @@ pub fn draw_seen_polylines(
                 depth,
                 coverage,
             };
+            let frags = if kept.whole {
+                &mut kept.frags
+            } else {
+                // The same emission again, now storing every kept fragment.
+                gather_band(t, b, chunks, far_bands.get(b));
+                let rows = Rows {
+                    row0: band.row0,
+                    depth: band.depth,
+                };
+                emit_fragments(
+                    &params,
+                    &t.segs,
+                    fibres,
+                    &t.keys,
+                    rows,
+                    &mut t.hiding,
+                    &mut t.frags,
+                    None,
+                );
+                &mut t.frags
+            };
             composite_band(
-                kept,
+                frags,
                 &mut t.sorted,
                 &mut t.starts,
                 &mut t.run_keys,
@@ -219,4 +253,5 @@ pub fn draw_seen_polylines(
                 band,
             );
         });
+    equalise_capacities(&mut scratch.threads);
 }
