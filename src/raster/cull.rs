@@ -170,7 +170,6 @@ mod tests {
                 let mut far = FarDepth::default();
                 far.build(&depth[rows.clone()], W);
                 let band = Band {
-                    row0: b * 16,
                     color: &mut color[rows.clone()],
                     depth: &depth[rows.clone()],
                     coverage: &mut coverage[rows],
@@ -181,7 +180,7 @@ mod tests {
                     &fibres,
                     &[0],
                     Rows {
-                        row0: band.row0,
+                        row0: b * 16,
                         depth: band.depth,
                     },
                     &mut Default::default(),

@@ -50,9 +50,8 @@ pub(super) struct Rows<'a> {
     pub(super) depth: &'a [f32],
 }
 
-/// One band's pixels: rows `row0 ..` of the framebuffer.
+/// One band's pixels (whole rows of the framebuffer).
 pub(super) struct Band<'a> {
-    pub(super) row0: usize,
     pub(super) color: &'a mut [Vec3],
     pub(super) depth: &'a [f32],
     pub(super) coverage: &'a mut [f32],

@@ -262,7 +262,6 @@ mod tests {
             for cull in [true, false] {
                 let (mut color, mut coverage) = (vec![Vec3::splat(0.1); W * H], vec![0.0; W * H]);
                 let band = Band {
-                    row0: r0,
                     color: &mut color[rows.clone()],
                     depth: &depth[rows.clone()],
                     coverage: &mut coverage[rows.clone()],

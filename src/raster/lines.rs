@@ -319,9 +319,12 @@ pub fn draw_polylines(
     //    sort the fragments by pixel and depth, composite. Working memory is per thread.
     prepare_threads(&mut scratch.threads, width);
     build_far_bands(fb, &mut scratch.far_bands);
-    let far_bands = &scratch.far_bands;
-    let chunks = &scratch.chunks[..chunk_count];
-    let fibres = &scratch.fibres[..];
+    let source = BandSource {
+        params: &params,
+        chunks: &scratch.chunks[..chunk_count],
+        fibres: &scratch.fibres,
+        far_bands: &scratch.far_bands,
+    };
     let colours = &scratch.colours[..];
     let pool = &scratch.threads;
     fb.color
@@ -336,27 +339,12 @@ pub fn draw_polylines(
         .for_each(|(b, ((color, depth), coverage))| {
             let mut guard = lock_thread_scratch(pool);
             let t = &mut *guard;
-            gather_band(t, b, chunks, far_bands.get(b));
+            source.emit(t, b, depth, None, None);
             let band = Band {
-                row0: b * BAND_ROWS,
                 color,
                 depth,
                 coverage,
             };
-            let rows = Rows {
-                row0: band.row0,
-                depth: band.depth,
-            };
-            emit_fragments(
-                &params,
-                &t.segs,
-                fibres,
-                &t.keys,
-                rows,
-                &mut t.hiding,
-                &mut t.frags,
-                None,
-            );
             composite_band(
                 &mut t.frags,
                 &mut t.sorted,
@@ -509,6 +497,49 @@ pub(super) fn gather_band(
     t.keys
         .extend(t.segs.iter().enumerate().map(|(pos, s)| band_key(s, pos)));
     sort_keys(&mut t.keys, &mut t.tmp);
+}
+
+/// What a band's fragments are emitted from: the call's constants, the set-up chunks' bins,
+/// the bundle table and the solids' depth tiles.
+pub(super) struct BandSource<'a> {
+    pub(super) params: &'a Params<'a>,
+    pub(super) chunks: &'a [Vec<Vec<Seg>>],
+    pub(super) fibres: &'a [Fibres],
+    pub(super) far_bands: &'a [FarDepth],
+}
+
+impl BandSource<'_> {
+    /// Band `b`'s fragments over its opaque `depth`: its segments gathered ([`gather_band`])
+    /// and emitted into `out` (the thread's own buffer with `None`), `seen` as
+    /// [`emit_fragments`] takes it. Returns whether `out` holds every kept fragment.
+    pub(super) fn emit(
+        &self,
+        t: &mut BandScratch,
+        b: usize,
+        depth: &[f32],
+        out: Option<&mut Vec<Frag>>,
+        seen: Option<(&[AtomicBool], usize)>,
+    ) -> bool {
+        gather_band(t, b, self.chunks, self.far_bands.get(b));
+        let rows = Rows {
+            row0: b * BAND_ROWS,
+            depth,
+        };
+        let out = match out {
+            Some(out) => out,
+            None => &mut t.frags,
+        };
+        emit_fragments(
+            self.params,
+            &t.segs,
+            self.fibres,
+            &t.keys,
+            rows,
+            &mut t.hiding,
+            out,
+            seen,
+        )
+    }
 }
 
 /// Every band's farthest opaque depth per tile, from `fb`'s depth (parallel over bands).

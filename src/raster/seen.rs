@@ -31,11 +31,11 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::camera::Camera;
-use super::fragment::{Band, Rows, emit_fragments};
+use super::fragment::Band;
 use super::framebuffer::Framebuffer;
 use super::lines::{
-    BAND_ROWS, KEEP_PER_PIXEL, KeptFor, LineScratch, MAX_SEGMENTS, SETUP_CHUNK, bin_segments,
-    build_far_bands, composite_band, draw_polylines, equalise_capacities, gather_band,
+    BAND_ROWS, BandSource, KEEP_PER_PIXEL, KeptFor, LineScratch, MAX_SEGMENTS, SETUP_CHUNK,
+    bin_segments, build_far_bands, composite_band, draw_polylines, equalise_capacities,
     lock_thread_scratch, prepare, prepare_threads,
 };
 use super::polyline::{LineStyle, Polylines};
@@ -101,9 +101,12 @@ pub fn seen_points(
         scratch.kept.resize_with(bands, Default::default);
     }
     let at_most = KEEP_PER_PIXEL * width * BAND_ROWS;
-    let far_bands = &scratch.far_bands;
-    let chunks = &scratch.chunks[..chunk_count];
-    let fibres = &scratch.fibres[..];
+    let source = BandSource {
+        params: &params,
+        chunks: &scratch.chunks[..chunk_count],
+        fibres: &scratch.fibres,
+        far_bands: &scratch.far_bands,
+    };
     let pool = &scratch.threads;
     fb.depth
         .par_chunks(width * BAND_ROWS)
@@ -112,20 +115,11 @@ pub fn seen_points(
         .with_max_len(1)
         .for_each(|(b, (depth, kept))| {
             let mut guard = lock_thread_scratch(pool);
-            let t = &mut *guard;
-            gather_band(t, b, chunks, far_bands.get(b));
-            let rows = Rows {
-                row0: b * BAND_ROWS,
+            kept.whole = source.emit(
+                &mut guard,
+                b,
                 depth,
-            };
-            kept.whole = emit_fragments(
-                &params,
-                &t.segs,
-                fibres,
-                &t.keys,
-                rows,
-                &mut t.hiding,
-                &mut kept.frags,
+                Some(&mut kept.frags),
                 Some((flags, at_most)),
             );
         });
@@ -203,9 +197,12 @@ pub fn draw_seen_polylines(
     let colours = &scratch.colours[..];
     let pool = &scratch.threads;
     // For bands that kept too many: the pass's bins, bundle table and solids' depth tiles.
-    let chunks = &scratch.chunks[..chunk_count.min(scratch.chunks.len())];
-    let fibres = &scratch.fibres[..];
-    let far_bands = &scratch.far_bands;
+    let source = BandSource {
+        params: &params,
+        chunks: &scratch.chunks[..chunk_count.min(scratch.chunks.len())],
+        fibres: &scratch.fibres,
+        far_bands: &scratch.far_bands,
+    };
     fb.color
         .par_chunks_mut(width * BAND_ROWS)
         .zip(fb.depth.par_chunks(width * BAND_ROWS))
@@ -217,7 +214,6 @@ pub fn draw_seen_polylines(
             let mut guard = lock_thread_scratch(pool);
             let t = &mut *guard;
             let band = Band {
-                row0: b * BAND_ROWS,
                 color,
                 depth,
                 coverage,
@@ -226,21 +222,7 @@ pub fn draw_seen_polylines(
                 &mut kept.frags
             } else {
                 // The same emission again, now storing every kept fragment.
-                gather_band(t, b, chunks, far_bands.get(b));
-                let rows = Rows {
-                    row0: band.row0,
-                    depth: band.depth,
-                };
-                emit_fragments(
-                    &params,
-                    &t.segs,
-                    fibres,
-                    &t.keys,
-                    rows,
-                    &mut t.hiding,
-                    &mut t.frags,
-                    None,
-                );
+                source.emit(t, b, band.depth, None, None);
                 &mut t.frags
             };
             composite_band(
