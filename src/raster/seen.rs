@@ -23,7 +23,7 @@
 //! and drew the seen segments again after shading (leaving out the others keeps every other
 //! fragment, in order). Walking them twice cost smooth 12.8 ms of emission a frame (CPU, both
 //! threads) and dense a second emission of 45% of its segments; keeping the fragments costs
-//! 24 bytes each until they are composited (dense at 1280 × 720: 8.3 M, 0.25 GB of peak).
+//! 24 bytes each until they are composited (dense at 1280 × 720: 12.4 M, 0.3 GB of peak).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
