@@ -11,16 +11,14 @@
 //!                                                per light, built side by side
 //! raster (1)  character mesh (or the head and  -> framebuffer: colour and opaque depth
 //!             body spheres)
-//! shading     seen_points(depth, strands),     -> the hair's fragments (kept) and vertex
-//!             shade_vertices(maps, fiber)         colours, summed over the lights, of the
-//!                                                points the raster can draw
+//! shading     seen_points(depth, strands),     -> kept hair fragments; vertex colours, over
+//!             shade_vertices(maps, fiber)         the lights, of the points they reach
 //! raster (2)  draw_seen_polylines(colours)     -> framebuffer: the kept fragments composited
 //! ```
 //!
-//! The solids come before the shading so that hair hidden behind them or nearer hair at every
-//! pixel (`raster::seen_points`: four fifths of the dance's points at 1280 × 720) is neither
-//! shaded nor drawn, the same frame byte for byte. The solids' time counts as the raster's,
-//! the first pass over the hair (emission, which finds the seen points) as the shading's.
+//! The solids come first so that hair hidden behind them or nearer hair at every pixel
+//! (`raster::seen_points`: four fifths of the dance's points at 1280 × 720) is neither shaded
+//! nor drawn, the same frame to the byte (timed: the solids as raster, the first pass as shading).
 //!
 //! [`Engine`] owns every buffer, so after the first frame no stage allocates. Each stage is a
 //! plain function of explicit inputs (see the modules); the engine only sequences them and
@@ -46,8 +44,8 @@ use crate::interp::{StrandGeometry, interpolate_among};
 use crate::map::{CountModel, LightMap, MapGeometry, MapStats, OccluderMesh, Solid};
 use crate::motion::{CharacterPose, Motion, Pose};
 use crate::raster::{
-    Camera, Framebuffer, LineScratch, Mesh, MeshScratch, Surface, Texture, draw_ellipsoid,
-    draw_mesh, draw_polylines, draw_seen_polylines, seen_points,
+    Camera, Framebuffer, LineScratch, LineStyle, Mesh, MeshScratch, Polylines, Surface, Texture,
+    draw_ellipsoid, draw_mesh, draw_polylines, draw_seen_polylines, seen_points,
 };
 use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};
 use crate::shade::{Lighting, ShadeScratch, VertexGeometry, shade_skin, shade_vertices};
@@ -57,6 +55,9 @@ use hair_lines::{hair_lines, strand_widths_m};
 use map_reuse::{MapInputs, MapInputsView};
 use rayon::prelude::*;
 use std::time::Instant;
+
+/// A hair line draw: [`draw_polylines`] or [`draw_seen_polylines`].
+type DrawLines = fn(&mut Framebuffer, &Camera, &Polylines, &LineStyle, &mut LineScratch);
 
 /// Skin albedo of the head and the body spheres.
 const SKIN: Vec3 = Vec3::new(0.55, 0.38, 0.30);
@@ -375,11 +376,10 @@ impl Engine {
         self.timings.interpolation_s = (t3 - t2).as_secs_f64();
     }
 
-    /// Map, shading and raster of the current hair; returns the image. The solids are drawn
-    /// before the hair is shaded, so that the hair the raster cannot draw (hidden behind them
-    /// at every pixel, or off screen: [`seen_points`]) is not shaded at all; the frame is the
-    /// same as shading every point, byte for byte. The raster's time counts the solids and the
-    /// hair, the shading's the search for what is seen.
+    /// Map, shading and raster of the current hair; returns the image. The solids come first,
+    /// so the hair's first pass ([`seen_points`]) keeps only what they and nearer hair leave to
+    /// see, and only its points are shaded: the frame of shading every point, byte for byte.
+    /// The raster's time counts the solids and the composite, the shading's the first pass.
     pub fn render(&mut self) -> &Framebuffer {
         self.follow_head();
         let t0 = Instant::now();
@@ -405,7 +405,7 @@ impl Engine {
         );
         self.shade_where(true);
         let t3 = Instant::now();
-        self.draw_hair(true);
+        self.draw_hair(draw_seen_polylines);
         let t4 = Instant::now();
         self.timings.map_s = (t1 - t0).as_secs_f64();
         self.timings.shading_s = (t3 - t2).as_secs_f64();
@@ -445,7 +445,7 @@ impl Engine {
     pub fn draw(&mut self) -> &Framebuffer {
         self.draw_solids_layer();
         self.update_widths();
-        self.draw_hair(false);
+        self.draw_hair(draw_polylines);
         &self.fb
     }
 
@@ -462,9 +462,9 @@ impl Engine {
         strand_widths_m(&self.style, &self.strands, &mut self.widths_m);
     }
 
-    /// The hair over what is drawn, with the current colours and widths; with `only_seen`, the
-    /// fragments [`seen_points`] kept (the same picture, the unseen points unshaded).
-    fn draw_hair(&mut self, only_seen: bool) {
+    /// The hair over what is drawn, with the current colours and widths, by `draw`
+    /// ([`draw_seen_polylines`] composites what [`seen_points`] kept).
+    fn draw_hair(&mut self, draw: DrawLines) {
         let lines = hair_lines(
             &self.strands,
             &self.colors,
@@ -472,12 +472,6 @@ impl Engine {
             &self.bundle_points,
             &self.style,
         );
-        // The seen pass kept the fragments; they take the shaded colours here.
-        let draw = if only_seen {
-            draw_seen_polylines
-        } else {
-            draw_polylines
-        };
         draw(
             &mut self.fb,
             &self.camera,

@@ -172,6 +172,19 @@ pub(super) struct KeptFor {
     pub(super) chunk_count: usize,
 }
 
+impl KeptFor {
+    /// `lines` on `fb`, binned into `chunk_count` chunks.
+    pub(super) fn of(fb: &Framebuffer, lines: &Polylines, chunk_count: usize) -> Self {
+        KeptFor {
+            width: fb.width,
+            height: fb.height,
+            points: lines.points.len(),
+            points_per_line: lines.points_per_line,
+            chunk_count,
+        }
+    }
+}
+
 #[derive(Debug, Default)]
 pub(super) struct BandScratch {
     /// The band's segments gathered contiguously in input order, and their sort keys (see
@@ -345,15 +358,7 @@ pub fn draw_polylines(
                 depth,
                 coverage,
             };
-            composite_band(
-                &mut t.frags,
-                &mut t.sorted,
-                &mut t.starts,
-                &mut t.run_keys,
-                &mut t.tmp,
-                colours,
-                band,
-            );
+            t.composite(None, colours, band);
         });
     // Which thread draws which band varies between frames: give every thread the largest
     // capacities any of them needed, so a warmed-up frame allocates nothing whichever bands
@@ -361,21 +366,31 @@ pub fn draw_polylines(
     equalise_capacities(&mut scratch.threads);
 }
 
-/// Groups a band's emitted fragments `frags` by pixel (into `sorted` and `starts`) and
-/// composites them into `band` with their segments' `colours`; `frags` is spent afterwards
-/// (it is the compositing's spare buffer).
-#[allow(clippy::too_many_arguments)]
-pub(super) fn composite_band(
-    frags: &mut [Frag],
-    sorted: &mut Vec<Frag>,
-    starts: &mut Vec<u32>,
-    run_keys: &mut Vec<u64>,
-    key_tmp: &mut Vec<u64>,
-    colours: &[SegColours],
-    band: Band,
-) {
-    sort_by_pixel(frags, sorted, starts, band.color.len());
-    composite(sorted, starts, colours, run_keys, key_tmp, frags, band);
+impl BandScratch {
+    /// Groups a band's fragments by pixel and composites them into `band` with their
+    /// segments' `colours`: `kept` (a band's kept fragments), or with `None` the ones this
+    /// thread emitted. They are spent afterwards (the compositing's spare buffer).
+    pub(super) fn composite(
+        &mut self,
+        kept: Option<&mut Vec<Frag>>,
+        colours: &[SegColours],
+        band: Band,
+    ) {
+        let frags = match kept {
+            Some(kept) => kept,
+            None => &mut self.frags,
+        };
+        sort_by_pixel(frags, &mut self.sorted, &mut self.starts, band.color.len());
+        composite(
+            &mut self.sorted,
+            &self.starts,
+            colours,
+            &mut self.run_keys,
+            &mut self.tmp,
+            frags,
+            band,
+        );
+    }
 }
 
 /// 1. Set-up and binning, parallel over fixed chunks of segments (the chunking is fixed, so it

@@ -35,8 +35,8 @@ use super::fragment::Band;
 use super::framebuffer::Framebuffer;
 use super::lines::{
     BAND_ROWS, BandSource, KEEP_PER_PIXEL, KeptFor, LineScratch, MAX_SEGMENTS, SETUP_CHUNK,
-    bin_segments, build_far_bands, composite_band, draw_polylines, equalise_capacities,
-    lock_thread_scratch, prepare, prepare_threads,
+    bin_segments, build_far_bands, draw_polylines, equalise_capacities, lock_thread_scratch,
+    prepare, prepare_threads,
 };
 use super::polyline::{LineStyle, Polylines};
 use super::segment::{SegColours, setup_segment};
@@ -123,13 +123,7 @@ pub fn seen_points(
                 Some((flags, at_most)),
             );
         });
-    scratch.kept_for = Some(KeptFor {
-        width: fb.width,
-        height: fb.height,
-        points: lines.points.len(),
-        points_per_line: n,
-        chunk_count,
-    });
+    scratch.kept_for = Some(KeptFor::of(fb, lines, chunk_count));
     // Each line's points from its segments' flags, in parallel over lines.
     seen.par_chunks_mut(n)
         .zip(flags.par_chunks(segs_per_line))
@@ -158,18 +152,7 @@ pub fn draw_seen_polylines(
     scratch: &mut LineScratch,
 ) {
     let chunk_count = match scratch.kept_for.take() {
-        Some(kept)
-            if kept
-                == (KeptFor {
-                    width: fb.width,
-                    height: fb.height,
-                    points: lines.points.len(),
-                    points_per_line: lines.points_per_line,
-                    chunk_count: kept.chunk_count,
-                }) =>
-        {
-            kept.chunk_count
-        }
+        Some(kept) if kept == KeptFor::of(fb, lines, kept.chunk_count) => kept.chunk_count,
         _ => return draw_polylines(fb, cam, lines, style, scratch),
     };
     let width = fb.width as usize;
@@ -218,22 +201,13 @@ pub fn draw_seen_polylines(
                 depth,
                 coverage,
             };
-            let frags = if kept.whole {
-                &mut kept.frags
+            if kept.whole {
+                t.composite(Some(&mut kept.frags), colours, band);
             } else {
                 // The same emission again, now storing every kept fragment.
                 source.emit(t, b, band.depth, None, None);
-                &mut t.frags
-            };
-            composite_band(
-                frags,
-                &mut t.sorted,
-                &mut t.starts,
-                &mut t.run_keys,
-                &mut t.tmp,
-                colours,
-                band,
-            );
+                t.composite(None, colours, band);
+            }
         });
     equalise_capacities(&mut scratch.threads);
 }
