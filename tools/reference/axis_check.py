@@ -81,9 +81,9 @@ def main():
     strand_of, seg_of = a_idx // n, a_idx % n
 
     # Vertices of the segments the camera sees.
-    _, si, hit, _, _ = camera_hits(mi, dr, mscene, scene, 4, 0)
-    hit_np = np.array(hit, bool)
-    k, u, _, _ = seen_segment(Strands(hair), si, hit_np)
+    polylines = Strands(hair)
+    _, si, hit_np, _, _ = camera_hits(mi, dr, mscene, scene, polylines, 4, 0)
+    k, u, _, _ = seen_segment(polylines, si, hit_np)
     seen = np.unique(np.where(u < 0.5, k, k + 1)[hit_np])
     rng = np.random.default_rng(args.seed)
     pick = rng.choice(seen, min(args.vertices, len(seen)), replace=False)

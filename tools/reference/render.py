@@ -2,6 +2,7 @@
 """Path-traced reference of a `wisp export` scene with Mitsuba 3 (not run by CI).
 
     render.py SCENE_DIR [--spp 64] [--passes 4] [--depth 64 2] [--variant llvm_ad_rgb]
+              [--integrator fibre|path|fibre-mitsuba-offset] [--ray-offset-m 1e-6]
 
 Reads SCENE_DIR/scene.json and its .hair file, builds the same scene for Mitsuba 3.9.1 — the
 render strands as `bsplinecurve` fibres (one per polyline segment, exactly straight, radius
@@ -10,11 +11,17 @@ from the .hair thickness), the `hair` BSDF with the parameters wisp mapped in
 the scene's irradiance, a `perspective` sensor with `fov_axis = "y"` and a box pixel filter,
 a black background — and renders it for each `max_depth` (2 = single scattering with hard
 shadows, 64 = all orders) in `passes` independent passes of spp/passes samples (seeds 0, 1,
-...). Writes, per depth D:
+...). The integrator is `fibre_trace.py`'s by default (`fibre`): Mitsuba's path tracing with rays
+leaving a fibre from its surface instead of Mitsuba's offset of about 0.1 mm, which at 40 µm
+fibres starts every shadow ray past the fibres touching it (ACCURACY.md section 2, "The path
+tracer's ray offset"); `--integrator path` is Mitsuba's own `path` integrator, as the tables
+before 2026-12-06 were rendered, and `--integrator fibre-mitsuba-offset` is fibre_trace.py
+starting its rays where Mitsuba does (it reproduces `path` within the noise: the check that
+the two differ only by the offset). Writes, per depth D:
 
     SCENE_DIR/mitsuba_dD.exr         mean of the passes, linear RGBA (alpha = coverage)
     SCENE_DIR/mitsuba_dD_passes.npy  the passes, float32 [passes, H, W, 4] (standard errors)
-    SCENE_DIR/mitsuba_dD.json        spp, passes, seconds, variant, version
+    SCENE_DIR/mitsuba_dD.json        spp, passes, seconds, variant, version, integrator
 
 Set DRJIT_LIBLLVM_PATH for the llvm variants (see tools/reference/README.md).
 """
@@ -29,6 +36,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hairfile  # noqa: E402
+import fibre_trace  # noqa: E402
 
 
 def build_scene(mi, scene, curves_path, spp_per_pass, max_depth):
@@ -74,6 +82,14 @@ def main():
     ap.add_argument("--passes", type=int, default=4, help="independent passes (>= 2 for errors)")
     ap.add_argument("--depth", type=int, nargs="+", default=[64, 2], help="max_depth values")
     ap.add_argument("--variant", default="llvm_ad_rgb")
+    ap.add_argument("--integrator", choices=["fibre", "path", "fibre-mitsuba-offset"],
+                    default="fibre",
+                    help="fibre: fibre_trace.py, rays leave a fibre from its surface (default); "
+                    "path: Mitsuba's own path integrator and ray offset; fibre-mitsuba-offset: "
+                    "fibre_trace.py starting rays where Mitsuba does (checks that the two "
+                    "integrators agree but for the offset)")
+    ap.add_argument("--ray-offset-m", type=float, default=1e-6,
+                    help="fibre integrator: how far off the fibre's surface a ray starts, metres")
     ap.add_argument("--cache", default=os.path.join(os.environ.get("TMPDIR", "/tmp"), "wisp-reference-cache"),
                     help="where converted curve files are kept (keyed by the .hair content)")
     args = ap.parse_args()
@@ -95,6 +111,11 @@ def main():
     curves = hairfile.curve_file(os.path.join(args.scene_dir, scene["hair_file"]), args.cache)
     convert_s = time.time() - t0
     per_pass = max(1, args.spp // args.passes)
+    strands = None
+    if args.integrator != "path":
+        from visibility import Strands
+
+        strands = Strands(os.path.join(args.scene_dir, scene["hair_file"]))
     for depth in args.depth:
         t0 = time.time()
         mscene = build_scene(mi, scene, curves, per_pass, depth)
@@ -102,8 +123,13 @@ def main():
         passes = []
         t0 = time.time()
         for seed in range(args.passes):
-            img = mi.render(mscene, seed=seed, spp=per_pass)
-            passes.append(np.array(img, dtype=np.float32))
+            if strands is None:
+                img = np.array(mi.render(mscene, seed=seed, spp=per_pass))
+            else:
+                spawn = "mitsuba" if args.integrator == "fibre-mitsuba-offset" else "fibre"
+                img = fibre_trace.render(mi, mscene, scene, strands, per_pass, seed, depth,
+                                         spawn, args.ray_offset_m)
+            passes.append(np.asarray(img, dtype=np.float32))
         render_s = time.time() - t0
         stack = np.stack(passes)
         mean = stack.mean(axis=0)
@@ -118,6 +144,8 @@ def main():
             "load_s": load_s,
             "curve_convert_s": convert_s,
             "variant": args.variant,
+            "integrator": args.integrator,
+            "ray_offset_m": args.ray_offset_m if args.integrator == "fibre" else "mitsuba",
             "mitsuba": mi.__version__,
         }
         json.dump(info, open(base + ".json", "w"), indent=1)

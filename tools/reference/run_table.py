@@ -176,6 +176,9 @@ def main():
     ap.add_argument("--single-shading", default="single", help="wisp --shading for the single column")
     ap.add_argument("--wisp", default=os.path.join(REPO, "target", "release", "wisp"))
     ap.add_argument("--python", default=sys.executable, help="the Python that has mitsuba")
+    ap.add_argument("--integrator", choices=["fibre", "path"], default="fibre",
+                    help="render.py's integrator: fibre (rays leave a fibre from its surface) or "
+                    "Mitsuba's own path (its 0.1 mm ray offset; the tables before 2026-12-06)")
     ap.add_argument("--force", action="store_true")
     ap.add_argument("--table-only", action="store_true")
     ap.add_argument("--set", action="append", default=[], metavar="FIELD=VALUE",
@@ -218,7 +221,8 @@ def main():
             ref = os.path.join(d, f"mitsuba_d{depth}.exr")
             if args.force or not os.path.exists(ref):
                 run([args.python, os.path.join(HERE, "render.py"), d, "--spp", str(args.spp),
-                     "--passes", str(args.passes), "--depth", str(depth)])
+                     "--passes", str(args.passes), "--depth", str(depth),
+                     "--integrator", args.integrator])
             minfo = json.load(open(os.path.join(d, f"mitsuba_d{depth}.json")))
             fig_path = os.path.join(d, "compare.json")
             png = os.path.join(args.out, case, f"compare_{colour}_{light}_{kind}.png")

@@ -86,11 +86,11 @@ def one_pass(mi, dr, mscene, scene, strands, vertex_rgb, vertex_v, spp, seed):
     f_w·V_w, f·V_w; then f times wisp's V and the exact V at the hit's nearer vertex, and f
     times the exact vertex values interpolated linearly to the hit."""
     w, h = scene["image"]["width"], scene["image"]["height"]
-    ray, si, hit, ds, spec = camera_hits(mi, dr, mscene, scene, spp, seed)
+    ray, si, hit_np, ds, lit = camera_hits(mi, dr, mscene, scene, strands, spp, seed)
+    hit = mi.Bool(hit_np)
     f = si.bsdf(ray).eval(mi.BSDFContext(), si, si.to_local(ds.d), hit)
-    hit_np = np.array(hit, bool)
     f = np.where(hit_np[:, None], np.array(f, np.float64).T, 0.0)
-    v_hit = np.array(hit & (dr.max(spec) > 0.0), bool).astype(np.float64)
+    v_hit = lit.astype(np.float64)
     # The same cross-section of the fibre, a shadow ray from a point across its lit side
     # (uniform across the width as the light sees it), as visibility.py's exact reference.
     rng = np.random.default_rng(2000 + seed)

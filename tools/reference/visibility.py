@@ -7,8 +7,10 @@
 Single scattering is the fibre's BCSDF times the share of the seen fibre that the light reaches
 through no fibre. This script measures that share alone, with no fibre model: camera rays
 through each pixel's area (box filter, as render.py) hit the first fibre, and a shadow ray
-toward the directional light is tested as Mitsuba's path integrator tests its emitter samples
-(`Scene.sample_emitter_direction(..., test_visibility=True)`). Writes
+toward the directional light is tested from the hit as `fibre_trace.py` tests it: leaving the
+fibre from its surface (Mitsuba's own test, `sample_emitter_direction(..., test_visibility=True)`,
+starts it 0.1 mm off, past the fibres touching this one, and read 5% more light side-lit
+until 2026-12-06). Writes
 
     SCENE_DIR/visibility.exr         R = G = B = irradiance x mean visibility over the pixel's
                                      area, A = coverage
@@ -38,6 +40,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fibre_trace  # noqa: E402
 import hairfile  # noqa: E402
 from render import build_scene  # noqa: E402
 
@@ -59,10 +62,12 @@ def unit(v):
     return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-12)
 
 
-def camera_hits(mi, dr, mscene, scene, spp, seed):
+def camera_hits(mi, dr, mscene, scene, strands, spp, seed):
     """`spp` camera rays through each pixel's area (box filter, as render.py), in pixel order,
-    their first hits and a shadow-tested emitter sample at each, as Mitsuba's path integrator
-    takes it: (ray, si, hit, ds, spec)."""
+    their first hits, an emitter sample at each and whether the light reaches it: a shadow ray
+    leaving the fibre from its surface (fibre_trace.py; Mitsuba's own ray offset of about
+    0.1 mm starts it past the fibres touching this one). Returns (ray, si, hit, ds, lit), hit
+    and lit as numpy bool arrays."""
     w, h = scene["image"]["width"], scene["image"]["height"]
     n = w * h * spp
     sampler = mi.load_dict({"type": "independent"})
@@ -73,8 +78,10 @@ def camera_hits(mi, dr, mscene, scene, spp, seed):
     ray, _ = mscene.sensors()[0].sample_ray(0.0, 0.0, pos, mi.Point2f(0.5, 0.5))
     si = mscene.ray_intersect(ray)
     hit = si.is_valid()
-    ds, spec = mscene.sample_emitter_direction(si, sampler.next_2d(), True, hit)
-    return ray, si, hit, ds, spec
+    ds, _ = mscene.sample_emitter_direction(si, sampler.next_2d(), False, hit)
+    hit = np.array(hit, bool)
+    lit = fibre_trace.lit_at_hits(mi, mscene, fibre_trace.Fibres(strands), si, hit, ds.d)
+    return ray, si, hit, ds, lit
 
 
 def seen_segment(strands, si, hit_np):
@@ -112,10 +119,10 @@ def one_pass(mi, dr, mscene, scene, strands, vertex_value, spp, seed, decompose,
     wisp averages it, wisp's point values on the seen fibres]."""
     w, h = scene["image"]["width"], scene["image"]["height"]
     n = w * h * spp
-    _, si, hit, _, spec = camera_hits(mi, dr, mscene, scene, spp, seed)
+    _, si, hit_np, _, lit = camera_hits(mi, dr, mscene, scene, strands, spp, seed)
+    hit = mi.Bool(hit_np)
     per_pixel = lambda x: np.asarray(x, np.float64).reshape(h, w, spp).mean(axis=2)
-    hit_np = np.array(hit, bool)
-    out = [per_pixel(np.array(hit & (dr.max(spec) > 0.0), bool)), per_pixel(hit_np)]
+    out = [per_pixel(lit), per_pixel(hit_np)]
     if not decompose:
         return out
     rng = np.random.default_rng(1000 + seed)
