@@ -174,9 +174,13 @@ pub fn shade_vertices(
     shaded.clear();
     shaded.resize(order.len(), Vec3::ZERO);
     let ambient = hair_ambient(fiber, lighting);
+    // About eight jobs a thread: the seen points are few (20 K on the dance at 1280 × 720,
+    // which CHUNK cut into 5 jobs for 2 threads); each vertex is shaded alone, so the split
+    // changes no bit.
+    let chunk = (order.len() / (rayon::current_num_threads() * 8)).clamp(MIN_CHUNK, CHUNK);
     shaded
-        .par_chunks_mut(CHUNK)
-        .zip(order.par_chunks(CHUNK))
+        .par_chunks_mut(chunk)
+        .zip(order.par_chunks(chunk))
         // One job per chunk: chunks cost unevenly (a lookup takes its opposition taps only
         // where the view and light rays share fibres; `raster::lines` on rayon's splitting).
         .with_max_len(1)
@@ -214,8 +218,10 @@ fn hair_ambient(fiber: &Fiber, lighting: &Lighting) -> Vec3 {
     }
 }
 
-/// Vertices per parallel work item.
+/// Vertices per parallel work item (at most).
 const CHUNK: usize = 4096;
+/// Vertices per parallel work item of the seen points' shading, at least.
+const MIN_CHUNK: usize = 256;
 
 /// The colour of one vertex at `p` along the fibre directions `dirs` (`bend`: one, or the two
 /// segments of a bent vertex, averaged): every light's contribution (its statistics from
