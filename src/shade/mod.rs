@@ -218,9 +218,10 @@ fn hair_ambient(fiber: &Fiber, lighting: &Lighting) -> Vec3 {
     }
 }
 
-/// Vertices per parallel work item (at most).
+/// Vertices per parallel work item (the seen points' shading: at most).
 const CHUNK: usize = 4096;
-/// Vertices per parallel work item of the seen points' shading, at least.
+/// Vertices per parallel work item of the seen points' shading, at least (it aims at about
+/// eight items a thread).
 const MIN_CHUNK: usize = 256;
 
 /// The colour of one vertex at `p` along the fibre directions `dirs` (`bend`: one, or the two

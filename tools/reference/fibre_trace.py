@@ -32,7 +32,7 @@ RR_DEPTH = 5
 
 
 def unit(v):
-    return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-300)
+    return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-12)
 
 
 class Fibres:
@@ -66,16 +66,28 @@ def _vec(mi, x, kind):
     return kind(x[:, 0], x[:, 1], x[:, 2])
 
 
-def lit_at_hits(mi, mscene, fibres, si, hit, to_light, delta_m=1e-6):
-    """Whether the light in direction `to_light` (Mitsuba Vector3f, unit) reaches the hits `si`
-    (numpy bool mask `hit`): a shadow ray leaving each fibre as `leave` starts it."""
-    prim = np.array(si.prim_index, np.int64) * hit
-    p = np.array(si.p, np.float64).T
-    p[~hit] = 0.0
+def lit_at(mi, mscene, fibres, prim, p, hit, to_light, delta_m):
+    """Whether the light in direction `to_light` (Mitsuba Vector3f, unit) reaches surface points
+    `p` of curves `prim` (numpy, the `hit` lanes only): a shadow ray leaving each fibre as
+    `leave` starts it."""
     d = np.array(to_light, np.float64).T
     start = leave(fibres, prim, p, unit(d), delta_m)
     shadow = mi.Ray3f(_vec(mi, start, mi.Point3f), to_light)
     return ~np.array(mscene.ray_test(shadow, mi.Bool(hit)), bool) & hit
+
+
+def hit_points(si, hit):
+    """The curve and surface point of each hit of `si` (numpy; 0 where `hit` is false)."""
+    prim = np.array(si.prim_index, np.int64) * hit
+    p = np.array(si.p, np.float64).T
+    p[~hit] = 0.0
+    return prim, p
+
+
+def lit_at_hits(mi, mscene, fibres, si, hit, to_light, delta_m=1e-6):
+    """`lit_at` for the hits `si` (numpy bool mask `hit`)."""
+    prim, p = hit_points(si, hit)
+    return lit_at(mi, mscene, fibres, prim, p, hit, to_light, delta_m)
 
 
 def render(mi, mscene, scene, strands, spp, seed, max_depth, spawn="fibre", delta_m=1e-6):
@@ -108,9 +120,7 @@ def render(mi, mscene, scene, strands, spp, seed, max_depth, spawn="fibre", delt
             break
         m = len(lane)
         active = mi.Bool(hit)
-        prim = np.array(si.prim_index, np.int64) * hit
-        p = np.array(si.p, np.float64).T
-        p[~hit] = 0.0
+        prim, p = hit_points(si, hit)
         bsdf = si.bsdf()
         # Next-event estimation of the directional light.
         ds, em_weight = mscene.sample_emitter_direction(
@@ -120,7 +130,7 @@ def render(mi, mscene, scene, strands, spp, seed, max_depth, spawn="fibre", delt
         if spawn == "mitsuba":
             lit = ~np.array(mscene.ray_test(si.spawn_ray(ds.d), active), bool) & hit
         else:
-            lit = lit_at_hits(mi, mscene, fibres, si, hit, ds.d, delta_m)
+            lit = lit_at(mi, mscene, fibres, prim, p, hit, ds.d, delta_m)
         contrib = np.array(f, np.float64).T * np.array(em_weight, np.float64).T
         radiance[lane] += np.where(lit[:, None], throughput * contrib, 0.0)
         # Continue by sampling the BSDF.

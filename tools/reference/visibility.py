@@ -41,6 +41,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import fibre_trace  # noqa: E402
+from fibre_trace import unit  # noqa: E402
 import hairfile  # noqa: E402
 from render import build_scene  # noqa: E402
 
@@ -56,10 +57,6 @@ class Strands:
         strand = np.repeat(np.arange(len(segs)), segs + 1)
         self.first = starts[strand]
         self.last = (starts + segs)[strand]
-
-
-def unit(v):
-    return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-12)
 
 
 def camera_hits(mi, dr, mscene, scene, strands, spp, seed):
@@ -169,12 +166,13 @@ def main():
     irradiance = float(scene["light"]["irradiance"][0])
     hair_path = os.path.join(d, scene["hair_file"])
     curves = hairfile.curve_file(hair_path, args.cache)
-    strands = vertex_value = None
+    # The polylines: where each hit's fibre lies, for the shadow ray leaving it.
+    strands = Strands(hair_path)
+    vertex_value = None
     if args.decompose:
         if scene.get("shading") != "Visibility":
             sys.exit(f"visibility.py: {d}/scene.json: --decompose needs an export made with "
                      f"--shading visibility (this one is {scene.get('shading')!r})")
-        strands = Strands(hair_path)
         rgb = np.fromfile(os.path.join(d, "vertex_rgb.f32"), "<f4").reshape(-1, 3)
         if len(rgb) != len(strands.points):
             sys.exit(f"visibility.py: {d}/vertex_rgb.f32: {len(rgb)} points, "
