@@ -38,6 +38,8 @@ import time
 
 import numpy as np
 
+import compare
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
 EUMELANIN = np.array([0.419, 0.697, 1.37])
@@ -132,8 +134,9 @@ def write_table(out_dir):
     lines.append(f"Image {info['size']}x{info['size']} px, Mitsuba {info['spp']} spp in "
                  f"{info['passes']} passes; ratios wisp / path traced of mean linear radiance "
                  f"(R / G / B) over pixels covered >= 0.99 in both (isolated fibres, which cover no pixel: summed over the whole image); +- one standard error of "
-                 f"the path tracer's mean; p10 = ratio of 10th-percentile luminance per pixel (and over 4x4 "
-                 f"blocks; 'PT 0': the path tracer's per-pixel p10 is 0).\n")
+                 f"the path tracer's mean; p10 = ratio of 10th-percentile luminance per pixel ('PT 0': the "
+                 f"path tracer's per-pixel p10 is 0), then the bracket on the ratio of the darkest tenth's "
+                 f"mean luminance over 4 and 8 px blocks (compare.py darkest_tenth()).\n")
     lines.append("| case | hair | light | dual / all orders | +- | p10 | single / single | +- | p10 | px | coverage wisp / PT | wisp ms (dual) | Mitsuba s (d64 / d2) |")
     lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     keys = sorted({k[:3] for k in by_key}, key=lambda k: (["dense", "isolated", "curly"].index(k[0]), k[1], LIGHTS.index(k[2])))
@@ -144,10 +147,10 @@ def write_table(out_dir):
         cells = [k[0], k[1], k[2]]
         for r in (d, s):
             if r and "ratio" in r:
-                b = r.get("p10_block4_ratio")
+                dark = compare.dark_cell(r)
                 p10 = "-" if "p10_wisp" not in r else (
                     (f"{r['p10_ratio']:.2f}" if r["p10_ratio"] not in (None, float("inf")) else "PT 0")
-                    + (f" ({b:.2f})" if b is not None else ""))
+                    + (f"; {dark}" if dark else ""))
                 cells += [f3(r["ratio"]), se3(r.get("ratio_se", [np.nan] * 3)), p10]
             else:
                 cells += ["-", "-", "-"]
