@@ -10,8 +10,8 @@ Each case goes through rerun_case.py (WISP, in the environment, is the binary); 
 Markdown table of wisp ÷ path traced per channel, the mean |ln ratio| per case and kind, and
 the targets of issue 14 per row: dense single scattering within 5% and dual within 15% per
 channel, isolated fibres within 10%, and the bracket on the darkest tenth (compare.py
-darkest_tenth(), 8 px blocks; issue 14 asks for 2×). Example, the figures of ACCURACY.md §2 "Light along a
-segment":
+darkest_tenth(), 8 px blocks; issue 14 asks for 2×). Example, the figures of ACCURACY.md §2
+"Light along a segment":
 
     WISP=target/release/wisp tools/reference/rerun_table.py /tmp/rt TABLE -- \\
         --contact-mm 120 --segment-pieces 2
