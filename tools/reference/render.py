@@ -11,7 +11,7 @@ from the .hair thickness), the `hair` BSDF with the parameters wisp mapped in
 the scene's irradiance, a `perspective` sensor with `fov_axis = "y"` and a box pixel filter,
 a black background — and renders it for each `max_depth` (2 = single scattering with hard
 shadows, 64 = all orders) in `passes` independent passes of spp/passes samples (seeds 0, 1,
-...). The integrator is `fibre_trace.py`'s by default (`fibre`): Mitsuba's path tracing with rays
+..., or from --first-seed on: passes to add to a finished render). The integrator is `fibre_trace.py`'s by default (`fibre`): Mitsuba's path tracing with rays
 leaving a fibre from its surface instead of Mitsuba's offset of about 0.1 mm, which at 40 µm
 fibres starts every shadow ray past the fibres touching it (ACCURACY.md section 2, "The path
 tracer's ray offset"); `--integrator path` is Mitsuba's own `path` integrator, as the tables
@@ -92,6 +92,9 @@ def main():
                     help="fibre integrator: how far off the fibre's surface a ray starts, metres")
     ap.add_argument("--cache", default=os.path.join(os.environ.get("TMPDIR", "/tmp"), "wisp-reference-cache"),
                     help="where converted curve files are kept (keyed by the .hair content)")
+    ap.add_argument("--first-seed", type=int, default=0,
+                    help="seed of the first pass (passes use seeds FIRST..FIRST+PASSES-1): more "
+                         "samples for a finished render, independent of its passes")
     args = ap.parse_args()
 
     import mitsuba as mi
@@ -122,7 +125,7 @@ def main():
         load_s = time.time() - t0
         passes = []
         t0 = time.time()
-        for seed in range(args.passes):
+        for seed in range(args.first_seed, args.first_seed + args.passes):
             if strands is None:
                 img = np.array(mi.render(mscene, seed=seed, spp=per_pass))
             else:
@@ -140,6 +143,7 @@ def main():
             "max_depth": depth,
             "spp": per_pass * args.passes,
             "passes": args.passes,
+            "first_seed": args.first_seed,
             "render_s": render_s,
             "load_s": load_s,
             "curve_convert_s": convert_s,
