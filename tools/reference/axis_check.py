@@ -36,7 +36,8 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hairfile  # noqa: E402
 from render import build_scene  # noqa: E402
-from visibility import Strands, camera_hits, seen_segment, unit  # noqa: E402
+from hairfile import Strands  # noqa: E402
+from visibility import camera_hits, seen_segment, unit  # noqa: E402
 
 
 def main():

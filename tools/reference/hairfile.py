@@ -107,3 +107,16 @@ def pieces_of(fine_path, coarse_path, tol_m=2e-6):
         if np.max(np.abs(strand[:-1] - want)) > tol_m:
             return None
     return k
+
+
+class Strands:
+    """The .hair polylines: every segment's first point, and each point's strand ends."""
+
+    def __init__(self, path):
+        segs, pts, _ = read_hair(path)
+        starts = np.concatenate([[0], np.cumsum(segs + 1)[:-1]])
+        self.points = pts.astype(np.float64)
+        self.seg_first = np.concatenate([s + np.arange(n) for s, n in zip(starts, segs)])
+        strand = np.repeat(np.arange(len(segs)), segs + 1)
+        self.first = starts[strand]
+        self.last = (starts + segs)[strand]

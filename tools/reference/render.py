@@ -116,9 +116,7 @@ def main():
     per_pass = max(1, args.spp // args.passes)
     strands = None
     if args.integrator != "path":
-        from visibility import Strands
-
-        strands = Strands(os.path.join(args.scene_dir, scene["hair_file"]))
+        strands = hairfile.Strands(os.path.join(args.scene_dir, scene["hair_file"]))
     for depth in args.depth:
         t0 = time.time()
         mscene = build_scene(mi, scene, curves, per_pass, depth)

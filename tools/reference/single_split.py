@@ -71,7 +71,8 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hairfile  # noqa: E402
 from render import build_scene  # noqa: E402
-from visibility import Strands, camera_hits, lit_from_surface, seen_segment, unit  # noqa: E402
+from hairfile import Strands  # noqa: E402
+from visibility import camera_hits, lit_from_surface, seen_segment, unit  # noqa: E402
 
 
 # Columns of one_pass, three each but coverage.

@@ -43,20 +43,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import fibre_trace  # noqa: E402
 from fibre_trace import unit  # noqa: E402
 import hairfile  # noqa: E402
+from hairfile import Strands  # noqa: E402
 from render import build_scene  # noqa: E402
-
-
-class Strands:
-    """The .hair polylines: every segment's first point, and each point's strand ends."""
-
-    def __init__(self, path):
-        segs, pts, _ = hairfile.read_hair(path)
-        starts = np.concatenate([[0], np.cumsum(segs + 1)[:-1]])
-        self.points = pts.astype(np.float64)
-        self.seg_first = np.concatenate([s + np.arange(n) for s, n in zip(starts, segs)])
-        strand = np.repeat(np.arange(len(segs)), segs + 1)
-        self.first = starts[strand]
-        self.last = (starts + segs)[strand]
 
 
 def camera_hits(mi, dr, mscene, scene, strands, spp, seed):
