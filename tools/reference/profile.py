@@ -5,11 +5,16 @@ darkest tenth's bands with it ("What the side-lit darkest tenth hides", "How man
 the back-lit band").
 
 usage: profile.py --rows R0,R1 --cols C0,C1[,STEP] NAME=IMAGE.exr [NAME=IMAGE.exr ...]
+       profile.py --darkest-of NAME [--block K] NAME=IMAGE.exr [NAME=IMAGE.exr ...]
 
 Rows R0..R1 and columns C0..C1 are half-open pixel ranges (row 0 at the top); every STEP-th
 column is printed (default 1). A column's value is the mean over the band's rows of Rec. 709
 luminance, uncovered pixels counting as 0; the mean coverage (alpha) of the first image is
 printed beside it, so a silhouette shows where the band leaves the hair.
+With --darkest-of, instead: the K x K blocks (default 8) at least half covered (alpha >= 0.99)
+in every image, the darkest tenth of them by the named image's mean luminance, and each
+image's mean luminance over those blocks and its share of the last image's (so with the
+path tracer at depths 2, 3, 4 and 64 last, how much of the light there each order brings).
 Example (dense blond back-lit: path tracer at all orders, wisp's export):
 
     profile.py --rows 140,220 --cols 220,262,2 pt=TABLE/dense/blond-back-dual/mitsuba_d64.exr \\
@@ -48,15 +53,47 @@ def band_profile(rgba, rows, cols):
     return (band[..., :3] @ compare.LUMA).mean(0), band[..., 3].mean(0)
 
 
+def darkest(images, of, k):
+    """The darkest tenth of k x k blocks by image `of`: each image's mean luminance there."""
+    names = [name for name, _ in images]
+    if of not in names:
+        sys.exit(f"profile.py: --darkest-of {of!r}: not one of the images ({', '.join(names)})")
+    if k < 1:
+        sys.exit(f"profile.py: --block {k}: must be at least 1")
+    shapes = {rgba.shape for _, rgba in images}
+    if len(shapes) != 1:
+        sys.exit("profile.py: --darkest-of needs images of one size")
+    mask = np.logical_and.reduce([rgba[..., 3] >= 0.99 for _, rgba in images])
+    count = compare.block_sum(mask.astype(float), k)
+    keep = count >= 0.5 * k * k
+    if not keep.any():
+        sys.exit(f"profile.py: no {k} x {k} block is half covered in every image")
+
+    def blocks(rgba):
+        return compare.block_sum((rgba[..., :3] * mask[..., None]) @ compare.LUMA, k)[keep] \
+            / count[keep]
+
+    lum = {name: blocks(rgba) for name, rgba in images}
+    chosen = lum[of] <= np.percentile(lum[of], 10)
+    last = names[-1]
+    whole = lum[last][chosen].mean()
+    print(f"{chosen.sum()} of {keep.sum()} blocks of {k} px, the darkest tenth by {of}:")
+    for name in names:
+        mean = lum[name][chosen].mean()
+        share = mean / whole if whole > 0 else float("nan")
+        print(f"  {name:>9}  {mean:9.2e}  {share:6.3f} of {last}")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--rows", required=True)
-    ap.add_argument("--cols", required=True)
+    ap.add_argument("--rows")
+    ap.add_argument("--cols")
+    ap.add_argument("--darkest-of", metavar="NAME")
+    ap.add_argument("--block", type=int, default=8)
     ap.add_argument("images", nargs="+", metavar="NAME=IMAGE.exr")
     args = ap.parse_args()
-    rows = pair(args.rows, "rows")[:2]
-    cols = pair(args.cols, "cols")
-    step = cols[2] if len(cols) == 3 else 1
+    if args.darkest_of is None and (args.rows is None or args.cols is None):
+        sys.exit("profile.py: give --rows and --cols, or --darkest-of NAME")
     named = []
     for item in args.images:
         name, sep, path = item.partition("=")
@@ -67,8 +104,14 @@ def main():
         named.append((name, path))
     import mitsuba as mi
     mi.set_variant("scalar_rgb")
-    profiles = [(name, band_profile(compare.load_rgba(mi, path), rows, cols))
-                for name, path in named]
+    images = [(name, compare.load_rgba(mi, path)) for name, path in named]
+    if args.darkest_of is not None:
+        darkest(images, args.darkest_of, args.block)
+        return
+    rows = pair(args.rows, "rows")[:2]
+    cols = pair(args.cols, "cols")
+    step = cols[2] if len(cols) == 3 else 1
+    profiles = [(name, band_profile(rgba, rows, cols)) for name, rgba in images]
     alpha = profiles[0][1][1]
     print("column  alpha  " + "  ".join(f"{name:>9}" for name, _ in profiles))
     for i in range(0, cols[1] - cols[0], step):
