@@ -35,7 +35,7 @@
 //! move at about 0.8 m/s from the 8 rad/s yaw and 1.26 m/s from the bob; 3x speed stays under
 //! 4 m/s.
 
-use glam::{Affine3A, Vec3, Vec3A};
+use glam::{Affine3A, Vec3, Vec3A, Vec4};
 
 use super::capsule::CapsuleCollider;
 
@@ -119,6 +119,48 @@ pub(crate) struct CollisionScene<'a> {
     /// centre skips a capsule that could not touch the particle (the skipped test would have
     /// answered "outside", so results are unchanged to the bit).
     capsules: Vec<BoundedCapsule<'a>>,
+    /// The same bounds four capsules at a time, so that one SIMD test skips four capsules
+    /// (a character has tens of them, and a particle is near a few at most).
+    groups: Vec<BoundGroup>,
+}
+
+/// The bounding spheres of up to four consecutive capsules, by coordinate (unused lanes can
+/// touch nothing). Each squared reach is widened by 1e-5 relative over the capsule's own, so
+/// that whenever the per-capsule test ([`BoundedCapsule::may_touch`]) says "may touch", this
+/// one says so too, whatever the rounding of the two sums: it only decides which groups are
+/// looked at capsule by capsule, and the answer is the same bits.
+struct BoundGroup {
+    x: Vec4,
+    y: Vec4,
+    z: Vec4,
+    reach2: Vec4,
+}
+
+impl BoundGroup {
+    fn of(capsules: &[BoundedCapsule]) -> Self {
+        let lane = |f: &dyn Fn(&BoundedCapsule) -> f32, unused: f32| {
+            let mut v = [unused; 4];
+            for (slot, c) in v.iter_mut().zip(capsules) {
+                *slot = f(c);
+            }
+            Vec4::from_array(v)
+        };
+        Self {
+            x: lane(&|c| c.centre.x, 0.0),
+            y: lane(&|c| c.centre.y, 0.0),
+            z: lane(&|c| c.centre.z, 0.0),
+            reach2: lane(&|c| c.reach2 * (1.0 + 1e-5), -1.0),
+        }
+    }
+
+    /// Whether `p` may be inside any of the group's inflated capsules.
+    #[inline]
+    fn may_touch_any(&self, p: Vec3A) -> bool {
+        let dx = self.x - Vec4::splat(p.x);
+        let dy = self.y - Vec4::splat(p.y);
+        let dz = self.z - Vec4::splat(p.z);
+        (dx * dx + dy * dy + dz * dz).cmplt(self.reach2).any()
+    }
 }
 
 /// A capsule with a conservative bounding sphere of its inflated shape.
@@ -166,7 +208,15 @@ impl<'a> CollisionScene<'a> {
                 .filter(|c| c.usable())
                 .map(BoundedCapsule::new)
                 .collect(),
+            groups: Vec::new(),
         }
+        .grouped()
+    }
+
+    /// Fills [`Self::groups`] from the capsules.
+    fn grouped(mut self) -> Self {
+        self.groups = self.capsules.chunks(4).map(BoundGroup::of).collect();
+        self
     }
 
     /// Moves `p`, which is at exactly `link_m` from `prev` (outside every collider), out of the
@@ -217,13 +267,19 @@ impl<'a> CollisionScene<'a> {
                     moved = true;
                 }
             }
-            for c in &self.capsules {
-                if !c.may_touch(p) {
+            for (group, four) in self.groups.iter().zip(self.capsules.chunks(4)) {
+                if !group.may_touch_any(p) {
                     continue;
                 }
-                if let Some(q) = c.capsule.push_out_usable(prev, p, link_m, fallback_dir) {
-                    p = q;
-                    moved = true;
+                // In order and with the particle as it is now, as if there were no groups.
+                for c in four {
+                    if !c.may_touch(p) {
+                        continue;
+                    }
+                    if let Some(q) = c.capsule.push_out_usable(prev, p, link_m, fallback_dir) {
+                        p = q;
+                        moved = true;
+                    }
                 }
             }
             if !moved {
@@ -357,6 +413,72 @@ mod tests {
             }],
             capsules: Vec::new(),
         }
+    }
+
+    /// Seven capsules in a ring around a torso (two groups, the second partly unused), and
+    /// particles everywhere near them: the grouped test must give the bits of the capsule-by-
+    /// capsule loop it replaced, including where one capsule's push moves a particle into the
+    /// next capsule of the same group.
+    #[test]
+    fn grouped_capsules_resolve_as_one_by_one() {
+        let mut c = scene_colliders();
+        // The head far above and no sphere: only the capsules act here.
+        c.head = Affine3A::from_translation(Vec3::new(0.0, 10.0, 0.0));
+        c.spheres.clear();
+        c.capsules = (0..7)
+            .map(|i| {
+                let a = i as f32 * 0.9;
+                let centre = Vec3::new(0.1 + 0.09 * a.cos(), 1.1, -0.2 + 0.09 * a.sin());
+                CapsuleCollider {
+                    a: centre - Vec3::new(0.02, 0.15, 0.01 * i as f32),
+                    b: centre + Vec3::new(0.0, 0.15, 0.02),
+                    radius_m: 0.04 + 0.005 * i as f32,
+                }
+            })
+            .collect();
+        let scene = CollisionScene::new(&c);
+        assert_eq!(scene.groups.len(), 2);
+        let one_by_one = |prev: Vec3A, cand: Vec3A, link: f32, fallback: Vec3A| {
+            let mut p = cand;
+            for _ in 0..COLLISION_ROUNDS {
+                let mut moved = false;
+                for bc in &scene.capsules {
+                    if bc.may_touch(p)
+                        && let Some(q) = bc.capsule.push_out_usable(prev, p, link, fallback)
+                    {
+                        p = q;
+                        moved = true;
+                    }
+                }
+                if !moved {
+                    break;
+                }
+            }
+            p
+        };
+        let mut hits = 0;
+        for k in 0..4000 {
+            let f = k as f32;
+            let prev = Vec3A::new(
+                0.1 + 0.2 * (f * 0.37).sin(),
+                1.1 + 0.25 * (f * 0.11).cos(),
+                -0.2 + 0.2 * (f * 0.23).cos(),
+            );
+            let dir = Vec3A::new((f * 0.7).cos(), (f * 0.3).sin(), (f * 0.5).sin()).normalize();
+            let link = 0.01 + 0.02 * (f * 0.13).sin().abs();
+            let cand = prev + dir * link;
+            let (p, _) = scene.resolve(prev, cand, link, dir);
+            let q = one_by_one(prev, cand, link, dir);
+            if q != cand {
+                hits += 1;
+            }
+            assert_eq!(
+                p.to_array().map(f32::to_bits),
+                q.to_array().map(f32::to_bits),
+                "k = {k}"
+            );
+        }
+        assert!(hits > 400, "only {hits} particles met a capsule");
     }
 
     #[test]
