@@ -307,10 +307,10 @@ fn spread_depth(hist: &mut [f32; DEPTH_BINS], depth: [u16; 2], n: f32) {
         hist[(lo as usize).min(DEPTH_BINS - 1)] += n;
         return;
     }
-    let (b0, b1) = (
-        (lo as usize).min(DEPTH_BINS - 1) as f32,
-        (hi as usize).min(DEPTH_BINS - 1) as f32,
-    );
+    // The first and last bins reached, as floats: lo and hi lie in [0, 8] (from u16 depths),
+    // where floor is the truncation `as usize` did, without its saturating conversions.
+    let last_bin = (DEPTH_BINS - 1) as f32;
+    let (b0, b1) = (lo.floor().min(last_bin), hi.floor().min(last_bin));
     // The bins b0..=b1, four to a vector: each lane rounds its min, max, product and quotient
     // as the scalar `n * overlap / width` does (IEEE), and a lane outside b0..=b1 adds exactly
     // nothing, so this is the per-bin loop to the bit (also for a non-finite n) without its
