@@ -138,18 +138,16 @@ struct BoundGroup {
 
 impl BoundGroup {
     fn of(capsules: &[BoundedCapsule]) -> Self {
-        let lane = |f: &dyn Fn(&BoundedCapsule) -> f32, unused: f32| {
-            let mut v = [unused; 4];
-            for (slot, c) in v.iter_mut().zip(capsules) {
-                *slot = f(c);
-            }
-            Vec4::from_array(v)
-        };
+        let (mut x, mut y, mut z, mut reach2) = ([0.0; 4], [0.0; 4], [0.0; 4], [-1.0; 4]);
+        for (i, c) in capsules.iter().take(4).enumerate() {
+            (x[i], y[i], z[i]) = (c.centre.x, c.centre.y, c.centre.z);
+            reach2[i] = c.reach2 * (1.0 + 1e-5);
+        }
         Self {
-            x: lane(&|c| c.centre.x, 0.0),
-            y: lane(&|c| c.centre.y, 0.0),
-            z: lane(&|c| c.centre.z, 0.0),
-            reach2: lane(&|c| c.reach2 * (1.0 + 1e-5), -1.0),
+            x: Vec4::from_array(x),
+            y: Vec4::from_array(y),
+            z: Vec4::from_array(z),
+            reach2: Vec4::from_array(reach2),
         }
     }
 
@@ -193,6 +191,12 @@ impl<'a> BoundedCapsule<'a> {
 
 impl<'a> CollisionScene<'a> {
     pub(crate) fn new(c: &'a Colliders) -> Self {
+        let capsules: Vec<BoundedCapsule> = c
+            .capsules
+            .iter()
+            .filter(|c| c.usable())
+            .map(BoundedCapsule::new)
+            .collect();
         let radii = Vec3A::from(c.head_radii_m).max(Vec3A::splat(1e-6));
         Self {
             world_to_head: c.head.inverse(),
@@ -202,21 +206,9 @@ impl<'a> CollisionScene<'a> {
             inv_radii_out: (radii + Vec3A::splat(COLLISION_MARGIN_M)).recip(),
             radius_max: radii.max_element(),
             spheres: &c.spheres,
-            capsules: c
-                .capsules
-                .iter()
-                .filter(|c| c.usable())
-                .map(BoundedCapsule::new)
-                .collect(),
-            groups: Vec::new(),
+            groups: capsules.chunks(4).map(BoundGroup::of).collect(),
+            capsules,
         }
-        .grouped()
-    }
-
-    /// Fills [`Self::groups`] from the capsules.
-    fn grouped(mut self) -> Self {
-        self.groups = self.capsules.chunks(4).map(BoundGroup::of).collect();
-        self
     }
 
     /// Moves `p`, which is at exactly `link_m` from `prev` (outside every collider), out of the
