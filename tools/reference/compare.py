@@ -45,6 +45,22 @@ def block_sum(a, k):
 DARK_BLOCKS = (4, 8)
 
 
+def block_means(mask, k):
+    """The k x k blocks at least half compared under `mask`, and a function giving an image's
+    mean luminance over each such block's compared pixels (a flat array, one per block)."""
+    cnt = block_sum(mask.astype(float), k)
+    keep = cnt >= 0.5 * k * k
+    m = mask[..., None]
+    return keep, lambda img: block_sum(((img[..., :3] * m) @ LUMA), k)[keep] / cnt[keep]
+
+
+def bracket_text(d):
+    """One darkest-tenth bracket (a darkest_tenth() result) as "lo-hi", or ">= lo" when the
+    path tracer's darkest tenth of the mean image is 0."""
+    lo, hi = d["ratio"]
+    return f"{lo:.2f}-{hi:.2f}" if np.isfinite(hi) else f">= {lo:.2f}"
+
+
 def darkest_tenth(wisp, ref, passes, mask, k, tail=10.0):
     """The mean luminance of the darkest tenth of k x k blocks (each the mean over its compared
     pixels; blocks at least half compared), wisp's against a bracket on the path tracer's.
@@ -63,12 +79,9 @@ def darkest_tenth(wisp, ref, passes, mask, k, tail=10.0):
     The ratio wisp / converged path tracer then lies in [wisp / high, wisp / low] (each bound
     in expectation); `within_2x` is "yes" when the whole bracket lies in [0.5, 2], "no" when
     it lies outside, and "undecided" (more samples needed) otherwise."""
-    cnt = block_sum(mask.astype(float), k)
-    keep = cnt >= 0.5 * k * k
+    keep, lum = block_means(mask, k)
     if keep.sum() < 50:
         return None
-    m = mask[..., None]
-    lum = lambda img: block_sum(((img[..., :3] * m) @ LUMA), k)[keep] / cnt[keep]
     w, r = lum(wisp), lum(ref)
     per_pass = np.array([lum(p) for p in passes])
     darkest = lambda v: v <= np.percentile(v, tail)
@@ -93,8 +106,7 @@ def dark_cell(fig):
     for k in DARK_BLOCKS:
         d = fig.get(f"dark10_block{k}")
         if d is not None:
-            lo, hi = d["ratio"]
-            parts.append(f"{k}px {lo:.2f}-{hi:.2f}" if np.isfinite(hi) else f"{k}px >= {lo:.2f}")
+            parts.append(f"{k}px {bracket_text(d)}")
     return ", ".join(parts)
 
 

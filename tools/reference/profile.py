@@ -64,15 +64,9 @@ def darkest(images, of, k):
     if len(shapes) != 1:
         sys.exit("profile.py: --darkest-of needs images of one size")
     mask = np.logical_and.reduce([rgba[..., 3] >= 0.99 for _, rgba in images])
-    count = compare.block_sum(mask.astype(float), k)
-    keep = count >= 0.5 * k * k
+    keep, blocks = compare.block_means(mask, k)
     if not keep.any():
         sys.exit(f"profile.py: no {k} x {k} block is half covered in every image")
-
-    def blocks(rgba):
-        return compare.block_sum((rgba[..., :3] * mask[..., None]) @ compare.LUMA, k)[keep] \
-            / count[keep]
-
     lum = {name: blocks(rgba) for name, rgba in images}
     chosen = lum[of] <= np.percentile(lum[of], 10)
     last = names[-1]

@@ -24,6 +24,8 @@ import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import compare  # noqa: E402
 COLOURS = {"dense": ["blond", "brown"], "curly": ["red"], "isolated": ["blond"]}
 LIGHTS = ["front", "side", "back"]
 # Issue 14's targets: per-channel |ratio − 1| bounds, by (case, kind); curly has none.
@@ -74,7 +76,7 @@ def main():
         # The bracket of compare.py darkest_tenth(); issue 14 asks for the darkest tenth
         # within 2× (the verdict "no" in bold).
         dark_cell = "-" if dark is None else (
-            f"{dark['ratio'][0]:.2f}–{dark['ratio'][1]:.2f} "
+            compare.bracket_text(dark) + " "
             + ("**no**" if dark["within_2x"] == "no" else dark["within_2x"]))
         print(f"| {case} {colour} | {light} | {kind} | "
               f"{' / '.join(f'{r:.2f}' for r in ratio)} | {verdict} | {dark_cell} |")
