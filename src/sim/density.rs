@@ -51,7 +51,9 @@
 //! step, a fifth of the step; self-collision as a whole adds 1.5× to the rest of the step (a
 //! 1/30 s frame: 97 M instructions against 40 M without). A parallel splat by slabs of z
 //! layers (each node summed in one fixed order) cost 6% more instructions and its gain could
-//! not be measured on the shared 2-core machine, so it was not kept. Memory: the lattice
+//! not be measured on the shared 2-core machine, so it was not kept; measured again with the
+//! weights computed in a parallel first pass (stop 51, BENCHMARKS.md): the simulation 5%
+//! faster on 2 threads and 6% slower on 1, the frame unchanged, not kept. Memory: the lattice
 //! covers the hair's bounding box in the head frame (about 5,000 nodes for the presets), at
 //! most [`MAX_NODES`] (the spacing guarantees the reachable cube fits; a box over it skips
 //! self-collision for the step and is counted in `StepStats`).
