@@ -6,7 +6,9 @@ shading is measured in seconds instead of re-rendering with Mitsuba.
 usage: rerun_case.py OUTDIR TABLEDIR case colour light kind [wisp flags...]
   case: dense | isolated | curly; colour: blond | brown | red; light: front | side | back;
   kind: dual | single. TABLEDIR/styles/*.json are the table's hairstyles (edit a copy to try
-  other fibre parameters). WISP (environment) is the wisp binary (default target/release/wisp);
+  other fibre parameters). REF_DEPTH (environment) picks the path tracer's render that dual
+  is compared with, mitsuba_d<REF_DEPTH>.exr (default 64; 256 reaches the far side of dense
+  hair, ACCURACY.md section 2). WISP (environment) is the wisp binary (default target/release/wisp);
   it must export the same strands as the binary that made the table. Writes OUTDIR/<case>-
   <colour>-<light>-<kind>/ (wisp's export) and OUTDIR/cmp-<same>.png and .json (compare.py's).
 """
@@ -27,7 +29,9 @@ shading = {"dual": "dual", "single": "single"}[kind]
 d = os.path.join(out, f"{case}-{colour}-{light}-{kind}")
 p = subprocess.run(common + view + ["--shading", shading, "--out", d] + extra, capture_output=True, text=True)
 if p.returncode: sys.exit(p.stderr)
-depth = 64 if kind == "dual" else 2
+# REF_DEPTH (environment): the path tracer's max depth to compare dual against (a render
+# made with render.py --depth REF_DEPTH in the table's case directory); 64 by default.
+depth = int(os.environ.get("REF_DEPTH", "64")) if kind == "dual" else 2
 ref_dir = os.path.join(table, case, f"{colour}-{light}-{kind}")
 # The comparison means something only for the strands the path tracer rendered: a binary or a
 # hairstyle that settles the hair differently compares other hair (back light, whose radiance
