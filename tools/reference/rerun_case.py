@@ -22,6 +22,11 @@ extra = sys.argv[7:]
 ref_depth = os.environ.get("REF_DEPTH", "64")
 if not ref_depth.isdigit() or int(ref_depth) < 3:
     sys.exit(f"rerun_case.py: REF_DEPTH must be a whole number of at least 3 (a max depth of all orders), not {ref_depth!r}")
+depth = int(ref_depth) if kind == "dual" else 2
+ref_dir = os.path.join(table, case, f"{colour}-{light}-{kind}")
+ref = os.path.join(ref_dir, f"mitsuba_d{depth}.exr")
+if not os.path.exists(ref):
+    sys.exit(f"rerun_case.py: {ref} missing: render it with render.py {ref_dir} --depth {depth}")
 wisp = os.environ.get("WISP", "target/release/wisp")
 style = os.path.join(table, "styles", f"{'dense-'+colour if case=='dense' else ('isolated-blond' if case=='isolated' else 'curly')}.json")
 cam = json.load(open(os.path.join(table, case, "camera", "scene.json")))["camera"]
@@ -32,10 +37,6 @@ shading = {"dual": "dual", "single": "single"}[kind]
 d = os.path.join(out, f"{case}-{colour}-{light}-{kind}")
 p = subprocess.run(common + view + ["--shading", shading, "--out", d] + extra, capture_output=True, text=True)
 if p.returncode: sys.exit(p.stderr)
-# REF_DEPTH (environment): the path tracer's max depth to compare dual against (a render
-# made with render.py --depth REF_DEPTH in the table's case directory); 64 by default.
-depth = int(ref_depth) if kind == "dual" else 2
-ref_dir = os.path.join(table, case, f"{colour}-{light}-{kind}")
 # The comparison means something only for the strands the path tracer rendered: a binary or a
 # hairstyle that settles the hair differently compares other hair (back light, whose radiance
 # is the silhouette's fringe, moved 12% that way once).
@@ -43,8 +44,5 @@ ref_dir = os.path.join(table, case, f"{colour}-{light}-{kind}")
 if hairfile.pieces_of(os.path.join(d, "hair.hair"), os.path.join(ref_dir, "hair.hair")) is None:
     print(f"warning: {d}/hair.hair differs from the rendered {ref_dir}/hair.hair: "
           "this compares different strands", file=sys.stderr)
-ref = os.path.join(ref_dir, f"mitsuba_d{depth}.exr")
-if not os.path.exists(ref):
-    sys.exit(f"rerun_case.py: {ref} missing: render it with render.py {ref_dir} --depth {depth}")
 p = subprocess.run([sys.executable, os.path.join(os.path.dirname(os.path.abspath(__file__)), "compare.py"), os.path.join(d, "wisp.exr"), ref, "--passes", os.path.join(ref_dir, f"mitsuba_d{depth}_passes.npy"), "--png", os.path.join(out, f"cmp-{case}-{colour}-{light}-{kind}.png"), "--json", os.path.join(out, f"cmp-{case}-{colour}-{light}-{kind}.json"), "--label", f"{case} {colour} {light} {kind} {' '.join(extra)}"], capture_output=True, text=True)
 print(p.stdout.strip() or p.stderr)
