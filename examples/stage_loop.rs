@@ -1,4 +1,5 @@
-//! Times one stage (`shade`, `map` or `raster`) alone on a fixed hair state of smooth at
+//! Times one stage (`shade`, `map`, `raster` or `solids`: the character and head alone, lit
+//! through the maps as in a frame) alone on a fixed hair state of smooth at
 //! 1280×720, for A/B runs of two builds (`farm-bench --vs`, or callgrind with
 //! `--toggle-collect`): `cargo run --release --example stage_loop -- [REPS] [STAGE] [STYLE]
 //! [CONTACT_MM]`. STYLE: `smooth` (default), `curly`, `dense`, or `smoothxK` (smooth with K
@@ -31,6 +32,7 @@ fn main() {
     if let Some(mm) = std::env::args().nth(4).and_then(|a| a.parse::<f32>().ok()) {
         config.contact = wisp::frame::ContactShadowing::from_mm(mm);
     }
+    let lighting = config.lighting.clone();
     let mut e = Engine::new(style, Motion::default_dance(), config);
     let at_s: f64 = std::env::var("WISP_AT_S")
         .ok()
@@ -38,6 +40,7 @@ fn main() {
         .unwrap_or(2.0);
     e.run_up_to(at_s);
     e.frame(at_s);
+    let maps = e.maps().to_vec();
     let t = std::time::Instant::now();
     for _ in 0..reps {
         match stage.as_str() {
@@ -47,6 +50,11 @@ fn main() {
             }
             "raster" => {
                 e.draw();
+            }
+            "solids" => {
+                e.solids_image(|p, n, albedo| {
+                    wisp::shade::shade_skin(&maps, &lighting, albedo, p, n)
+                });
             }
             _ => e.shade(),
         }
