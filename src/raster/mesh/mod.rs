@@ -20,7 +20,7 @@
 //!    box: half of it for a typical triangle, nearly all of it for a sliver), and a pixel's
 //!    four samples are tested side by side in one vector, lane by lane the same arithmetic as
 //!    one sample at a time: the same bits (the tests hold the per-sample loop as reference),
-//!    the character's solids pass 12.8 → 11.4 ms on 2 threads at 1280×720 (BENCHMARKS.md).
+//!    the frame's raster stage 13.9 → 12.4 ms on 2 threads at 1280×720 (BENCHMARKS.md).
 //! 3. **Shading** (same band task): a pixel whose samples hit the mesh is shaded once, at its
 //!    first covered sample, with perspective-correct barycentrics (λᵢ ∝ eᵢ/zᵢ) of that
 //!    sample's triangle interpolating position, normal and texture coordinates; the colour is
