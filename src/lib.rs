@@ -47,3 +47,4 @@ pub mod raster;
 pub mod scene;
 pub mod shade;
 pub mod sim;
+mod tri_span;

@@ -43,6 +43,7 @@ use rayon::prelude::*;
 
 use super::camera::{Camera, View};
 use super::framebuffer::Framebuffer;
+use crate::tri_span;
 
 /// Image rows per band.
 const BAND_ROWS: usize = 16;
@@ -353,68 +354,20 @@ fn edges(t: &ScreenTri, q: Vec2) -> [f32; 3] {
     ]
 }
 
-/// Corners beyond this many pixels from the image's origin, or an edge shorter than
-/// [`MIN_NARROW_EDGE_PX`], keep the whole screen box per row: [`row_columns`]' margin is
-/// proven against the edge functions' rounding only below these (see there).
-const MAX_NARROW_COORD_PX: f32 = 16_384.0;
-const MIN_NARROW_EDGE_PX: f32 = 0.05;
-/// Pixels [`row_columns`] adds on either side of a row's exact span, and rows above and
-/// below the pixel row whose strip of the triangle it takes.
-const NARROW_MARGIN_PX: f32 = 2.0;
-
-/// Whether [`row_columns`] may narrow a triangle's rows (moderate coordinates, no edge of
-/// almost no length).
-fn narrowable(t: &ScreenTri) -> bool {
-    let [a, b, c] = t.p;
-    [a, b, c]
-        .iter()
-        .all(|p| p.abs().max_element() < MAX_NARROW_COORD_PX)
-        && [b - a, c - b, a - c]
-            .iter()
-            .all(|e| e.length() >= MIN_NARROW_EDGE_PX)
-}
-
-/// The columns of pixel row `y` (within `x0..x1`) whose samples the triangle can cover: the
-/// triangle's x extent over the rows `y − m .. y + 1 + m` (its corners there and its edges'
-/// crossings of the strip's bounds), widened by m = [`NARROW_MARGIN_PX`] either side.
-///
-/// Why the margin makes it exact: a sample outside this span lies at least m from the
-/// triangle's part in the widened strip and at least m vertically from the rest, so some
-/// edge's line separates it from the triangle by a distance d with d·L (L the edge's length)
-/// far above the rounding of that edge function (a few ulps of |pₐ − q|·|p_b − q|, under
-/// 1e-2 px² for corners within [`MAX_NARROW_COORD_PX`] of the image, against d·L ≥ 0.1 for
-/// edges of at least [`MIN_NARROW_EDGE_PX`]), so the exact test rejects it too; the tests
-/// check the spans against every sample on random and hostile triangles.
-fn row_columns(t: &ScreenTri, y: usize, (x0, x1): (usize, usize)) -> (usize, usize) {
-    let (ya, yb) = (
-        y as f32 - NARROW_MARGIN_PX,
-        y as f32 + 1.0 + NARROW_MARGIN_PX,
-    );
-    let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
-    for i in 0..3 {
-        let (a, b) = (t.p[i], t.p[(i + 1) % 3]);
-        let (top, bottom) = (a.y.min(b.y), a.y.max(b.y));
-        let (from, to) = (top.max(ya), bottom.min(yb));
-        if from > to {
-            continue;
-        }
-        // The edge's x over its part in the strip (a level edge, or one too steep in x to
-        // interpolate: its whole x range, which holds that part).
-        let slope = (b.x - a.x) / (b.y - a.y);
-        let (u, v) = if slope.is_finite() {
-            (a.x + (from - a.y) * slope, a.x + (to - a.y) * slope)
-        } else {
-            (a.x, b.x)
-        };
-        lo = lo.min(u.min(v));
-        hi = hi.max(u.max(v));
+/// The columns of pixel row `y` (within `x0..x1`) whose samples the triangle with corners
+/// `p` (as (y, x)) can cover: its x extent over the rows `y − m .. y + 1 + m`, widened by m
+/// either side (`crate::tri_span`, m = its margin); the whole `x0..x1` when it cannot narrow.
+fn row_columns(p: [Vec2; 3], narrow: bool, y: usize, (x0, x1): (usize, usize)) -> (usize, usize) {
+    if !narrow {
+        return (x0, x1);
     }
-    if !(lo <= hi) {
+    let m = tri_span::MARGIN;
+    let Some((lo, hi)) = tri_span::extent_across(p, (y as f32 - m, y as f32 + 1.0 + m)) else {
         return (x0, x0);
-    }
-    let xa = (lo - NARROW_MARGIN_PX).floor().max(x0 as f32) as usize;
-    let xb = ((hi + NARROW_MARGIN_PX).floor() + 1.0).max(0.0) as usize;
-    (xa.max(x0), xb.min(x1).max(xa.max(x0)))
+    };
+    let xa = ((lo - m).floor().max(x0 as f32) as usize).max(x0);
+    let xb = (((hi + m).floor() + 1.0).max(0.0) as usize).min(x1);
+    (xa, xb.max(xa))
 }
 
 impl Band {
@@ -439,18 +392,15 @@ impl Band {
         let r1 = (hi.y.min((self.y0 + self.rows) as f32).ceil() as usize).min(self.y0 + self.rows);
         let inv_area = 1.0 / t.area2;
         let [p0, p1, p2] = t.p;
+        let p_yx = t.p.map(|q| Vec2::new(q.y, q.x));
+        let narrow = tri_span::narrowable(p_yx);
         let (ox, oy) = (
             Vec4::from(SAMPLE_OFFSETS.map(|o| o.0)),
             Vec4::from(SAMPLE_OFFSETS.map(|o| o.1)),
         );
-        let narrow = narrowable(t);
         for y in r0..r1 {
             let row = (y - self.y0) * self.w;
-            let (xa, xb) = if narrow {
-                row_columns(t, y, (x0, x1))
-            } else {
-                (x0, x1)
-            };
+            let (xa, xb) = row_columns(p_yx, narrow, y, (x0, x1));
             let qy = Vec4::splat(y as f32) + oy;
             // (pᵢ − q).y for the three corners, shared by the row.
             let dy = [
