@@ -31,7 +31,7 @@
 
 use super::{LightFrame, Projection};
 use crate::tri_span;
-use glam::{Affine3A, Vec2, Vec3};
+use glam::{Affine3A, Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
 /// Largest grid side, texels (1024² f32 = 4 MB).
@@ -151,18 +151,38 @@ impl TriangleSetup {
             } else {
                 (self.j0, self.j1)
             };
-            for j in j0..=j1 {
-                let p = Vec2::new(i as f32, j as f32);
-                let l = [
-                    (q[1] - p).perp_dot(q[2] - p) * self.inv,
-                    (q[2] - p).perp_dot(q[0] - p) * self.inv,
-                    (q[0] - p).perp_dot(q[1] - p) * self.inv,
+            // Four centres of the row side by side, each lane the arithmetic of one centre
+            // p = (i, j) in the order the scalar test had: (qₐ − p).perp_dot(q_b − p) × inv,
+            // then the depth as Σ lₖ·depthₖ left to right: the same bits.
+            let fi = i as f32;
+            let ax = [q[0].x - fi, q[1].x - fi, q[2].x - fi].map(Vec4::splat);
+            let mut j = j0;
+            while j <= j1 {
+                let pj = Vec4::splat(j as f32) + Vec4::new(0.0, 1.0, 2.0, 3.0);
+                let ay = [
+                    Vec4::splat(q[0].y) - pj,
+                    Vec4::splat(q[1].y) - pj,
+                    Vec4::splat(q[2].y) - pj,
                 ];
-                if l[0] >= 0.0 && l[1] >= 0.0 && l[2] >= 0.0 {
-                    let d = l[0] * self.depth[0] + l[1] * self.depth[1] + l[2] * self.depth[2];
-                    let texel = &mut rows[(i as usize - band.start) * cols + j as usize];
-                    *texel = texel.min(d);
+                let inv = Vec4::splat(self.inv);
+                let l0 = (ax[1] * ay[2] - ay[1] * ax[2]) * inv;
+                let l1 = (ax[2] * ay[0] - ay[2] * ax[0]) * inv;
+                let l2 = (ax[0] * ay[1] - ay[0] * ax[1]) * inv;
+                let inside =
+                    (l0.cmpge(Vec4::ZERO) & l1.cmpge(Vec4::ZERO) & l2.cmpge(Vec4::ZERO)).bitmask();
+                if inside != 0 {
+                    let d =
+                        (l0 * self.depth[0] + l1 * self.depth[1] + l2 * self.depth[2]).to_array();
+                    let row = (i as usize - band.start) * cols;
+                    for (k, d) in d.iter().enumerate() {
+                        let jk = j + k as i64;
+                        if inside & (1 << k) != 0 && jk <= j1 {
+                            let texel = &mut rows[row + jk as usize];
+                            *texel = texel.min(*d);
+                        }
+                    }
                 }
+                j += 4;
             }
         }
     }
