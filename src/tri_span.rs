@@ -4,14 +4,17 @@
 //!
 //! Both rasters test a centre with edge functions, so a span must hold every centre that
 //! test accepts, rounding included, for the span to change no bit. The span is the
-//! triangle's exact extent over a few rows either side of the row, widened by [`MARGIN`]: a
-//! centre outside it lies at least [`MARGIN`] from the triangle's part in those rows and
-//! more than that from the rest, so some edge's line separates it from the triangle by a
-//! distance d with d·L (L the edge's length) far above that edge function's rounding (a few
-//! ulps of |pₐ − q|·|p_b − q|: under 1e-2 for corners within [`MAX_COORD`] of the origin,
-//! against d·L ≥ 0.1 for edges of at least [`MIN_EDGE`]). Outside those bounds
-//! [`narrowable`] says no and the caller keeps the whole box. Each raster's tests hold its
-//! old whole-box loop as reference, on random, sliver and far-off triangles.
+//! triangle's exact extent over the row and [`MARGIN`] rows either side, widened by
+//! [`MARGIN`]: a centre q outside it lies at least [`MARGIN`] from the triangle. Some edge
+//! (a, b) then separates q from it, with an edge function of d·L (d: q's distance from that
+//! edge's line, L: the edge's length) against a rounding of about 2ε|a − q||b − q|
+//! (ε = 2⁻²⁴). The tight case is q past a sharp corner v of angle θ, where d ≈ |v − q|·sin(θ/2)
+//! and the rounding ≈ 2ε|v − q|·L: it is rejected as long as sin(θ/2) > 2ε ≈ 1.2e-7. A
+//! triangle whose edges are all at least [`MIN_EDGE`] and whose corners lie within
+//! [`MAX_COORD`] of the origin has sin θ ≥ [`MIN_EDGE`] over its longest edge (law of
+//! sines), so sin(θ/2) ≥ 5e-7: four times that. Other triangles ([`narrowable`] says no) keep
+//! their whole box. Each raster's tests hold its old whole-box loop as reference, bit for
+//! bit, on random, sliver and far-off triangles.
 
 use glam::Vec2;
 
