@@ -127,6 +127,19 @@ impl Camera {
         View::new(self)
     }
 
+    /// The view onto an image of `width` × `height` pixels, whatever size the camera says
+    /// (the rasters draw at their framebuffer's size), or `None` when it cannot project
+    /// anything: a focal length that is not positive and finite, or an eye not finite.
+    pub fn view_for(&self, width: u32, height: u32) -> Option<View> {
+        let view = Camera {
+            width,
+            height,
+            ..*self
+        }
+        .view();
+        (view.focal_px > 0.0 && view.focal_px.is_finite() && view.eye.is_finite()).then_some(view)
+    }
+
     /// World point -> `(x_px, y_px, depth_m)`, x right, y down, pixel centres at +0.5, depth
     /// along the view direction in metres. `None` when the point is nearer than the near plane
     /// (or behind the eye) or the result is not finite.

@@ -277,16 +277,7 @@ pub(super) fn prepare<'a>(
     if !width_ok || !(style.opacity > 0.0) {
         return None;
     }
-    // Project with the framebuffer's size, whatever the camera says.
-    let view = Camera {
-        width: fb.width,
-        height: fb.height,
-        ..*cam
-    }
-    .view();
-    if !(view.focal_px > 0.0) || !view.focal_px.is_finite() || !view.eye.is_finite() {
-        return None;
-    }
+    let view = cam.view_for(fb.width, fb.height)?;
     let bundles = matches!(style.width, LineWidth::Projected { .. })
         && lines.bundle.is_some_and(|b| profiles.prepare(&b));
     Some(Params {

@@ -52,16 +52,9 @@ pub fn draw_ellipsoid(
     if w == 0 || h == 0 || !fb.is_consistent() {
         return;
     }
-    // Project with the framebuffer's size, whatever the camera says.
-    let cam = Camera {
-        width: fb.width,
-        height: fb.height,
-        ..*cam
-    };
-    let view = cam.view();
-    if !(view.focal_px > 0.0 && view.focal_px.is_finite() && view.eye.is_finite()) {
+    let Some(view) = cam.view_for(fb.width, fb.height) else {
         return;
-    }
+    };
     let m = unit_sphere_to_world;
     let lin = Mat3::from(m.matrix3);
     let det = lin.determinant();

@@ -168,15 +168,9 @@ pub fn draw_mesh(
     if w == 0 || h == 0 || !fb.is_consistent() {
         return;
     }
-    let cam = Camera {
-        width: fb.width,
-        height: fb.height,
-        ..*cam
-    };
-    let view = cam.view();
-    if !(view.focal_px > 0.0 && view.focal_px.is_finite() && view.eye.is_finite()) {
+    let Some(view) = cam.view_for(fb.width, fb.height) else {
         return;
-    }
+    };
     set_up(&view, mesh, scratch);
     let bands = h.div_ceil(BAND_ROWS);
     let n = w * h * SAMPLES;
