@@ -65,6 +65,21 @@ def load_bias(data, binary):
     sys.exit(f"attribute.py: {binary} has no executable LOAD segment")
 
 
+def check_build_id(data, binary):
+    """Exits unless `binary` is the build `data` recorded: addresses of another build of
+    the same name would be charged to the wrong code without any sign of it."""
+    name = os.path.basename(binary)
+    recorded = None
+    for line in run(["perf", "buildid-list", "-i", data]).splitlines():
+        f = line.split(maxsplit=1)
+        if len(f) == 2 and f[1].endswith("/" + name):
+            recorded = f[0]
+    note = re.search(r"Build ID: ([0-9a-f]+)", run(["readelf", "-n", binary]))
+    if recorded and note and note.group(1) != recorded:
+        sys.exit(f"attribute.py: {binary} is not the build {data} recorded (build id "
+                 f"{note.group(1)[:12]}… against {recorded[:12]}…): rebuilt since?")
+
+
 def samples(data, binary):
     """Samples per file address in `binary`, and the recording's total sample count."""
     name = os.path.basename(binary)
@@ -117,6 +132,7 @@ def main():
     if not os.path.isfile(args.binary):
         sys.exit(f"attribute.py: {args.binary}: no such file")
     src = os.path.realpath(args.src) + os.sep
+    check_build_id(args.data, args.binary)
     counts, total = samples(args.data, args.binary)
     if total == 0:
         sys.exit(f"attribute.py: {args.data} holds no samples")
