@@ -20,7 +20,7 @@ use glam::Vec2;
 
 /// Units (pixels or texels) a span adds on either side of the triangle's extent, and rows
 /// either side of the row whose part of the triangle it takes.
-pub(crate) const MARGIN: f32 = 2.0;
+const MARGIN: f32 = 2.0;
 /// Corners farther than this from the origin (in pixels or texels) keep the whole box.
 const MAX_COORD: f32 = 16_384.0;
 /// A triangle with an edge shorter than this keeps the whole box.
@@ -34,10 +34,18 @@ pub(crate) fn narrowable(p: [Vec2; 3]) -> bool {
         && [b - a, c - b, a - c].iter().all(|e| e.length() >= MIN_EDGE)
 }
 
+/// The span of a row whose centres have `.x` in `[from, to]`: the `.y` range that every
+/// centre the triangle's edge functions can accept lies in (see the module doc), that is its
+/// extent over `[from − MARGIN, to + MARGIN]` widened by [`MARGIN`] either side; `None`
+/// where the triangle has no part there. Only for [`narrowable`] triangles.
+pub(crate) fn span(p: [Vec2; 3], (from, to): (f32, f32)) -> Option<(f32, f32)> {
+    extent_across(p, (from - MARGIN, to + MARGIN)).map(|(lo, hi)| (lo - MARGIN, hi + MARGIN))
+}
+
 /// The range of `.y` that triangle `p` covers where `.x` lies in `[from, to]`, or `None`
 /// where it has no part there. Its part there is the convex hull of its corners in the band
 /// and its edges' crossings of the band's bounds, so the range is the extremes of those.
-pub(crate) fn extent_across(p: [Vec2; 3], (from, to): (f32, f32)) -> Option<(f32, f32)> {
+fn extent_across(p: [Vec2; 3], (from, to): (f32, f32)) -> Option<(f32, f32)> {
     let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
     for i in 0..3 {
         let (a, b) = (p[i], p[(i + 1) % 3]);
@@ -94,6 +102,7 @@ mod tests {
         assert_eq!(extent_across(t, (0.0, 0.0)), Some((0.0, 10.0)));
         assert_eq!(extent_across(t, (5.0, 5.0)), Some((0.0, 5.0)));
         assert_eq!(extent_across(t, (9.0, 20.0)), Some((0.0, 1.0)));
+        assert_eq!(span(t, (5.0, 6.0)), Some((-2.0, 9.0)));
         assert!(narrowable(t));
         assert!(!narrowable([t[0], t[0] + Vec2::new(0.01, 0.0), t[2]]));
         assert!(!narrowable([t[0], t[1], Vec2::new(0.0, 1e6)]));

@@ -93,15 +93,14 @@ struct TriangleSetup {
 }
 
 impl TriangleSetup {
-    /// The columns of texel row `i` within the box whose centres the triangle can cover: its
-    /// extent over rows `i ± m`, widened by m (`crate::tri_span`, m = its margin); an empty
-    /// range (`j0 > j1`) where it has no part there.
+    /// The columns of texel row `i` within the box whose centres the triangle can cover:
+    /// those inside its span at that row (`crate::tri_span::span`); an empty range
+    /// (`j0 > j1`) where it has no part there.
     fn columns(&self, i: i64) -> (i64, i64) {
-        let m = tri_span::MARGIN;
-        match tri_span::extent_across(self.q, (i as f32 - m, i as f32 + m)) {
+        match tri_span::span(self.q, (i as f32, i as f32)) {
             Some((lo, hi)) => (
-                ((lo - m).ceil() as i64).max(self.j0),
-                ((hi + m).floor() as i64).min(self.j1),
+                (lo.ceil() as i64).max(self.j0),
+                (hi.floor() as i64).min(self.j1),
             ),
             None => (self.j0, self.j0 - 1),
         }
@@ -145,6 +144,7 @@ impl TriangleSetup {
         );
         let q = &self.q;
         let narrow = i0 <= i1 && tri_span::narrowable(*q);
+        let (inv, lanes) = (Vec4::splat(self.inv), Vec4::new(0.0, 1.0, 2.0, 3.0));
         for i in i0..=i1 {
             let (j0, j1) = if narrow {
                 self.columns(i)
@@ -158,13 +158,12 @@ impl TriangleSetup {
             let ax = [q[0].x - fi, q[1].x - fi, q[2].x - fi].map(Vec4::splat);
             let mut j = j0;
             while j <= j1 {
-                let pj = Vec4::splat(j as f32) + Vec4::new(0.0, 1.0, 2.0, 3.0);
+                let pj = Vec4::splat(j as f32) + lanes;
                 let ay = [
                     Vec4::splat(q[0].y) - pj,
                     Vec4::splat(q[1].y) - pj,
                     Vec4::splat(q[2].y) - pj,
                 ];
-                let inv = Vec4::splat(self.inv);
                 let l0 = (ax[1] * ay[2] - ay[1] * ax[2]) * inv;
                 let l1 = (ax[2] * ay[0] - ay[2] * ax[0]) * inv;
                 let l2 = (ax[0] * ay[1] - ay[0] * ax[1]) * inv;

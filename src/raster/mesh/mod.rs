@@ -349,18 +349,17 @@ fn edges(t: &ScreenTri, q: Vec2) -> [f32; 3] {
 }
 
 /// The columns of pixel row `y` (within `x0..x1`) whose samples the triangle with corners
-/// `p` (as (y, x)) can cover: its x extent over the rows `y − m .. y + 1 + m`, widened by m
-/// either side (`crate::tri_span`, m = its margin); the whole `x0..x1` when it cannot narrow.
+/// `p` (as (y, x)) can cover: the pixels meeting its span over the row's strip
+/// (`crate::tri_span::span`); the whole `x0..x1` when it cannot narrow.
 fn row_columns(p: [Vec2; 3], narrow: bool, y: usize, (x0, x1): (usize, usize)) -> (usize, usize) {
     if !narrow {
         return (x0, x1);
     }
-    let m = tri_span::MARGIN;
-    let Some((lo, hi)) = tri_span::extent_across(p, (y as f32 - m, y as f32 + 1.0 + m)) else {
+    let Some((lo, hi)) = tri_span::span(p, (y as f32, y as f32 + 1.0)) else {
         return (x0, x0);
     };
-    let xa = ((lo - m).floor().max(x0 as f32) as usize).max(x0);
-    let xb = (((hi + m).floor() + 1.0).max(0.0) as usize).min(x1);
+    let xa = (lo.floor().max(x0 as f32) as usize).max(x0);
+    let xb = ((hi.floor() + 1.0).max(0.0) as usize).min(x1);
     (xa, xb.max(xa))
 }
 
