@@ -130,6 +130,9 @@ pub enum ShadingArg {
     /// The shadows alone: grey = the irradiance reaching the hair through no fibre (no fibre
     /// model, no ambient on the hair).
     Visibility,
+    /// Single scattering plus multiply scattered light from paths traced through the hair
+    /// volume (directional lights; seconds per frame; `--volume-cell-mm`, `--volume-paths`).
+    Volume,
 }
 
 impl From<ShadingArg> for ShadingMode {
@@ -139,6 +142,7 @@ impl From<ShadingArg> for ShadingMode {
             ShadingArg::Single => ShadingMode::SingleScattering,
             ShadingArg::KajiyaKay => ShadingMode::KajiyaKay,
             ShadingArg::Visibility => ShadingMode::Visibility,
+            ShadingArg::Volume => ShadingMode::Volume,
         }
     }
 }
@@ -216,6 +220,12 @@ pub struct SceneArgs {
     /// Fibre shader.
     #[arg(long, value_enum, default_value = "dual")]
     pub shading: ShadingArg,
+    /// `--shading volume`: the volume's cell edge in millimetres, 0.5..=100 (default 4).
+    #[arg(long, value_name = "MM", value_parser = parse_volume_cell_mm)]
+    pub volume_cell_mm: Option<f32>,
+    /// `--shading volume`: light paths per light, 1000..=50000000 (default 1000000).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1000..=50_000_000))]
+    pub volume_paths: Option<u32>,
     /// Turn off density-based self-collision.
     #[arg(long)]
     pub no_self_collision: bool,
@@ -283,6 +293,12 @@ impl SceneArgs {
         }
         if let Some(n) = self.segment_pieces {
             config.segment_pieces = n;
+        }
+        if let Some(mm) = self.volume_cell_mm {
+            config.volume.cell_m = mm * 1e-3;
+        }
+        if let Some(n) = self.volume_paths {
+            config.volume.paths = n;
         }
         config.self_collision = !self.no_self_collision;
         config.simulate = !self.no_sim;

@@ -106,7 +106,9 @@ pub fn run(args: PlayArgs) -> Result<(), AppError> {
                         ShadingMode::DualScattering => ShadingMode::SingleScattering,
                         ShadingMode::SingleScattering => ShadingMode::KajiyaKay,
                         ShadingMode::KajiyaKay => ShadingMode::Visibility,
-                        ShadingMode::Visibility => ShadingMode::DualScattering,
+                        ShadingMode::Visibility | ShadingMode::Volume => {
+                            ShadingMode::DualScattering
+                        }
                     }
                 }
                 Key::C => engine.config.self_collision = !engine.config.self_collision,

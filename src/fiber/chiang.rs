@@ -233,6 +233,13 @@ impl TrimmedLogistic {
         let y = x - 2.0 * PI * k;
         k + ((sigmoid(y / self.s) - self.lo) * self.inv_z).clamp(0.0, 1.0)
     }
+
+    /// The x in [−π, π] where the CDF is `xi` ∈ [0, 1]: its inverse, for sampling
+    /// (`chiang_sample.rs`). σ(x/s) = lo + ξ(1 − 2 lo), so x = s · logit(lo + ξ(1 − 2 lo)).
+    pub fn sample(&self, xi: f64) -> f64 {
+        let q = (self.lo + xi.clamp(0.0, 1.0) * (1.0 - 2.0 * self.lo)).clamp(1e-300, 1.0 - 1e-16);
+        (self.s * (q / (1.0 - q)).ln()).clamp(-PI, PI)
+    }
 }
 
 /// [`TrimmedLogistic::pdf`] of scale s.

@@ -42,6 +42,7 @@
 pub mod azimuthal;
 pub mod backscatter;
 pub mod chiang;
+pub mod chiang_sample;
 pub mod chiang_tables;
 pub mod dual;
 pub mod fresnel;
@@ -88,6 +89,12 @@ pub enum ShadingMode {
     /// what `tools/reference/visibility.py` path-traces, so shadows can be checked apart from
     /// the fibre model (ACCURACY.md §2, "Where the side-lit deficit comes from").
     Visibility,
+    /// Single scattering with hard shadows (as [`ShadingMode::SingleScattering`]) plus the
+    /// multiply scattered light of paths traced through the hair volume (`crate::volume`,
+    /// Moon, Walter & Marschner 2008's split): all orders without dual scattering's
+    /// assumptions, at seconds per frame. Directional lights only; a point light adds its
+    /// single scattering alone.
+    Volume,
 }
 
 /// What the light-oriented map knows about the light reaching a point (all dimensionless).
@@ -348,7 +355,9 @@ impl Fiber {
         };
         let v = match mode {
             ShadingMode::DualScattering => self.shade_dual(&a, &Trig::from_sines(sines), light),
-            ShadingMode::SingleScattering => self.shade_single(&a, &Trig::from_sines(sines), light),
+            ShadingMode::SingleScattering | ShadingMode::Volume => {
+                self.shade_single(&a, &Trig::from_sines(sines), light)
+            }
             ShadingMode::KajiyaKay => self.kk.shade(&a, light),
             ShadingMode::Visibility => visibility(),
         };

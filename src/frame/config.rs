@@ -117,6 +117,9 @@ pub struct EngineConfig {
     /// and the shader read the hair this many times as often along it
     /// ([`crate::interp::subdivide_in_place`]), at about as many times their cost.
     pub segment_pieces: u32,
+    /// The light-path volume of [`crate::fiber::ShadingMode::Volume`] (unused by the other
+    /// shaders).
+    pub volume: crate::volume::VolumeParams,
 }
 
 /// Whether the maps take the fibres just in front of each vertex exactly (`map::contact`).
@@ -186,6 +189,7 @@ impl Default for EngineConfig {
             draw_solids: true,
             contact: ContactShadowing::Off,
             segment_pieces: 1,
+            volume: crate::volume::VolumeParams::default(),
         }
     }
 }

@@ -28,6 +28,7 @@ mod config;
 mod hair_lines;
 mod map_reuse;
 mod setup;
+mod volume_pass;
 
 pub use config::{
     ContactShadowing, DEFAULT_CONTACT_WINDOW_M, DEFAULT_MIN_LINE_WIDTH_PX, EngineConfig,
@@ -438,6 +439,9 @@ impl Engine {
             &mut self.colors,
             &mut self.shade_scratch,
         );
+        if self.config.lighting.mode == crate::fiber::ShadingMode::Volume {
+            self.add_volume_light(only_seen);
+        }
     }
 
     /// The raster stage alone: clears the image, draws the solids (lit through the maps) and

@@ -15,28 +15,8 @@
 //! roots (Bertails 2005 §4.1: strands interpolated from the guides of their wisp).
 
 use super::{GuideSet, Hairstyle, StrandLayout};
+pub use crate::rng::SplitMix64;
 use glam::Vec3;
-
-/// A small deterministic generator (SplitMix64): placement must not depend on a crate's
-/// version of its random streams.
-pub struct SplitMix64(u64);
-
-impl SplitMix64 {
-    pub fn new(seed: u64) -> Self {
-        Self(seed)
-    }
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    /// Uniform in [0, 1).
-    pub fn unit(&mut self) -> f32 {
-        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
-    }
-}
 
 /// Point on the ellipsoid with semi-axes `r` in direction `d` (unit), and its outward unit normal.
 fn ellipsoid_point(r: Vec3, d: Vec3) -> (Vec3, Vec3) {

@@ -77,6 +77,7 @@ impl Readout {
                 ShadingMode::SingleScattering => "single",
                 ShadingMode::KajiyaKay => "kajiya-kay",
                 ShadingMode::Visibility => "visibility",
+                ShadingMode::Volume => "volume",
             },
             if self.self_collision { "on" } else { "off" },
         );

@@ -1,0 +1,322 @@
+//! Multiply scattered light by light paths traced through the hair volume (Moon, Walter &
+//! Marschner 2008's two-pass scheme, with their spherical harmonics replaced by the paths'
+//! own directions): an alternative to dual scattering's global and local terms where light
+//! reaches hair off its shadow ray.
+//!
+//! Why: dual scattering (Zinke 2008) carries forward-scattered light along the straight shadow
+//! ray only. Against a path tracer, back-lit dense hair then leaves a band inside the
+//! silhouette 5–20× too dark: it is lit by light scattered four or more times that diffuses in
+//! from the rim (ACCURACY.md §2, "How many bounces light the back-lit band"). Light carried
+//! through the volume lights it; a single scalar per cell gets the colours wrong, because the
+//! fibre's response depends on where the light comes from (§2, "The volume solve,
+//! prototyped"). So each cell keeps every path's direction and the fibre's far-field BCSDF
+//! is integrated against them.
+//!
+//! How:
+//! 1. **Cells.** A grid of `cell_m` cubes over the hair. Each render-strand point stands for a
+//!    piece of fibre (its `lengths_m` times the strand's fibres), cut into pieces at most half a
+//!    cell long, each filed under the cell of its middle with its tangent.
+//! 2. **Paths** ([`trace`]). Light enters along a directional light from a plane in front of
+//!    the grid, each path with power E·A/N. It flies by delta tracking: the majorant of a
+//!    cell is 2r·n·ℓ_max/V (n pieces, the longest ℓ_max); at a tentative collision a piece is
+//!    drawn uniformly and hit with probability (ℓ/ℓ_max)·sin ψ (ψ between path and fibre), so
+//!    real collisions occur at the fibres' cross-section per volume, 2r Σ ℓ sin ψ / V.
+//!    At each hit the path scatters by the Chiang model (`fiber::chiang_sample`). Russian
+//!    roulette ends weak paths without bias.
+//! 3. **Tallies.** After its first scattering, each straight flight through a cell leaves a
+//!    record: the direction it came from and its power times the length flown in the cell.
+//!    Σ records / V estimates ∫ L(ω) dω there, direction by direction (the track-length
+//!    estimator), for light scattered at least once.
+//! 4. **Gather** ([`PhotonVolume::indirect`]). A seen point adds Σ S(ωi, ωo) cos θi · power·ℓ
+//!    / V over the records of one cell near it (drawn with trilinear probabilities from a hash
+//!    of the point, so the cells blend without an 8× cost). The light that reaches it directly
+//!    is the single-scattering shader's, as in MWM08: the two add up to all orders.
+//!
+//! Deterministic for any thread count: paths are traced in fixed blocks, each from its own
+//! seed, and their records are concatenated in block order and sorted stably by cell.
+
+// `!(a < b)` on floats is meant: it is true for NaN, which must take the safe branch.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+mod trace;
+
+use crate::fiber::Fiber;
+use glam::{UVec3, Vec3};
+
+/// Most cells per axis (a larger extent gets larger cells).
+const MAX_CELLS_PER_AXIS: usize = 256;
+
+/// How the volume is built.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VolumeParams {
+    /// Cell edge, metres (> 0).
+    pub cell_m: f32,
+    /// Light paths per light. The default, 1,000,000, is what dense hair's darkest tenth needs:
+    /// 200,000 left blond back-lit at 0.32–0.51 of the path tracer's (ACCURACY.md §2, "Light
+    /// paths through the volume").
+    pub paths: u32,
+    /// Seed of the paths' random numbers.
+    pub seed: u64,
+}
+
+impl Default for VolumeParams {
+    fn default() -> Self {
+        Self {
+            cell_m: 0.004,
+            paths: 1_000_000,
+            seed: 0x5EED_0F11_6A7E,
+        }
+    }
+}
+
+/// The hair as fibre pieces filed by cell (step 1 of the module doc).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Cells {
+    pub(crate) origin: Vec3,
+    pub(crate) cell_m: f32,
+    pub(crate) dims: UVec3,
+    /// Per cell, its pieces' range: `starts[c]..starts[c + 1]`.
+    pub(crate) starts: Vec<u32>,
+    /// Pieces' unit tangents and lengths of fibre (metres × fibres), by cell.
+    pub(crate) tangents: Vec<Vec3>,
+    pub(crate) lengths: Vec<f32>,
+    /// Per cell, the longest piece (metres of fibre).
+    pub(crate) longest: Vec<f32>,
+}
+
+impl Cells {
+    /// The cell holding `p`, or `None` outside the grid.
+    pub(crate) fn cell_of(&self, p: Vec3) -> Option<usize> {
+        let q = (p - self.origin) / self.cell_m;
+        if !(q.x >= 0.0 && q.y >= 0.0 && q.z >= 0.0) {
+            return None;
+        }
+        let (x, y, z) = (q.x as u32, q.y as u32, q.z as u32);
+        let d = self.dims;
+        (x < d.x && y < d.y && z < d.z).then(|| self.index(UVec3::new(x, y, z)))
+    }
+
+    pub(crate) fn index(&self, c: UVec3) -> usize {
+        ((c.z * self.dims.y + c.y) * self.dims.x + c.x) as usize
+    }
+
+    pub(crate) fn count(&self) -> usize {
+        (self.dims.x * self.dims.y * self.dims.z) as usize
+    }
+
+    /// Files the pieces of fibre the points stand for (module doc, step 1).
+    fn build(
+        positions: &[Vec3],
+        tangents: &[Vec3],
+        lengths_m: &[f32],
+        fibers_per_strand: f32,
+        cell_m: f32,
+    ) -> Option<Cells> {
+        let n = positions.len().min(tangents.len()).min(lengths_m.len());
+        let usable = |i: usize| {
+            positions[i].is_finite()
+                && tangents[i].is_finite()
+                && lengths_m[i].is_finite()
+                && lengths_m[i] > 0.0
+        };
+        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        for i in (0..n).filter(|&i| usable(i)) {
+            let reach = Vec3::splat(0.5 * lengths_m[i]);
+            lo = lo.min(positions[i] - reach);
+            hi = hi.max(positions[i] + reach);
+        }
+        if !(lo.is_finite() && hi.is_finite() && cell_m > 0.0 && fibers_per_strand > 0.0) {
+            return None;
+        }
+        let extent = hi - lo;
+        let cell_m = cell_m.max(extent.max_element() / (MAX_CELLS_PER_AXIS - 2) as f32);
+        let origin = lo - Vec3::splat(cell_m);
+        let dims = ((extent / cell_m).ceil() + Vec3::splat(2.0)).as_uvec3();
+        let mut cells = Cells {
+            origin,
+            cell_m,
+            dims,
+            ..Default::default()
+        };
+        // Pieces of at most half a cell: (cell, tangent, length), then a counting sort by cell.
+        let half = 0.5 * cell_m;
+        let mut pieces: Vec<(u32, Vec3, f32)> = Vec::new();
+        for i in (0..n).filter(|&i| usable(i)) {
+            let (p, u, len) = (positions[i], tangents[i].normalize_or_zero(), lengths_m[i]);
+            if u == Vec3::ZERO {
+                continue;
+            }
+            let k = ((len / half).ceil() as usize).clamp(1, 64);
+            let step = len / k as f32;
+            for j in 0..k {
+                let at = p + u * (step * (j as f32 + 0.5) - 0.5 * len);
+                if let Some(c) = cells.cell_of(at) {
+                    pieces.push((c as u32, u, step * fibers_per_strand));
+                }
+            }
+        }
+        let count = cells.count();
+        let mut starts = vec![0u32; count + 1];
+        for &(c, _, _) in &pieces {
+            starts[c as usize + 1] += 1;
+        }
+        for c in 0..count {
+            starts[c + 1] += starts[c];
+        }
+        let mut cursor = starts.clone();
+        cells.tangents = vec![Vec3::ZERO; pieces.len()];
+        cells.lengths = vec![0.0; pieces.len()];
+        cells.longest = vec![0.0; count];
+        for &(c, u, len) in &pieces {
+            let at = &mut cursor[c as usize];
+            cells.tangents[*at as usize] = u;
+            cells.lengths[*at as usize] = len;
+            *at += 1;
+            let l = &mut cells.longest[c as usize];
+            *l = l.max(len);
+        }
+        cells.starts = starts;
+        Some(cells)
+    }
+}
+
+/// One straight flight of scattered light through one cell (module doc, step 3).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Record {
+    pub(crate) cell: u32,
+    /// Unit direction the light came from (against its travel).
+    pub(crate) from: Vec3,
+    /// Its power times the length flown in the cell, W·m, RGB.
+    pub(crate) power_m: Vec3,
+}
+
+/// The multiply scattered light of one directional light in the hair (module doc).
+#[derive(Clone, Debug, Default)]
+pub struct PhotonVolume {
+    cells: Cells,
+    /// Per cell, its records' range: `starts[c]..starts[c + 1]`.
+    starts: Vec<u32>,
+    from: Vec<Vec3>,
+    /// Power × length ÷ cell volume (W/m², RGB): each record's share of ∫ L dω.
+    fluence: Vec<Vec3>,
+    /// Paths traced, those that met a fibre, and the scatterings met, for reports.
+    pub paths: u64,
+    pub scattered_paths: u64,
+    pub scatterings: u64,
+}
+
+impl PhotonVolume {
+    /// Traces `params.paths` light paths of a directional light travelling along unit
+    /// `travel` with `irradiance` (W/m², RGB) through the hair the points stand for
+    /// (`lengths_m`: metres of fibre each, in units of the strand's `fibers_per_strand`
+    /// fibres), with `fiber`'s Chiang constants. `None` when there is no hair.
+    #[allow(clippy::too_many_arguments)]
+    pub fn build(
+        fiber: &Fiber,
+        positions: &[Vec3],
+        tangents: &[Vec3],
+        lengths_m: &[f32],
+        fibers_per_strand: f32,
+        travel: Vec3,
+        irradiance: Vec3,
+        params: &VolumeParams,
+    ) -> Option<PhotonVolume> {
+        let cells = Cells::build(
+            positions,
+            tangents,
+            lengths_m,
+            fibers_per_strand,
+            params.cell_m,
+        )?;
+        let radius_m = fiber.params().radius_m;
+        let traced = trace::trace(&cells, fiber, radius_m, travel, irradiance, params);
+        // A counting sort of every block's records by cell, blocks in order: the same order
+        // for any thread count.
+        let count = cells.count();
+        let mut starts = vec![0u32; count + 1];
+        for r in traced.blocks.iter().flatten() {
+            starts[r.cell as usize + 1] += 1;
+        }
+        for c in 0..count {
+            starts[c + 1] += starts[c];
+        }
+        let mut cursor = starts.clone();
+        let n = starts[count] as usize;
+        let mut from = vec![Vec3::ZERO; n];
+        let mut fluence = vec![Vec3::ZERO; n];
+        let inv_volume = 1.0 / cells.cell_m.powi(3);
+        for r in traced.blocks.iter().flatten() {
+            let at = &mut cursor[r.cell as usize];
+            from[*at as usize] = r.from;
+            fluence[*at as usize] = r.power_m * inv_volume;
+            *at += 1;
+        }
+        Some(PhotonVolume {
+            cells,
+            starts,
+            from,
+            fluence,
+            paths: traced.paths,
+            scattered_paths: traced.scattered_paths,
+            scatterings: traced.scatterings,
+        })
+    }
+
+    /// Records kept (for reports and memory).
+    pub fn records(&self) -> usize {
+        self.from.len()
+    }
+
+    /// The multiply scattered radiance toward unit `wo` of a fibre of unit tangent `u` at `p`
+    /// (W/(m²·sr), RGB): Σ S(ωi, ωo) cos θi × the record's share of ∫ L dω, over the records
+    /// of one cell near `p`, chosen with trilinear probabilities by `pick` ∈ [0, 1)³.
+    pub fn indirect(&self, fiber: &Fiber, p: Vec3, u: Vec3, wo: Vec3, pick: Vec3) -> Vec3 {
+        let Some(c) = self.pick_cell(p, pick) else {
+            return Vec3::ZERO;
+        };
+        let (a, b) = (self.starts[c] as usize, self.starts[c + 1] as usize);
+        let mut sum = Vec3::ZERO;
+        for (wi, e) in self.from[a..b].iter().zip(&self.fluence[a..b]) {
+            let Some(angles) = crate::fiber::shader::HairAngles::from_vectors(u, *wi, wo) else {
+                continue;
+            };
+            let sin_i = u.dot(*wi).clamp(-1.0, 1.0);
+            let cos_i = (1.0 - sin_i * sin_i).max(0.0).sqrt();
+            sum += fiber.bcsdf(&angles) * (cos_i * *e);
+        }
+        if sum.is_finite() {
+            sum.max(Vec3::ZERO)
+        } else {
+            Vec3::ZERO
+        }
+    }
+
+    /// The cell of the 2×2×2 around `p` (between cell centres) that `pick` draws with
+    /// trilinear probabilities: its expectation is the trilinear blend of the cells' values.
+    fn pick_cell(&self, p: Vec3, pick: Vec3) -> Option<usize> {
+        let cells = &self.cells;
+        let q = (p - cells.origin) / cells.cell_m - Vec3::splat(0.5);
+        if !q.is_finite() {
+            return None;
+        }
+        let f = q.floor();
+        let t = q - f;
+        let step = |t: f32, r: f32| if r < t { 1.0 } else { 0.0 };
+        let c = f + Vec3::new(step(t.x, pick.x), step(t.y, pick.y), step(t.z, pick.z));
+        let d = cells.dims.as_vec3();
+        if c.x < 0.0 || c.y < 0.0 || c.z < 0.0 || c.x >= d.x || c.y >= d.y || c.z >= d.z {
+            return None;
+        }
+        Some(cells.index(c.as_uvec3()))
+    }
+}
+
+/// Three numbers in [0, 1) from a hash of `i` (SplitMix64's finaliser), for
+/// [`PhotonVolume::indirect`]'s cell choice: the same point picks the same cell every run.
+pub fn pick_of(i: usize) -> Vec3 {
+    let mut rng = crate::rng::SplitMix64::new(i as u64 ^ 0xC0FF_EE00_D15C_0BA1);
+    Vec3::new(rng.unit(), rng.unit(), rng.unit())
+}
+
+#[cfg(test)]
+mod tests;

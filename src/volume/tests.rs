@@ -1,0 +1,174 @@
+//! The volume's parts against analytic cases: the paths' free flights against Beer–Lambert in a
+//! slab of parallel fibres, the gather's units in a white furnace, and the same records for
+//! any thread count.
+
+use super::trace::Walker;
+use super::*;
+use crate::fiber::{FiberModel, FiberParams};
+use crate::rng::SplitMix64;
+
+fn chiang(sigma_a: [f32; 3]) -> Fiber {
+    Fiber::new(&FiberParams {
+        model: FiberModel::Chiang,
+        sigma_a,
+        alpha_r_deg: 0.0,
+        ..Default::default()
+    })
+}
+
+/// `n` pieces of fibre along +X, `len_m` long, at uniform random points of the box
+/// [−w, w] × [0, depth] × [−w, w] (metres).
+fn slab(n: usize, len_m: f32, w: f32, depth: f32, seed: u64) -> (Vec<Vec3>, Vec<Vec3>, Vec<f32>) {
+    let mut rng = SplitMix64::new(seed);
+    let positions = (0..n)
+        .map(|_| {
+            Vec3::new(
+                -w + 2.0 * w * rng.unit(),
+                depth * rng.unit(),
+                -w + 2.0 * w * rng.unit(),
+            )
+        })
+        .collect();
+    (positions, vec![Vec3::X; n], vec![len_m; n])
+}
+
+/// Paths shot down into a slab of fibres at right angles, and at 60° to them, pass without a
+/// hit with probability exp(−2r λ sin ψ L): λ the fibre length per volume, L the path's length
+/// in the slab. Delta tracking, the majorant and the acceptance (ℓ/ℓ_max · sin ψ) together
+/// must give that rate.
+#[test]
+fn free_flights_follow_beer_lambert_in_a_slab() {
+    let (w, depth, len) = (0.02f32, 0.008f32, 0.0015f32);
+    let n = 12_000;
+    let (p, u, l) = slab(n, len, w, depth, 5);
+    let cells = Cells::build(&p, &u, &l, 1.0, 0.004).expect("cells");
+    let r = 40e-6f32;
+    let walker = Walker {
+        cells: &cells,
+        sigma_per_len: 2.0 * r / cells.cell_m.powi(3),
+    };
+    // Fibre length per volume: the pieces fill [−w − len/2, w + len/2] along X.
+    let lambda = n as f32 * len / ((2.0 * w + len) * depth * (2.0 * w));
+    let mut rng = SplitMix64::new(9);
+    for cos_to_fibre in [0.0f32, 0.5] {
+        let sin = (1.0 - cos_to_fibre * cos_to_fibre).sqrt();
+        let d = Vec3::new(cos_to_fibre, -sin, 0.0);
+        let tau = 2.0 * r * lambda * (depth / sin) * sin;
+        let shots = 200_000;
+        let mut passed = 0;
+        for _ in 0..shots {
+            // Entering the slab's top well inside its edges, from above.
+            let at = Vec3::new(
+                -0.5 * w + w * rng.unit(),
+                depth + 0.01,
+                -0.5 * w + w * rng.unit(),
+            );
+            let start = at - d * (0.01 / sin);
+            let mut sink = Vec::new();
+            if walker
+                .fly(start, d, false, Vec3::ONE, &mut rng, &mut sink)
+                .is_none()
+            {
+                passed += 1;
+            }
+            assert!(sink.is_empty(), "unscattered light leaves no record");
+        }
+        let measured = passed as f64 / shots as f64;
+        let want = (-tau as f64).exp();
+        // Binomial error (0.001) plus the cells' Poisson counts (about 0.5% of the value).
+        assert!(
+            (measured - want).abs() < 0.004 + 0.01 * want,
+            "cos to fibre {cos_to_fibre}: τ {tau:.3}, passed {measured:.4}, Beer–Lambert {want:.4}"
+        );
+    }
+}
+
+/// Records of isotropic light (directions uniform on the sphere) of total share φ give a
+/// white fibre the radiance φ/4π whatever its tangent and view: Chiang's model has
+/// ∫ S cos θi dωi = 1 for every ωo (`chiang.rs`, "Energy"), so the gather's units are those
+/// of the shader's (radiance = S cos θi × irradiance).
+#[test]
+fn isotropic_records_light_a_white_fibre_by_a_quarter_pi() {
+    let fiber = chiang([0.0; 3]);
+    let (p, u, l) = slab(10, 0.001, 0.004, 0.004, 1);
+    let cells = Cells::build(&p, &u, &l, 1.0, 0.004).expect("cells");
+    let k = 200_000;
+    let phi = 3.0f32;
+    let mut rng = SplitMix64::new(4);
+    let from: Vec<Vec3> = (0..k)
+        .map(|_| {
+            let z = 2.0 * rng.unit() - 1.0;
+            let a = std::f32::consts::TAU * rng.unit();
+            let s = (1.0 - z * z).max(0.0).sqrt();
+            Vec3::new(s * a.cos(), s * a.sin(), z)
+        })
+        .collect();
+    let count = cells.count();
+    // Every cell holds the same records.
+    let mut starts = vec![0u32; count + 1];
+    let mut all_from = Vec::new();
+    for c in 0..count {
+        all_from.extend_from_slice(&from);
+        starts[c + 1] = ((c + 1) * k) as u32;
+    }
+    let volume = PhotonVolume {
+        fluence: vec![Vec3::splat(phi / k as f32); all_from.len()],
+        from: all_from,
+        starts,
+        cells,
+        paths: 0,
+        scattered_paths: 0,
+        scatterings: 0,
+    };
+    let centre = volume.cells.origin + volume.cells.dims.as_vec3() * (0.5 * volume.cells.cell_m);
+    for (tangent, view) in [
+        (Vec3::X, Vec3::Z),
+        (Vec3::X, Vec3::new(0.6, 0.0, 0.8)),
+        (
+            Vec3::new(0.0, 0.6, 0.8),
+            Vec3::new(-0.8, 0.36, -0.48).normalize(),
+        ),
+    ] {
+        let got = volume.indirect(&fiber, centre, tangent, view, Vec3::splat(0.5));
+        let want = phi / (4.0 * std::f32::consts::PI);
+        for ch in got.to_array() {
+            assert!(
+                (ch / want - 1.0).abs() < 0.02,
+                "tangent {tangent}, view {view}: {got} against φ/4π = {want}"
+            );
+        }
+    }
+}
+
+/// The same records, bit for bit, on one thread and on two.
+#[test]
+fn the_same_records_for_any_thread_count() {
+    let fiber = chiang([0.3, 0.5, 0.9]);
+    let (p, u, l) = slab(3_000, 0.002, 0.01, 0.006, 2);
+    let params = VolumeParams {
+        cell_m: 0.002,
+        paths: 5_000,
+        seed: 77,
+    };
+    let run = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("pool")
+            .install(|| {
+                PhotonVolume::build(&fiber, &p, &u, &l, 1.0, -Vec3::Y, Vec3::ONE, &params)
+                    .expect("volume")
+            })
+    };
+    let (a, b) = (run(1), run(2));
+    assert!(a.records() > 1_000, "{} records", a.records());
+    assert_eq!(a.starts, b.starts);
+    let bits = |v: &[Vec3]| {
+        v.iter()
+            .flat_map(|x| x.to_array().map(f32::to_bits))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(bits(&a.from), bits(&b.from));
+    assert_eq!(bits(&a.fluence), bits(&b.fluence));
+    assert_eq!(a.scatterings, b.scatterings);
+}

@@ -1,0 +1,284 @@
+//! Light paths through the cells (`volume` module doc, steps 2 and 3): delta tracking across a
+//! grid walked cell by cell (Amanatides & Woo 1987), Chiang scattering, Russian roulette.
+
+use super::{Cells, Record, VolumeParams};
+use crate::fiber::Fiber;
+use crate::fiber::chiang::TrimmedLogistic;
+use crate::fiber::chiang_sample::sample_scatter;
+use crate::rng::SplitMix64;
+use glam::Vec3;
+use rayon::prelude::*;
+
+/// Paths per block: each block draws from its own seed, so the result is the same for any
+/// thread count.
+const BLOCK: u32 = 1024;
+/// Scatterings after which Russian roulette may end a path.
+const ROULETTE_AFTER: u32 = 3;
+/// A path is ended after this many scatterings whatever its power (never reached in practice:
+/// a fibre absorbs or sends light out of the hair long before).
+const MAX_SCATTERINGS: u32 = 100_000;
+
+/// What the paths left: records per block, in block order.
+pub(super) struct Traced {
+    pub(super) blocks: Vec<Vec<Record>>,
+    pub(super) paths: u64,
+    /// Paths that met at least one fibre.
+    pub(super) scattered_paths: u64,
+    pub(super) scatterings: u64,
+}
+
+/// Traces `params.paths` paths of a directional light travelling along `travel` with
+/// `irradiance` through `cells` (fibres of radius `radius_m`).
+pub(super) fn trace(
+    cells: &Cells,
+    fiber: &Fiber,
+    radius_m: f32,
+    travel: Vec3,
+    irradiance: Vec3,
+    params: &VolumeParams,
+) -> Traced {
+    let d = travel.normalize_or_zero();
+    if d == Vec3::ZERO || params.paths == 0 {
+        return Traced {
+            blocks: Vec::new(),
+            paths: 0,
+            scattered_paths: 0,
+            scatterings: 0,
+        };
+    }
+    // The plane across the light through the grid's centre, and the grid's shadow on it.
+    let (a, b) = d.any_orthonormal_pair();
+    let size = cells.dims.as_vec3() * cells.cell_m;
+    let centre = cells.origin + 0.5 * size;
+    let (mut lo, mut hi) = (
+        glam::Vec2::splat(f32::INFINITY),
+        glam::Vec2::splat(f32::NEG_INFINITY),
+    );
+    for k in 0..8 {
+        let corner = cells.origin
+            + size * Vec3::new((k & 1) as f32, ((k >> 1) & 1) as f32, ((k >> 2) & 1) as f32);
+        let q = glam::Vec2::new((corner - centre).dot(a), (corner - centre).dot(b));
+        lo = lo.min(q);
+        hi = hi.max(q);
+    }
+    let area = (hi - lo).x * (hi - lo).y;
+    let power = irradiance * (area / params.paths as f32);
+    let back = size.length();
+    let c = *fiber.chiang_constants();
+    let logistic = TrimmedLogistic::new(c.s);
+    let sigma_per_len = 2.0 * radius_m / cells.cell_m.powi(3);
+    let walker = Walker {
+        cells,
+        sigma_per_len,
+    };
+    let blocks = params.paths.div_ceil(BLOCK);
+    let results: Vec<(Vec<Record>, u64, u64)> = (0..blocks)
+        .into_par_iter()
+        .map(|block| {
+            let mut rng =
+                SplitMix64::new(params.seed ^ (block as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
+            let mut records = Vec::new();
+            let (mut scatterings, mut scattered) = (0u64, 0u64);
+            let end = ((block + 1) * BLOCK).min(params.paths);
+            for _ in block * BLOCK..end {
+                let (x, y) = (rng.unit(), rng.unit());
+                let on_plane =
+                    centre + a * (lo.x + (hi.x - lo.x) * x) + b * (lo.y + (hi.y - lo.y) * y);
+                let start = on_plane - d * back;
+                let n = walker.path(start, d, power, &c, &logistic, &mut rng, &mut records);
+                scatterings += n;
+                scattered += u64::from(n > 0);
+            }
+            (records, scatterings, scattered)
+        })
+        .collect();
+    let scatterings = results.iter().map(|r| r.1).sum();
+    let scattered_paths = results.iter().map(|r| r.2).sum();
+    Traced {
+        blocks: results.into_iter().map(|r| r.0).collect(),
+        paths: params.paths as u64,
+        scattered_paths,
+        scatterings,
+    }
+}
+
+pub(super) struct Walker<'a> {
+    pub(super) cells: &'a Cells,
+    /// 2r / V: a cell's cross-section per metre of fibre at right angles.
+    pub(super) sigma_per_len: f32,
+}
+
+impl Walker<'_> {
+    /// One path from `start` along unit `d` with `power`; appends its records, returns its
+    /// scatterings.
+    #[allow(clippy::too_many_arguments)]
+    fn path(
+        &self,
+        start: Vec3,
+        mut d: Vec3,
+        power: Vec3,
+        c: &crate::fiber::chiang::ChiangConstants,
+        logistic: &TrimmedLogistic,
+        rng: &mut SplitMix64,
+        records: &mut Vec<Record>,
+    ) -> u64 {
+        let mut o = start;
+        let mut weight = power;
+        let full = power.max_element();
+        let mut bounces = 0u32;
+        loop {
+            let Some((hit, u)) = self.fly(o, d, bounces > 0, weight, rng, records) else {
+                return bounces as u64;
+            };
+            let xi = std::array::from_fn(|_| rng.open_unit_f64());
+            let Some(s) = sample_scatter(c, logistic, u.as_dvec3(), -d.as_dvec3(), xi) else {
+                return bounces as u64;
+            };
+            bounces += 1;
+            weight *= Vec3::new(s.weight[0] as f32, s.weight[1] as f32, s.weight[2] as f32);
+            d = s.dir.as_vec3().normalize_or_zero();
+            o = hit;
+            if d == Vec3::ZERO || !weight.is_finite() || bounces >= MAX_SCATTERINGS {
+                return bounces as u64;
+            }
+            if bounces >= ROULETTE_AFTER {
+                let keep = weight.max_element() / full;
+                if keep < 1.0 {
+                    if rng.open_unit_f64() as f32 >= keep {
+                        return bounces as u64;
+                    }
+                    weight /= keep;
+                }
+            }
+        }
+    }
+
+    /// Flies from `o` along `d` until a fibre is hit (its point and tangent) or the grid is
+    /// left (`None`), recording each cell's flight when `scattered`.
+    pub(super) fn fly(
+        &self,
+        o: Vec3,
+        d: Vec3,
+        scattered: bool,
+        weight: Vec3,
+        rng: &mut SplitMix64,
+        records: &mut Vec<Record>,
+    ) -> Option<(Vec3, Vec3)> {
+        let cells = self.cells;
+        let size = cells.dims.as_vec3() * cells.cell_m;
+        // Enter the grid's box.
+        let inv = d.recip();
+        let t0 = (cells.origin - o) * inv;
+        let t1 = (cells.origin + size - o) * inv;
+        let (tn, tf) = (t0.min(t1), t0.max(t1));
+        let t_enter = tn.max_element().max(0.0);
+        let t_leave = tf.min_element();
+        if !(t_enter < t_leave) {
+            return None;
+        }
+        // The walk: cell coordinates and the distances to the next boundaries.
+        let p = o + d * t_enter;
+        let q = ((p - cells.origin) / cells.cell_m)
+            .clamp(Vec3::ZERO, cells.dims.as_vec3() - Vec3::splat(1e-3));
+        let mut cell = q.floor().as_ivec3();
+        let step = d.signum().as_ivec3();
+        let next_edge = |c: i32, s: i32| (c + i32::from(s > 0)) as f32;
+        let mut t_max = Vec3::new(
+            axis_t(
+                o.x,
+                d.x,
+                cells.origin.x,
+                cells.cell_m,
+                next_edge(cell.x, step.x),
+            ),
+            axis_t(
+                o.y,
+                d.y,
+                cells.origin.y,
+                cells.cell_m,
+                next_edge(cell.y, step.y),
+            ),
+            axis_t(
+                o.z,
+                d.z,
+                cells.origin.z,
+                cells.cell_m,
+                next_edge(cell.z, step.z),
+            ),
+        );
+        let t_delta = (Vec3::splat(cells.cell_m) * inv).abs();
+        let dims = cells.dims.as_ivec3();
+        let mut t = t_enter;
+        loop {
+            if cell.cmplt(glam::IVec3::ZERO).any() || cell.cmpge(dims).any() {
+                return None;
+            }
+            let index = cells.index(cell.as_uvec3());
+            let t_exit = t_max.min_element().max(t);
+            let (first, last) = (
+                cells.starts[index] as usize,
+                cells.starts[index + 1] as usize,
+            );
+            let t_cell = t;
+            if last > first {
+                let longest = cells.longest[index];
+                let majorant = self.sigma_per_len * (last - first) as f32 * longest;
+                loop {
+                    let s = -(rng.open_unit_f64() as f32).ln() / majorant;
+                    if !(t + s < t_exit) {
+                        break;
+                    }
+                    t += s;
+                    let j = first
+                        + ((rng.open_unit_f64() * (last - first) as f64) as usize)
+                            .min(last - first - 1);
+                    let u = cells.tangents[j];
+                    let sin = d.cross(u).length();
+                    let accept = cells.lengths[j] / longest * sin;
+                    if (rng.open_unit_f64() as f32) < accept {
+                        if scattered {
+                            records.push(Record {
+                                cell: index as u32,
+                                from: -d,
+                                power_m: weight * (t - t_cell),
+                            });
+                        }
+                        return Some((o + d * t, u));
+                    }
+                }
+            }
+            if scattered && t_exit > t_cell {
+                records.push(Record {
+                    cell: index as u32,
+                    from: -d,
+                    power_m: weight * (t_exit - t_cell),
+                });
+            }
+            t = t_exit;
+            // The next cell along the axis whose boundary comes first.
+            if t_max.x <= t_max.y && t_max.x <= t_max.z {
+                cell.x += step.x;
+                t_max.x += t_delta.x;
+            } else if t_max.y <= t_max.z {
+                cell.y += step.y;
+                t_max.y += t_delta.y;
+            } else {
+                cell.z += step.z;
+                t_max.z += t_delta.z;
+            }
+            if t >= t_leave {
+                return None;
+            }
+        }
+    }
+}
+
+/// Distance along the ray from `o` (direction component `d`) to the plane at grid coordinate
+/// `edge` (cells from `origin`, `cell_m` each): +∞ when the ray runs parallel to it.
+fn axis_t(o: f32, d: f32, origin: f32, cell_m: f32, edge: f32) -> f32 {
+    if d == 0.0 {
+        f32::INFINITY
+    } else {
+        (origin + edge * cell_m - o) / d
+    }
+}
