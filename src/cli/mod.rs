@@ -131,7 +131,7 @@ pub enum ShadingArg {
     /// model, no ambient on the hair).
     Visibility,
     /// Single scattering plus multiply scattered light from paths traced through the hair
-    /// volume (directional lights; seconds per frame; `--volume-cell-mm`, `--volume-paths`).
+    /// volume (seconds per frame; `--volume-cell-mm`, `--volume-paths`).
     Volume,
 }
 

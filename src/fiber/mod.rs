@@ -92,8 +92,7 @@ pub enum ShadingMode {
     /// Single scattering with hard shadows (as [`ShadingMode::SingleScattering`]) plus the
     /// multiply scattered light of paths traced through the hair volume (`crate::volume`,
     /// Moon, Walter & Marschner 2008's split): all orders without dual scattering's
-    /// assumptions, at seconds per frame. Directional lights only; a point light adds its
-    /// single scattering alone.
+    /// assumptions, at seconds per frame.
     Volume,
 }
 

@@ -1,33 +1,32 @@
 //! The multiply scattered light of `ShadingMode::Volume` (`crate::volume`), added to the
-//! vertices' single scattering: one volume of light paths per directional light, gathered at
+//! vertices' single scattering: one volume of light paths per light, gathered at
 //! each shaded vertex.
 
 use super::Engine;
-use crate::light::Light;
 use crate::volume::{PhotonVolume, pick_of};
 use rayon::prelude::*;
 
 impl Engine {
-    /// Adds each directional light's multiply scattered light to the vertices shaded (all, or
-    /// with `only_seen` those the raster keeps); point lights add none.
+    /// Adds each light's multiply scattered light to the vertices shaded (all, or with
+    /// `only_seen` those the raster keeps).
     pub(super) fn add_volume_light(&mut self, only_seen: bool) {
         let eye = self.camera.eye();
         let strands = &self.strands;
         let seen = &self.seen;
         let fibers = self.style.strands.fibers_per_strand;
+        // The solids stop light where they are drawn (the head and body's colliders stand for
+        // them, a character's capsules for its mesh).
+        let (solids, colliders) = (self.config.draw_solids, &self.frame_colliders);
         for light in &self.config.lighting.lights {
-            let Light::Directional { travel, irradiance } = *light else {
-                continue;
-            };
             let Some(volume) = PhotonVolume::build(
                 &self.fiber,
                 &strands.positions,
                 &strands.tangents,
                 &strands.lengths_m,
                 fibers,
-                travel.get(),
-                irradiance,
+                light,
                 &self.config.volume,
+                solids.then_some(|p: glam::Vec3| colliders.penetration_m(p)),
             ) else {
                 continue;
             };

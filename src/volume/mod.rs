@@ -16,13 +16,15 @@
 //! 1. **Cells.** A grid of `cell_m` cubes over the hair. Each render-strand point stands for a
 //!    piece of fibre (its `lengths_m` times the strand's fibres), cut into pieces at most half a
 //!    cell long, each filed under the cell of its middle with its tangent.
-//! 2. **Paths** ([`trace`]). Light enters along a directional light from a plane in front of
-//!    the grid, each path with power E·A/N. It flies by delta tracking: the majorant of a
+//! 2. **Paths** ([`trace`]). A directional light's paths enter from a rectangle across it in
+//!    front of the grid, each with power E·A/N; a point light's leave it into the cone of the
+//!    grid's bounding sphere, each with I·Ω/N. It flies by delta tracking: the majorant of a
 //!    cell is 2r·n·ℓ_max/V (n pieces, the longest ℓ_max); at a tentative collision a piece is
 //!    drawn uniformly and hit with probability (ℓ/ℓ_max)·sin ψ (ψ between path and fibre), so
 //!    real collisions occur at the fibres' cross-section per volume, 2r Σ ℓ sin ψ / V.
 //!    At each hit the path scatters by the Chiang model (`fiber::chiang_sample`). Russian
-//!    roulette ends weak paths without bias.
+//!    roulette ends weak paths without bias. A cell wholly inside a solid (head, body) absorbs
+//!    what enters it (skin's own reflection is not carried).
 //! 3. **Tallies.** After its first scattering, each straight flight through a cell leaves a
 //!    record: the direction it came from and its power times the length flown in the cell.
 //!    Σ records / V estimates ∫ L(ω) dω there, direction by direction (the track-length
@@ -41,7 +43,9 @@
 mod trace;
 
 use crate::fiber::Fiber;
+use crate::light::Light;
 use glam::{UVec3, Vec3};
+use rayon::prelude::*;
 
 /// Most cells per axis (a larger extent gets larger cells).
 const MAX_CELLS_PER_AXIS: usize = 256;
@@ -82,6 +86,9 @@ pub(crate) struct Cells {
     pub(crate) lengths: Vec<f32>,
     /// Per cell, the longest piece (metres of fibre).
     pub(crate) longest: Vec<f32>,
+    /// Per cell, whether it lies wholly inside a solid (head, body): light that enters it is
+    /// absorbed. Empty: no solids.
+    pub(crate) solid: Vec<bool>,
 }
 
 impl Cells {
@@ -102,6 +109,21 @@ impl Cells {
 
     pub(crate) fn count(&self) -> usize {
         (self.dims.x * self.dims.y * self.dims.z) as usize
+    }
+
+    /// Marks the cells whose centre lies deeper than half their diagonal inside a solid
+    /// (`depth_m(p)`: how deep `p` lies inside one, metres, 0 outside), so wholly inside.
+    fn mark_solids(&mut self, depth_m: &(impl Fn(Vec3) -> f32 + Sync)) {
+        let (origin, cell_m, dims) = (self.origin, self.cell_m, self.dims);
+        let half_diagonal = 0.5 * 3f32.sqrt() * cell_m;
+        self.solid = (0..self.count())
+            .into_par_iter()
+            .map(|i| {
+                let i = i as u32;
+                let c = UVec3::new(i % dims.x, (i / dims.x) % dims.y, i / (dims.x * dims.y));
+                depth_m(origin + (c.as_vec3() + Vec3::splat(0.5)) * cell_m) > half_diagonal
+            })
+            .collect();
     }
 
     /// Files the pieces of fibre the points stand for (module doc, step 1).
@@ -206,30 +228,34 @@ pub struct PhotonVolume {
 }
 
 impl PhotonVolume {
-    /// Traces `params.paths` light paths of a directional light travelling along unit
-    /// `travel` with `irradiance` (W/m², RGB) through the hair the points stand for
+    /// Traces `params.paths` light paths of `light` through the hair the points stand for
     /// (`lengths_m`: metres of fibre each, in units of the strand's `fibers_per_strand`
-    /// fibres), with `fiber`'s Chiang constants. `None` when there is no hair.
+    /// fibres), with `fiber`'s Chiang constants. `solid_depth_m(p)`, when given, says how deep
+    /// `p` lies inside a solid (0 outside): light that enters one is absorbed. `None` when
+    /// there is no hair.
     #[allow(clippy::too_many_arguments)]
-    pub fn build(
+    pub fn build<D: Fn(Vec3) -> f32 + Sync>(
         fiber: &Fiber,
         positions: &[Vec3],
         tangents: &[Vec3],
         lengths_m: &[f32],
         fibers_per_strand: f32,
-        travel: Vec3,
-        irradiance: Vec3,
+        light: &Light,
         params: &VolumeParams,
+        solid_depth_m: Option<D>,
     ) -> Option<PhotonVolume> {
-        let cells = Cells::build(
+        let mut cells = Cells::build(
             positions,
             tangents,
             lengths_m,
             fibers_per_strand,
             params.cell_m,
         )?;
+        if let Some(depth) = &solid_depth_m {
+            cells.mark_solids(depth);
+        }
         let radius_m = fiber.params().radius_m;
-        let traced = trace::trace(&cells, fiber, radius_m, travel, irradiance, params);
+        let traced = trace::trace(&cells, fiber, radius_m, light, params);
         // A counting sort of every block's records by cell, blocks in order: the same order
         // for any thread count.
         let count = cells.count();

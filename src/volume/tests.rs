@@ -5,7 +5,11 @@
 use super::trace::Walker;
 use super::*;
 use crate::fiber::{FiberModel, FiberParams};
+use crate::light::Light;
 use crate::rng::SplitMix64;
+
+/// No solids (the type of the closure `PhotonVolume::build` would take).
+const NO_SOLIDS: Option<fn(Vec3) -> f32> = None;
 
 fn chiang(sigma_a: [f32; 3]) -> Fiber {
     Fiber::new(&FiberParams {
@@ -150,13 +154,14 @@ fn the_same_records_for_any_thread_count() {
         paths: 5_000,
         seed: 77,
     };
+    let overhead = Light::directional(-Vec3::Y, Vec3::ONE).expect("light");
     let run = |threads: usize| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
             .expect("pool")
             .install(|| {
-                PhotonVolume::build(&fiber, &p, &u, &l, 1.0, -Vec3::Y, Vec3::ONE, &params)
+                PhotonVolume::build(&fiber, &p, &u, &l, 1.0, &overhead, &params, NO_SOLIDS)
                     .expect("volume")
             })
     };
@@ -171,4 +176,77 @@ fn the_same_records_for_any_thread_count() {
     assert_eq!(bits(&a.from), bits(&b.from));
     assert_eq!(bits(&a.fluence), bits(&b.fluence));
     assert_eq!(a.scatterings, b.scatterings);
+}
+
+/// A point light far away lights the hair as a directional light of irradiance I/d² along the
+/// same line: the cone's power I·Ω/N per path against the plane's E·A/N. The records' summed
+/// light agrees within the paths' noise.
+#[test]
+fn a_distant_point_light_is_a_directional_light_of_irradiance_i_over_d_squared() {
+    let fiber = chiang([0.2, 0.3, 0.5]);
+    let (p, u, l) = slab(4_000, 0.002, 0.01, 0.006, 8);
+    let params = VolumeParams {
+        cell_m: 0.002,
+        paths: 40_000,
+        seed: 3,
+    };
+    let cells = Cells::build(&p, &u, &l, 1.0, params.cell_m).expect("cells");
+    let centre = cells.origin + cells.dims.as_vec3() * (0.5 * cells.cell_m);
+    let distance = 20.0;
+    let point = Light::Point {
+        position_m: centre + Vec3::Y * distance,
+        intensity: Vec3::splat(400.0),
+    };
+    let sun =
+        Light::directional(-Vec3::Y, Vec3::splat(400.0 / (distance * distance))).expect("light");
+    let total = |light: &Light| {
+        let v = PhotonVolume::build(&fiber, &p, &u, &l, 1.0, light, &params, NO_SOLIDS)
+            .expect("volume");
+        v.fluence.iter().copied().sum::<Vec3>()
+    };
+    let (a, b) = (total(&point), total(&sun));
+    println!("point {a}, directional {b}");
+    assert!(a.min_element() > 0.0);
+    for (x, y) in a.to_array().into_iter().zip(b.to_array()) {
+        assert!(
+            (x / y - 1.0).abs() < 0.04,
+            "point {a} against directional {b}"
+        );
+    }
+}
+
+/// A solid between the light and the hair takes all its light: a layer over the hair's top
+/// (every cell above it), lit from straight above, leaves no record; without it the same paths
+/// leave thousands. Cells only partly inside a solid let light pass (the depth must exceed
+/// half a cell's diagonal).
+#[test]
+fn solids_absorb_the_light_that_enters_them() {
+    let fiber = chiang([0.2, 0.3, 0.5]);
+    let (p, u, l) = slab(2_000, 0.002, 0.01, 0.006, 4);
+    let params = VolumeParams {
+        cell_m: 0.002,
+        paths: 10_000,
+        seed: 1,
+    };
+    let overhead = Light::directional(-Vec3::Y, Vec3::ONE).expect("light");
+    let roof = |q: Vec3| if q.y > 0.0065 { 1.0 } else { 0.0 };
+    let shallow = |q: Vec3| if q.y > 0.0065 { 1e-4 } else { 0.0 };
+    let build = |depth: Option<&(dyn Fn(Vec3) -> f32 + Sync)>| {
+        PhotonVolume::build(
+            &fiber,
+            &p,
+            &u,
+            &l,
+            1.0,
+            &overhead,
+            &params,
+            depth.map(|f| move |q: Vec3| f(q)),
+        )
+        .expect("volume")
+        .records()
+    };
+    let (open, roofed, thin) = (build(None), build(Some(&roof)), build(Some(&shallow)));
+    assert!(open > 1_000, "{open} records with no solid");
+    assert_eq!(roofed, 0, "light passed the roof");
+    assert_eq!(thin, open, "a solid shallower than half a cell's diagonal stops nothing");
 }
