@@ -223,9 +223,13 @@ pub struct SceneArgs {
     /// `--shading volume`: the volume's cell edge in millimetres, 0.5..=100 (default 4).
     #[arg(long, value_name = "MM", value_parser = parse_volume_cell_mm)]
     pub volume_cell_mm: Option<f32>,
-    /// `--shading volume`: light paths per light, 1000..=50000000 (default 1000000).
+    /// `--shading volume`: light paths per light, 1000..=50000000 (default 4000000).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1000..=50_000_000))]
     pub volume_paths: Option<u32>,
+    /// `--shading volume`: each cell's light merged into N × N direction bins (0..=64, default
+    /// 8; 0: every path's flight kept).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(0..=64))]
+    pub volume_bins: Option<u32>,
     /// Turn off density-based self-collision.
     #[arg(long)]
     pub no_self_collision: bool,
@@ -299,6 +303,9 @@ impl SceneArgs {
         }
         if let Some(n) = self.volume_paths {
             config.volume.paths = n;
+        }
+        if let Some(n) = self.volume_bins {
+            config.volume.bins_per_axis = n;
         }
         config.self_collision = !self.no_self_collision;
         config.simulate = !self.no_sim;

@@ -153,6 +153,7 @@ fn the_same_records_for_any_thread_count() {
         cell_m: 0.002,
         paths: 5_000,
         seed: 77,
+        ..Default::default()
     };
     let overhead = Light::directional(-Vec3::Y, Vec3::ONE).expect("light");
     let run = |threads: usize| {
@@ -189,6 +190,7 @@ fn a_distant_point_light_is_a_directional_light_of_irradiance_i_over_d_squared()
         cell_m: 0.002,
         paths: 40_000,
         seed: 3,
+        ..Default::default()
     };
     let cells = Cells::build(&p, &u, &l, 1.0, params.cell_m).expect("cells");
     let centre = cells.origin + cells.dims.as_vec3() * (0.5 * cells.cell_m);
@@ -227,6 +229,7 @@ fn solids_absorb_the_light_that_enters_them() {
         cell_m: 0.002,
         paths: 10_000,
         seed: 1,
+        ..Default::default()
     };
     let overhead = Light::directional(-Vec3::Y, Vec3::ONE).expect("light");
     let roof = |q: Vec3| if q.y > 0.0065 { 1.0 } else { 0.0 };
@@ -248,5 +251,92 @@ fn solids_absorb_the_light_that_enters_them() {
     let (open, roofed, thin) = (build(None), build(Some(&roof)), build(Some(&shallow)));
     assert!(open > 1_000, "{open} records with no solid");
     assert_eq!(roofed, 0, "light passed the roof");
-    assert_eq!(thin, open, "a solid shallower than half a cell's diagonal stops nothing");
+    assert_eq!(
+        thin, open,
+        "a solid shallower than half a cell's diagonal stops nothing"
+    );
+}
+
+/// Merging a cell's records by direction keeps its light to rounding, puts each record in
+/// the bin of its own direction, and leaves small cells alone: every channel's sum per cell
+/// and the light-weighted mean direction per bin are what the records held.
+#[test]
+fn merging_by_direction_keeps_each_cells_light() {
+    let mut rng = SplitMix64::new(12);
+    let n = 8;
+    // Three cells: 500 records, 10 records (kept as they are), none.
+    let counts = [500usize, 10, 0];
+    let mut starts = vec![0u32];
+    let (mut from, mut fluence) = (Vec::new(), Vec::new());
+    for &k in &counts {
+        for _ in 0..k {
+            let z = 2.0 * rng.unit() - 1.0;
+            let a = std::f32::consts::TAU * rng.unit();
+            let s = (1.0 - z * z).max(0.0).sqrt();
+            from.push(Vec3::new(s * a.cos(), s * a.sin(), z));
+            fluence.push(Vec3::new(rng.unit(), rng.unit(), rng.unit()));
+        }
+        starts.push(from.len() as u32);
+    }
+    let (s2, f2, e2) = super::bins::merge_by_direction(&starts, &from, &fluence, n);
+    assert_eq!(s2.len(), starts.len());
+    assert!(
+        s2[1] - s2[0] <= (n * n) as u32 && s2[1] - s2[0] > 40,
+        "{} bins",
+        s2[1] - s2[0]
+    );
+    assert_eq!(
+        s2[2] - s2[1],
+        10,
+        "a cell of fewer records than bins is kept"
+    );
+    assert_eq!(s2[3], s2[2]);
+    for c in 0..3 {
+        let sum = |s: &[u32], e: &[Vec3]| {
+            e[s[c] as usize..s[c + 1] as usize]
+                .iter()
+                .copied()
+                .sum::<Vec3>()
+        };
+        let (a, b) = (sum(&starts, &fluence), sum(&s2, &e2));
+        assert!(
+            (a - b).abs().max_element() <= 1e-4 * (1.0 + a.max_element()),
+            "cell {c}: {a} → {b}"
+        );
+    }
+    // Each merged direction lies in the bin its records came from, unit length.
+    for d in &f2[s2[0] as usize..s2[1] as usize] {
+        assert!((d.length() - 1.0).abs() < 1e-5);
+    }
+    let bins: std::collections::BTreeSet<usize> = f2[..s2[1] as usize]
+        .iter()
+        .map(|d| super::bins::octahedral_bin(*d, n))
+        .collect();
+    assert_eq!(
+        bins.len(),
+        (s2[1] - s2[0]) as usize,
+        "one merged record per bin"
+    );
+}
+
+/// The octahedral map sends every direction to a bin, the six axes to six different bins, and
+/// opposite directions to different bins.
+#[test]
+fn octahedral_bins_cover_the_sphere() {
+    let n = 8;
+    let axes = [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z];
+    let bins: std::collections::BTreeSet<usize> = axes
+        .iter()
+        .map(|d| super::bins::octahedral_bin(*d, n))
+        .collect();
+    assert_eq!(bins.len(), 6);
+    let mut rng = SplitMix64::new(2);
+    let mut hit = vec![0u32; n * n];
+    for _ in 0..100_000 {
+        let d = Vec3::new(rng.unit() - 0.5, rng.unit() - 0.5, rng.unit() - 0.5).normalize();
+        let k = super::bins::octahedral_bin(d, n);
+        hit[k] += 1;
+        assert_ne!(k, super::bins::octahedral_bin(-d, n), "{d}");
+    }
+    assert!(hit.iter().all(|&h| h > 0), "every bin is reached: {hit:?}");
 }

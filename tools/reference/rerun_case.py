@@ -9,8 +9,9 @@ usage: rerun_case.py OUTDIR TABLEDIR case colour light kind [wisp flags...]
   other fibre parameters). REF_DEPTH (environment) picks the path tracer's render that dual
   is compared with, mitsuba_d<REF_DEPTH>.exr (default 64; 256 reaches the far side of dense
   hair, ACCURACY.md section 2). WISP (environment) is the wisp binary (default target/release/wisp);
-  it must export the same strands as the binary that made the table. SHADING (environment) is
-  wisp's --shading (default: the kind, dual or single; e.g. volume against all orders). Writes OUTDIR/<case>-
+  it must export the same strands as the binary that made the table. DUAL_SHADING (environment)
+  is wisp's --shading for the all-orders kind (default dual; `volume` for light paths through
+  the volume); the single kind is always `single`. Writes OUTDIR/<case>-
   <colour>-<light>-<kind>/ (wisp's export) and OUTDIR/cmp-<same>.png and .json (compare.py's).
 """
 import json, os, subprocess, sys
@@ -34,7 +35,7 @@ cam = json.load(open(os.path.join(table, case, "camera", "scene.json")))["camera
 size = 400
 common = [wisp, "export", "--hairstyle", style, "--still", "--no-solids", "--ambient", "0", "--irradiance", "1", "--width", str(size), "--height", str(size)]
 view = ["--camera-eye", rt.vec(cam["eye"]), "--camera-target", rt.vec(cam["target"]), "--camera-up", rt.vec(cam["up"]), "--fov-deg", f"{cam['fov_y_deg']:.6g}", "--light-dir", rt.vec(rt.light_dir(cam, light))]
-shading = os.environ.get("SHADING", kind)
+shading = os.environ.get("DUAL_SHADING", "dual") if kind == "dual" else "single"
 d = os.path.join(out, f"{case}-{colour}-{light}-{kind}")
 p = subprocess.run(common + view + ["--shading", shading, "--out", d] + extra, capture_output=True, text=True)
 if p.returncode: sys.exit(p.stderr)
