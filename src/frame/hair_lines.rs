@@ -5,7 +5,10 @@ use glam::{Vec2, Vec3};
 
 use crate::hairstyle::Hairstyle;
 use crate::interp::StrandGeometry;
-use crate::raster::{Bundle, Polylines};
+use crate::raster::{Bundle, Camera, Framebuffer, LineScratch, LineStyle, Polylines};
+
+/// A hair line draw: `raster::draw_polylines` or `raster::draw_seen_polylines`.
+pub(super) type DrawLines = fn(&mut Framebuffer, &Camera, &Polylines, &LineStyle, &mut LineScratch);
 
 /// Each point's physical width in metres into `widths_m`: its strand's F fibres of radius r
 /// side by side (F·2r, the most they can cover), times the share of fibres left there (tapered

@@ -45,20 +45,17 @@ use crate::interp::{StrandGeometry, interpolate_among};
 use crate::map::{CountModel, LightMap, MapGeometry, MapStats, OccluderMesh, Solid};
 use crate::motion::{CharacterPose, Motion, Pose};
 use crate::raster::{
-    Camera, Framebuffer, LineScratch, LineStyle, Mesh, MeshScratch, Polylines, Surface, Texture,
-    draw_ellipsoid, draw_mesh, draw_polylines, draw_seen_polylines, seen_points,
+    Camera, Framebuffer, LineScratch, Mesh, MeshScratch, Surface, Texture, draw_ellipsoid,
+    draw_mesh, draw_polylines, draw_seen_polylines, seen_points,
 };
 use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing};
 use crate::shade::{Lighting, ShadeScratch, VertexGeometry, shade_skin, shade_vertices};
 use crate::sim::{Colliders, SimState, Simulator, StepStats};
 use glam::Vec3;
-use hair_lines::{hair_lines, strand_widths_m};
+use hair_lines::{DrawLines, hair_lines, strand_widths_m};
 use map_reuse::{MapInputs, MapInputsView};
 use rayon::prelude::*;
 use std::time::Instant;
-
-/// A hair line draw: [`draw_polylines`] or [`draw_seen_polylines`].
-type DrawLines = fn(&mut Framebuffer, &Camera, &Polylines, &LineStyle, &mut LineScratch);
 
 /// Skin albedo of the head and the body spheres.
 const SKIN: Vec3 = Vec3::new(0.55, 0.38, 0.30);
@@ -420,8 +417,8 @@ impl Engine {
         self.shade_where(false);
     }
 
-    /// Shades every vertex, or with `only_seen` those [`Engine::render`] found the raster
-    /// could draw (the rest black).
+    /// Shades every vertex (+ the light paths' light, `volume_pass.rs`), or with `only_seen`
+    /// those [`Engine::render`] found the raster could draw (the rest black).
     fn shade_where(&mut self, only_seen: bool) {
         let eye = self.camera.eye();
         shade_vertices(
@@ -439,9 +436,7 @@ impl Engine {
             &mut self.colors,
             &mut self.shade_scratch,
         );
-        if self.config.lighting.mode == crate::fiber::ShadingMode::Volume {
-            self.add_volume_light(only_seen);
-        }
+        self.add_volume_light(only_seen);
     }
 
     /// The raster stage alone: clears the image, draws the solids (lit through the maps) and

@@ -9,7 +9,11 @@ use rayon::prelude::*;
 impl Engine {
     /// Adds each light's multiply scattered light to the vertices shaded (all, or with
     /// `only_seen` those the raster keeps).
+    /// Nothing unless the shader is `ShadingMode::Volume`.
     pub(super) fn add_volume_light(&mut self, only_seen: bool) {
+        if self.config.lighting.mode != crate::fiber::ShadingMode::Volume {
+            return;
+        }
         let eye = self.camera.eye();
         let strands = &self.strands;
         let seen = &self.seen;
