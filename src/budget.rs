@@ -477,6 +477,28 @@ pub fn estimate(
             set_by: "the glTF clip",
         },
     ];
+    if config.lighting.mode == crate::fiber::ShadingMode::Volume {
+        // The hair spans at most its length either side of the head, and the head.
+        let extent_m = 2.0 * style.max_length_m() + style.head_size_m();
+        memory.push(MemoryPart {
+            what: "light paths (--shading volume)",
+            product: format!(
+                "{} light(s) × {} render points in cells of {:.1} mm, {}² direction bins",
+                lights,
+                grouped(points),
+                config.volume.cell_m * 1e3,
+                config.volume.bins_per_axis
+            ),
+            bytes: crate::volume::PhotonVolume::estimated_bytes(
+                points,
+                sample_len_m as f32,
+                extent_m,
+                &config.volume,
+            )
+            .saturating_mul(lights),
+            set_by: "render points, --volume-cell-mm and --volume-bins",
+        });
+    }
     if let Some(ch) = motion.character() {
         // The posed mesh is held by the motion's part; drawing it needs the raster's samples
         // and binned triangles, and the occluder grid its vertices in the light frame.

@@ -69,6 +69,13 @@ fn small() -> EngineConfig {
     }
 }
 
+/// `config` with the light paths' shader (`--shading volume`) and `paths` paths.
+fn volume(mut config: EngineConfig, paths: u32) -> EngineConfig {
+    config.lighting.mode = wisp::fiber::ShadingMode::Volume;
+    config.volume.paths = paths;
+    config
+}
+
 #[test]
 fn the_estimate_holds_the_peak_heap() {
     let cases: Vec<(&str, Hairstyle, EngineConfig)> = vec![
@@ -99,6 +106,16 @@ fn the_estimate_holds_the_peak_heap() {
                 v["guides"]["links"] = json!(60);
             }),
             small(),
+        ),
+        (
+            "smooth, --shading volume",
+            Hairstyle::default_smooth(),
+            volume(small(), 200_000),
+        ),
+        (
+            "dense, --shading volume",
+            smooth_with(|v| v["wisps"]["strands_per_wisp"] = json!(40)),
+            volume(small(), 200_000),
         ),
     ];
     for (name, style, config) in cases {

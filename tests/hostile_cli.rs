@@ -134,11 +134,16 @@ fn hostile_flags_exit_2_naming_the_flag() {
         (args("render --segment-pieces 0"), 2, "--segment-pieces"),
         (args("render --segment-pieces 17"), 2, "not in 1..=16"),
         (args("render --segment-pieces 1.5"), 2, "--segment-pieces"),
-        (args("render --volume-cell-mm 0"), 2, "must be 0.5 to 100 mm"),
+        (
+            args("render --volume-cell-mm 0"),
+            2,
+            "must be 0.5 to 100 mm",
+        ),
         (args("render --volume-cell-mm inf"), 2, "--volume-cell-mm"),
         (args("render --volume-paths 10"), 2, "--volume-paths"),
         (args("render --volume-paths 1e12"), 2, "--volume-paths"),
-        (args("render --volume-bins 65"), 2, "not in 0..=64"),
+        (args("render --volume-bins 17"), 2, "not in 1..=16"),
+        (args("render --volume-bins 0"), 2, "not in 1..=16"),
         (args("render --speed 2000"), 2, "at most 1000"),
         (
             args("render --speed 1e308"),

@@ -226,9 +226,9 @@ pub struct SceneArgs {
     /// `--shading volume`: light paths per light, 1000..=50000000 (default 4000000).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1000..=50_000_000))]
     pub volume_paths: Option<u32>,
-    /// `--shading volume`: each cell's light merged into N × N direction bins (0..=64, default
-    /// 8; 0: every path's flight kept).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(0..=64))]
+    /// `--shading volume`: each cell's light merged into N × N direction bins (1..=16, default
+    /// 8).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=16))]
     pub volume_bins: Option<u32>,
     /// Turn off density-based self-collision.
     #[arg(long)]

@@ -1,15 +1,14 @@
-//! A cell's records merged by direction (`volume` module doc, step 3): the gather evaluates the
-//! fibre's BCSDF once per record, so a cell of thousands of flights costs thousands of
-//! evaluations. Records are merged into the bins of an octahedral map of the sphere
-//! (Praun & Hoppe 2003's layout: |x| + |y| + |z| = 1 unfolded onto a square), each bin
-//! keeping its summed light and the light-weighted mean of its directions, so the light's
-//! total and its first angular moment within the bin are kept exactly.
+//! Each cell's light by direction (`volume` module doc, step 3): the flights of light through a
+//! cell merged into the bins of an octahedral map of the sphere (Praun & Hoppe 2003's layout:
+//! |x| + |y| + |z| = 1 unfolded onto a square), each bin keeping its summed light and the
+//! light-weighted mean of its directions. The gather evaluates the fibre's BCSDF once per bin
+//! instead of once per flight, and the memory no longer grows with the paths.
 
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
-/// Cells merged per parallel job.
-const CELLS_PER_JOB: usize = 1024;
+/// Slots compacted per parallel job.
+const SLOTS_PER_JOB: usize = 1024;
 
 /// The bin of unit `d` in an octahedral map of `n` × `n` bins.
 pub(super) fn octahedral_bin(d: Vec3, n: usize) -> usize {
@@ -24,60 +23,77 @@ pub(super) fn octahedral_bin(d: Vec3, n: usize) -> usize {
     q.y as usize * n + q.x as usize
 }
 
-/// Merges each cell's records (`starts[c]..starts[c + 1]` of `from`, `fluence`) into at most
-/// `n`² (cells with fewer records keep them as they are). Returns the new starts, directions
-/// and light, in cell order; the same bits for any thread count (cells are independent, each
-/// merged in its records' order).
-pub(super) fn merge_by_direction(
-    starts: &[u32],
-    from: &[Vec3],
-    fluence: &[Vec3],
+/// The bins of every slot (a cell points gather from, `Cells::slot`).
+pub(super) struct Bins {
     n: usize,
-) -> (Vec<u32>, Vec<Vec3>, Vec<Vec3>) {
-    let cells = starts.len().saturating_sub(1);
-    let jobs: Vec<(Vec<u32>, Vec<Vec3>, Vec<Vec3>)> = (0..cells.div_ceil(CELLS_PER_JOB))
-        .into_par_iter()
-        .map(|job| {
-            let (mut counts, mut dirs, mut light) = (Vec::new(), Vec::new(), Vec::new());
-            let mut sum = vec![Vec3::ZERO; n * n];
-            let mut moment = vec![Vec3::ZERO; n * n];
-            for c in job * CELLS_PER_JOB..((job + 1) * CELLS_PER_JOB).min(cells) {
-                let (a, b) = (starts[c] as usize, starts[c + 1] as usize);
-                if b - a <= n * n {
-                    dirs.extend_from_slice(&from[a..b]);
-                    light.extend_from_slice(&fluence[a..b]);
-                    counts.push((b - a) as u32);
-                    continue;
-                }
-                sum.fill(Vec3::ZERO);
-                moment.fill(Vec3::ZERO);
-                for (d, e) in from[a..b].iter().zip(&fluence[a..b]) {
-                    let k = octahedral_bin(*d, n);
-                    sum[k] += *e;
-                    moment[k] += *d * e.element_sum();
-                }
-                let before = dirs.len();
-                for (s, m) in sum.iter().zip(&moment) {
-                    if s.element_sum() > 0.0 {
-                        dirs.push(m.normalize_or_zero());
-                        light.push(*s);
-                    }
-                }
-                counts.push((dirs.len() - before) as u32);
-            }
-            (counts, dirs, light)
-        })
-        .collect();
-    let mut new_starts = Vec::with_capacity(starts.len());
-    new_starts.push(0u32);
-    let (mut dirs, mut light) = (Vec::new(), Vec::new());
-    for (counts, d, l) in jobs {
-        for k in counts {
-            let last = *new_starts.last().unwrap_or(&0);
-            new_starts.push(last + k);
+    /// Per slot and bin: summed light (W/m², RGB) and Σ light × direction.
+    sum: Vec<Vec3>,
+    moment: Vec<Vec3>,
+}
+
+impl Bins {
+    /// Empty bins, `n` × `n` per slot.
+    pub(super) fn new(slots: usize, n: usize) -> Self {
+        let n = n.max(1);
+        Self {
+            n,
+            sum: vec![Vec3::ZERO; slots * n * n],
+            moment: vec![Vec3::ZERO; slots * n * n],
         }
-        dirs.extend(d);
-        light.extend(l);
     }
-    (new_starts, dirs, light)
+
+    /// Bytes for `slots` slots of `n` × `n` bins (the bins, then the compacted records).
+    pub(super) fn estimated_bytes(slots: u64, n: u64) -> u64 {
+        slots
+            .saturating_mul(n * n)
+            .saturating_mul(4 * size_of::<Vec3>() as u64)
+    }
+
+    /// Adds light `e` arriving from unit `from` to slot `slot`.
+    #[inline]
+    pub(super) fn add(&mut self, slot: usize, from: Vec3, e: Vec3) {
+        let k = slot * self.n * self.n + octahedral_bin(from, self.n);
+        if let (Some(s), Some(m)) = (self.sum.get_mut(k), self.moment.get_mut(k)) {
+            *s += e;
+            *m += from * e.element_sum();
+        }
+    }
+
+    /// The non-empty bins per slot, as records: starts per slot (`slots + 1`), each bin's mean
+    /// direction (unit) and its light. Slots are independent, so the result is the same for
+    /// any thread count.
+    pub(super) fn finish(self) -> (Vec<u32>, Vec<Vec3>, Vec<Vec3>) {
+        let per = self.n * self.n;
+        let slots = self.sum.len() / per;
+        let jobs: Vec<(Vec<u32>, Vec<Vec3>, Vec<Vec3>)> = (0..slots.div_ceil(SLOTS_PER_JOB))
+            .into_par_iter()
+            .map(|job| {
+                let (mut counts, mut dirs, mut light) = (Vec::new(), Vec::new(), Vec::new());
+                for slot in job * SLOTS_PER_JOB..((job + 1) * SLOTS_PER_JOB).min(slots) {
+                    let bins = slot * per..(slot + 1) * per;
+                    let before = dirs.len();
+                    for (s, m) in self.sum[bins.clone()].iter().zip(&self.moment[bins]) {
+                        if s.element_sum() > 0.0 {
+                            dirs.push(m.normalize_or_zero());
+                            light.push(*s);
+                        }
+                    }
+                    counts.push((dirs.len() - before) as u32);
+                }
+                (counts, dirs, light)
+            })
+            .collect();
+        let mut starts = Vec::with_capacity(slots + 1);
+        starts.push(0u32);
+        let (mut dirs, mut light) = (Vec::new(), Vec::new());
+        for (counts, d, l) in jobs {
+            for k in counts {
+                let last = starts.last().copied().unwrap_or(0);
+                starts.push(last + k);
+            }
+            dirs.extend(d);
+            light.extend(l);
+        }
+        (starts, dirs, light)
+    }
 }

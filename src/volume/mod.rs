@@ -29,8 +29,9 @@
 //!    record: the direction it came from and its power times the length flown in the cell.
 //!    Σ records / V estimates ∫ L(ω) dω there, direction by direction (the track-length
 //!    estimator), for light scattered at least once.
-//!    A cell's records are then merged into 8 × 8 direction bins (`bins.rs`), each keeping its
-//!    light and mean direction.
+//!    Records are kept only in cells a seen point can gather from (a piece of fibre within one
+//!    cell), merged wave by wave into 8 × 8 direction bins per cell (`bins.rs`), each keeping
+//!    its light and mean direction.
 //! 4. **Gather** ([`PhotonVolume::indirect`]). A seen point adds Σ S(ωi, ωo) cos θi · power·ℓ
 //!    / V over the records of one cell near it (drawn with trilinear probabilities from a hash
 //!    of the point, so the cells blend without an 8× cost). The light that reaches it directly
@@ -51,7 +52,13 @@ use glam::{UVec3, Vec3};
 use rayon::prelude::*;
 
 /// Most cells per axis (a larger extent gets larger cells).
-const MAX_CELLS_PER_AXIS: usize = 256;
+pub const MAX_CELLS_PER_AXIS: usize = 256;
+/// Blocks of paths traced between two merges into the bins (64 × 1,024 paths): what bounds the
+/// flights held at once.
+const WAVE_BLOCKS: u32 = 64;
+/// Flights a path leaves, for the memory estimate: measured 11 on average on dense blond hair
+/// (the most scattering of the presets), held in vectors that may double: 32 covers it.
+pub const FLIGHTS_PER_PATH: u64 = 32;
 
 /// How the volume is built.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -65,10 +72,13 @@ pub struct VolumeParams {
     pub paths: u32,
     /// Seed of the paths' random numbers.
     pub seed: u64,
-    /// A cell's records merged into this many × this many direction bins (octahedral, `bins`),
-    /// 0: every record kept. Default 8: the gather 1.5× faster at 4 M paths, the means moved
-    /// by at most 2% (ACCURACY.md §2).
+    /// A cell's flights merged into this many × this many direction bins (octahedral,
+    /// `bins.rs`), 1..=16. Default 8: against keeping every flight, the gather 1.5× faster at
+    /// 4 M paths, the means moved by at most 2% (ACCURACY.md §2), and the memory bounded.
     pub bins_per_axis: u32,
+    /// Most bytes the bins may take: cells are enlarged (by 2^⅓ at a time) until the cells
+    /// points gather from fit (dense one-fibre hair at 4 mm: 125,000 cells, 384 MB).
+    pub max_bins_bytes: u64,
 }
 
 impl Default for VolumeParams {
@@ -78,6 +88,7 @@ impl Default for VolumeParams {
             paths: 4_000_000,
             seed: 0x5EED_0F11_6A7E,
             bins_per_axis: 8,
+            max_bins_bytes: 768_000_000,
         }
     }
 }
@@ -98,7 +109,15 @@ pub(crate) struct Cells {
     /// Per cell, whether it lies wholly inside a solid (head, body): light that enters it is
     /// absorbed. Empty: no solids.
     pub(crate) solid: Vec<bool>,
+    /// Per cell, its place among the cells a point can gather from (those with a piece of
+    /// fibre within one cell: [`PhotonVolume::indirect`] picks among the 2×2×2 around a
+    /// point), or [`NO_SLOT`]: light is kept only there.
+    pub(crate) slot: Vec<u32>,
+    pub(crate) slots: usize,
 }
+
+/// [`Cells::slot`] of a cell no point gathers from.
+pub(crate) const NO_SLOT: u32 = u32::MAX;
 
 impl Cells {
     /// The cell holding `p`, or `None` outside the grid.
@@ -206,6 +225,30 @@ impl Cells {
             let l = &mut cells.longest[c as usize];
             *l = l.max(len);
         }
+        // The cells within one of a filled cell, numbered in cell order.
+        let dims = cells.dims.as_ivec3();
+        let index = |c: glam::IVec3| ((c.z * dims.y + c.y) * dims.x + c.x) as usize;
+        let filled = |c: glam::IVec3| {
+            c.cmpge(glam::IVec3::ZERO).all()
+                && c.cmplt(dims).all()
+                && starts[index(c) + 1] > starts[index(c)]
+        };
+        cells.slot = vec![NO_SLOT; count];
+        let mut slots = 0u32;
+        for i in 0..count as u32 {
+            let c = glam::IVec3::new(
+                (i % dims.x as u32) as i32,
+                ((i / dims.x as u32) % dims.y as u32) as i32,
+                (i / (dims.x * dims.y) as u32) as i32,
+            );
+            let near = (-1..=1)
+                .any(|z| (-1..=1).any(|y| (-1..=1).any(|x| filled(c + glam::IVec3::new(x, y, z)))));
+            if near {
+                cells.slot[i as usize] = slots;
+                slots += 1;
+            }
+        }
+        cells.slots = slots as usize;
         cells.starts = starts;
         Some(cells)
     }
@@ -214,7 +257,8 @@ impl Cells {
 /// One straight flight of scattered light through one cell (module doc, step 3).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Record {
-    pub(crate) cell: u32,
+    /// The cell's [`Cells::slot`].
+    pub(crate) slot: u32,
     /// Unit direction the light came from (against its travel).
     pub(crate) from: Vec3,
     /// Its power times the length flown in the cell, W·m, RGB.
@@ -225,11 +269,13 @@ pub(crate) struct Record {
 #[derive(Clone, Debug, Default)]
 pub struct PhotonVolume {
     cells: Cells,
-    /// Per cell, its records' range: `starts[c]..starts[c + 1]`.
+    /// Per slot ([`Cells::slot`]), its merged records' range: `starts[s]..starts[s + 1]`.
     starts: Vec<u32>,
     from: Vec<Vec3>,
     /// Power × length ÷ cell volume (W/m², RGB): each record's share of ∫ L dω.
     fluence: Vec<Vec3>,
+    /// The cell edge used, metres (`VolumeParams::cell_m`, or larger to fit the bins).
+    pub cell_m: f32,
     /// Paths traced, those that met a fibre, and the scatterings met, for reports.
     pub paths: u64,
     pub scattered_paths: u64,
@@ -253,53 +299,84 @@ impl PhotonVolume {
         params: &VolumeParams,
         solid_depth_m: Option<D>,
     ) -> Option<PhotonVolume> {
-        let mut cells = Cells::build(
-            positions,
-            tangents,
-            lengths_m,
-            fibers_per_strand,
-            params.cell_m,
-        )?;
+        let n = params.bins_per_axis.max(1) as u64;
+        let mut cell_m = params.cell_m;
+        let mut cells = loop {
+            let cells = Cells::build(positions, tangents, lengths_m, fibers_per_strand, cell_m)?;
+            if bins::Bins::estimated_bytes(cells.slots as u64, n) <= params.max_bins_bytes
+                || cells.slots == 0
+            {
+                break cells;
+            }
+            cell_m = cells.cell_m * 2f32.cbrt();
+        };
         if let Some(depth) = &solid_depth_m {
             cells.mark_solids(depth);
         }
         let radius_m = fiber.params().radius_m;
-        let traced = trace::trace(&cells, fiber, radius_m, light, params);
-        // A counting sort of every block's records by cell, blocks in order: the same order
-        // for any thread count.
-        let count = cells.count();
-        let mut starts = vec![0u32; count + 1];
-        for r in traced.blocks.iter().flatten() {
-            starts[r.cell as usize + 1] += 1;
-        }
-        for c in 0..count {
-            starts[c + 1] += starts[c];
-        }
-        let mut cursor = starts.clone();
-        let n = starts[count] as usize;
-        let mut from = vec![Vec3::ZERO; n];
-        let mut fluence = vec![Vec3::ZERO; n];
+        // In waves of paths, each wave's flights merged into the bins in block order: the
+        // same sums for any thread count, and only one wave's flights held at once.
+        let mut bins = bins::Bins::new(cells.slots, params.bins_per_axis.max(1) as usize);
         let inv_volume = 1.0 / cells.cell_m.powi(3);
-        for r in traced.blocks.iter().flatten() {
-            let at = &mut cursor[r.cell as usize];
-            from[*at as usize] = r.from;
-            fluence[*at as usize] = r.power_m * inv_volume;
-            *at += 1;
+        let blocks = params.paths.div_ceil(trace::BLOCK);
+        let (mut scattered_paths, mut scatterings) = (0u64, 0u64);
+        for wave in (0..blocks).step_by(WAVE_BLOCKS as usize) {
+            let traced = trace::trace(
+                &cells,
+                fiber,
+                radius_m,
+                light,
+                params,
+                wave..(wave + WAVE_BLOCKS).min(blocks),
+            );
+            for r in traced.blocks.iter().flatten() {
+                bins.add(r.slot as usize, r.from, r.power_m * inv_volume);
+            }
+            scattered_paths += traced.scattered_paths;
+            scatterings += traced.scatterings;
         }
-        let (starts, from, fluence) = if params.bins_per_axis > 0 {
-            bins::merge_by_direction(&starts, &from, &fluence, params.bins_per_axis as usize)
-        } else {
-            (starts, from, fluence)
-        };
+        let (starts, from, fluence) = bins.finish();
         Some(PhotonVolume {
+            cell_m: cells.cell_m,
             cells,
             starts,
             from,
             fluence,
-            paths: traced.paths,
-            scattered_paths: traced.scattered_paths,
-            scatterings: traced.scatterings,
+            paths: params.paths as u64,
+            scattered_paths,
+            scatterings,
         })
+    }
+
+    /// Bytes one light's volume holds at most, for `points` render points whose samples are at
+    /// most `sample_len_m` long in hair spanning at most `extent_m` along each axis: the pieces
+    /// (and their filing), the cells, the bins (at most `max_bins_bytes`), and one wave's
+    /// flights at [`FLIGHTS_PER_PATH`] a path.
+    pub fn estimated_bytes(
+        points: u64,
+        sample_len_m: f32,
+        extent_m: f32,
+        params: &VolumeParams,
+    ) -> u64 {
+        let cell_m = params
+            .cell_m
+            .max(extent_m / (MAX_CELLS_PER_AXIS - 2) as f32)
+            .max(1e-6);
+        let per_axis = ((extent_m / cell_m).ceil() as u64 + 2).min(MAX_CELLS_PER_AXIS as u64);
+        let cells = per_axis.pow(3);
+        let cuts = ((sample_len_m / (0.5 * cell_m)).ceil() as u64).clamp(1, 64);
+        let pieces = points.saturating_mul(cuts);
+        // Filed: tangent + length; while filing: cell + tangent + length.
+        let piece_bytes = pieces.saturating_mul(16 + 20);
+        // Starts, longest, slot (4 B each), solid (1 B).
+        let cell_bytes = cells.saturating_mul(13);
+        let bin_bytes = params.max_bins_bytes;
+        let wave =
+            (WAVE_BLOCKS * trace::BLOCK) as u64 * FLIGHTS_PER_PATH * 2 * size_of::<Record>() as u64;
+        piece_bytes
+            .saturating_add(cell_bytes)
+            .saturating_add(bin_bytes)
+            .saturating_add(wave)
     }
 
     /// Records kept (for reports and memory).
@@ -314,7 +391,11 @@ impl PhotonVolume {
         let Some(c) = self.pick_cell(p, pick) else {
             return Vec3::ZERO;
         };
-        let (a, b) = (self.starts[c] as usize, self.starts[c + 1] as usize);
+        let slot = self.cells.slot[c] as usize;
+        let (Some(&a), Some(&b)) = (self.starts.get(slot), self.starts.get(slot + 1)) else {
+            return Vec3::ZERO;
+        };
+        let (a, b) = (a as usize, b as usize);
         let mut sum = Vec3::ZERO;
         for (wi, e) in self.from[a..b].iter().zip(&self.fluence[a..b]) {
             let Some(angles) = crate::fiber::shader::HairAngles::from_vectors(u, *wi, wo) else {

@@ -107,8 +107,8 @@ fn isotropic_records_light_a_white_fibre_by_a_quarter_pi() {
             Vec3::new(s * a.cos(), s * a.sin(), z)
         })
         .collect();
-    let count = cells.count();
-    // Every cell holds the same records.
+    let count = cells.slots;
+    // Every slot holds the same records.
     let mut starts = vec![0u32; count + 1];
     let mut all_from = Vec::new();
     for c in 0..count {
@@ -119,6 +119,7 @@ fn isotropic_records_light_a_white_fibre_by_a_quarter_pi() {
         fluence: vec![Vec3::splat(phi / k as f32); all_from.len()],
         from: all_from,
         starts,
+        cell_m: cells.cell_m,
         cells,
         paths: 0,
         scattered_paths: 0,
@@ -257,66 +258,59 @@ fn solids_absorb_the_light_that_enters_them() {
     );
 }
 
-/// Merging a cell's records by direction keeps its light to rounding, puts each record in
-/// the bin of its own direction, and leaves small cells alone: every channel's sum per cell
-/// and the light-weighted mean direction per bin are what the records held.
+/// Merging a cell's flights by direction keeps its light to rounding, gives one record per
+/// bin reached with the light-weighted mean of its directions, and keeps slots apart: every
+/// channel's sum per slot is what its flights held, and a flight alone in its bin keeps its
+/// own direction.
 #[test]
 fn merging_by_direction_keeps_each_cells_light() {
     let mut rng = SplitMix64::new(12);
     let n = 8;
-    // Three cells: 500 records, 10 records (kept as they are), none.
-    let counts = [500usize, 10, 0];
-    let mut starts = vec![0u32];
-    let (mut from, mut fluence) = (Vec::new(), Vec::new());
-    for &k in &counts {
+    // Three slots: 500 flights, 1 flight, none.
+    let counts = [500usize, 1, 0];
+    let mut bins = super::bins::Bins::new(3, n);
+    let mut sums = [Vec3::ZERO; 3];
+    let mut lone = Vec3::ZERO;
+    for (slot, &k) in counts.iter().enumerate() {
         for _ in 0..k {
             let z = 2.0 * rng.unit() - 1.0;
             let a = std::f32::consts::TAU * rng.unit();
             let s = (1.0 - z * z).max(0.0).sqrt();
-            from.push(Vec3::new(s * a.cos(), s * a.sin(), z));
-            fluence.push(Vec3::new(rng.unit(), rng.unit(), rng.unit()));
+            let d = Vec3::new(s * a.cos(), s * a.sin(), z);
+            let e = Vec3::new(rng.unit(), rng.unit(), rng.unit());
+            bins.add(slot, d, e);
+            sums[slot] += e;
+            lone = d;
         }
-        starts.push(from.len() as u32);
     }
-    let (s2, f2, e2) = super::bins::merge_by_direction(&starts, &from, &fluence, n);
-    assert_eq!(s2.len(), starts.len());
+    let (starts, from, light) = bins.finish();
+    assert_eq!(starts.len(), 4);
+    let first = (starts[1] - starts[0]) as usize;
     assert!(
-        s2[1] - s2[0] <= (n * n) as u32 && s2[1] - s2[0] > 40,
-        "{} bins",
-        s2[1] - s2[0]
+        first <= n * n && first > 40,
+        "{first} bins reached by 500 flights"
     );
-    assert_eq!(
-        s2[2] - s2[1],
-        10,
-        "a cell of fewer records than bins is kept"
-    );
-    assert_eq!(s2[3], s2[2]);
-    for c in 0..3 {
-        let sum = |s: &[u32], e: &[Vec3]| {
-            e[s[c] as usize..s[c + 1] as usize]
-                .iter()
-                .copied()
-                .sum::<Vec3>()
-        };
-        let (a, b) = (sum(&starts, &fluence), sum(&s2, &e2));
+    assert_eq!(starts[2] - starts[1], 1);
+    assert_eq!(starts[3], starts[2]);
+    for (slot, want) in sums.iter().enumerate() {
+        let got: Vec3 = light[starts[slot] as usize..starts[slot + 1] as usize]
+            .iter()
+            .copied()
+            .sum();
         assert!(
-            (a - b).abs().max_element() <= 1e-4 * (1.0 + a.max_element()),
-            "cell {c}: {a} → {b}"
+            (got - *want).abs().max_element() <= 1e-4 * (1.0 + want.max_element()),
+            "slot {slot}: {want} → {got}"
         );
     }
-    // Each merged direction lies in the bin its records came from, unit length.
-    for d in &f2[s2[0] as usize..s2[1] as usize] {
+    assert!((from[starts[1] as usize] - lone).length() < 1e-6);
+    for d in &from {
         assert!((d.length() - 1.0).abs() < 1e-5);
     }
-    let bins: std::collections::BTreeSet<usize> = f2[..s2[1] as usize]
+    let reached: std::collections::BTreeSet<usize> = from[..first]
         .iter()
         .map(|d| super::bins::octahedral_bin(*d, n))
         .collect();
-    assert_eq!(
-        bins.len(),
-        (s2[1] - s2[0]) as usize,
-        "one merged record per bin"
-    );
+    assert_eq!(reached.len(), first, "one merged record per bin");
 }
 
 /// The octahedral map sends every direction to a bin, the six axes to six different bins, and
@@ -339,4 +333,35 @@ fn octahedral_bins_cover_the_sphere() {
         assert_ne!(k, super::bins::octahedral_bin(-d, n), "{d}");
     }
     assert!(hit.iter().all(|&h| h > 0), "every bin is reached: {hit:?}");
+}
+
+/// Bins over their memory cap enlarge the cells until they fit, rather than exceed it.
+#[test]
+fn cells_grow_until_the_bins_fit_their_cap() {
+    let fiber = chiang([0.2, 0.3, 0.5]);
+    let (p, u, l) = slab(4_000, 0.002, 0.02, 0.01, 6);
+    let overhead = Light::directional(-Vec3::Y, Vec3::ONE).expect("light");
+    let build = |max_bins_bytes: u64| {
+        let params = VolumeParams {
+            cell_m: 0.001,
+            paths: 2_000,
+            max_bins_bytes,
+            ..Default::default()
+        };
+        PhotonVolume::build(&fiber, &p, &u, &l, 1.0, &overhead, &params, NO_SOLIDS).expect("volume")
+    };
+    let (free, capped) = (build(u64::MAX), build(2_000_000));
+    let bytes = |v: &PhotonVolume| super::bins::Bins::estimated_bytes(v.cells.slots as u64, 8);
+    assert_eq!(free.cell_m, 0.001);
+    assert!(
+        bytes(&free) > 2_000_000,
+        "the test needs a cap that binds: {}",
+        bytes(&free)
+    );
+    assert!(capped.cell_m > 0.001, "cells of {} m", capped.cell_m);
+    assert!(
+        bytes(&capped) <= 2_000_000,
+        "{} B over the cap",
+        bytes(&capped)
+    );
 }

@@ -1,7 +1,7 @@
 //! Light paths through the cells (`volume` module doc, steps 2 and 3): delta tracking across a
 //! grid walked cell by cell (Amanatides & Woo 1987), Chiang scattering, Russian roulette.
 
-use super::{Cells, Record, VolumeParams};
+use super::{Cells, NO_SLOT, Record, VolumeParams};
 use crate::fiber::Fiber;
 use crate::fiber::chiang::TrimmedLogistic;
 use crate::fiber::chiang_sample::sample_scatter;
@@ -12,7 +12,7 @@ use rayon::prelude::*;
 
 /// Paths per block: each block draws from its own seed, so the result is the same for any
 /// thread count.
-const BLOCK: u32 = 1024;
+pub(super) const BLOCK: u32 = 1024;
 /// Scatterings after which Russian roulette may end a path.
 const ROULETTE_AFTER: u32 = 3;
 /// A path is ended after this many scatterings whatever its power (never reached in practice:
@@ -22,7 +22,6 @@ const MAX_SCATTERINGS: u32 = 100_000;
 /// What the paths left: records per block, in block order.
 pub(super) struct Traced {
     pub(super) blocks: Vec<Vec<Record>>,
-    pub(super) paths: u64,
     /// Paths that met at least one fibre.
     pub(super) scattered_paths: u64,
     pub(super) scatterings: u64,
@@ -111,17 +110,18 @@ fn emitter(cells: &Cells, light: &Light, paths: u32) -> Option<impl Fn(f32, f32)
     })
 }
 
-/// Traces `params.paths` paths of `light` through `cells` (fibres of radius `radius_m`).
+/// Traces blocks `blocks` of the `params.paths` paths of `light` through `cells` (fibres of
+/// radius `radius_m`): block b is paths b·BLOCK.. of the whole, from its own seed.
 pub(super) fn trace(
     cells: &Cells,
     fiber: &Fiber,
     radius_m: f32,
     light: &Light,
     params: &VolumeParams,
+    blocks: std::ops::Range<u32>,
 ) -> Traced {
     let none = || Traced {
         blocks: Vec::new(),
-        paths: 0,
         scattered_paths: 0,
         scatterings: 0,
     };
@@ -138,8 +138,7 @@ pub(super) fn trace(
         cells,
         sigma_per_len,
     };
-    let blocks = params.paths.div_ceil(BLOCK);
-    let results: Vec<(Vec<Record>, u64, u64)> = (0..blocks)
+    let results: Vec<(Vec<Record>, u64, u64)> = blocks
         .into_par_iter()
         .map(|block| {
             let mut rng =
@@ -160,7 +159,6 @@ pub(super) fn trace(
     let scattered_paths = results.iter().map(|r| r.2).sum();
     Traced {
         blocks: results.into_iter().map(|r| r.0).collect(),
-        paths: params.paths as u64,
         scattered_paths,
         scatterings,
     }
@@ -303,9 +301,10 @@ impl Walker<'_> {
                     let sin = d.cross(u).length();
                     let accept = cells.lengths[j] / longest * sin;
                     if (rng.open_unit_f64() as f32) < accept {
-                        if scattered {
+                        let slot = cells.slot[index];
+                        if scattered && slot != NO_SLOT {
                             records.push(Record {
-                                cell: index as u32,
+                                slot,
                                 from: -d,
                                 power_m: weight * (t - t_cell),
                             });
@@ -314,9 +313,10 @@ impl Walker<'_> {
                     }
                 }
             }
-            if scattered && t_exit > t_cell {
+            let slot = cells.slot[index];
+            if scattered && t_exit > t_cell && slot != NO_SLOT {
                 records.push(Record {
-                    cell: index as u32,
+                    slot,
                     from: -d,
                     power_m: weight * (t_exit - t_cell),
                 });
