@@ -483,11 +483,9 @@ pub fn estimate(
         memory.push(MemoryPart {
             what: "light paths (--shading volume)",
             product: format!(
-                "{} light(s) × {} render points in cells of {:.1} mm, {}² direction bins",
-                lights,
+                "{lights} light(s) × {} render points, bins at most {} MB",
                 grouped(points),
-                config.volume.cell_m * 1e3,
-                config.volume.bins_per_axis
+                config.volume.max_bins_bytes / 1_000_000
             ),
             bytes: crate::volume::PhotonVolume::estimated_bytes(
                 points,

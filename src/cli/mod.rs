@@ -43,6 +43,7 @@ pub mod play_cmd;
 pub mod render_cmd;
 pub mod shard;
 pub mod view_args;
+pub mod volume_args;
 
 mod parse;
 pub use parse::*;
@@ -220,16 +221,8 @@ pub struct SceneArgs {
     /// Fibre shader.
     #[arg(long, value_enum, default_value = "dual")]
     pub shading: ShadingArg,
-    /// `--shading volume`: the volume's cell edge in millimetres, 0.5..=100 (default 4).
-    #[arg(long, value_name = "MM", value_parser = parse_volume_cell_mm)]
-    pub volume_cell_mm: Option<f32>,
-    /// `--shading volume`: light paths per light, 1000..=50000000 (default 4000000).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1000..=50_000_000))]
-    pub volume_paths: Option<u32>,
-    /// `--shading volume`: each cell's light merged into N × N direction bins (1..=16, default
-    /// 8).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=16))]
-    pub volume_bins: Option<u32>,
+    #[command(flatten)]
+    pub volume: volume_args::VolumeArgs,
     /// Turn off density-based self-collision.
     #[arg(long)]
     pub no_self_collision: bool,
@@ -298,15 +291,7 @@ impl SceneArgs {
         if let Some(n) = self.segment_pieces {
             config.segment_pieces = n;
         }
-        if let Some(mm) = self.volume_cell_mm {
-            config.volume.cell_m = mm * 1e-3;
-        }
-        if let Some(n) = self.volume_paths {
-            config.volume.paths = n;
-        }
-        if let Some(n) = self.volume_bins {
-            config.volume.bins_per_axis = n;
-        }
+        self.volume.apply(&mut config);
         config.self_collision = !self.no_self_collision;
         config.simulate = !self.no_sim;
         self.view.apply(&mut config);

@@ -48,23 +48,6 @@ pub fn parse_contact_mm(s: &str) -> Result<f32, String> {
     }
 }
 
-/// Cell edges of the volume of `--shading volume`, millimetres.
-pub const VOLUME_CELL_MM: std::ops::RangeInclusive<f32> = 0.5..=100.0;
-
-/// A volume cell edge in millimetres, within [`VOLUME_CELL_MM`].
-pub fn parse_volume_cell_mm(s: &str) -> Result<f32, String> {
-    let v = parse_finite_f32(s)?;
-    if VOLUME_CELL_MM.contains(&v) {
-        Ok(v)
-    } else {
-        Err(format!(
-            "must be {} to {} mm (got {v})",
-            VOLUME_CELL_MM.start(),
-            VOLUME_CELL_MM.end()
-        ))
-    }
-}
-
 /// A finite f64 (times in seconds, which may exceed f32 precision).
 pub fn parse_finite_f64(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
