@@ -9,8 +9,8 @@
 //! from the rim (ACCURACY.md §2, "How many bounces light the back-lit band"). Light carried
 //! through the volume lights it; a single scalar per cell gets the colours wrong, because the
 //! fibre's response depends on where the light comes from (§2, "The volume solve,
-//! prototyped"). So each cell keeps every path's direction and the fibre's far-field BCSDF
-//! is integrated against them.
+//! prototyped"). So each cell keeps its light by direction and the fibre's far-field BCSDF
+//! is integrated against it.
 //!
 //! How:
 //! 1. **Cells.** A grid of `cell_m` cubes over the hair. Each render-strand point stands for a
@@ -18,7 +18,7 @@
 //!    cell long, each filed under the cell of its middle with its tangent.
 //! 2. **Paths** ([`trace`]). A directional light's paths enter from a rectangle across it in
 //!    front of the grid, each with power E·A/N; a point light's leave it into the cone of the
-//!    grid's bounding sphere, each with I·Ω/N. It flies by delta tracking: the majorant of a
+//!    grid's bounding sphere, each with I·Ω/N. A path flies by delta tracking: the majorant of a
 //!    cell is 2r·n·ℓ_max/V (n pieces, the longest ℓ_max); at a tentative collision a piece is
 //!    drawn uniformly and hit with probability (ℓ/ℓ_max)·sin ψ (ψ between path and fibre), so
 //!    real collisions occur at the fibres' cross-section per volume, 2r Σ ℓ sin ψ / V.
@@ -28,17 +28,16 @@
 //! 3. **Tallies.** After its first scattering, each straight flight through a cell leaves a
 //!    record: the direction it came from and its power times the length flown in the cell.
 //!    Σ records / V estimates ∫ L(ω) dω there, direction by direction (the track-length
-//!    estimator), for light scattered at least once.
-//!    Records are kept only in cells a seen point can gather from (a piece of fibre within one
-//!    cell), merged wave by wave into 8 × 8 direction bins per cell (`bins.rs`), each keeping
-//!    its light and mean direction.
-//! 4. **Gather** ([`PhotonVolume::indirect`]). A seen point adds Σ S(ωi, ωo) cos θi · power·ℓ
-//!    / V over the records of one cell near it (drawn with trilinear probabilities from a hash
+//!    estimator), for light scattered at least once. Records are kept only in cells a seen
+//!    point can gather from (a piece of fibre within one cell), merged wave by wave into 8 × 8
+//!    direction bins per cell (`bins.rs`), each keeping its light and mean direction.
+//! 4. **Gather** ([`PhotonVolume::indirect`]). A seen point adds Σ S(ωi, ωo) cos θi · light
+//!    over the bins of one cell near it (drawn with trilinear probabilities from a hash
 //!    of the point, so the cells blend without an 8× cost). The light that reaches it directly
 //!    is the single-scattering shader's, as in MWM08: the two add up to all orders.
 //!
 //! Deterministic for any thread count: paths are traced in fixed blocks, each from its own
-//! seed, and their records are concatenated in block order and sorted stably by cell.
+//! seed, and each wave's records are added to the bins in block order.
 
 // `!(a < b)` on floats is meant: it is true for NaN, which must take the safe branch.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
