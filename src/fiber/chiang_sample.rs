@@ -12,8 +12,8 @@
 //! - d'Eon's M with variance v about −θ (tilted per lobe): with ξ ∈ (0, 1],
 //!   cos ϑ = 1 + v ln(ξ + (1 − ξ)e^{−2/v}) is the cosine of the angle from the lobe's peak
 //!   direction of a von Mises–Fisher-like density in 3-D, and the azimuth ψ about it is uniform;
-//!   the sampled sin θ' = −cos ϑ sin θ + sin ϑ cos ψ cos θ (d'Eon et al. 2011, §4; pbrt-v3
-//!   Eq. 9.46 with ψ = 2πξ₂).
+//!   the sampled sin θ' = −cos ϑ sin θ + sin ϑ cos ψ cos θ, ψ = 2πξ (the rotation of a
+//!   direction at angle ϑ from the peak, d'Eon et al. 2011; pbrt-v3 §9.9.6 samples it so).
 //! - The trimmed logistic of scale s: the inverse of its CDF on [−π, π]
 //!   ([`TrimmedLogistic::sample`]).
 //!

@@ -8,8 +8,7 @@ use rayon::prelude::*;
 
 impl Engine {
     /// Adds each light's multiply scattered light to the vertices shaded (all, or with
-    /// `only_seen` those the raster keeps).
-    /// Nothing unless the shader is `ShadingMode::Volume`.
+    /// `only_seen` those the raster keeps); nothing unless the shader is `ShadingMode::Volume`.
     pub(super) fn add_volume_light(&mut self, only_seen: bool) {
         if self.config.lighting.mode != crate::fiber::ShadingMode::Volume {
             return;
