@@ -19,7 +19,9 @@ impl Engine {
         let fibers = self.style.strands.fibers_per_strand;
         // The solids stop light where they are drawn (the head and body's colliders stand for
         // them, a character's capsules for its mesh).
-        let (solids, colliders) = (self.config.draw_solids, &self.frame_colliders);
+        // `CollisionScene` holds them prepared (the head's inverse once, not per cell).
+        let solids = self.config.draw_solids;
+        let colliders = crate::sim::collide::CollisionScene::new(&self.frame_colliders);
         for light in &self.config.lighting.lights {
             let Some(volume) = PhotonVolume::build(
                 &self.fiber,
@@ -29,7 +31,7 @@ impl Engine {
                 fibers,
                 light,
                 &self.config.volume,
-                solids.then_some(|p: glam::Vec3| colliders.penetration_m(p)),
+                solids.then_some(|p: glam::Vec3| colliders.penetration_m(p.into())),
             ) else {
                 continue;
             };

@@ -45,19 +45,22 @@
 mod bins;
 mod trace;
 
-use crate::fiber::Fiber;
+use crate::fiber::{Fiber, LightAtPoint, ShadingMode};
 use crate::light::Light;
 use glam::{UVec3, Vec3};
 use rayon::prelude::*;
 
+/// Light that crossed no fibre: the gather takes the shader's S cos θi per unit irradiance.
+const UNSHADOWED: LightAtPoint = LightAtPoint::UNSHADOWED;
+
 /// Most cells per axis (a larger extent gets larger cells).
-pub const MAX_CELLS_PER_AXIS: usize = 256;
+const MAX_CELLS_PER_AXIS: usize = 256;
 /// Blocks of paths traced between two merges into the bins (64 × 1,024 paths): what bounds the
 /// flights held at once.
 const WAVE_BLOCKS: u32 = 64;
 /// Flights a path leaves, for the memory estimate: measured 11 on average on dense blond hair
 /// (the most scattering of the presets), held in vectors that may double: 32 covers it.
-pub const FLIGHTS_PER_PATH: u64 = 32;
+const FLIGHTS_PER_PATH: u64 = 32;
 
 /// How the volume is built.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -134,6 +137,12 @@ impl Cells {
         ((c.z * self.dims.y + c.y) * self.dims.x + c.x) as usize
     }
 
+    /// The coordinates of cell `i` ([`Cells::index`]'s inverse).
+    pub(crate) fn coords(&self, i: usize) -> UVec3 {
+        let (i, d) = (i as u32, self.dims);
+        UVec3::new(i % d.x, (i / d.x) % d.y, i / (d.x * d.y))
+    }
+
     pub(crate) fn count(&self) -> usize {
         (self.dims.x * self.dims.y * self.dims.z) as usize
     }
@@ -141,16 +150,16 @@ impl Cells {
     /// Marks the cells whose centre lies deeper than half their diagonal inside a solid
     /// (`depth_m(p)`: how deep `p` lies inside one, metres, 0 outside), so wholly inside.
     fn mark_solids(&mut self, depth_m: &(impl Fn(Vec3) -> f32 + Sync)) {
-        let (origin, cell_m, dims) = (self.origin, self.cell_m, self.dims);
-        let half_diagonal = 0.5 * 3f32.sqrt() * cell_m;
-        self.solid = (0..self.count())
+        let half_diagonal = 0.5 * 3f32.sqrt() * self.cell_m;
+        let cells = &*self;
+        let solid = (0..self.count())
             .into_par_iter()
             .map(|i| {
-                let i = i as u32;
-                let c = UVec3::new(i % dims.x, (i / dims.x) % dims.y, i / (dims.x * dims.y));
-                depth_m(origin + (c.as_vec3() + Vec3::splat(0.5)) * cell_m) > half_diagonal
+                let centre = cells.origin + (cells.coords(i).as_vec3() + 0.5) * cells.cell_m;
+                depth_m(centre) > half_diagonal
             })
             .collect();
+        self.solid = solid;
     }
 
     /// Files the pieces of fibre the points stand for (module doc, step 1).
@@ -224,29 +233,30 @@ impl Cells {
             let l = &mut cells.longest[c as usize];
             *l = l.max(len);
         }
-        // The cells within one of a filled cell, numbered in cell order.
-        let dims = cells.dims.as_ivec3();
-        let index = |c: glam::IVec3| ((c.z * dims.y + c.y) * dims.x + c.x) as usize;
-        let filled = |c: glam::IVec3| {
-            c.cmpge(glam::IVec3::ZERO).all()
-                && c.cmplt(dims).all()
-                && starts[index(c) + 1] > starts[index(c)]
-        };
-        cells.slot = vec![NO_SLOT; count];
-        let mut slots = 0u32;
-        for i in 0..count as u32 {
-            let c = glam::IVec3::new(
-                (i % dims.x as u32) as i32,
-                ((i / dims.x as u32) % dims.y as u32) as i32,
-                (i / (dims.x * dims.y) as u32) as i32,
-            );
-            let near = (-1..=1)
-                .any(|z| (-1..=1).any(|y| (-1..=1).any(|x| filled(c + glam::IVec3::new(x, y, z)))));
-            if near {
-                cells.slot[i as usize] = slots;
-                slots += 1;
+        // The cells within one of a filled cell (the 2×2×2 a point picks from lie there),
+        // numbered in cell order.
+        let mut near = vec![false; count];
+        let d = cells.dims.as_ivec3();
+        for i in (0..count).filter(|&i| starts[i + 1] > starts[i]) {
+            let c = cells.coords(i).as_ivec3();
+            for k in 0..27 {
+                let n = c + glam::IVec3::new(k % 3 - 1, k / 3 % 3 - 1, k / 9 - 1);
+                if n.cmpge(glam::IVec3::ZERO).all() && n.cmplt(d).all() {
+                    near[cells.index(n.as_uvec3())] = true;
+                }
             }
         }
+        let mut slots = 0u32;
+        cells.slot = near
+            .iter()
+            .map(|&n| {
+                if !n {
+                    return NO_SLOT;
+                }
+                slots += 1;
+                slots - 1
+            })
+            .collect();
         cells.slots = slots as usize;
         cells.starts = starts;
         Some(cells)
@@ -275,9 +285,7 @@ pub struct PhotonVolume {
     fluence: Vec<Vec3>,
     /// The cell edge used, metres (`VolumeParams::cell_m`, or larger to fit the bins).
     pub cell_m: f32,
-    /// Paths traced, those that met a fibre, and the scatterings met, for reports.
-    pub paths: u64,
-    pub scattered_paths: u64,
+    /// Scatterings the paths met (two runs that agree meet the same number).
     pub scatterings: u64,
 }
 
@@ -318,7 +326,7 @@ impl PhotonVolume {
         let mut bins = bins::Bins::new(cells.slots, params.bins_per_axis.max(1) as usize);
         let inv_volume = 1.0 / cells.cell_m.powi(3);
         let blocks = params.paths.div_ceil(trace::BLOCK);
-        let (mut scattered_paths, mut scatterings) = (0u64, 0u64);
+        let mut scatterings = 0u64;
         for wave in (0..blocks).step_by(WAVE_BLOCKS as usize) {
             let traced = trace::trace(
                 &cells,
@@ -331,7 +339,6 @@ impl PhotonVolume {
             for r in traced.blocks.iter().flatten() {
                 bins.add(r.slot as usize, r.from, r.power_m * inv_volume);
             }
-            scattered_paths += traced.scattered_paths;
             scatterings += traced.scatterings;
         }
         let (starts, from, fluence) = bins.finish();
@@ -341,8 +348,6 @@ impl PhotonVolume {
             starts,
             from,
             fluence,
-            paths: params.paths as u64,
-            scattered_paths,
             scatterings,
         })
     }
@@ -397,12 +402,8 @@ impl PhotonVolume {
         let (a, b) = (a as usize, b as usize);
         let mut sum = Vec3::ZERO;
         for (wi, e) in self.from[a..b].iter().zip(&self.fluence[a..b]) {
-            let Some(angles) = crate::fiber::shader::HairAngles::from_vectors(u, *wi, wo) else {
-                continue;
-            };
-            let sin_i = u.dot(*wi).clamp(-1.0, 1.0);
-            let cos_i = (1.0 - sin_i * sin_i).max(0.0).sqrt();
-            sum += fiber.bcsdf(&angles) * (cos_i * *e);
+            // S cos θi: single scattering of unshadowed light from ωi.
+            sum += fiber.shade(ShadingMode::SingleScattering, u, *wi, wo, &UNSHADOWED) * *e;
         }
         if sum.is_finite() {
             sum.max(Vec3::ZERO)

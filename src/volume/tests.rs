@@ -121,8 +121,6 @@ fn isotropic_records_light_a_white_fibre_by_a_quarter_pi() {
         starts,
         cell_m: cells.cell_m,
         cells,
-        paths: 0,
-        scattered_paths: 0,
         scatterings: 0,
     };
     let centre = volume.cells.origin + volume.cells.dims.as_vec3() * (0.5 * volume.cells.cell_m);

@@ -22,8 +22,6 @@ const MAX_SCATTERINGS: u32 = 100_000;
 /// What the paths left: records per block, in block order.
 pub(super) struct Traced {
     pub(super) blocks: Vec<Vec<Record>>,
-    /// Paths that met at least one fibre.
-    pub(super) scattered_paths: u64,
     pub(super) scatterings: u64,
 }
 
@@ -122,7 +120,6 @@ pub(super) fn trace(
 ) -> Traced {
     let none = || Traced {
         blocks: Vec::new(),
-        scattered_paths: 0,
         scatterings: 0,
     };
     if params.paths == 0 {
@@ -138,28 +135,24 @@ pub(super) fn trace(
         cells,
         sigma_per_len,
     };
-    let results: Vec<(Vec<Record>, u64, u64)> = blocks
+    let results: Vec<(Vec<Record>, u64)> = blocks
         .into_par_iter()
         .map(|block| {
             let mut rng =
                 SplitMix64::new(params.seed ^ (block as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
             let mut records = Vec::new();
-            let (mut scatterings, mut scattered) = (0u64, 0u64);
+            let mut scatterings = 0u64;
             let end = ((block + 1) * BLOCK).min(params.paths);
             for _ in block * BLOCK..end {
                 let (start, d, power) = emit(rng.unit(), rng.unit());
-                let n = walker.path(start, d, power, &c, &logistic, &mut rng, &mut records);
-                scatterings += n;
-                scattered += u64::from(n > 0);
+                scatterings += walker.path(start, d, power, &c, &logistic, &mut rng, &mut records);
             }
-            (records, scatterings, scattered)
+            (records, scatterings)
         })
         .collect();
     let scatterings = results.iter().map(|r| r.1).sum();
-    let scattered_paths = results.iter().map(|r| r.2).sum();
     Traced {
         blocks: results.into_iter().map(|r| r.0).collect(),
-        scattered_paths,
         scatterings,
     }
 }
