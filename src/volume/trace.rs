@@ -1,13 +1,13 @@
 //! Light paths through the cells (`volume` module doc, steps 2 and 3): delta tracking across a
 //! grid walked cell by cell (Amanatides & Woo 1987), Chiang scattering, Russian roulette.
 
+use super::emit::Emitter;
 use super::{Cells, NO_SLOT, Record, VolumeParams};
 use crate::fiber::Fiber;
 use crate::fiber::chiang::TrimmedLogistic;
 use crate::fiber::chiang_sample::sample_scatter;
-use crate::light::Light;
 use crate::rng::SplitMix64;
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use rayon::prelude::*;
 
 /// Paths per block: each block draws from its own seed, so the result is the same for any
@@ -25,109 +25,16 @@ pub(super) struct Traced {
     pub(super) scatterings: u64,
 }
 
-/// Where a path starts: a point, its unit direction and its power (W, RGB).
-type Emit = (Vec3, Vec3, Vec3);
-
-/// How `light` sends paths into the grid of `cells`: each path's start from two uniform
-/// numbers, with power so that `paths` of them carry the light's whole flux through the grid.
-/// `None` when the light cannot reach it.
-fn emitter(cells: &Cells, light: &Light, paths: u32) -> Option<impl Fn(f32, f32) -> Emit> {
-    let size = cells.dims.as_vec3() * cells.cell_m;
-    let centre = cells.origin + 0.5 * size;
-    let n = paths as f32;
-    enum Kind {
-        /// From a rectangle across the light, a grid's diagonal in front of its centre.
-        Plane {
-            a: Vec3,
-            b: Vec3,
-            lo: Vec2,
-            hi: Vec2,
-            back: f32,
-        },
-        /// From the point, into the cone around the grid's bounding sphere.
-        Cone { frame: (Vec3, Vec3), cos_max: f32 },
-    }
-    let (origin, axis, power, kind) = match *light {
-        Light::Directional { travel, irradiance } => {
-            let d = travel.get();
-            let (a, b) = d.any_orthonormal_pair();
-            let (mut lo, mut hi) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
-            for k in 0..8 {
-                let corner = cells.origin
-                    + size
-                        * Vec3::new((k & 1) as f32, ((k >> 1) & 1) as f32, ((k >> 2) & 1) as f32);
-                let q = Vec2::new((corner - centre).dot(a), (corner - centre).dot(b));
-                lo = lo.min(q);
-                hi = hi.max(q);
-            }
-            let area = (hi - lo).x * (hi - lo).y;
-            let back = size.length();
-            (
-                centre,
-                d,
-                irradiance * (area / n),
-                Kind::Plane { a, b, lo, hi, back },
-            )
-        }
-        Light::Point {
-            position_m,
-            intensity,
-        } => {
-            let to = centre - position_m;
-            let (dist, radius) = (to.length(), 0.5 * size.length());
-            if !(dist > radius) {
-                return None;
-            }
-            let axis = to / dist;
-            let cos_max = (1.0 - (radius / dist).powi(2)).max(0.0).sqrt();
-            let solid_angle = std::f32::consts::TAU * (1.0 - cos_max);
-            let frame = axis.any_orthonormal_pair();
-            (
-                position_m,
-                axis,
-                intensity * (solid_angle / n),
-                Kind::Cone { frame, cos_max },
-            )
-        }
-    };
-    if !(power.is_finite() && axis.is_finite()) {
-        return None;
-    }
-    Some(move |x: f32, y: f32| match kind {
-        Kind::Plane { a, b, lo, hi, back } => {
-            let on_plane = origin + a * (lo.x + (hi.x - lo.x) * x) + b * (lo.y + (hi.y - lo.y) * y);
-            (on_plane - axis * back, axis, power)
-        }
-        Kind::Cone { frame, cos_max } => {
-            let cos = 1.0 - x * (1.0 - cos_max);
-            let sin = (1.0 - cos * cos).max(0.0).sqrt();
-            let phi = std::f32::consts::TAU * y;
-            let d = axis * cos + (frame.0 * phi.cos() + frame.1 * phi.sin()) * sin;
-            (origin, d, power)
-        }
-    })
-}
-
-/// Traces blocks `blocks` of the `params.paths` paths of `light` through `cells` (fibres of
+/// Traces blocks `blocks` of the `params.paths` paths of `emitter` through `cells` (fibres of
 /// radius `radius_m`): block b is paths b·BLOCK.. of the whole, from its own seed.
 pub(super) fn trace(
     cells: &Cells,
     fiber: &Fiber,
     radius_m: f32,
-    light: &Light,
+    emitter: &Emitter,
     params: &VolumeParams,
     blocks: std::ops::Range<u32>,
 ) -> Traced {
-    let none = || Traced {
-        blocks: Vec::new(),
-        scatterings: 0,
-    };
-    if params.paths == 0 {
-        return none();
-    }
-    let Some(emit) = emitter(cells, light, params.paths) else {
-        return none();
-    };
     let c = *fiber.chiang_constants();
     let logistic = TrimmedLogistic::new(c.s);
     let sigma_per_len = 2.0 * radius_m / cells.cell_m.powi(3);
@@ -138,13 +45,12 @@ pub(super) fn trace(
     let results: Vec<(Vec<Record>, u64)> = blocks
         .into_par_iter()
         .map(|block| {
-            let mut rng =
-                SplitMix64::new(params.seed ^ (block as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
+            let mut rng = SplitMix64::stream(params.seed, block as u64);
             let mut records = Vec::new();
             let mut scatterings = 0u64;
             let end = ((block + 1) * BLOCK).min(params.paths);
             for _ in block * BLOCK..end {
-                let (start, d, power) = emit(rng.unit(), rng.unit());
+                let (start, d, power) = emitter.emit(&mut rng);
                 scatterings += walker.path(start, d, power, &c, &logistic, &mut rng, &mut records);
             }
             (records, scatterings)
@@ -269,50 +175,52 @@ impl Walker<'_> {
                 return None;
             }
             let index = cells.index(cell.as_uvec3());
-            if cells.solid.get(index).copied().unwrap_or(false) {
-                return None;
-            }
             let t_exit = t_max.min_element().max(t);
-            let (first, last) = (
-                cells.starts[index] as usize,
-                cells.starts[index + 1] as usize,
-            );
-            let t_cell = t;
-            if last > first {
-                let longest = cells.longest[index];
-                let majorant = self.sigma_per_len * (last - first) as f32 * longest;
-                loop {
-                    let s = -(rng.open_unit_f64() as f32).ln() / majorant;
-                    if !(t + s < t_exit) {
-                        break;
-                    }
-                    t += s;
-                    let j = first
-                        + ((rng.open_unit_f64() * (last - first) as f64) as usize)
-                            .min(last - first - 1);
-                    let u = cells.tangents[j];
-                    let sin = d.cross(u).length();
-                    let accept = cells.lengths[j] / longest * sin;
-                    if (rng.open_unit_f64() as f32) < accept {
-                        let slot = cells.slot[index];
-                        if scattered && slot != NO_SLOT {
-                            records.push(Record {
-                                slot,
-                                from: -d,
-                                power_m: weight * (t - t_cell),
-                            });
+            if cells.is_busy(index) {
+                if cells.solid.get(index).copied().unwrap_or(false) {
+                    return None;
+                }
+                let (first, last) = (
+                    cells.starts[index] as usize,
+                    cells.starts[index + 1] as usize,
+                );
+                let t_cell = t;
+                if last > first {
+                    let longest = cells.longest[index];
+                    let majorant = self.sigma_per_len * (last - first) as f32 * longest;
+                    loop {
+                        let s = -(rng.open_unit_f64() as f32).ln() / majorant;
+                        if !(t + s < t_exit) {
+                            break;
                         }
-                        return Some((o + d * t, u));
+                        t += s;
+                        let j = first
+                            + ((rng.open_unit_f64() * (last - first) as f64) as usize)
+                                .min(last - first - 1);
+                        let u = cells.tangents[j];
+                        let sin = d.cross(u).length();
+                        let accept = cells.lengths[j] / longest * sin;
+                        if (rng.open_unit_f64() as f32) < accept {
+                            let slot = cells.slot[index];
+                            if scattered && slot != NO_SLOT {
+                                records.push(Record {
+                                    slot,
+                                    from: -d,
+                                    power_m: weight * (t - t_cell),
+                                });
+                            }
+                            return Some((o + d * t, u));
+                        }
                     }
                 }
-            }
-            let slot = cells.slot[index];
-            if scattered && t_exit > t_cell && slot != NO_SLOT {
-                records.push(Record {
-                    slot,
-                    from: -d,
-                    power_m: weight * (t_exit - t_cell),
-                });
+                let slot = cells.slot[index];
+                if scattered && t_exit > t_cell && slot != NO_SLOT {
+                    records.push(Record {
+                        slot,
+                        from: -d,
+                        power_m: weight * (t_exit - t_cell),
+                    });
+                }
             }
             t = t_exit;
             // The next cell along the axis whose boundary comes first.
