@@ -50,13 +50,41 @@ impl Bins {
     }
 
     /// Adds light `e` arriving from unit `from` to slot `slot`.
-    #[inline]
+    #[cfg(test)]
     pub(super) fn add(&mut self, slot: usize, from: Vec3, e: Vec3) {
         let k = slot * self.n * self.n + octahedral_bin(from, self.n);
         if let (Some(s), Some(m)) = (self.sum.get_mut(k), self.moment.get_mut(k)) {
             *s += e;
             *m += from * e.element_sum();
         }
+    }
+
+    /// Adds every flight `flights()` yields (slot, unit direction it came from, light), each
+    /// slot's in the order they come: the same sums as [`Bins::add`] one by one, for any
+    /// thread count. The slots are split into one range per thread, and each thread adds the
+    /// flights of its range (each reads them all: cheaper than sorting them by slot).
+    pub(super) fn add_all<I>(&mut self, flights: impl Fn() -> I + Sync)
+    where
+        I: Iterator<Item = (u32, Vec3, Vec3)>,
+    {
+        let (n, per) = (self.n, self.n * self.n);
+        let slots = self.sum.len() / per;
+        let span = slots.div_ceil(rayon::current_num_threads().max(1)).max(1);
+        self.sum
+            .par_chunks_mut(span * per)
+            .zip(self.moment.par_chunks_mut(span * per))
+            .enumerate()
+            .for_each(|(job, (sum, moment))| {
+                let range = job * span..job * span + sum.len() / per;
+                for (slot, from, e) in flights() {
+                    let slot = slot as usize;
+                    if range.contains(&slot) {
+                        let k = (slot - range.start) * per + octahedral_bin(from, n);
+                        sum[k] += e;
+                        moment[k] += from * e.element_sum();
+                    }
+                }
+            });
     }
 
     /// The non-empty bins per slot, as records: starts per slot (`slots + 1`), each bin's mean

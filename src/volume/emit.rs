@@ -214,7 +214,8 @@ mod tests {
     /// Every point of every cell holding fibre lies in a marked column, whatever the light's
     /// direction (so no path that could hit fibre is left unsent and the estimate keeps its
     /// expectation), while the columns cover much less than the rectangle across the grid
-    /// (what the footprint saves, seen obliquely). The paths' powers sum to the irradiance over the columns.
+    /// (what the footprint saves, seen obliquely). The paths' powers sum to the irradiance
+    /// over the columns.
     #[test]
     fn the_footprint_holds_every_cell_with_fibre() {
         let mut rng = SplitMix64::new(21);

@@ -16,9 +16,12 @@
 //! 1. **Cells.** A grid of `cell_m` cubes over the hair. Each render-strand point stands for a
 //!    piece of fibre (its `lengths_m` times the strand's fibres), cut into pieces at most half a
 //!    cell long, each filed under the cell of its middle with its tangent.
-//! 2. **Paths** ([`trace`]). A directional light's paths enter from a rectangle across it in
-//!    front of the grid, each with power E·A/N; a point light's leave it into the cone of the
-//!    grid's bounding sphere, each with I·Ω/N. A path flies by delta tracking: the majorant of a
+//! 2. **Paths** ([`trace`], started by `emit.rs`). A directional light's paths enter from the
+//!    columns across it that a cell holding fibre reaches (a path anywhere else would cross
+//!    no fibre), each with power E·A/N for the columns' area A; a point light's leave it into
+//!    the cone of the grid's bounding sphere, each with I·Ω/N. Each block of paths draws from
+//!    its own stream (`rng::SplitMix64::stream`). A path flies by delta tracking (an empty
+//!    cell costs a bit read, [`Cells::busy`]): the majorant of a
 //!    cell is 2r·n·ℓ_max/V (n pieces, the longest ℓ_max); at a tentative collision a piece is
 //!    drawn uniformly and hit with probability (ℓ/ℓ_max)·sin ψ (ψ between path and fibre), so
 //!    real collisions occur at the fibres' cross-section per volume, 2r Σ ℓ sin ψ / V.
@@ -367,9 +370,13 @@ impl PhotonVolume {
                 params,
                 wave..(wave + WAVE_BLOCKS).min(blocks),
             );
-            for r in traced.blocks.iter().flatten() {
-                bins.add(r.slot as usize, r.from, r.power_m * inv_volume);
-            }
+            bins.add_all(|| {
+                traced
+                    .blocks
+                    .iter()
+                    .flatten()
+                    .map(|r| (r.slot, r.from, r.power_m * inv_volume))
+            });
             scatterings += traced.scatterings;
         }
         let (starts, from, fluence) = bins.finish();
