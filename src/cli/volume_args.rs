@@ -25,7 +25,7 @@ pub struct VolumeArgs {
     /// `--shading volume`: the volume's cell edge in millimetres, 0.5..=100 (default 4).
     #[arg(long, value_name = "MM", value_parser = parse_volume_cell_mm)]
     pub volume_cell_mm: Option<f32>,
-    /// `--shading volume`: light paths per light, 1000..=50000000 (default 4000000).
+    /// `--shading volume`: light paths per light, 1000..=50000000 (default 2000000).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1000..=50_000_000))]
     pub volume_paths: Option<u32>,
     /// `--shading volume`: each cell's light merged into N × N direction bins (1..=16, default

@@ -71,10 +71,11 @@ const FLIGHTS_PER_PATH: u64 = 32;
 pub struct VolumeParams {
     /// Cell edge, metres (> 0).
     pub cell_m: f32,
-    /// Light paths per light. The default, 4,000,000, is what dense hair's darkest tenth needs:
-    /// with 200,000 blond back-lit read 0.32–0.51 of the path tracer's, with 1,000,000 brown
-    /// side-lit 0.40–1.01 (ACCURACY.md §2, "Light paths through the volume"): the fewer the
-    /// paths, the noisier the dim cells, and noise darkens a darkest tenth.
+    /// Light paths per light, each sent where it meets the hair's columns (`emit.rs`). The
+    /// default, 2,000,000, is what dense hair's darkest tenth needs: with 1,000,000 brown
+    /// side-lit read 0.49–1.24 of the path tracer's, with 2,000,000 0.57–1.46 (ACCURACY.md §2,
+    /// "Paths sent where the hair is"): the fewer the paths, the noisier the dim cells, and
+    /// noise darkens a darkest tenth.
     pub paths: u32,
     /// Seed of the paths' random numbers.
     pub seed: u64,
@@ -91,7 +92,7 @@ impl Default for VolumeParams {
     fn default() -> Self {
         Self {
             cell_m: 0.004,
-            paths: 4_000_000,
+            paths: 2_000_000,
             seed: 0x5EED_0F11_6A7E,
             bins_per_axis: 8,
             max_bins_bytes: 768_000_000,
