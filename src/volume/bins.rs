@@ -59,24 +59,30 @@ impl Bins {
         }
     }
 
-    /// Adds every flight `flights()` yields (slot, unit direction it came from, light), each
-    /// slot's in the order they come: the same sums as [`Bins::add`] one by one, for any
-    /// thread count. The slots are split into one range per thread, and each thread adds the
-    /// flights of its range (each reads them all: cheaper than sorting them by slot).
-    pub(super) fn add_all<I>(&mut self, flights: impl Fn() -> I + Sync)
+    /// The slots per range of [`Bins::add_all`]: one range per thread.
+    pub(super) fn span(&self) -> (usize, usize) {
+        let slots = self.sum.len() / (self.n * self.n);
+        let span = slots.div_ceil(rayon::current_num_threads().max(1)).max(1);
+        (span, slots.div_ceil(span).max(1))
+    }
+
+    /// Adds every flight `flights(j)` yields (slot, unit direction it came from, light) for
+    /// each range j of `span` slots (from [`Bins::span`]), each slot's in the order they
+    /// come: the same sums as [`Bins::add`] one by one, for any thread count. The ranges are
+    /// added in parallel; a flight outside its range is skipped.
+    pub(super) fn add_all<I>(&mut self, span: usize, flights: impl Fn(usize) -> I + Sync)
     where
         I: Iterator<Item = (u32, Vec3, Vec3)>,
     {
         let (n, per) = (self.n, self.n * self.n);
-        let slots = self.sum.len() / per;
-        let span = slots.div_ceil(rayon::current_num_threads().max(1)).max(1);
+        let span = span.max(1);
         self.sum
             .par_chunks_mut(span * per)
             .zip(self.moment.par_chunks_mut(span * per))
             .enumerate()
             .for_each(|(job, (sum, moment))| {
                 let range = job * span..job * span + sum.len() / per;
-                for (slot, from, e) in flights() {
+                for (slot, from, e) in flights(job) {
                     let slot = slot as usize;
                     if range.contains(&slot) {
                         let k = (slot - range.start) * per + octahedral_bin(from, n);

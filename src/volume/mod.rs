@@ -359,6 +359,8 @@ impl PhotonVolume {
         let emitter = emit::Emitter::new(&cells, light, params.paths);
         let blocks = params.paths.div_ceil(trace::BLOCK);
         let mut scatterings = 0u64;
+        // The merge's ranges of slots, one per thread: each block files its flights by them.
+        let ranges = bins.span();
         for wave in (0..blocks).step_by(WAVE_BLOCKS as usize) {
             let Some(emitter) = &emitter else {
                 break;
@@ -370,12 +372,13 @@ impl PhotonVolume {
                 emitter,
                 params,
                 wave..(wave + WAVE_BLOCKS).min(blocks),
+                ranges,
             );
-            bins.add_all(|| {
+            bins.add_all(ranges.0, |job| {
                 traced
                     .blocks
                     .iter()
-                    .flatten()
+                    .flat_map(move |b| b.range(job))
                     .map(|r| (r.slot, r.from, r.power_m * inv_volume))
             });
             scatterings += traced.scatterings;

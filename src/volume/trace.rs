@@ -21,12 +21,59 @@ const MAX_SCATTERINGS: u32 = 100_000;
 
 /// What the paths left: records per block, in block order.
 pub(super) struct Traced {
-    pub(super) blocks: Vec<Vec<Record>>,
+    pub(super) blocks: Vec<BlockRecords>,
     pub(super) scatterings: u64,
 }
 
+/// One block's records, grouped by range of `span` slots (range j: slots j·span..), each
+/// range's in the order the paths left them.
+pub(super) struct BlockRecords {
+    records: Vec<Record>,
+    /// Range j's records: `records[ends[j - 1]..ends[j]]` (from 0 for j = 0).
+    ends: Vec<u32>,
+}
+
+impl BlockRecords {
+    /// Groups `records` by range of `span` slots, `ranges` ranges (a stable counting sort).
+    fn new(records: Vec<Record>, span: usize, ranges: usize) -> BlockRecords {
+        let range_of = |r: &Record| (r.slot as usize / span).min(ranges - 1);
+        let mut ends = vec![0u32; ranges];
+        for r in &records {
+            ends[range_of(r)] += 1;
+        }
+        let mut at = 0;
+        let mut cursor: Vec<u32> = ends
+            .iter_mut()
+            .map(|e| {
+                let start = at;
+                at += *e;
+                *e = at;
+                start
+            })
+            .collect();
+        let mut grouped = records.clone();
+        for r in records {
+            let c = &mut cursor[range_of(&r)];
+            grouped[*c as usize] = r;
+            *c += 1;
+        }
+        BlockRecords {
+            records: grouped,
+            ends,
+        }
+    }
+
+    /// The records of range `j`, in the paths' order.
+    pub(super) fn range(&self, j: usize) -> &[Record] {
+        let start = j.checked_sub(1).map_or(0, |i| self.ends[i] as usize);
+        let end = self.ends.get(j).map_or(start, |&e| e as usize);
+        &self.records[start..end.max(start)]
+    }
+}
+
 /// Traces blocks `blocks` of the `params.paths` paths of `emitter` through `cells` (fibres of
-/// radius `radius_m`): block b is paths b·BLOCK.. of the whole, from its own seed.
+/// radius `radius_m`): block b is paths b·BLOCK.. of the whole, from its own seed. Each
+/// block's records come grouped by `ranges` ranges of `span` slots, the merge's jobs.
 pub(super) fn trace(
     cells: &Cells,
     fiber: &Fiber,
@@ -34,6 +81,7 @@ pub(super) fn trace(
     emitter: &Emitter,
     params: &VolumeParams,
     blocks: std::ops::Range<u32>,
+    (span, ranges): (usize, usize),
 ) -> Traced {
     let c = *fiber.chiang_constants();
     let logistic = TrimmedLogistic::new(c.s);
@@ -42,7 +90,8 @@ pub(super) fn trace(
         cells,
         sigma_per_len,
     };
-    let results: Vec<(Vec<Record>, u64)> = blocks
+    let (span, ranges) = (span.max(1), ranges.max(1));
+    let results: Vec<(BlockRecords, u64)> = blocks
         .into_par_iter()
         .map(|block| {
             let mut rng = SplitMix64::stream(params.seed, block as u64);
@@ -53,7 +102,7 @@ pub(super) fn trace(
                 let (start, d, power) = emitter.emit(&mut rng);
                 scatterings += walker.path(start, d, power, &c, &logistic, &mut rng, &mut records);
             }
-            (records, scatterings)
+            (BlockRecords::new(records, span, ranges), scatterings)
         })
         .collect();
     let scatterings = results.iter().map(|r| r.1).sum();
