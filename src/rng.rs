@@ -23,7 +23,7 @@ impl SplitMix64 {
 
     /// Independent stream number `index` of `seed`: its state is the seed's own output
     /// number `index`, a hashed word. Why not `new(seed ^ index · k)`: states that differ by a
-    /// multiple of the step below run the same numbers shifted, and with k the step itself
+    /// multiple of the step run the same numbers shifted, and with k the step itself
     /// (as the light paths' blocks had it until stop 54) blocks b and b + 4 of seed 3 drew
     /// the same sequence four numbers apart, so their paths fell into step and repeated
     /// (`tests::streams_do_not_repeat_each_other`).

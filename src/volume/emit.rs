@@ -33,7 +33,7 @@ enum Kind {
     Cone {
         frame: (Vec3, Vec3),
         /// 1 − cos of the cone's half-angle, kept apart from the cosine: for a light
-        /// 20 m from hair 1 cm across it is 1.3e-7, below an f32 cosine's step near 1.
+        /// 20 m from a grid of 1 cm radius it is 1.3e-7, two steps of an f32 near 1.
         one_minus_cos_max: f32,
     },
 }

@@ -121,7 +121,7 @@ pub(crate) struct Cells {
     /// point), or [`NO_SLOT`]: light is kept only there.
     pub(crate) slot: Vec<u32>,
     pub(crate) slots: usize,
-    /// One bit per cell (`index` bit `index % 64` of word `index / 64`): set where a path's
+    /// One bit per cell (cell `i` is bit `i % 64` of word `i / 64`): set where a path's
     /// step reads anything (pieces, a slot or a solid). Most steps are through empty space
     /// (94% on the smooth dance), which then costs one bit read from a small array.
     pub(crate) busy: Vec<u64>,

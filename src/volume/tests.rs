@@ -363,3 +363,33 @@ fn cells_grow_until_the_bins_fit_their_cap() {
         bytes(&capped)
     );
 }
+
+/// A block's records filed by the merge's ranges of slots keep, within each range, the order
+/// the paths left them (what makes the merged sums the same bits as adding them one by one),
+/// and every record is in exactly one range: its own.
+#[test]
+fn filed_records_keep_their_order_within_each_range() {
+    let mut rng = SplitMix64::new(31);
+    let records: Vec<Record> = (0..2_000)
+        .map(|i| Record {
+            slot: (rng.next_u64() % 37) as u32,
+            from: Vec3::X,
+            power_m: Vec3::splat(i as f32),
+        })
+        .collect();
+    let (span, ranges) = (10, 4);
+    let filed = super::trace::BlockRecords::new(records.clone(), span, ranges);
+    let mut seen = 0;
+    for j in 0..ranges {
+        let want: Vec<f32> = records
+            .iter()
+            .filter(|r| r.slot as usize / span == j)
+            .map(|r| r.power_m.x)
+            .collect();
+        let got: Vec<f32> = filed.range(j).iter().map(|r| r.power_m.x).collect();
+        assert_eq!(got, want, "range {j}");
+        seen += got.len();
+    }
+    assert_eq!(seen, records.len());
+    assert!(filed.range(ranges).is_empty());
+}

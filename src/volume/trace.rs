@@ -35,7 +35,7 @@ pub(super) struct BlockRecords {
 
 impl BlockRecords {
     /// Groups `records` by range of `span` slots, `ranges` ranges (a stable counting sort).
-    fn new(records: Vec<Record>, span: usize, ranges: usize) -> BlockRecords {
+    pub(super) fn new(records: Vec<Record>, span: usize, ranges: usize) -> BlockRecords {
         let range_of = |r: &Record| (r.slot as usize / span).min(ranges - 1);
         let mut ends = vec![0u32; ranges];
         for r in &records {
@@ -65,7 +65,10 @@ impl BlockRecords {
 
     /// The records of range `j`, in the paths' order.
     pub(super) fn range(&self, j: usize) -> &[Record] {
-        let start = j.checked_sub(1).map_or(0, |i| self.ends[i] as usize);
+        let start = j
+            .checked_sub(1)
+            .and_then(|i| self.ends.get(i))
+            .map_or(0, |&e| e as usize);
         let end = self.ends.get(j).map_or(start, |&e| e as usize);
         &self.records[start..end.max(start)]
     }
