@@ -1,6 +1,8 @@
 //! Where light paths start (`volume` module doc, step 2): a directional light's over the
-//! columns across it that hair reaches, a point light's into the cone of the grid's bounding
-//! sphere.
+//! columns across it that hair reaches, a point light's into the directions, within the cone
+//! of the grid's bounding sphere, that hair subtends. A path anywhere else would cross no
+//! fibre and leave no record; sending none there keeps every estimate's expectation and puts
+//! all the paths where they count.
 
 use super::Cells;
 use crate::light::Light;
@@ -29,12 +31,14 @@ enum Kind {
         footprint: Footprint,
         back: f32,
     },
-    /// From the point, into the cone around the grid's bounding sphere.
+    /// From the point, into the directions of the cone around the grid's bounding sphere that
+    /// a cell holding fibre subtends (`footprint`).
     Cone {
         frame: (Vec3, Vec3),
         /// 1 − cos of the cone's half-angle, kept apart from the cosine: for a light
         /// 20 m from a grid of 1 cm radius it is 1.3e-7, two steps of an f32 near 1.
         one_minus_cos_max: f32,
+        footprint: ConeFootprint,
     },
 }
 
@@ -76,8 +80,16 @@ impl Emitter {
                 // 1 − √(1 − s²) = s² / (1 + √(1 − s²)), without the cancellation.
                 let s2 = (radius / dist).powi(2);
                 let one_minus_cos_max = s2 / (1.0 + (1.0 - s2).max(0.0).sqrt());
-                let solid_angle = std::f32::consts::TAU * one_minus_cos_max;
                 let frame = axis.any_orthonormal_pair();
+                let cone = Cone {
+                    light_m: position_m,
+                    axis,
+                    frame,
+                    one_minus_cos_max,
+                };
+                let footprint = ConeFootprint::new(cells, &cone, radius)?;
+                let solid_angle =
+                    std::f32::consts::TAU * one_minus_cos_max * footprint.share_of_cone();
                 (
                     position_m,
                     axis,
@@ -85,6 +97,7 @@ impl Emitter {
                     Kind::Cone {
                         frame,
                         one_minus_cos_max,
+                        footprint,
                     },
                 )
             }
@@ -117,8 +130,9 @@ impl Emitter {
             Kind::Cone {
                 frame,
                 one_minus_cos_max,
+                footprint,
             } => {
-                let (x, y) = (rng.unit(), rng.unit());
+                let Vec2 { x, y } = footprint.sample(rng);
                 // cos θ = 1 − x(1 − cos θmax), uniform over the cone; sin θ from 1 − cos θ alone.
                 let one_minus_cos = x * one_minus_cos_max;
                 let cos = 1.0 - one_minus_cos;
@@ -203,6 +217,113 @@ impl Footprint {
         let k = self.marked[((rng.open_unit_f64() * count as f64) as usize).min(count - 1)];
         let column = Vec2::new((k % self.columns_x) as f32, (k / self.columns_x) as f32);
         self.lo + (column + Vec2::new(rng.unit(), rng.unit())) * self.tile_m
+    }
+}
+
+/// A point light's cone of directions toward the grid: direction (x, y) ∈ [0, 1)² has
+/// 1 − cos θ = x (1 − cos θmax) from `axis` (so x is uniform in solid angle) and azimuth
+/// 2πy from `frame.0` toward `frame.1`.
+struct Cone {
+    light_m: Vec3,
+    axis: Vec3,
+    frame: (Vec3, Vec3),
+    one_minus_cos_max: f32,
+}
+
+impl Cone {
+    /// (x, y) of the direction from the light to `p` (x may exceed 1 outside the cone), and
+    /// its polar angle.
+    fn coordinates(&self, p: Vec3) -> (Vec2, f32) {
+        let v = p - self.light_m;
+        let theta = self.axis.cross(v).length().atan2(self.axis.dot(v));
+        let half_sin = (0.5 * theta).sin();
+        let x = 2.0 * half_sin * half_sin / self.one_minus_cos_max;
+        let phi = v.dot(self.frame.1).atan2(v.dot(self.frame.0));
+        let y = (phi / std::f32::consts::TAU).rem_euclid(1.0);
+        (Vec2::new(x, y), theta)
+    }
+}
+
+/// The directions of a point light's cone, in bins of equal solid angle, that a cell holding
+/// fibre subtends: as [`Footprint`] for a directional light, a path sent anywhere else would
+/// cross no fibre. Exact: a cell is marked over the box in (x, y) of the cap its bounding
+/// sphere subtends.
+struct ConeFootprint {
+    bins_per_axis: u32,
+    /// The marked bins, `x + y · bins_per_axis`, ascending.
+    marked: Vec<u32>,
+}
+
+impl ConeFootprint {
+    fn new(cells: &Cells, cone: &Cone, grid_radius_m: f32) -> Option<ConeFootprint> {
+        // About a cell per bin across the grid's bounding sphere.
+        let bins = ((2.0 * grid_radius_m / cells.cell_m).ceil() as u32).clamp(8, 512);
+        let mut marked = vec![false; (bins * bins) as usize];
+        // A cube's bounding sphere, widened by a thousandth for rounding.
+        let cell_radius = 0.5 * 3f32.sqrt() * cells.cell_m * 1.001;
+        let (n, slack) = (bins as f32, 1e-3);
+        for i in 0..cells.count() {
+            if cells.starts[i + 1] == cells.starts[i] {
+                continue;
+            }
+            let c = cells.origin + (cells.coords(i).as_vec3() + 0.5) * cells.cell_m;
+            let dist = (c - cone.light_m).length();
+            let (q, theta_c) = cone.coordinates(c);
+            if !(dist > cell_radius && q.is_finite()) {
+                // The light is inside the cell's sphere: every direction may meet it.
+                marked.iter_mut().for_each(|m| *m = true);
+                break;
+            }
+            let alpha = (cell_radius / dist).asin();
+            let x_of = |theta: f32| {
+                let h = (0.5 * theta.max(0.0)).sin();
+                2.0 * h * h / cone.one_minus_cos_max
+            };
+            let x0 = ((x_of(theta_c - alpha) * n - slack).floor().max(0.0)) as u32;
+            let x1 = ((x_of(theta_c + alpha) * n + slack).floor().min(n - 1.0)) as u32;
+            // The cap's azimuths: all of them when it holds the axis, else within
+            // asin(sin α / sin θc) of its centre's.
+            let spread = if theta_c > alpha {
+                (alpha.sin() / theta_c.sin()).min(1.0).asin()
+            } else {
+                std::f32::consts::PI
+            };
+            let ys: Vec<u32> = if spread >= 0.5 * std::f32::consts::PI {
+                (0..bins).collect()
+            } else {
+                let half = spread / std::f32::consts::TAU * n + slack;
+                let (lo, hi) = ((q.y * n - half).floor(), (q.y * n + half).floor());
+                (lo as i64..=hi as i64)
+                    .map(|j| j.rem_euclid(bins as i64) as u32)
+                    .collect()
+            };
+            for y in ys {
+                for x in x0..=x1.max(x0) {
+                    marked[(x + y * bins) as usize] = true;
+                }
+            }
+        }
+        let marked: Vec<u32> = (0..bins * bins).filter(|&k| marked[k as usize]).collect();
+        (!marked.is_empty()).then_some(ConeFootprint {
+            bins_per_axis: bins,
+            marked,
+        })
+    }
+
+    /// The marked bins' share of the cone's solid angle.
+    fn share_of_cone(&self) -> f32 {
+        self.marked.len() as f32 / (self.bins_per_axis * self.bins_per_axis) as f32
+    }
+
+    /// A direction's (x, y), uniform in solid angle over the marked bins.
+    fn sample(&self, rng: &mut SplitMix64) -> Vec2 {
+        let count = self.marked.len();
+        let k = self.marked[((rng.open_unit_f64() * count as f64) as usize).min(count - 1)];
+        let bin = Vec2::new(
+            (k % self.bins_per_axis) as f32,
+            (k / self.bins_per_axis) as f32,
+        );
+        ((bin + Vec2::new(rng.unit(), rng.unit())) / self.bins_per_axis as f32).min(Vec2::ONE)
     }
 }
 
@@ -294,5 +415,84 @@ mod tests {
             let flux = emitter.power * paths as f32;
             assert!((flux / (2.0 * area) - Vec3::ONE).abs().max_element() < 1e-5);
         }
+    }
+
+    /// The same for a point light's cone: every point of every cell holding fibre lies in a
+    /// marked bin of directions, for lights near and far and on several sides, while the bins
+    /// cover under half the cone for the sheet seen obliquely; the paths' powers sum to the
+    /// intensity over the bins' solid angle.
+    #[test]
+    fn the_cone_footprint_holds_every_cell_with_fibre() {
+        let mut rng = SplitMix64::new(22);
+        let n = 3_000;
+        let positions: Vec<Vec3> = (0..n)
+            .map(|_| {
+                let (s, t) = (rng.unit(), rng.unit());
+                Vec3::new(0.1 * s, 0.05 * t + 0.02 * s, 0.003 * rng.unit())
+            })
+            .collect();
+        let tangents = vec![Vec3::X; n];
+        let cells =
+            Cells::build(&positions, &tangents, &vec![0.003; n], 1.0, 0.004).expect("cells");
+        let filled: Vec<usize> = (0..cells.count())
+            .filter(|&i| cells.starts[i + 1] > cells.starts[i])
+            .collect();
+        let centre = cells.origin + cells.dims.as_vec3() * (0.5 * cells.cell_m);
+        let mut oblique_share = 1.0;
+        for (offset, oblique) in [
+            (Vec3::new(0.0, 0.0, 0.5), false),
+            (Vec3::new(0.3, 0.3, 0.3), true),
+            (Vec3::new(-0.2, 0.01, 0.0), false),
+            (Vec3::new(0.0, -3.0, 1.0), false),
+            (Vec3::new(0.02, 0.02, 0.2), false),
+        ] {
+            let light = Light::point(centre + offset, Vec3::splat(3.0)).expect("light");
+            let paths = 1_000;
+            let emitter = Emitter::new(&cells, &light, paths).expect("emitter");
+            let Kind::Cone {
+                frame,
+                one_minus_cos_max,
+                footprint,
+            } = &emitter.kind
+            else {
+                panic!("a point light sends into a cone");
+            };
+            let cone = Cone {
+                light_m: emitter.origin,
+                axis: emitter.axis,
+                frame: *frame,
+                one_minus_cos_max: *one_minus_cos_max,
+            };
+            let marked: std::collections::HashSet<u32> = footprint.marked.iter().copied().collect();
+            let bins = footprint.bins_per_axis;
+            for &i in &filled {
+                let corner = cells.origin + cells.coords(i).as_vec3() * cells.cell_m;
+                for k in 0..40 {
+                    let f = if k < 8 {
+                        Vec3::new((k & 1) as f32, ((k >> 1) & 1) as f32, (k >> 2) as f32)
+                    } else {
+                        Vec3::new(rng.unit(), rng.unit(), rng.unit())
+                    };
+                    let (q, _) = cone.coordinates(corner + f * cells.cell_m);
+                    let bin =
+                        ((q * bins as f32).floor().as_uvec2()).min(glam::UVec2::splat(bins - 1));
+                    assert!(
+                        marked.contains(&(bin.x + bin.y * bins)),
+                        "light at {offset}: cell {i} point {f} at {q} in an unmarked bin"
+                    );
+                }
+            }
+            let share = footprint.share_of_cone();
+            if oblique {
+                oblique_share = share;
+            }
+            let omega = std::f32::consts::TAU * one_minus_cos_max * share;
+            let flux = emitter.power * paths as f32;
+            assert!((flux / (3.0 * omega) - Vec3::ONE).abs().max_element() < 1e-4);
+        }
+        assert!(
+            oblique_share < 0.5,
+            "the oblique sheet takes {oblique_share} of its cone"
+        );
     }
 }

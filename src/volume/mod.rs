@@ -19,7 +19,8 @@
 //! 2. **Paths** ([`trace`], started by `emit.rs`). A directional light's paths enter from the
 //!    columns across it that a cell holding fibre reaches (a path anywhere else would cross
 //!    no fibre), each with power E·A/N for the columns' area A; a point light's leave it into
-//!    the cone of the grid's bounding sphere, each with I·Ω/N. Each block of paths draws from
+//!    the directions of the cone of the grid's bounding sphere that a cell holding fibre
+//!    subtends, each with I·Ω/N for their solid angle Ω. Each block of paths draws from
 //!    its own stream (`rng::SplitMix64::stream`). A path flies by delta tracking (an empty
 //!    cell costs a bit read, [`Cells::busy`]): the majorant of a
 //!    cell is 2r·n·ℓ_max/V (n pieces, the longest ℓ_max); at a tentative collision a piece is
