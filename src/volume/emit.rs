@@ -31,8 +31,8 @@ enum Kind {
         footprint: Footprint,
         back: f32,
     },
-    /// From the point, into the directions of the cone around the grid's bounding sphere that
-    /// a cell holding fibre subtends (`footprint`).
+    /// From the point, into the directions of the cone around the grid's bounding sphere (the
+    /// whole sphere for a light inside it) that a cell holding fibre subtends (`footprint`).
     Cone {
         frame: (Vec3, Vec3),
         /// 1 − cos of the cone's half-angle, kept apart from the cosine: for a light
@@ -73,13 +73,18 @@ impl Emitter {
             } => {
                 let to = centre - position_m;
                 let (dist, radius) = (to.length(), 0.5 * size.length());
-                if !(dist > radius) {
+                if !(dist.is_finite() && radius > 0.0) {
                     return None;
                 }
-                let axis = to / dist;
-                // 1 − √(1 − s²) = s² / (1 + √(1 − s²)), without the cancellation.
-                let s2 = (radius / dist).powi(2);
-                let one_minus_cos_max = s2 / (1.0 + (1.0 - s2).max(0.0).sqrt());
+                // A light among the hair (inside the grid's bounding sphere) sends into the
+                // whole sphere of directions: 1 − cos θmax = 2.
+                let (axis, one_minus_cos_max) = if dist > radius {
+                    // 1 − √(1 − s²) = s² / (1 + √(1 − s²)), without the cancellation.
+                    let s2 = (radius / dist).powi(2);
+                    (to / dist, s2 / (1.0 + (1.0 - s2).max(0.0).sqrt()))
+                } else {
+                    (Vec3::Z, 2.0)
+                };
                 let frame = axis.any_orthonormal_pair();
                 let cone = Cone {
                     light_m: position_m,
@@ -275,14 +280,15 @@ impl ConeFootprint {
                 break;
             }
             let alpha = (cell_radius / dist).asin();
+            // x grows with θ up to π (the far pole), where a cap that crosses it ends.
             let x_of = |theta: f32| {
-                let h = (0.5 * theta.max(0.0)).sin();
+                let h = (0.5 * theta.clamp(0.0, std::f32::consts::PI)).sin();
                 2.0 * h * h / cone.one_minus_cos_max
             };
             let x0 = ((x_of(theta_c - alpha) * n - slack).floor().max(0.0)) as u32;
             let x1 = ((x_of(theta_c + alpha) * n + slack).floor().min(n - 1.0)) as u32;
-            // The cap's azimuths: all of them when it holds the axis, else within
-            // asin(sin α / sin θc) of its centre's.
+            // The cap's azimuths: all of them when it holds the axis or the far pole (then
+            // sin θc ≤ sin α), else within asin(sin α / sin θc) of its centre's.
             let spread = if theta_c > alpha {
                 (alpha.sin() / theta_c.sin()).min(1.0).asin()
             } else {

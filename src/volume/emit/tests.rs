@@ -103,7 +103,7 @@ fn the_footprint_holds_every_cell_with_fibre() {
 }
 
 /// The same for a point light's cone: every point of every cell holding fibre lies in a
-/// marked bin of directions, for lights near and far and on several sides, while the bins
+/// marked bin of directions, for lights near and far, on several sides and among the hair, while the bins
 /// cover under half the cone for the sheet seen obliquely; the paths' powers sum to the
 /// intensity over the bins' solid angle.
 #[test]
@@ -118,6 +118,10 @@ fn the_cone_footprint_holds_every_cell_with_fibre() {
         (Vec3::new(-0.2, 0.01, 0.0), false),
         (Vec3::new(0.0, -3.0, 1.0), false),
         (Vec3::new(0.02, 0.02, 0.2), false),
+        // Among the hair: the whole sphere of directions, about +Z, so the sheet's cells lie
+        // around the equator and the far pole.
+        (Vec3::new(0.01, -0.005, 0.001), false),
+        (Vec3::new(0.0, 0.0, 0.004), false),
     ] {
         let light = Light::point(centre + offset, Vec3::splat(3.0)).expect("light");
         let paths = 1_000;
