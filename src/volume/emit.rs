@@ -78,12 +78,14 @@ impl Emitter {
                 }
                 // A light among the hair (inside the grid's bounding sphere) sends into the
                 // whole sphere of directions: 1 − cos θmax = 2.
-                let (axis, one_minus_cos_max) = if dist > radius {
-                    // 1 − √(1 − s²) = s² / (1 + √(1 − s²)), without the cancellation.
-                    let s2 = (radius / dist).powi(2);
-                    (to / dist, s2 / (1.0 + (1.0 - s2).max(0.0).sqrt()))
+                let inside = !(dist > radius);
+                let axis = if inside { Vec3::Z } else { to / dist };
+                // 1 − √(1 − s²) = s² / (1 + √(1 − s²)), without the cancellation.
+                let s2 = (radius / dist).powi(2);
+                let one_minus_cos_max = if inside {
+                    2.0
                 } else {
-                    (Vec3::Z, 2.0)
+                    s2 / (1.0 + (1.0 - s2).max(0.0).sqrt())
                 };
                 let frame = axis.any_orthonormal_pair();
                 let cone = Cone {
@@ -150,6 +152,48 @@ impl Emitter {
     }
 }
 
+/// A grid of `width` × `height` squares, some marked: where paths are sent. Both footprints
+/// below draw from one of these.
+struct Marked {
+    width: u32,
+    height: u32,
+    /// The marked squares, `x + y · width`, ascending.
+    squares: Vec<u32>,
+}
+
+impl Marked {
+    /// The squares whose flag (row-major, `width` a row) is set; `None` when none is.
+    fn from_flags(flags: &[bool], width: u32) -> Option<Marked> {
+        let squares: Vec<u32> = (0..flags.len() as u32)
+            .filter(|&k| flags[k as usize])
+            .collect();
+        (!squares.is_empty()).then_some(Marked {
+            width,
+            height: flags.len() as u32 / width.max(1),
+            squares,
+        })
+    }
+
+    /// Whether square (x, y) is marked.
+    #[cfg(test)]
+    fn holds(&self, x: u32, y: u32) -> bool {
+        x < self.width && self.squares.binary_search(&(x + y * self.width)).is_ok()
+    }
+
+    /// The marked squares' share of the grid.
+    fn share(&self) -> f32 {
+        self.squares.len() as f32 / (self.width as f32 * self.height as f32)
+    }
+
+    /// A point uniform over the marked squares, in squares from the grid's corner.
+    fn sample(&self, rng: &mut SplitMix64) -> Vec2 {
+        let count = self.squares.len();
+        let k = self.squares[((rng.open_unit_f64() * count as f64) as usize).min(count - 1)];
+        let square = Vec2::new((k % self.width) as f32, (k / self.width) as f32);
+        square + Vec2::new(rng.unit(), rng.unit())
+    }
+}
+
 /// The columns across a directional light, a cell wide, that some cell holding fibre
 /// reaches: a path anywhere else crosses no fibre and leaves no record, so none is sent
 /// there, and the paths' power is the columns' area over their number. Exact, not an
@@ -159,9 +203,7 @@ struct Footprint {
     /// column (0, 0)'s corner.
     lo: Vec2,
     tile_m: f32,
-    columns_x: u32,
-    /// The marked columns, `x + y · columns_x`, ascending.
-    marked: Vec<u32>,
+    columns: Marked,
 }
 
 impl Footprint {
@@ -187,41 +229,32 @@ impl Footprint {
         let half = 0.5 * cells.cell_m;
         let reach = Vec2::new(half * a.abs().element_sum(), half * b.abs().element_sum())
             + Vec2::splat(1e-3 * tile_m);
-        for i in 0..cells.count() {
-            if cells.starts[i + 1] == cells.starts[i] {
-                continue;
-            }
+        for i in cells.filled() {
             let c = cells.origin + (cells.coords(i).as_vec3() + 0.5) * cells.cell_m - centre;
             let q = Vec2::new(c.dot(a), c.dot(b)) - lo;
-            let from = ((q - reach) / tile_m).floor().max(Vec2::ZERO);
-            let to = ((q + reach) / tile_m).floor().min(columns - Vec2::ONE);
+            // Clamped to the grid (a centre on its far edge would floor past it).
+            let last = columns - Vec2::ONE;
+            let from = ((q - reach) / tile_m).floor().max(Vec2::ZERO).min(last);
+            let to = ((q + reach) / tile_m).floor().max(from).min(last);
             for y in from.y as u32..=to.y as u32 {
-                for x in from.x as u32..=to.x as u32 {
-                    marked[(x + y * columns_x) as usize] = true;
-                }
+                let row = (y * columns_x) as usize;
+                marked[row + from.x as usize..=row + to.x as usize].fill(true);
             }
         }
-        let marked: Vec<u32> = (0..columns_x * columns_y)
-            .filter(|&k| marked[k as usize])
-            .collect();
-        (!marked.is_empty()).then_some(Footprint {
+        Some(Footprint {
             lo,
             tile_m,
-            columns_x,
-            marked,
+            columns: Marked::from_flags(&marked, columns_x)?,
         })
     }
 
     fn area_m2(&self) -> f32 {
-        self.marked.len() as f32 * self.tile_m * self.tile_m
+        self.columns.squares.len() as f32 * self.tile_m * self.tile_m
     }
 
     /// A point uniform over the marked columns (plane coordinates, metres).
     fn sample(&self, rng: &mut SplitMix64) -> Vec2 {
-        let count = self.marked.len();
-        let k = self.marked[((rng.open_unit_f64() * count as f64) as usize).min(count - 1)];
-        let column = Vec2::new((k % self.columns_x) as f32, (k / self.columns_x) as f32);
-        self.lo + (column + Vec2::new(rng.unit(), rng.unit())) * self.tile_m
+        self.lo + self.columns.sample(rng) * self.tile_m
     }
 }
 
@@ -254,9 +287,8 @@ impl Cone {
 /// cross no fibre. Exact: a cell is marked over the box in (x, y) of the cap its bounding
 /// sphere subtends.
 struct ConeFootprint {
-    bins_per_axis: u32,
-    /// The marked bins, `x + y · bins_per_axis`, ascending.
-    marked: Vec<u32>,
+    /// Bins in x and in y, `bins.width` each way.
+    bins: Marked,
 }
 
 impl ConeFootprint {
@@ -267,16 +299,13 @@ impl ConeFootprint {
         // A cube's bounding sphere, widened by a thousandth for rounding.
         let cell_radius = 0.5 * 3f32.sqrt() * cells.cell_m * 1.001;
         let (n, slack) = (bins as f32, 1e-3);
-        for i in 0..cells.count() {
-            if cells.starts[i + 1] == cells.starts[i] {
-                continue;
-            }
+        for i in cells.filled() {
             let c = cells.origin + (cells.coords(i).as_vec3() + 0.5) * cells.cell_m;
             let dist = (c - cone.light_m).length();
             let (q, theta_c) = cone.coordinates(c);
             if !(dist > cell_radius && q.is_finite()) {
                 // The light is inside the cell's sphere: every direction may meet it.
-                marked.iter_mut().for_each(|m| *m = true);
+                marked.fill(true);
                 break;
             }
             let alpha = (cell_radius / dist).asin();
@@ -285,8 +314,15 @@ impl ConeFootprint {
                 let h = (0.5 * theta.clamp(0.0, std::f32::consts::PI)).sin();
                 2.0 * h * h / cone.one_minus_cos_max
             };
-            let x0 = ((x_of(theta_c - alpha) * n - slack).floor().max(0.0)) as u32;
-            let x1 = ((x_of(theta_c + alpha) * n + slack).floor().min(n - 1.0)) as u32;
+            let x0 = (x_of(theta_c - alpha) * n - slack)
+                .floor()
+                .max(0.0)
+                .min(n - 1.0);
+            let x1 = (x_of(theta_c + alpha) * n + slack)
+                .floor()
+                .max(x0)
+                .min(n - 1.0);
+            let (x0, x1) = (x0 as usize, x1 as usize);
             // The cap's azimuths: all of them when it holds the axis or the far pole (then
             // sin θc ≤ sin α), else within asin(sin α / sin θc) of its centre's.
             let spread = if theta_c > alpha {
@@ -294,42 +330,33 @@ impl ConeFootprint {
             } else {
                 std::f32::consts::PI
             };
-            let ys: Vec<u32> = if spread >= 0.5 * std::f32::consts::PI {
-                (0..bins).collect()
+            let (y0, y1) = if spread >= 0.5 * std::f32::consts::PI {
+                (0, bins as i64 - 1)
             } else {
                 let half = spread / std::f32::consts::TAU * n + slack;
-                let (lo, hi) = ((q.y * n - half).floor(), (q.y * n + half).floor());
-                (lo as i64..=hi as i64)
-                    .map(|j| j.rem_euclid(bins as i64) as u32)
-                    .collect()
+                (
+                    (q.y * n - half).floor() as i64,
+                    (q.y * n + half).floor() as i64,
+                )
             };
-            for y in ys {
-                for x in x0..=x1.max(x0) {
-                    marked[(x + y * bins) as usize] = true;
-                }
+            for y in y0..=y1 {
+                let row = y.rem_euclid(bins as i64) as usize * bins as usize;
+                marked[row + x0..=row + x1].fill(true);
             }
         }
-        let marked: Vec<u32> = (0..bins * bins).filter(|&k| marked[k as usize]).collect();
-        (!marked.is_empty()).then_some(ConeFootprint {
-            bins_per_axis: bins,
-            marked,
+        Some(ConeFootprint {
+            bins: Marked::from_flags(&marked, bins)?,
         })
     }
 
     /// The marked bins' share of the cone's solid angle.
     fn share_of_cone(&self) -> f32 {
-        self.marked.len() as f32 / (self.bins_per_axis * self.bins_per_axis) as f32
+        self.bins.share()
     }
 
     /// A direction's (x, y), uniform in solid angle over the marked bins.
     fn sample(&self, rng: &mut SplitMix64) -> Vec2 {
-        let count = self.marked.len();
-        let k = self.marked[((rng.open_unit_f64() * count as f64) as usize).min(count - 1)];
-        let bin = Vec2::new(
-            (k % self.bins_per_axis) as f32,
-            (k / self.bins_per_axis) as f32,
-        );
-        ((bin + Vec2::new(rng.unit(), rng.unit())) / self.bins_per_axis as f32).min(Vec2::ONE)
+        (self.bins.sample(rng) / self.bins.width as f32).min(Vec2::ONE)
     }
 }
 

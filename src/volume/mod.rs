@@ -157,6 +157,11 @@ impl Cells {
         (self.dims.x * self.dims.y * self.dims.z) as usize
     }
 
+    /// The cells holding a piece of fibre, in cell order.
+    pub(crate) fn filled(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..self.count()).filter(|&i| self.starts[i + 1] > self.starts[i])
+    }
+
     /// Whether a path's step through cell `index` reads anything ([`Cells::busy`]).
     #[inline]
     pub(crate) fn is_busy(&self, index: usize) -> bool {

@@ -18,9 +18,7 @@ fn sheet(rng: &mut SplitMix64) -> (Cells, Vec<usize>) {
         .map(|_| Vec3::new(rng.unit() - 0.5, rng.unit() - 0.5, rng.unit() - 0.5))
         .collect();
     let cells = Cells::build(&positions, &tangents, &vec![0.003; n], 1.0, 0.004).expect("cells");
-    let filled = (0..cells.count())
-        .filter(|&i| cells.starts[i + 1] > cells.starts[i])
-        .collect();
+    let filled = cells.filled().collect();
     (cells, filled)
 }
 
@@ -66,14 +64,14 @@ fn the_footprint_holds_every_cell_with_fibre() {
         else {
             panic!("a directional light sends from a plane");
         };
-        let marked: std::collections::HashSet<u32> = footprint.marked.iter().copied().collect();
         for &i in &filled {
             for (f, p) in points_of(&cells, i, &mut rng) {
                 let p = p - emitter.origin;
                 let q = (Vec2::new(p.dot(*a), p.dot(*b)) - footprint.lo) / footprint.tile_m;
-                let column = q.x.floor() as u32 + q.y.floor() as u32 * footprint.columns_x;
                 assert!(
-                    marked.contains(&column),
+                    footprint
+                        .columns
+                        .holds(q.x.floor() as u32, q.y.floor() as u32),
                     "travel {travel}: cell {i} point {f} in unmarked column {q}"
                 );
             }
@@ -140,8 +138,7 @@ fn the_cone_footprint_holds_every_cell_with_fibre() {
             frame: *frame,
             one_minus_cos_max: *one_minus_cos_max,
         };
-        let marked: std::collections::HashSet<u32> = footprint.marked.iter().copied().collect();
-        let bins = footprint.bins_per_axis;
+        let bins = footprint.bins.width;
         for &i in &filled {
             for (f, p) in points_of(&cells, i, &mut rng) {
                 let (q, _) = cone.coordinates(p);
@@ -150,7 +147,7 @@ fn the_cone_footprint_holds_every_cell_with_fibre() {
                     .as_uvec2()
                     .min(glam::UVec2::splat(bins - 1));
                 assert!(
-                    marked.contains(&(bin.x + bin.y * bins)),
+                    footprint.bins.holds(bin.x, bin.y),
                     "light at {offset}: cell {i} point {f} at {q} in an unmarked bin"
                 );
             }
