@@ -486,7 +486,7 @@ pub(super) fn lock_thread_scratch(
 /// A band's segments gathered from every chunk's list into `t.segs`, leaving out those behind
 /// the solids at every pixel they could touch (`cull.rs`: the same fragments in the same order,
 /// without the walk), with their sort keys in `t.keys`, both in key order (far to near by
-/// mid-point depth, ties in input order): `t.keys[i]`'s position is `i`.
+/// mid-point depth, ties in input order; `t.segs` in reverse, the order emission visits them).
 ///
 /// The segments are copied in key order, not input order, because emission visits them in
 /// that order: a dense band's segments (2.7 MB for the dense preset's) do not fit in L2, and
@@ -515,13 +515,16 @@ pub(super) fn gather_band(
         }
     }
     sort_keys(&mut t.keys, &mut t.tmp);
+    // Emission runs the keys from last to first, so the segments go in that order and are
+    // read forwards.
     t.segs.clear();
-    t.segs.extend(t.keys.iter().map(|&k| {
+    t.segs.extend(t.keys.iter().rev().map(|&k| {
         let pos = (k & 0xFFFF_FFFF) as usize;
         chunks[pos >> CHUNK_BITS][b][pos & ((1 << CHUNK_BITS) - 1)]
     }));
+    let last = t.keys.len().wrapping_sub(1);
     for (i, k) in t.keys.iter_mut().enumerate() {
-        *k = (*k & !0xFFFF_FFFF) | i as u64;
+        *k = (*k & !0xFFFF_FFFF) | (last - i) as u64;
     }
 }
 
