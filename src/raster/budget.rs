@@ -31,11 +31,13 @@ impl LineScratch {
     /// [`draw_seen_polylines`](super::draw_seen_polylines)) for `segments` segments on an
     /// image `width` × `height`, when a segment covers `rows_per_segment` rows on average:
     /// each segment is binned once per band it touches (`Seg` in its chunk's list, then
-    /// gathered into a band's list) with two `u64` sort keys, plus one list header per chunk
+    /// gathered into a band's list) with two `u64` sort keys and, if it keeps fragments there,
+    /// its index in the band's `u32` list of their segments, plus one list header per chunk
     /// and band, and has its two colours; the fragments the seen pass keeps until they are
     /// composited (`Frag` is 24 bytes; all it emits, and at most [`KEEP_PER_PIXEL`] a pixel
     /// plus one segment's, a band's row span, per band); and per worker thread, the fragments
-    /// of the densest band twice (emitted, then grouped by pixel). A segment covers about 3
+    /// of the densest band twice (emitted, then grouped by pixel) and its segments' colours
+    /// (the band's colour table). A segment covers about 3
     /// pixels per row it
     /// crosses at the 0.5 px minimum width; the densest band is taken as 5 times the mean
     /// band, at most the whole frame (the hair's screen rows hold it all in a fraction of the
@@ -52,7 +54,8 @@ impl LineScratch {
         let bands = (height as u64).div_ceil(BAND_ROWS).max(1);
         let touched = (1.0 + rows_per_segment.max(0.0) / BAND_ROWS as f64).min(bands as f64);
         let binned = (segments as f64 * touched).ceil() as u64;
-        let per_binned = 2 * size_of::<Seg>() as u64 + 2 * size_of::<u64>() as u64;
+        let per_binned =
+            2 * size_of::<Seg>() as u64 + 2 * size_of::<u64>() as u64 + size_of::<u32>() as u64;
         let colours = segments.saturating_mul(size_of::<SegColours>() as u64);
         let headers = segments.div_ceil(SETUP_CHUNK) * bands * size_of::<Vec<Seg>>() as u64;
         let fragments = segments as f64 * 3.0 * (rows_per_segment.max(0.0) + 1.0);
@@ -60,7 +63,12 @@ impl LineScratch {
             .min(fragments)
             .ceil() as u64;
         let threads = rayon::current_num_threads().max(1) as u64;
-        let per_thread = densest_band.saturating_mul(2 * FRAG_BYTES);
+        let densest_segments = (binned as f64 * DENSEST_BAND / bands as f64)
+            .min(binned as f64)
+            .ceil() as u64;
+        let per_thread = densest_band
+            .saturating_mul(2 * FRAG_BYTES)
+            .saturating_add(densest_segments.saturating_mul(size_of::<SegColours>() as u64));
         let band_pixels = BAND_ROWS.saturating_mul(width as u64);
         let kept_at_most = bands.saturating_mul(band_pixels.saturating_mul(KEEP_PER_PIXEL + 1));
         let kept = (fragments.ceil() as u64)

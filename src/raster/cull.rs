@@ -92,7 +92,7 @@ mod tests {
     use super::*;
     use crate::raster::bundle::{Bundle, Profiles};
     use crate::raster::camera::Camera;
-    use crate::raster::fragment::{Band, Rows, emit_fragments};
+    use crate::raster::fragment::{Band, Emitted, Rows, emit_fragments};
     use crate::raster::polyline::{LineWidth, Polylines};
     use crate::raster::segment::{Fibres, Params, setup_segment};
 
@@ -159,7 +159,7 @@ mod tests {
         let mut fibres = vec![Fibres::default(); points.len()];
         let (mut color, mut coverage) = (vec![Vec3::ZERO; W * H], vec![0.0; W * H]);
         let (mut dropped, mut kept) = (0, 0);
-        let mut frags = Vec::new();
+        let mut out = Emitted::default();
         for k in 0..points.len() - 1 {
             let Some((seg, f, _)) = setup_segment(&params, &lines, k) else {
                 continue;
@@ -174,6 +174,7 @@ mod tests {
                     depth: &depth[rows.clone()],
                     coverage: &mut coverage[rows],
                 };
+                out.clear();
                 emit_fragments(
                     &params,
                     &[seg],
@@ -184,14 +185,14 @@ mod tests {
                         depth: band.depth,
                     },
                     &mut Default::default(),
-                    &mut frags,
+                    &mut out,
                     None,
                 );
                 if far.hides(&seg) {
                     assert!(
-                        frags.is_empty(),
+                        out.frags.is_empty(),
                         "segment {k} band {b}: dropped, yet {} fragments",
-                        frags.len()
+                        out.frags.len()
                     );
                     dropped += 1;
                 } else {

@@ -28,10 +28,44 @@ pub(super) struct Frag {
     /// The pixel's sub-samples it covers, one bit each (sample `4g + l` is lane l of
     /// [`SAMPLE_X`]`[g]`).
     pub(super) mask: u16,
-    /// Its segment's index in the draw call ([`Seg::k`]) and the pixel centre's place along
-    /// the (clipped) segment, in [0, 1].
+    /// Its segment's place among the segments with fragments in its [`Emitted`] (whose
+    /// `ids` give the segment's index in the draw call, [`Seg::k`]) and the pixel centre's
+    /// place along the (clipped) segment, in [0, 1].
     pub(super) seg: u32,
     pub(super) t: f32,
+}
+
+/// A band's fragments as they are emitted, and the segments they come from.
+///
+/// Why a fragment names its segment by its place in `ids` rather than by the draw call's
+/// index: compositing looks up each fragment's colours, and the draw call's table is 27 MB
+/// for the dense preset. Read by the draw call's index, one random read per fragment missed
+/// the caches (56% of compositing on dense); the band's own table ([`band_colours`], one read
+/// per segment) stays in L2.
+#[derive(Debug, Default)]
+pub(super) struct Emitted {
+    pub(super) frags: Vec<Frag>,
+    /// The draw call's index ([`Seg::k`]) of each segment that emitted a fragment, in
+    /// emission order: a fragment's [`Frag::seg`] indexes it.
+    pub(super) ids: Vec<u32>,
+}
+
+impl Emitted {
+    pub(super) fn clear(&mut self) {
+        self.frags.clear();
+        self.ids.clear();
+    }
+}
+
+/// The colours of `ids`' segments, taken from the draw call's table `colours` (its index
+/// [`Seg::k`]) into `out`, the table [`composite`] reads with [`Frag::seg`] (black for a
+/// segment the draw call's table does not hold).
+pub(super) fn band_colours(ids: &[u32], colours: &[SegColours], out: &mut Vec<SegColours>) {
+    out.clear();
+    out.extend(
+        ids.iter()
+            .map(|&k| colours.get(k as usize).copied().unwrap_or_default()),
+    );
 }
 
 /// A fragment's linear RGB: its segment's colours at its place along it (black for a segment
@@ -79,16 +113,17 @@ fn fmax(a: f32, b: f32) -> f32 {
     if a > b { a } else { b }
 }
 
-/// Fills `frags` with one fragment per pixel of this band whose sub-samples a segment covers
+/// Appends to `out` one fragment per pixel of this band whose sub-samples a segment covers
 /// and whose centre it passes nearer than the opaque depth and not behind nearer hair that
 /// already hides the pixel (`hiding.rs`, reset here): segments in reverse `keys` order (`keys`
 /// run far to near by mid-point depth, ties in input order, so emission runs near to far),
-/// pixels in row order within a segment.
+/// pixels in row order within a segment; and the index ([`Seg::k`]) of each segment that
+/// keeps one to `out.ids`.
 ///
 /// With `seen = Some((flags, at_most))`, `flags[k]` is also set for each segment ([`Seg::k`])
-/// that keeps a fragment, and `frags` holds at most `at_most` fragments plus one segment's:
-/// past that it is emptied and the pass goes on for the flags alone. Returns whether `frags`
-/// holds every kept fragment (always without `seen`).
+/// that keeps a fragment, and `out.frags` holds at most `at_most` fragments plus one
+/// segment's: past that it is emptied and the pass goes on for the flags alone. Returns
+/// whether `out.frags` holds every kept fragment (always without `seen`).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn emit_fragments(
     p: &Params,
@@ -97,10 +132,10 @@ pub(super) fn emit_fragments(
     keys: &[u64],
     band: Rows,
     hiding: &mut Hiding,
-    frags: &mut Vec<Frag>,
+    out: &mut Emitted,
     seen: Option<(&[AtomicBool], usize)>,
 ) -> bool {
-    frags.clear();
+    let Emitted { frags, ids } = out;
     hiding.reset(band.depth.len(), p.width);
     let mut whole = true;
     for &key in keys.iter().rev() {
@@ -111,7 +146,10 @@ pub(super) fn emit_fragments(
             continue;
         }
         let before = frags.len();
-        emit_one(p, s, fibres, band, hiding, frags);
+        emit_one(p, s, ids.len() as u32, fibres, band, hiding, frags);
+        if frags.len() > before {
+            ids.push(s.k);
+        }
         if let Some((flags, at_most)) = seen {
             if frags.len() > before
                 && let Some(flag) = flags.get(s.k as usize)
@@ -127,11 +165,13 @@ pub(super) fn emit_fragments(
     whole
 }
 
-/// [`emit_fragments`] for segment `s`: appends its kept fragments to `frags`.
+/// [`emit_fragments`] for segment `s`, the band's `id`th with fragments: appends its kept
+/// fragments to `frags`.
 #[inline(always)]
 fn emit_one(
     p: &Params,
     s: &Seg,
+    id: u32,
     fibres: &[Fibres],
     band: Rows,
     hiding: &mut Hiding,
@@ -166,7 +206,7 @@ fn emit_one(
                 };
                 (ALL_SAMPLES, across * fmax(lo + hi - 1.0, 0.0) * s.opacity)
             };
-            emit_segment(p, s, (f.ext0, f.ext1), band, cover, hiding, frags);
+            emit_segment(p, s, id, (f.ext0, f.ext1), band, cover, hiding, frags);
         }
         None => {
             let hw = Vec4::splat(s.half_w);
@@ -191,7 +231,7 @@ fn emit_one(
                 (mask, s.opacity)
             };
             let ext = sample_reach(s.ux, s.uy);
-            emit_segment(p, s, (ext, ext), band, cover, hiding, frags);
+            emit_segment(p, s, id, (ext, ext), band, cover, hiding, frags);
         }
     }
 }
@@ -201,9 +241,11 @@ fn emit_one(
 /// centre relative to it, all in pixels); `ext` is how far past its ends a pixel centre may
 /// be covered along the axis.
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn emit_segment<C: Fn(f32, f32, f32, f32) -> (u16, f32)>(
     p: &Params,
     s: &Seg,
+    id: u32,
     (ext0, ext1): (f32, f32),
     band: Rows,
     cover: C,
@@ -281,7 +323,7 @@ fn emit_segment<C: Fn(f32, f32, f32, f32) -> (u16, f32)>(
                     // lines); α must stay in [0, 1].
                     alpha: fmin(alpha, 1.0),
                     mask,
-                    seg: s.k,
+                    seg: id,
                     t,
                 };
             }
@@ -334,7 +376,7 @@ pub(super) fn sort_by_pixel(
 /// Composites every pixel's fragments in depth order, nearest first (by 1/depth descending;
 /// equal depths in reverse emission order), each of the pixel's [`SAMPLE_COUNT`] sub-samples
 /// with its own transmittance T_k: a fragment of opacity α adds `colour · α · Σ T_k / 16`
-/// (its colour from its segment's in `colours`, [`SegColours`])
+/// (its colour from `colours`, the band's table from [`band_colours`], at [`Frag::seg`])
 /// over the sub-samples k in its mask and multiplies their T_k by 1 − α. What was in the
 /// pixel before (the background, the solids) is seen through the mean T. A pixel stops where
 /// every T_k is under [`HIDDEN`], and then counts as fully covered.

@@ -168,7 +168,9 @@ mod tests {
 
     use super::*;
     use crate::raster::camera::Camera;
-    use crate::raster::fragment::{Band, Rows, composite, emit_fragments, sort_by_pixel};
+    use crate::raster::fragment::{
+        Band, Emitted, Rows, band_colours, composite, emit_fragments, sort_by_pixel,
+    };
     use crate::raster::lines::{BAND_ROWS, band_key};
     use crate::raster::polyline::{LineWidth, Polylines};
     use crate::raster::segment::{Fibres, Params, setup_segment};
@@ -237,7 +239,7 @@ mod tests {
             })
             .collect();
         let fibres: Vec<Fibres> = Vec::new();
-        let mut out = Drawn {
+        let mut drawn = Drawn {
             culled: Vec::new(),
             every: Vec::new(),
             kept: 0,
@@ -267,7 +269,7 @@ mod tests {
                     coverage: &mut coverage[rows.clone()],
                 };
                 let mut hiding = Hiding::default();
-                let mut frags = Vec::new();
+                let mut out = Emitted::default();
                 let band_rows = Rows {
                     row0: r0,
                     depth: band.depth,
@@ -280,14 +282,14 @@ mod tests {
                         &keys,
                         band_rows,
                         &mut hiding,
-                        &mut frags,
+                        &mut out,
                         None,
                     );
-                    out.kept += frags.len();
-                    out.tile_hidden += segs.iter().filter(|s| hiding.hides(s)).count();
+                    drawn.kept += out.frags.len();
+                    drawn.tile_hidden += segs.iter().filter(|s| hiding.hides(s)).count();
                 } else {
-                    // Near to far, as the raster emits, each segment alone.
-                    let mut one = Vec::new();
+                    // Near to far, as the raster emits, each segment alone (the hiding is
+                    // reset for each, and the fragments appended).
                     for &k in keys.iter().rev() {
                         emit_fragments(
                             &params,
@@ -296,22 +298,23 @@ mod tests {
                             &[k],
                             band_rows,
                             &mut hiding,
-                            &mut one,
+                            &mut out,
                             None,
                         );
-                        frags.extend_from_slice(&one);
                     }
-                    out.emitted += frags.len();
+                    drawn.emitted += out.frags.len();
                 }
                 let (mut sorted, mut starts) = (Vec::new(), Vec::new());
-                sort_by_pixel(&frags, &mut sorted, &mut starts, band.color.len());
+                sort_by_pixel(&out.frags, &mut sorted, &mut starts, band.color.len());
+                let mut band_table = Vec::new();
+                band_colours(&out.ids, &colours, &mut band_table);
                 composite(
                     &mut sorted,
                     &starts,
-                    &colours,
+                    &band_table,
                     &mut Vec::new(),
                     &mut Vec::new(),
-                    &mut frags,
+                    &mut out.frags,
                     band,
                 );
                 let bits: Vec<u32> = color[rows.clone()]
@@ -322,10 +325,10 @@ mod tests {
                     .collect();
                 images.push(bits);
             }
-            out.culled.extend_from_slice(&images[0]);
-            out.every.extend_from_slice(&images[1]);
+            drawn.culled.extend_from_slice(&images[0]);
+            drawn.every.extend_from_slice(&images[1]);
         }
-        out
+        drawn
     }
 
     /// A thick fan of lines over one spot, some in front of the solid and some behind it, and a

@@ -100,7 +100,9 @@ use rayon::prelude::*;
 use super::bundle::Profiles;
 use super::camera::Camera;
 use super::cull::FarDepth;
-use super::fragment::{Band, Frag, Rows, composite, emit_fragments, sort_by_pixel};
+use super::fragment::{
+    Band, Emitted, Frag, Rows, band_colours, composite, emit_fragments, sort_by_pixel,
+};
 use super::framebuffer::Framebuffer;
 use super::hiding::Hiding;
 use super::polyline::{LineStyle, LineWidth, Polylines};
@@ -156,7 +158,7 @@ pub(super) const KEEP_PER_PIXEL: usize = 64;
 /// One band's kept fragments.
 #[derive(Debug, Default)]
 pub(super) struct KeptBand {
-    pub(super) frags: Vec<Frag>,
+    pub(super) out: Emitted,
     /// Whether `frags` holds all of them (else it was over [`KEEP_PER_PIXEL`] and the band is
     /// emitted again).
     pub(super) whole: bool,
@@ -193,9 +195,11 @@ pub(super) struct BandScratch {
     pub(super) segs: Vec<Seg>,
     pub(super) keys: Vec<u64>,
     pub(super) tmp: Vec<u64>,
-    /// Its fragments in emission order, then sorted by pixel (`sorted`, with each pixel's
-    /// first index in `starts`).
-    pub(super) frags: Vec<Frag>,
+    /// Its fragments in emission order and their segments, then sorted by pixel (`sorted`,
+    /// with each pixel's first index in `starts`); the colours of the segments of the band
+    /// being composited ([`band_colours`]).
+    pub(super) out: Emitted,
+    pub(super) colours: Vec<SegColours>,
     pub(super) sorted: Vec<Frag>,
     pub(super) starts: Vec<u32>,
     /// One out-of-order pixel's sort keys, when its insertion sort gives up.
@@ -219,7 +223,9 @@ impl LineScratch {
                 let t = t.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
                 t.segs.capacity() * size_of::<Seg>()
                     + (t.keys.capacity() + t.tmp.capacity()) * 8
-                    + (t.frags.capacity() + t.sorted.capacity()) * size_of::<Frag>()
+                    + (t.out.frags.capacity() + t.sorted.capacity()) * size_of::<Frag>()
+                    + t.out.ids.capacity() * 4
+                    + t.colours.capacity() * size_of::<SegColours>()
                     + t.starts.capacity() * 4
                     + t.run_keys.capacity() * 8
                     + t.hiding.capacity_bytes()
@@ -229,7 +235,11 @@ impl LineScratch {
         let kept: usize = self
             .kept
             .iter()
-            .map(|k| k.frags.capacity() * size_of::<Frag>() + size_of::<KeptBand>())
+            .map(|k| {
+                k.out.frags.capacity() * size_of::<Frag>()
+                    + k.out.ids.capacity() * 4
+                    + size_of::<KeptBand>()
+            })
             .sum();
         segs * size_of::<Seg>()
             + self.colours.capacity() * size_of::<SegColours>()
@@ -364,19 +374,21 @@ impl BandScratch {
     /// thread emitted. They are spent afterwards (the compositing's spare buffer).
     pub(super) fn composite(
         &mut self,
-        kept: Option<&mut Vec<Frag>>,
+        kept: Option<&mut Emitted>,
         colours: &[SegColours],
         band: Band,
     ) {
-        let frags = match kept {
+        let out = match kept {
             Some(kept) => kept,
-            None => &mut self.frags,
+            None => &mut self.out,
         };
+        band_colours(&out.ids, colours, &mut self.colours);
+        let frags = &mut out.frags;
         sort_by_pixel(frags, &mut self.sorted, &mut self.starts, band.color.len());
         composite(
             &mut self.sorted,
             &self.starts,
-            colours,
+            &self.colours,
             &mut self.run_keys,
             &mut self.tmp,
             frags,
@@ -549,7 +561,7 @@ impl BandSource<'_> {
         t: &mut BandScratch,
         b: usize,
         depth: &[f32],
-        out: Option<&mut Vec<Frag>>,
+        out: Option<&mut Emitted>,
         seen: Option<(&[AtomicBool], usize)>,
     ) -> bool {
         gather_band(t, b, self.chunks, self.far_bands.get(b));
@@ -559,8 +571,9 @@ impl BandSource<'_> {
         };
         let out = match out {
             Some(out) => out,
-            None => &mut t.frags,
+            None => &mut t.out,
         };
+        out.clear();
         emit_fragments(
             self.params,
             &t.segs,
@@ -596,16 +609,18 @@ fn grow_to<T>(v: &mut Vec<T>, cap: usize) {
 
 /// Grows every thread's buffers to the largest capacity among them (a no-op once warm).
 pub(super) fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
-    let mut need = [0usize; 7];
+    let mut need = [0usize; 9];
     let caps = |t: &BandScratch| {
         [
             t.keys.capacity(),
             t.tmp.capacity(),
             t.segs.capacity(),
-            t.frags.capacity(),
+            t.out.frags.capacity(),
             t.sorted.capacity(),
             t.starts.capacity(),
             t.run_keys.capacity(),
+            t.out.ids.capacity(),
+            t.colours.capacity(),
         ]
     };
     for t in threads.iter_mut() {
@@ -625,10 +640,12 @@ pub(super) fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
         grow_to(&mut t.keys, need[0]);
         grow_to(&mut t.tmp, need[1]);
         grow_to(&mut t.segs, need[2]);
-        grow_to(&mut t.frags, need[3]);
+        grow_to(&mut t.out.frags, need[3]);
         grow_to(&mut t.sorted, need[4]);
         grow_to(&mut t.starts, need[5]);
         grow_to(&mut t.run_keys, need[6]);
+        grow_to(&mut t.out.ids, need[7]);
+        grow_to(&mut t.colours, need[8]);
     }
 }
 

@@ -119,7 +119,7 @@ pub fn seen_points(
                 &mut guard,
                 b,
                 depth,
-                Some(&mut kept.frags),
+                Some(&mut kept.out),
                 Some((flags, at_most)),
             );
         });
@@ -202,7 +202,7 @@ pub fn draw_seen_polylines(
                 coverage,
             };
             if kept.whole {
-                t.composite(Some(&mut kept.frags), colours, band);
+                t.composite(Some(&mut kept.out), colours, band);
             } else {
                 // The same emission again, now storing every kept fragment.
                 source.emit(t, b, band.depth, None, None);
