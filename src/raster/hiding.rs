@@ -305,16 +305,21 @@ mod tests {
                     drawn.emitted += out.frags.len();
                 }
                 let (mut sorted, mut starts) = (Vec::new(), Vec::new());
-                sort_by_pixel(&out.frags, &mut sorted, &mut starts, band.color.len());
                 let mut band_table = Vec::new();
                 band_colours(&out.ids, &colours, &mut band_table);
+                sort_by_pixel(
+                    &out.frags,
+                    &band_table,
+                    &mut sorted,
+                    &mut starts,
+                    band.color.len(),
+                );
                 composite(
                     &mut sorted,
                     &starts,
-                    &band_table,
                     &mut Vec::new(),
                     &mut Vec::new(),
-                    &mut out.frags,
+                    &mut Vec::new(),
                     band,
                 );
                 let bits: Vec<u32> = color[rows.clone()]

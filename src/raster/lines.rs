@@ -101,7 +101,7 @@ use super::bundle::Profiles;
 use super::camera::Camera;
 use super::cull::FarDepth;
 use super::fragment::{
-    Band, Emitted, Frag, Rows, band_colours, composite, emit_fragments, sort_by_pixel,
+    Band, Emitted, Frag, Layer, Rows, band_colours, composite, emit_fragments, sort_by_pixel,
 };
 use super::framebuffer::Framebuffer;
 use super::hiding::Hiding;
@@ -190,18 +190,20 @@ impl KeptFor {
 
 #[derive(Debug, Default)]
 pub(super) struct BandScratch {
-    /// The band's segments gathered contiguously in input order, and their sort keys (see
-    /// `band_key`) with the radix sort's second buffer.
+    /// The band's segments gathered contiguously in emission order, and their sort keys (see
+    /// `band_key`, [`gather_band`]) with the radix sort's second buffer.
     pub(super) segs: Vec<Seg>,
     pub(super) keys: Vec<u64>,
     pub(super) tmp: Vec<u64>,
-    /// Its fragments in emission order and their segments, then sorted by pixel (`sorted`,
-    /// with each pixel's first index in `starts`); the colours of the segments of the band
-    /// being composited ([`band_colours`]).
+    /// Its fragments in emission order and their segments, then grouped by pixel with their
+    /// colours (`sorted`, with each pixel's first index in `starts`); the colours of the
+    /// segments of the band being composited ([`band_colours`]).
     pub(super) out: Emitted,
     pub(super) colours: Vec<SegColours>,
-    pub(super) sorted: Vec<Frag>,
+    pub(super) sorted: Vec<Layer>,
     pub(super) starts: Vec<u32>,
+    /// A run's layers while its key sort permutes them.
+    pub(super) spare: Vec<Layer>,
     /// One out-of-order pixel's sort keys, when its insertion sort gives up.
     pub(super) run_keys: Vec<u64>,
     /// Which pixels nearer hair already hides, while the band's fragments are emitted.
@@ -223,7 +225,8 @@ impl LineScratch {
                 let t = t.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
                 t.segs.capacity() * size_of::<Seg>()
                     + (t.keys.capacity() + t.tmp.capacity()) * 8
-                    + (t.out.frags.capacity() + t.sorted.capacity()) * size_of::<Frag>()
+                    + t.out.frags.capacity() * size_of::<Frag>()
+                    + (t.sorted.capacity() + t.spare.capacity()) * size_of::<Layer>()
                     + t.out.ids.capacity() * 4
                     + t.colours.capacity() * size_of::<SegColours>()
                     + t.starts.capacity() * 4
@@ -370,8 +373,8 @@ pub fn draw_polylines(
 
 impl BandScratch {
     /// Groups a band's fragments by pixel and composites them into `band` with their
-    /// segments' `colours`: `kept` (a band's kept fragments), or with `None` the ones this
-    /// thread emitted. They are spent afterwards (the compositing's spare buffer).
+    /// segments' `colours` (the draw call's table): `kept` (a band's kept fragments), or with
+    /// `None` the ones this thread emitted.
     pub(super) fn composite(
         &mut self,
         kept: Option<&mut Emitted>,
@@ -383,15 +386,19 @@ impl BandScratch {
             None => &mut self.out,
         };
         band_colours(&out.ids, colours, &mut self.colours);
-        let frags = &mut out.frags;
-        sort_by_pixel(frags, &mut self.sorted, &mut self.starts, band.color.len());
+        sort_by_pixel(
+            &out.frags,
+            &self.colours,
+            &mut self.sorted,
+            &mut self.starts,
+            band.color.len(),
+        );
         composite(
             &mut self.sorted,
             &self.starts,
-            &self.colours,
             &mut self.run_keys,
             &mut self.tmp,
-            frags,
+            &mut self.spare,
             band,
         );
     }
@@ -609,7 +616,7 @@ fn grow_to<T>(v: &mut Vec<T>, cap: usize) {
 
 /// Grows every thread's buffers to the largest capacity among them (a no-op once warm).
 pub(super) fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
-    let mut need = [0usize; 9];
+    let mut need = [0usize; 10];
     let caps = |t: &BandScratch| {
         [
             t.keys.capacity(),
@@ -621,6 +628,7 @@ pub(super) fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
             t.run_keys.capacity(),
             t.out.ids.capacity(),
             t.colours.capacity(),
+            t.spare.capacity(),
         ]
     };
     for t in threads.iter_mut() {
@@ -646,6 +654,7 @@ pub(super) fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
         grow_to(&mut t.run_keys, need[6]);
         grow_to(&mut t.out.ids, need[7]);
         grow_to(&mut t.colours, need[8]);
+        grow_to(&mut t.spare, need[9]);
     }
 }
 
