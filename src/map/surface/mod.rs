@@ -146,33 +146,40 @@ impl Piece {
         self.depth.0 + (self.depth.1 - self.depth.0) * t
     }
 
+    /// The two strips of [`Piece::row_span`], prepared once per piece.
+    #[inline]
+    fn strips(&self) -> [Strip; 2] {
+        let (dx, dy) = (self.dir.x, self.dir.y);
+        [
+            // Along: s = qx·dx + qy·dy in (−½, len + ½).
+            Strip::new(dx, dy, -0.5, self.len + 0.5),
+            // Across: d = −qx·dy + qy·dx in (−half_w − ½, half_w + ½).
+            Strip::new(-dy, dx, -self.half_w - 0.5, self.half_w + 0.5),
+        ]
+    }
+
     /// The columns `y` of row `x` whose texel centre can overlap the ribbon (strictly within
     /// half a texel of it along and across, where [`Piece::at`] gives a positive overlap): the
-    /// intersection of two open strips, each an interval in y, widened by more than the
-    /// rounding of either computation, so no texel with overlap is left out and at most one
-    /// without it is visited at each end.
+    /// intersection of two open strips ([`Piece::strips`]), each an interval in y, widened by
+    /// more than the rounding of either computation, so no texel with overlap is left out and
+    /// at most one without it is visited at each end. (A texel visited without overlap adds
+    /// +0 to the ribbon's sum and is not kept: the spans may change, the sums cannot.)
     #[inline]
-    fn row_span(&self, x: usize) -> std::ops::Range<usize> {
+    fn row_span(&self, x: usize, strips: &[Strip; 2]) -> std::ops::Range<usize> {
         let qx = x as f32 + 0.5 - self.a.x;
-        let (dx, dy) = (self.dir.x, self.dir.y);
-        // Along: s = qx·dx + qy·dy in (−½, len + ½); across: d = −qx·dy + qy·dx in
-        // (−half_w − ½, half_w + ½); qy = y + ½ − a.y.
         let mut lo = f32::NEG_INFINITY;
         let mut hi = f32::INFINITY;
-        let mut strip = |c: f32, k: f32, from: f32, to: f32| {
-            if k.abs() > 1e-6 {
-                let (u, v) = ((from - c) / k, (to - c) / k);
-                // A hundredth of a texel, plus far more than the rounding of from − c (a few
-                // ulps of the larger) magnified by the division.
-                let slack = 1e-2 + 1e-5 * (from.abs() + to.abs() + c.abs() + 1.0) / k.abs();
+        for st in strips {
+            let c = qx * st.per_qx;
+            if st.steep {
+                let (u, v) = ((st.from - c) * st.inv_k, (st.to - c) * st.inv_k);
+                let slack = st.slack + st.slack_per_c * c.abs();
                 lo = lo.max(u.min(v) - slack);
                 hi = hi.min(u.max(v) + slack);
-            } else if !(c > from && c < to) {
+            } else if !(c > st.from && c < st.to) {
                 hi = f32::NEG_INFINITY;
             }
-        };
-        strip(qx * dx, dy, -0.5, self.len + 0.5);
-        strip(-qx * dy, dx, -self.half_w - 0.5, self.half_w + 0.5);
+        }
         if lo.is_nan() || hi.is_nan() || lo > hi {
             return 0..0;
         }
@@ -189,8 +196,9 @@ impl Piece {
     #[cfg(test)]
     fn overlap_sum(&self) -> f32 {
         let mut sum = 0.0;
+        let strips = self.strips();
         for x in self.x0 as usize..self.x1 as usize {
-            for y in self.row_span(x) {
+            for y in self.row_span(x, &strips) {
                 sum += self.at(x, y).0;
             }
         }
@@ -203,8 +211,9 @@ impl Piece {
     /// of the overlaps over all its texels (what normalises its deposit).
     fn gather(&self, cols: usize, limit: &[f32], out: &mut Vec<(u32, f32)>) -> f32 {
         let mut sum = 0.0;
+        let strips = self.strips();
         for x in self.x0 as usize..self.x1 as usize {
-            for y in self.row_span(x) {
+            for y in self.row_span(x, &strips) {
                 let (w, along) = self.at(x, y);
                 sum += w;
                 let k = x * cols + y;
@@ -214,6 +223,44 @@ impl Piece {
             }
         }
         sum
+    }
+}
+
+/// One strip of a ribbon across a row of texels ([`Piece::row_span`]): the texel centres
+/// with `qx·per_qx + qy·k` in (`from`, `to`), qx and qy the centre's offset from the ribbon's
+/// start.
+///
+/// Why reciprocals: the spans were four divisions a row and their slack two more, 21% of
+/// curly's texture. A product by `1/k` is within an ulp or two of the quotient, and the slack
+/// (a hundredth of a texel, plus 1e-5 of the magnitudes over |k|) is 80 times that.
+struct Strip {
+    per_qx: f32,
+    /// Whether |k| > 1e-6: else the strip does not depend on y, and holds the row or not.
+    steep: bool,
+    inv_k: f32,
+    from: f32,
+    to: f32,
+    /// The slack is `slack + slack_per_c · |qx·per_qx|`.
+    slack: f32,
+    slack_per_c: f32,
+}
+
+impl Strip {
+    fn new(per_qx: f32, k: f32, from: f32, to: f32) -> Strip {
+        let steep = k.abs() > 1e-6;
+        let inv_k = if steep { 1.0 / k } else { 0.0 };
+        // A hundredth of a texel, plus far more than the rounding of from − c (a few ulps of
+        // the larger) magnified by the division.
+        let per = 1e-5 * inv_k.abs();
+        Strip {
+            per_qx,
+            steep,
+            inv_k,
+            from,
+            to,
+            slack: 1e-2 + per * (from.abs() + to.abs() + 1.0),
+            slack_per_c: per,
+        }
     }
 }
 

@@ -28,8 +28,9 @@ fn ribbons() -> Vec<Piece> {
 
 #[test]
 fn a_ribbon_gathers_its_overlapping_texels_in_front_and_the_sum_of_all() {
-    // Gathering visits each texel once: its sum must be the plain sum over the row spans to
-    // the bit (the frames did not change when it took over from a separate summing pass),
+    // Gathering visits each texel once: its sum must be the plain sum over the row spans, and
+    // over the whole box, to the bit (the frames did not change when it took over from a
+    // separate summing pass, nor when the spans changed),
     // and it must keep exactly the texels of positive overlap at most as deep as the limit
     // (found here by a brute-force walk over the ribbon's whole box).
     let dims = [3 * BAND_ROWS, 40];
@@ -42,9 +43,11 @@ fn a_ribbon_gathers_its_overlapping_texels_in_front_and_the_sum_of_all() {
         let sum = piece.gather(dims[1], &limit, &mut gathered);
         assert_eq!(sum.to_bits(), piece.overlap_sum().to_bits(), "{piece:?}");
         let mut expected = Vec::new();
+        let mut box_sum = 0.0f32;
         for x in piece.x0 as usize..piece.x1 as usize {
             for y in piece.y0 as usize..piece.y1 as usize {
                 let (w, along) = piece.at(x, y);
+                box_sum += w;
                 let k = x * dims[1] + y;
                 if w > 0.0 && piece.depth_at(along) <= limit[k] {
                     expected.push((k as u32, w));
@@ -52,6 +55,9 @@ fn a_ribbon_gathers_its_overlapping_texels_in_front_and_the_sum_of_all() {
             }
         }
         assert_eq!(gathered, expected, "{piece:?}");
+        // The texels a span visits beyond the overlap add +0: the sum over the whole box, in
+        // the same order, is the same bits, whatever the spans.
+        assert_eq!(sum.to_bits(), box_sum.to_bits(), "{piece:?}");
         kept += gathered.len();
     }
     assert!(kept > 100, "only {kept} texels kept");
@@ -205,8 +211,9 @@ fn a_row_span_holds_every_texel_with_overlap_and_little_else() {
         let Some(p) = Piece::new(a, a + dir * len, (0.0, 1.0), half_w, dims) else {
             continue;
         };
+        let strips = p.strips();
         for x in p.x0 as usize..p.x1 as usize {
-            let span = p.row_span(x);
+            let span = p.row_span(x, &strips);
             rows += 1;
             visited += span.len();
             for y in p.y0 as usize..p.y1 as usize {
