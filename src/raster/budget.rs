@@ -36,9 +36,8 @@ impl LineScratch {
     /// and band, and has its two colours; the fragments the seen pass keeps until they are
     /// composited (`Frag` is 24 bytes; all it emits, and at most [`KEEP_PER_PIXEL`] a pixel
     /// plus one segment's, a band's row span, per band); and per worker thread, the fragments
-    /// of the densest band three times (emitted, grouped by pixel, and a pixel's run copied
-    /// while its key sort permutes it, at most the band's) and its segments' colours (the
-    /// band's colour table). A segment covers about 3
+    /// of the densest band twice (emitted, then grouped by pixel) and its segments' colours
+    /// (the band's colour table). A segment covers about 3
     /// pixels per row it
     /// crosses at the 0.5 px minimum width; the densest band is taken as 5 times the mean
     /// band, at most the whole frame (the hair's screen rows hold it all in a fraction of the
@@ -68,7 +67,7 @@ impl LineScratch {
             .min(binned as f64)
             .ceil() as u64;
         let per_thread = densest_band
-            .saturating_mul(3 * FRAG_BYTES)
+            .saturating_mul(2 * FRAG_BYTES)
             .saturating_add(densest_segments.saturating_mul(size_of::<SegColours>() as u64));
         let band_pixels = BAND_ROWS.saturating_mul(width as u64);
         let kept_at_most = bands.saturating_mul(band_pixels.saturating_mul(KEEP_PER_PIXEL + 1));

@@ -410,17 +410,15 @@ pub(super) fn sort_by_pixel(
 /// stable insertion sort costs O(length + inversions). Where a run is far from order (dense
 /// hair: hundreds of crossing fibres a pixel), the insertion stops after [`SHIFT_BUDGET`]
 /// shifts per fragment and a radix sort of (1/depth, position) keys
-/// ([`crate::keysort::sort_keys`]) finishes it, using `spare` (grown to the longest such
-/// run) to permute. A stable sort by one key has one result, so the order is the same
+/// ([`crate::keysort::sort_keys`]) finishes it, the run then permuted in place along the
+/// cycles of the keys' order. A stable sort by one key has one result, so the order is the same
 /// whichever way a run is sorted; the insertion keeps equal depths in their order, so the
 /// keys' positions still tell emission order.
-#[allow(clippy::too_many_arguments)]
 pub(super) fn composite(
     sorted: &mut [Layer],
     starts: &[u32],
     run_keys: &mut Vec<u64>,
     key_tmp: &mut Vec<u64>,
-    spare: &mut Vec<Layer>,
     band: Band,
 ) {
     let pixels = band.color.len();
@@ -432,7 +430,7 @@ pub(super) fn composite(
         if run.is_empty() {
             continue;
         }
-        sort_run(run, run_keys, key_tmp, spare);
+        sort_run(run, run_keys, key_tmp);
         // Front to back, each sub-sample with its own transmittance, four lanes at a time.
         let mut trans = [Vec4::ONE; 4];
         let mut acc = Vec3::ZERO;
@@ -465,14 +463,9 @@ pub(super) fn composite(
 }
 
 /// Sorts one pixel's `run` by 1/depth ascending, ties in their order (see [`composite`]):
-/// insertion within the budget, else keys (`key_tmp` is the keys' scratch, `spare` grown to
-/// the run's length to permute it).
-fn sort_run(
-    run: &mut [Layer],
-    run_keys: &mut Vec<u64>,
-    key_tmp: &mut Vec<u64>,
-    spare: &mut Vec<Layer>,
-) {
+/// insertion within the budget, else keys (`key_tmp` is the keys' scratch), and the run
+/// permuted in place: no copy of it, so no buffer as long as the longest run.
+fn sort_run(run: &mut [Layer], run_keys: &mut Vec<u64>, key_tmp: &mut Vec<u64>) {
     if insertion_sort_by_depth(run, SHIFT_BUDGET * run.len()) {
         return;
     }
@@ -483,14 +476,25 @@ fn sort_run(
             .map(|(i, f)| (u64::from(f.iz_bits) << 32) | i as u64),
     );
     sort_keys(run_keys, key_tmp);
-    if spare.len() < run.len() {
-        spare.resize(run.len(), Layer::default());
-    }
-    let copy = &mut spare[..run.len()];
-    copy.copy_from_slice(run);
-    for (slot, &k) in run.iter_mut().zip(run_keys.iter()) {
-        if let Some(f) = copy.get((k & 0xFFFF_FFFF) as usize) {
-            *slot = *f;
+    // Place j takes the layer at the position in key j. Follow each cycle of that
+    // permutation once, marking the keys used.
+    const DONE: u64 = u64::MAX;
+    let from = |k: u64| (k & 0xFFFF_FFFF) as usize;
+    for i in 0..run.len() {
+        if run_keys[i] == DONE {
+            continue;
+        }
+        let held = run[i];
+        let mut j = i;
+        loop {
+            let src = from(run_keys[j]);
+            run_keys[j] = DONE;
+            if src == i {
+                run[j] = held;
+                break;
+            }
+            run[j] = run[src];
+            j = src;
         }
     }
 }
@@ -573,11 +577,10 @@ mod tests {
             expected.sort_by_key(|f| (f.pixel, f.iz_bits));
             let (mut sorted, mut starts, mut keys) = (Vec::new(), Vec::new(), Vec::new());
             sort_by_pixel(&frags, &colours, &mut sorted, &mut starts, pixels);
-            let mut spare = Vec::new();
             let mut got = Vec::new();
             for p in 0..pixels {
                 let run = &mut sorted[starts[p] as usize..starts[p + 1] as usize];
-                sort_run(run, &mut keys, &mut Vec::new(), &mut spare);
+                sort_run(run, &mut keys, &mut Vec::new());
                 got.extend(run.iter().map(|l| {
                     (p as u32, l.iz_bits, l.alpha.to_bits(), l.colour.to_array().map(f32::to_bits))
                 }));
@@ -624,7 +627,7 @@ mod tests {
             let mut expected = run.clone();
             expected.sort_by_key(|f| f.iz_bits);
             let mut got = run.clone();
-            sort_run(&mut got, &mut Vec::new(), &mut Vec::new(), &mut Vec::new());
+            sort_run(&mut got, &mut Vec::new(), &mut Vec::new());
             let order = |v: &[Layer]| v.iter().map(|f| f.alpha.to_bits()).collect::<Vec<_>>();
             assert_eq!(order(&got), order(&expected));
         }

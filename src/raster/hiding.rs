@@ -314,14 +314,7 @@ mod tests {
                     &mut starts,
                     band.color.len(),
                 );
-                composite(
-                    &mut sorted,
-                    &starts,
-                    &mut Vec::new(),
-                    &mut Vec::new(),
-                    &mut Vec::new(),
-                    band,
-                );
+                composite(&mut sorted, &starts, &mut Vec::new(), &mut Vec::new(), band);
                 let bits: Vec<u32> = color[rows.clone()]
                     .iter()
                     .flat_map(|c| c.to_array())

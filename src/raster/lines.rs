@@ -202,8 +202,6 @@ pub(super) struct BandScratch {
     pub(super) colours: Vec<SegColours>,
     pub(super) sorted: Vec<Layer>,
     pub(super) starts: Vec<u32>,
-    /// A run's layers while its key sort permutes them.
-    pub(super) spare: Vec<Layer>,
     /// One out-of-order pixel's sort keys, when its insertion sort gives up.
     pub(super) run_keys: Vec<u64>,
     /// Which pixels nearer hair already hides, while the band's fragments are emitted.
@@ -226,7 +224,7 @@ impl LineScratch {
                 t.segs.capacity() * size_of::<Seg>()
                     + (t.keys.capacity() + t.tmp.capacity()) * 8
                     + t.out.frags.capacity() * size_of::<Frag>()
-                    + (t.sorted.capacity() + t.spare.capacity()) * size_of::<Layer>()
+                    + t.sorted.capacity() * size_of::<Layer>()
                     + t.out.ids.capacity() * 4
                     + t.colours.capacity() * size_of::<SegColours>()
                     + t.starts.capacity() * 4
@@ -398,7 +396,6 @@ impl BandScratch {
             &self.starts,
             &mut self.run_keys,
             &mut self.tmp,
-            &mut self.spare,
             band,
         );
     }
@@ -616,7 +613,7 @@ fn grow_to<T>(v: &mut Vec<T>, cap: usize) {
 
 /// Grows every thread's buffers to the largest capacity among them (a no-op once warm).
 pub(super) fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
-    let mut need = [0usize; 10];
+    let mut need = [0usize; 9];
     let caps = |t: &BandScratch| {
         [
             t.keys.capacity(),
@@ -628,7 +625,6 @@ pub(super) fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
             t.run_keys.capacity(),
             t.out.ids.capacity(),
             t.colours.capacity(),
-            t.spare.capacity(),
         ]
     };
     for t in threads.iter_mut() {
@@ -654,7 +650,6 @@ pub(super) fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
         grow_to(&mut t.run_keys, need[6]);
         grow_to(&mut t.out.ids, need[7]);
         grow_to(&mut t.colours, need[8]);
-        grow_to(&mut t.spare, need[9]);
     }
 }
 
