@@ -38,10 +38,10 @@ pub(super) struct Frag {
 /// A band's fragments as they are emitted, and the segments they come from.
 ///
 /// Why a fragment names its segment by its place in `ids` rather than by the draw call's
-/// index: compositing looks up each fragment's colours, and the draw call's table is 27 MB
-/// for the dense preset. Read by the draw call's index, one random read per fragment missed
-/// the caches (56% of compositing on dense); the band's own table ([`band_colours`], one read
-/// per segment) stays in L2.
+/// index: each fragment's colours are looked up, and the draw call's table is 27 MB for the
+/// dense preset. Read by the draw call's index, one random read per fragment missed the
+/// caches (56% of compositing on dense); the band's own table ([`band_colours`], one read per
+/// segment) stays in L2.
 #[derive(Debug, Default)]
 pub(super) struct Emitted {
     pub(super) frags: Vec<Frag>,
@@ -58,8 +58,8 @@ impl Emitted {
 }
 
 /// The colours of `ids`' segments, taken from the draw call's table `colours` (its index
-/// [`Seg::k`]) into `out`, the table [`composite`] reads with [`Frag::seg`] (black for a
-/// segment the draw call's table does not hold).
+/// [`Seg::k`]) into `out`, the table [`sort_by_pixel`] reads with [`Frag::seg`] (black for
+/// a segment the draw call's table does not hold).
 pub(super) fn band_colours(ids: &[u32], colours: &[SegColours], out: &mut Vec<SegColours>) {
     out.clear();
     out.extend(

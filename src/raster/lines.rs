@@ -32,7 +32,7 @@
 //!    segment over its rows, near to far, visiting only
 //!    pixel centres in the segment's expanded rectangle, emitting one fragment (pixel,
 //!    1/depth, sub-sample mask, α, its segment and place along it: the colour is looked up
-//!    when it is composited) per covered pixel whose centre is nearer than the
+//!    when the fragments are grouped by pixel) per covered pixel whose centre is nearer than the
 //!    opaque depth (`fragment.rs`, branch-free: each pixel writes a slot, kept only when
 //!    covered and in front) and not behind nearer hair that already hides it (`hiding.rs`:
 //!    the fragments the compositing would never reach, 89% of smooth's and 53% of dense
@@ -159,8 +159,8 @@ pub(super) const KEEP_PER_PIXEL: usize = 64;
 #[derive(Debug, Default)]
 pub(super) struct KeptBand {
     pub(super) out: Emitted,
-    /// Whether `frags` holds all of them (else it was over [`KEEP_PER_PIXEL`] and the band is
-    /// emitted again).
+    /// Whether `out.frags` holds all of them (else it was over [`KEEP_PER_PIXEL`] and the band
+    /// is emitted again).
     pub(super) whole: bool,
 }
 
@@ -330,8 +330,8 @@ pub fn draw_polylines(
         return;
     };
 
-    // 2. Raster, parallel over bands: gather the band's segments contiguously in input order
-    //    (the walk then stays within one cache-resident array), turn them into fragments,
+    // 2. Raster, parallel over bands: gather the band's segments contiguously in emission
+    //    order (the walk then reads one array forwards), turn them into fragments,
     //    sort the fragments by pixel and depth, composite. Working memory is per thread.
     prepare_threads(&mut scratch.threads, width);
     build_far_bands(fb, &mut scratch.far_bands);
@@ -504,11 +504,11 @@ pub(super) fn lock_thread_scratch(
 /// without the walk), with their sort keys in `t.keys`, both in key order (far to near by
 /// mid-point depth, ties in input order; `t.segs` in reverse, the order emission visits them).
 ///
-/// The segments are copied in key order, not input order, because emission visits them in
-/// that order: a dense band's segments (2.7 MB for the dense preset's) do not fit in L2, and
-/// reading them in depth order stalled emission on a miss per segment (15% of its time in the
-/// first read of each). Copied in key order, the random reads are independent loads of one
-/// short loop, and emission reads its segments in sequence.
+/// The segments are copied in emission order, not input order: a dense band's segments (2.7
+/// MB for the dense preset's) do not fit in L2, and emission reading them in depth order
+/// stalled on a miss per segment (14% of its time in the first read of each). Copied in that
+/// order, the random reads are independent loads of one short loop, and emission reads its
+/// segments forwards (read backwards, the descending stream still missed as often).
 pub(super) fn gather_band(
     t: &mut BandScratch,
     b: usize,
