@@ -71,7 +71,7 @@ pub struct SurfaceShadow {
     /// first solid's entry depth there plus two occluder texels (hair resting on it counts).
     limit: Vec<f32>,
     /// Scratch: a summed-area table of the texels with a solid behind them (finite `limit`),
-    /// (dims[0] + 1) × (dims[1] + 1), so a piece can ask in O(1) whether any surface will read
+    /// (`dims[0]` + 1) × (`dims[1]` + 1), so a piece can ask in O(1) whether any surface will read
     /// what it deposits.
     solid_sat: Vec<u32>,
     /// Scratch: the solids' entry depths over the texture (`limit` before its tolerance).

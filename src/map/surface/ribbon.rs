@@ -26,7 +26,7 @@ pub(super) struct Piece {
     pub(super) depth: (f32, f32),
     pub(super) loss: Vec3,
     /// Where its gathered texels ([`Piece::gather`]) lie in its run's buffer
-    /// ([`SurfaceShadow::build`], step 3).
+    /// ([`super::SurfaceShadow::build`], step 3).
     pub(super) texels: [u32; 2],
     /// Texel box the ribbon touches: rows `x0..x1`, columns `y0..y1`.
     pub(super) x0: u32,
@@ -265,7 +265,7 @@ impl LimitTiles {
     }
 
     /// Whether `piece` is deeper than the limit at every texel of its box, so
-    /// [`Piece::deposit`] keeps none of them. Conservative: it may answer `false` for such a
+    /// [`deposit`] keeps none of them. Conservative: it may answer `false` for such a
     /// piece (its box's tiles reach beyond it), never `true` for one that deposits.
     pub(super) fn behind_all(&self, piece: &Piece) -> bool {
         let mut deepest = f32::NEG_INFINITY;
