@@ -147,13 +147,12 @@ pub(super) fn emit_fragments(
         }
         let before = frags.len();
         emit_one(p, s, ids.len() as u32, fibres, band, hiding, frags);
-        if frags.len() > before {
+        let kept = frags.len() > before;
+        if kept {
             ids.push(s.k);
         }
         if let Some((flags, at_most)) = seen {
-            if frags.len() > before
-                && let Some(flag) = flags.get(s.k as usize)
-            {
+            if kept && let Some(flag) = flags.get(s.k as usize) {
                 flag.store(true, Ordering::Relaxed);
             }
             if frags.len() > at_most {
