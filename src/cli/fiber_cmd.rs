@@ -5,7 +5,6 @@
 
 use super::AppError;
 
-#[path = "fiber_plot.rs"]
 mod fiber_plot;
 use clap::{Args, Subcommand};
 use serde_json::{Value, json};

@@ -654,5 +654,4 @@ pub(super) fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
 }
 
 #[cfg(test)]
-#[path = "lines_tests.rs"]
 mod tests;

@@ -664,5 +664,4 @@ fn step_guide(
 }
 
 #[cfg(test)]
-#[path = "step_tests.rs"]
 mod tests;

@@ -214,5 +214,4 @@ impl Orbit {
 }
 
 #[cfg(test)]
-#[path = "orbit_tests.rs"]
 mod tests;

@@ -178,5 +178,4 @@ fn draw_glyph(
 }
 
 #[cfg(test)]
-#[path = "overlay_tests.rs"]
 mod tests;

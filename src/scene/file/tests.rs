@@ -1,0 +1,95 @@
+use super::*;
+
+fn refused(text: &str) -> (String, String) {
+    match SceneFile::from_json(text, "s.json") {
+        Err(SceneError::Invalid { field, rule, .. }) => (field, rule),
+        Err(SceneError::Parse { field, message, .. }) => (field, message),
+        Err(e @ SceneError::Io { .. }) => panic!("{e}"),
+        Ok(s) => panic!("accepted {text}: {s:?}"),
+    }
+}
+
+#[test]
+fn an_empty_object_is_the_default_scene_and_printing_round_trips() {
+    let (file, scene) = SceneFile::from_json("{}", "s.json").unwrap();
+    assert_eq!(file, SceneFile::default());
+    assert_eq!(scene.lights.len(), 1);
+    let (again, scene2) = SceneFile::from_json(&file.to_json(), "s.json").unwrap();
+    assert_eq!(again, file);
+    assert_eq!(scene2, scene);
+}
+
+#[test]
+fn two_lights_and_a_fixed_camera_parse() {
+    let text = r#"{"camera": {"type": "fixed", "position_m": [0, 1.6, 1], "target_m": [0, 1.6, 0]},
+        "lights": [{"type": "directional", "direction": [0, -1, 0], "irradiance": [1, 1, 1]},
+                   {"type": "point", "position_m": [1, 2, 1], "intensity": [4, 4, 4]}],
+        "exposure_stops": 1}"#;
+    let (_, scene) = SceneFile::from_json(text, "s.json").unwrap();
+    assert!(matches!(scene.camera, CameraSetup::Fixed(_)));
+    // Exposure +1 stop doubles every light and the ambient.
+    match scene.lights[1] {
+        Light::Point { intensity, .. } => assert_eq!(intensity, Vec3::splat(8.0)),
+        _ => panic!("not a point light"),
+    }
+    assert_eq!(scene.ambient, Vec3::new(0.07, 0.08, 0.1));
+}
+
+#[test]
+fn bad_fields_are_named() {
+    let cases = [
+        (r#"{"lights": []}"#, "lights"),
+        (
+            r#"{"lights": [{"type": "point", "position_m": [0, 0, 0]}]}"#,
+            "lights[0]",
+        ),
+        (
+            r#"{"lights": [{"type": "directional", "direction": [0, 0, 0], "irradiance": [1, 1, 1]}]}"#,
+            "lights[0].direction",
+        ),
+        (
+            r#"{"lights": [{"type": "directional", "direction": [0, -1, 0], "irradiance": [1, -1, 1]}]}"#,
+            "lights[0].irradiance",
+        ),
+        (
+            r#"{"lights": [{"type": "spot", "direction": [0, -1, 0]}]}"#,
+            "lights[0]",
+        ),
+        (r#"{"image": {"width": 8, "height": 800}}"#, "image.width"),
+        (
+            r#"{"image": {"width": "big", "height": 800}}"#,
+            "image.width",
+        ),
+        (r#"{"ambient": [1e39, 0, 0]}"#, "ambient"),
+        (r#"{"exposure_stops": 99}"#, "exposure_stops"),
+        (
+            r#"{"camera": {"type": "fixed", "position_m": [0, 0, 0], "target_m": [0, 0, 0]}}"#,
+            "camera.position_m",
+        ),
+        (
+            r#"{"camera": {"type": "fixed", "position_m": [0, 0, 1], "target_m": [0, 0, 0], "fov_y_deg": 180}}"#,
+            "camera.fov_y_deg",
+        ),
+        (r#"{"colour": [1, 1, 1]}"#, "colour"),
+        (r#"{"ambient": NaN}"#, "ambient"),
+    ];
+    for (text, field) in cases {
+        let (got, rule) = refused(text);
+        assert!(
+            got.starts_with(field),
+            "{text}: field {got} ({rule}), want {field}"
+        );
+        assert!(!rule.is_empty());
+    }
+}
+
+#[test]
+fn a_point_light_inside_the_hair_is_refused() {
+    let inside = [Light::point(Vec3::new(0.1, 1.6, 0.0), Vec3::ONE).unwrap()];
+    let head = Vec3::new(0.0, 1.6, 0.0);
+    let (field, rule) = check_point_lights_outside(&inside, head, 0.4).unwrap_err();
+    assert_eq!(field, "lights[0].position_m");
+    assert!(rule.contains("inside the hair"), "{rule}");
+    let outside = [Light::point(Vec3::new(1.0, 1.6, 0.0), Vec3::ONE).unwrap()];
+    assert!(check_point_lights_outside(&outside, head, 0.4).is_ok());
+}
