@@ -2,7 +2,7 @@
 //! embedded dance at 800x800, smooth and curly, in rayon pools of 1 and 2 threads.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use wisp::frame::{Engine, EngineConfig};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
 

@@ -35,7 +35,7 @@ fn bench_map(c: &mut Criterion) {
                 positions: &geo.positions,
                 tangents: &geo.tangents,
                 lengths_m: &geo.lengths_m,
-                fibre_share: &geo.fibre_share,
+                fiber_share: &geo.fiber_share,
                 fibers_per_strand: style.strands.fibers_per_strand,
                 light: light.into(),
                 fiber: &fiber,

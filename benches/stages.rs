@@ -13,7 +13,7 @@
 //! Run: `cargo bench --bench stages -- --quick` (a filter such as `dense` narrows it).
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use wisp::frame::{Engine, EngineConfig};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
 

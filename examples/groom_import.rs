@@ -7,7 +7,7 @@
 use glam::{Affine3A, Vec3};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use wisp::frame::{Engine, EngineConfig};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::groom::{GroomOptions, build_groom, load_groom, synthetic_strands};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;

@@ -15,7 +15,7 @@
 //! compression settings (`Fast` is the one `write_png_rgba16` uses).
 
 use std::time::Instant;
-use wisp::frame::{Engine, EngineConfig};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
 

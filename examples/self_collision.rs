@@ -14,7 +14,7 @@
 //! after the engine's 2 s settle.
 
 use std::time::Instant;
-use wisp::frame::{Engine, EngineConfig};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
 

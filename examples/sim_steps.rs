@@ -27,7 +27,7 @@
 
 use glam::Vec3;
 use std::time::Instant;
-use wisp::frame::write_colliders;
+use wisp::engine::write_colliders;
 use wisp::hairstyle::{Hairstyle, generate};
 use wisp::motion::Motion;
 use wisp::sim::{Colliders, SimState, Simulator};

@@ -6,7 +6,7 @@
 //! times the strands, one fibre each, as `wisp accuracy --single-fibre-strands K`);
 //! CONTACT_MM: the contact window (0 = off; default: the engine's). The environment variable
 //! `WISP_AT_S` sets the time in the dance of the timed frame (default 2 s).
-use wisp::frame::{Engine, EngineConfig};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
 fn main() {
@@ -20,7 +20,7 @@ fn main() {
         "curly" => Hairstyle::default_curly(),
         "dense" => Hairstyle::dense(),
         s => match s.strip_prefix("smoothx").and_then(|k| k.parse().ok()) {
-            Some(k) => wisp::accuracy::single_fibre_variant(&Hairstyle::default_smooth(), k),
+            Some(k) => wisp::accuracy::single_fiber_variant(&Hairstyle::default_smooth(), k),
             None => Hairstyle::default_smooth(),
         },
     };
@@ -30,7 +30,7 @@ fn main() {
         ..EngineConfig::default()
     };
     if let Some(mm) = std::env::args().nth(4).and_then(|a| a.parse::<f32>().ok()) {
-        config.contact = wisp::frame::ContactShadowing::from_mm(mm);
+        config.contact = wisp::engine::ContactShadowing::from_mm(mm);
     }
     let lighting = config.lighting.clone();
     let mut e = Engine::new(style, Motion::default_dance(), config);

@@ -6,7 +6,7 @@
 //! than five minutes at 7 GB. [`estimate`] therefore adds up, from the hairstyle, the motion,
 //! the engine configuration and the run's plan (frames, warm-up, export):
 //!
-//! - **memory**: every buffer the [`Engine`](crate::frame::Engine) and the export hold, each
+//! - **memory**: every buffer the [`Engine`](crate::engine::Engine) and the export hold, each
 //!   as a product of item counts and per-item sizes taken from the real structs with
 //!   `size_of` (the map, simulation and raster parts come from estimators next to their
 //!   private structs: `MapGeometry::estimated_bytes`, `Simulator::estimated_bytes`,
@@ -21,7 +21,7 @@
 //! [`MemoryPart`] or [`WorkPart`] per new buffer or stage in [`estimate`], with its count
 //! times a `size_of`, as the simulation cache's record buffer ([`CacheUse`]) does.
 
-use crate::frame::EngineConfig;
+use crate::engine::EngineConfig;
 use crate::hairstyle::Hairstyle;
 use crate::input::human_bytes;
 use crate::map::MapGeometry;
@@ -245,7 +245,7 @@ fn grouped(n: u64) -> String {
 
 /// The map geometry the engine will choose.
 pub fn map_geometry(style: &Hairstyle, config: &EngineConfig) -> MapGeometry {
-    crate::frame::map_geometry(style, config)
+    crate::engine::map_geometry(style, config)
 }
 
 /// When the map resolution is automatic (`config.map_res` is `None`) and the run is over the
@@ -264,7 +264,7 @@ pub fn fit_map_resolution(
     if config.map_res.is_some() {
         return None;
     }
-    let fitted = crate::frame::fit_style_to_character(style, motion);
+    let fitted = crate::engine::fit_style_to_character(style, motion);
     let style = &fitted;
     let fits = |n: u32| {
         let c = EngineConfig {
@@ -298,7 +298,7 @@ pub fn estimate(
     config: &EngineConfig,
     plan: &RunPlan,
 ) -> Estimate {
-    let fitted = crate::frame::fit_style_to_character(style, motion);
+    let fitted = crate::engine::fit_style_to_character(style, motion);
     let style = &fitted;
     let wisps = style.wisps.count as u64;
     let guides = 3 * wisps;
@@ -487,7 +487,7 @@ pub fn estimate(
                 grouped(points),
                 config.volume.max_bins_bytes / 1_000_000
             ),
-            bytes: crate::volume::PhotonVolume::estimated_bytes(
+            bytes: crate::light_paths::LightPaths::estimated_bytes(
                 points,
                 sample_len_m as f32,
                 extent_m,

@@ -18,7 +18,7 @@ pub enum LightError {
     #[error("direction {0} is not a finite, non-zero vector")]
     Direction(Vec3),
     #[error("{what} {value} must be three finite numbers >= 0")]
-    Colour { what: &'static str, value: Vec3 },
+    Color { what: &'static str, value: Vec3 },
     #[error("position {0} is not finite")]
     Position(Vec3),
 }
@@ -63,11 +63,11 @@ pub enum Light {
 /// before it gets here; this only guards the arithmetic).
 pub const POINT_LIGHT_MIN_DISTANCE_M: f32 = 1e-3;
 
-fn colour(what: &'static str, value: Vec3) -> Result<Vec3, LightError> {
+fn color(what: &'static str, value: Vec3) -> Result<Vec3, LightError> {
     if value.is_finite() && value.min_element() >= 0.0 {
         Ok(value)
     } else {
-        Err(LightError::Colour { what, value })
+        Err(LightError::Color { what, value })
     }
 }
 
@@ -76,7 +76,7 @@ impl Light {
     pub fn directional(travel: Vec3, irradiance: Vec3) -> Result<Self, LightError> {
         Ok(Self::Directional {
             travel: UnitDir::new(travel)?,
-            irradiance: colour("irradiance", irradiance)?,
+            irradiance: color("irradiance", irradiance)?,
         })
     }
 
@@ -87,7 +87,7 @@ impl Light {
         }
         Ok(Self::Point {
             position_m,
-            intensity: colour("intensity", intensity)?,
+            intensity: color("intensity", intensity)?,
         })
     }
 

@@ -16,7 +16,7 @@ use std::path::Path;
 use std::time::Duration;
 use wisp::cache::format::offset;
 use wisp::cache::{CacheError, CacheReader, Expected};
-use wisp::frame::{Engine, EngineConfig};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
 

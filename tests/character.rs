@@ -6,7 +6,7 @@ mod common;
 
 use glam::{Affine3A, Vec3};
 use serde_json::{Value, json};
-use wisp::frame::{Engine, EngineConfig};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::{CharacterPose, Fit, Motion, MotionOptions};
 
@@ -355,7 +355,7 @@ fn the_mesh_shadows_hair_and_hair_shadows_the_mesh() {
 fn roots_lie_on_the_drawn_head_and_a_wrong_fit_is_told() {
     let style = Hairstyle::default_smooth();
     let dance = Motion::default_dance();
-    let r = wisp::frame::roots_on_head(&style, &dance).expect("the mannequin has a head mesh");
+    let r = wisp::engine::roots_on_head(&style, &dance).expect("the mannequin has a head mesh");
     println!("mannequin: {r:?}");
     assert!(r.on_head() && r.near == r.roots, "{r:?}");
     assert!(r.median_m < 0.01, "{r:?}");
@@ -371,7 +371,7 @@ fn roots_lie_on_the_drawn_head_and_a_wrong_fit_is_told() {
         },
     )
     .unwrap();
-    let r = wisp::frame::roots_on_head(&style, &off).unwrap();
+    let r = wisp::engine::roots_on_head(&style, &off).unwrap();
     assert!(!r.on_head() && r.median_m > 0.15, "{r:?}");
     // A groom made for a head 3× larger (its roots as a file would give them, not refitted):
     // the median root is a head radius or more off the drawn head.
@@ -383,13 +383,13 @@ fn roots_lie_on_the_drawn_head_and_a_wrong_fit_is_told() {
     println!("a groom for a 3x head: {r:?}");
     assert!(!r.on_head() && r.median_m > 0.09, "{r:?}");
     // No character, no check.
-    assert!(wisp::frame::roots_on_head(&style, &Motion::still(Affine3A::IDENTITY)).is_none());
+    assert!(wisp::engine::roots_on_head(&style, &Motion::still(Affine3A::IDENTITY)).is_none());
     let Some(path) = common::robot_expressive_glb() else {
         return;
     };
     let robot = Motion::load(&path, &MotionOptions::default()).unwrap();
     for style in [Hairstyle::default_smooth(), Hairstyle::default_curly()] {
-        let r = wisp::frame::roots_on_head(&style, &robot).expect("the robot has a head mesh");
+        let r = wisp::engine::roots_on_head(&style, &robot).expect("the robot has a head mesh");
         println!("robot, {}: {r:?}", style.name);
         assert!(r.on_head() && r.near == r.roots, "{r:?}");
     }

@@ -6,7 +6,7 @@
 mod common;
 
 use glam::{Affine3A, Vec3};
-use wisp::frame::{Engine, EngineConfig};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::{Motion, MotionOptions};
 use wisp::sim::Colliders;

@@ -5,8 +5,8 @@
 use glam::{Affine3A, Vec3};
 use std::path::Path;
 use std::process::Command;
+use wisp::engine::{Engine, EngineConfig};
 use wisp::export::{ReferenceScene, cyhair, write_reference_scene};
-use wisp::frame::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
 use wisp::output::read_exr_rgba_f32;

@@ -157,7 +157,7 @@ fn bad_input_exits_2_naming_flag_and_rule() {
 }
 
 #[test]
-fn hairstyle_fibre_is_used_and_flags_override() {
+fn hairstyle_fiber_is_used_and_flags_override() {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("hairstyles/curly.json");
     let p = path.to_str().expect("utf-8 path");
     let args = |extra: &[&str]| {

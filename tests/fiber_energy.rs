@@ -247,7 +247,7 @@ fn direct_quantities(p: &FiberParams, deg: f64) -> DualQuantities {
 /// Lighter absorption gives larger ā_f in every channel (at every table θ), and brown hair
 /// (pbrt eumelanin 1.3: σa = [0.545, 0.906, 1.78]) has ā_f red > green > blue.
 #[test]
-fn colour_ordering() {
+fn color_ordering() {
     let brown = Fiber::new(&FiberParams::default());
     let light = Fiber::new(&FiberParams {
         sigma_a: [0.2, 0.35, 0.7],
@@ -348,15 +348,15 @@ fn preset_caustics_conserve_trt_energy() {
             .join(format!("{name}.json"));
         let style: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(&path).expect("preset")).expect("JSON");
-        let fibre: FiberParams =
+        let fiber: FiberParams =
             serde_json::from_value(style["fiber"].clone()).expect("fibre block");
         assert_eq!(
-            (fibre.k_g, fibre.w_c_deg, fibre.delta_h_m),
+            (fiber.k_g, fiber.w_c_deg, fiber.delta_h_m),
             (0.54, 5.0, 0.7)
         );
         let p = FiberParams {
             sigma_a: [0.2; 3],
-            ..fibre
+            ..fiber
         };
         for td in thetas {
             let (sw, rw) = trt_energy(&p, td, window);

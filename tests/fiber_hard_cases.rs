@@ -214,7 +214,7 @@ fn hard_directions() -> Vec<Vec3> {
 }
 
 #[test]
-fn default_fibre_hard_angles() {
+fn default_fiber_hard_angles() {
     check_params(&FiberParams::default());
 }
 
@@ -479,7 +479,7 @@ fn dual_composition_properties() {
 /// Kajiya-Kay's diffuse colour comes from σa (TT + TRT energy at normal incidence): brown hair
 /// is red > green > blue, and lighter hair is brighter in every channel.
 #[test]
-fn kajiya_kay_colour_from_absorption() {
+fn kajiya_kay_color_from_absorption() {
     let u = Vec3::Y;
     let wi = Vec3::new(1.0, 0.0, 0.0);
     let wo = Vec3::new(0.0, 0.0, 1.0); // θi = θo = 0: the white specular peak adds equally

@@ -254,7 +254,7 @@ fn forward_spread_window() {
 /// The fibre JSON: `model` is "marschner" (default) or "chiang"; the new fields have their
 /// documented defaults; a bad value is refused naming the field and the rule.
 #[test]
-fn fibre_json_model_and_new_fields() {
+fn fiber_json_model_and_new_fields() {
     let p: FiberParams = serde_json::from_str(r#"{"model": "chiang", "azimuthal_roughness": 0.5}"#)
         .expect("valid fibre JSON");
     assert_eq!(p.model, FiberModel::Chiang);

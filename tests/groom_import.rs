@@ -6,7 +6,7 @@ use glam::{Affine3A, Vec3};
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use wisp::frame::{Engine, EngineConfig};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::groom::cluster::{Feature, MIN_WISP_STRANDS, cluster};
 use wisp::groom::{Groom, GroomError, GroomOptions, build_groom, load_groom};
 use wisp::hairstyle::Hairstyle;

@@ -10,7 +10,7 @@ use hostile_common::run_bounded;
 use serde_json::{Value, json};
 use std::time::Duration;
 use wisp::budget::{RunPlan, estimate};
-use wisp::frame::{Engine, EngineConfig};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::{Hairstyle, SMOOTH_JSON};
 use wisp::motion::Motion;
 

@@ -12,7 +12,7 @@ use hostile_common::{run_bounded, scratch_dir};
 use serde_json::{Value, json};
 use std::time::Duration;
 use wisp::budget::{Budget, BudgetError, RunPlan, estimate};
-use wisp::frame::{Engine, EngineConfig};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::{Hairstyle, SMOOTH_JSON};
 use wisp::input::{ReadError, read_capped};
 use wisp::motion::{Motion, MotionOptions};

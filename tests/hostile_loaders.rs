@@ -133,7 +133,7 @@ fn mutated_inputs_never_panic_hang_or_balloon() {
 #[test]
 fn accepted_hairstyles_render_finite_nonblank_frames() {
     use wisp::budget::{Budget, RunPlan, estimate, fit_map_resolution};
-    use wisp::frame::{Engine, EngineConfig};
+    use wisp::engine::{Engine, EngineConfig};
     use wisp::hairstyle::Hairstyle;
     use wisp::motion::Motion;
 
@@ -213,7 +213,7 @@ fn accepted_hairstyles_render_finite_nonblank_frames() {
 /// the smooth preset rides them through two small frames with every pixel finite.
 #[test]
 fn accepted_motions_render_finite_nonblank_frames() {
-    use wisp::frame::{Engine, EngineConfig};
+    use wisp::engine::{Engine, EngineConfig};
     use wisp::hairstyle::Hairstyle;
     use wisp::motion::Motion;
 
@@ -284,7 +284,7 @@ fn accepted_motions_render_finite_nonblank_frames() {
 fn accepted_caches_render_finite_nonblank_frames() {
     use hostile_common::cache::{expected, seed_config, seed_style};
     use wisp::cache::CacheReader;
-    use wisp::frame::Engine;
+    use wisp::engine::Engine;
     use wisp::motion::Motion;
 
     let all = formats::all();

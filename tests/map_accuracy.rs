@@ -8,11 +8,11 @@
 //! Fewer vertices and rays than ACCURACY.md (2,000 × 64 instead of 3,000 × 128) keep this under
 //! a few seconds per preset; the bounds below leave room for that sampling.
 
-use wisp::accuracy::{Row, measure_map, single_fibre_variant, sweep_geometries};
-use wisp::frame::{ContactShadowing, DEFAULT_CONTACT_WINDOW_M};
-use wisp::frame::{Engine, EngineConfig};
+use wisp::accuracy::exact::Footprint;
+use wisp::accuracy::{Row, measure_map, single_fiber_variant, sweep_geometries};
+use wisp::engine::{ContactShadowing, DEFAULT_CONTACT_WINDOW_M};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
-use wisp::map::exact::Footprint;
 use wisp::motion::{MotionOptions, dance::try_dance};
 
 /// The engine at 4 s of the dance on its collider spheres, without the mannequin: the scene
@@ -138,7 +138,7 @@ fn presets_meet_the_targets_and_error_falls_with_resolution() {
     ] {
         let name = style.name.clone();
         let engine = engine_at_4s(style);
-        let rows = rows(&engine, &[32, 64, 128, 256], Footprint::Fibres { rays: 64 });
+        let rows = rows(&engine, &[32, 64, 128, 256], Footprint::Fibers { rays: 64 });
         let default = rows.iter().find(|r| r.is_default).expect("default row");
         // Calibration bound 0.035: the 0.5–0.8 bin holds ~50 vertices whose errors spread by
         // ~0.07, a standard error of ~0.01 on the bin's bias (measured −0.033 for smooth with
@@ -170,7 +170,7 @@ fn tapered_presets_stay_calibrated() {
     for style in [Hairstyle::default_smooth(), Hairstyle::default_curly()] {
         let name = style.name.clone();
         let engine = engine_at_4s(style);
-        let rows = rows(&engine, &[], Footprint::Fibres { rays: 64 });
+        let rows = rows(&engine, &[], Footprint::Fibers { rays: 64 });
         check_default(
             &name,
             &rows[0],
@@ -200,7 +200,7 @@ fn tapered_presets_meet_the_targets_against_the_placement_ensemble() {
     for style in [Hairstyle::default_smooth(), Hairstyle::default_curly()] {
         let name = style.name.clone();
         let engine = engine_at_4s(style);
-        let rows = rows_against(&engine, &[128], Footprint::Fibres { rays: 32 }, 6000, 8);
+        let rows = rows_against(&engine, &[128], Footprint::Fibers { rays: 32 }, 6000, 8);
         let default = rows.iter().find(|r| r.is_default).expect("default row");
         check_default(&name, default, &PRESET_BOUNDS);
         let c = &default.comparison;
@@ -224,7 +224,7 @@ fn tapered_presets_meet_the_targets_against_the_placement_ensemble() {
 }
 
 #[test]
-fn one_fibre_per_strand_meets_the_targets_with_contact_shadows() {
+fn one_fiber_per_strand_meets_the_targets_with_contact_shadows() {
     // With one fibre per strand the light a fibre receives depends on the few single fibres
     // right in front of it, which no grid resolves: the map alone reads MAE 0.052 and the lit
     // bins 0.16–0.28 too dark binned by truth (ACCURACY.md, `--contact-mm 0`). With contact
@@ -238,9 +238,9 @@ fn one_fibre_per_strand_meets_the_targets_with_contact_shadows() {
     // reads −0.047, at 80 mm −0.030, at 120 mm (the default window) −0.026 (these 2,000
     // vertices; ACCURACY.md §1: −0.035 at 3,000), all from the axis point; from the lit side
     // (since 2026-12-05, stop 44) −0.020 at 120 mm, MAE 0.0065.
-    let style = single_fibre_variant(&untapered(Hairstyle::default_smooth()), 12);
+    let style = single_fiber_variant(&untapered(Hairstyle::default_smooth()), 12);
     let engine = engine_at_4s(style);
-    let rows = rows(&engine, &[], Footprint::FibresLitSide { rays: 1 });
+    let rows = rows(&engine, &[], Footprint::FibersLitSide { rays: 1 });
     check_default(
         "smooth, 1 fibre per strand",
         &rows[0],
@@ -260,7 +260,7 @@ fn one_fibre_per_strand_meets_the_targets_with_contact_shadows() {
 }
 
 #[test]
-fn fibres_the_camera_sees_near_the_light_are_lit_as_the_exact_rays_say() {
+fn fibers_the_camera_sees_near_the_light_are_lit_as_the_exact_rays_say() {
     // The opposition effect: with the light near the camera, the fibres the camera sees are lit
     // more often than the average fibre, because the view and light rays cross the same fibres
     // near the point. The exact reference shoots both rays from the fibres each vertex stands
@@ -268,11 +268,11 @@ fn fibres_the_camera_sees_near_the_light_are_lit_as_the_exact_rays_say() {
     // given seen (`light_at_seen`), for light exactly from the camera, 3° and 20° from it. The
     // unconditional map (`light_at`) is far too dark at 0°.
     use glam::{Quat, Vec3};
+    use wisp::accuracy::comparison::sample_vertices;
+    use wisp::accuracy::exact::{ExactInput, ExactReference};
     use wisp::hairstyle::Hairstyle;
-    use wisp::map::accuracy::sample_vertices;
-    use wisp::map::exact::{ExactInput, ExactReference};
     use wisp::map::{CountModel, LightMap, MapBuildInput, MapGeometry};
-    let style = single_fibre_variant(&Hairstyle::default_smooth(), 4);
+    let style = single_fiber_variant(&Hairstyle::default_smooth(), 4);
     let engine = engine_at_4s(style.clone());
     let strands = &engine.strands;
     let view = Vec3::new(-0.5, -0.2, -1.0).normalize(); // camera looking along `view`
@@ -292,7 +292,7 @@ fn fibres_the_camera_sees_near_the_light_are_lit_as_the_exact_rays_say() {
             fibers_per_strand: 1,
             bundle_radius_m: 0.0,
             placement_seed: 0,
-            fibre_share: &strands.fibre_share,
+            fiber_share: &strands.fiber_share,
             light: dir.into(),
             fiber: &engine.fiber,
         };
@@ -312,7 +312,7 @@ fn fibres_the_camera_sees_near_the_light_are_lit_as_the_exact_rays_say() {
             positions: &strands.positions,
             tangents: &strands.tangents,
             lengths_m: &strands.lengths_m,
-            fibre_share: &strands.fibre_share,
+            fiber_share: &strands.fiber_share,
             fibers_per_strand: 1.0,
             light: light.into(),
             fiber: &engine.fiber,
@@ -345,13 +345,13 @@ fn fibres_the_camera_sees_near_the_light_are_lit_as_the_exact_rays_say() {
 }
 
 #[test]
-fn the_ensemble_is_the_mean_of_its_placements_and_one_fibre_has_one() {
+fn the_ensemble_is_the_mean_of_its_placements_and_one_fiber_has_one() {
     use wisp::accuracy::{ensemble_light, exact_reference_placed, key_light, placements_used};
     let engine = engine_at_4s(Hairstyle::default_smooth());
     let (style, strands, fiber) = (&engine.style, &engine.strands, &engine.fiber);
     let light = key_light(&engine);
-    let verts = wisp::map::accuracy::sample_vertices(strands.positions.len(), 300);
-    let fp = Footprint::Fibres { rays: 30 };
+    let verts = wisp::accuracy::comparison::sample_vertices(strands.positions.len(), 300);
+    let fp = Footprint::Fibers { rays: 30 };
     let placed = |seed| {
         exact_reference_placed(style, strands, fiber, light, seed).light_at_vertices(&verts, &fp)
     };
@@ -375,6 +375,6 @@ fn the_ensemble_is_the_mean_of_its_placements_and_one_fibre_has_one() {
         "only {moved} of 300 vertices differ between placements"
     );
     assert_eq!(placements_used(style, 8), 8);
-    let single = single_fibre_variant(style, 2);
+    let single = single_fiber_variant(style, 2);
     assert_eq!(placements_used(&single, 8), 1);
 }

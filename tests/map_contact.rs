@@ -8,10 +8,10 @@ mod common;
 use common::*;
 use glam::Vec3;
 use proptest::prelude::*;
+use wisp::accuracy::exact::{ExactInput, ExactReference, Footprint};
 use wisp::hairstyle::SplitMix64;
 use wisp::map::MapLight;
 use wisp::map::contact::{ContactInput, ContactShadows};
-use wisp::map::exact::{ExactInput, ExactReference, Footprint};
 
 /// Contact shadows of `positions` (strands of `ppl` points) for light travelling along `light`.
 fn contact(
@@ -26,7 +26,7 @@ fn contact(
         &ContactInput {
             positions,
             points_per_strand: ppl,
-            fibre_share: &[],
+            fiber_share: &[],
             window_m,
             fiber,
         },
@@ -47,7 +47,7 @@ fn crossing(x_occ: f32, z_occ: f32) -> Vec<Vec3> {
 }
 
 #[test]
-fn a_crossing_fibre_shadows_the_vertex_it_passes_over() {
+fn a_crossing_fiber_shadows_the_vertex_it_passes_over() {
     let fiber = default_fiber();
     let r = fiber.params().radius_m;
     let a_f = fiber.forward_scatter(0.0).a_f;
@@ -84,7 +84,7 @@ fn a_crossing_fibre_shadows_the_vertex_it_passes_over() {
 }
 
 #[test]
-fn the_light_is_read_on_the_fibres_lit_side() {
+fn the_light_is_read_on_the_fibers_lit_side() {
     // Light along +X, square to the receiver: its lit side is r toward the light (x − r). An
     // occluder passing over the point half a radius in front of the axis (render strands may
     // interpenetrate) shadows the axis but lies behind the lit surface: clear. One touching the
@@ -151,7 +151,7 @@ fn tangle(seed: u64, strands: usize, ppl: usize) -> Vec<Vec3> {
 }
 
 /// The exact reference of `positions` with one fibre per strand (the strand itself).
-fn one_fibre_reference<'a>(
+fn one_fiber_reference<'a>(
     positions: &'a [Vec3],
     ppl: usize,
     light: impl Into<MapLight>,
@@ -164,7 +164,7 @@ fn one_fibre_reference<'a>(
             fibers_per_strand: 1,
             bundle_radius_m: 0.0,
             placement_seed: 0,
-            fibre_share: &[],
+            fiber_share: &[],
             light: light.into(),
             fiber,
         },
@@ -182,11 +182,11 @@ fn with_everything_in_the_window_it_is_the_exact_reference() {
     let ppl = 8;
     let pos = tangle(7, 300, ppl);
     let c = contact(&pos, ppl, light, 1.0, &fiber);
-    let reference = one_fibre_reference(&pos, ppl, light, &fiber);
+    let reference = one_fiber_reference(&pos, ppl, light, &fiber);
     let (mut worst, mut shadowed) = (0.0f32, 0);
     for v in (0..pos.len()).step_by(3) {
         let near = c.near_light(v, 1.0, 0.0);
-        let truth = reference.light_at_vertex(v, &Footprint::FibresLitSide { rays: 1 });
+        let truth = reference.light_at_vertex(v, &Footprint::FibersLitSide { rays: 1 });
         assert!(near.tf.is_finite() && near.sigma_f2.is_finite());
         worst = worst.max((near.tf - truth.tf).abs().max_element());
         worst = worst.max((near.direct_fraction - truth.direct_fraction).abs());
@@ -209,12 +209,12 @@ fn under_a_point_light_it_is_the_exact_reference_too() {
     let ppl = 8;
     let pos = tangle(11, 300, ppl);
     let c = contact(&pos, ppl, light, 1.0, &fiber);
-    let reference = one_fibre_reference(&pos, ppl, light, &fiber);
+    let reference = one_fiber_reference(&pos, ppl, light, &fiber);
     let (mut worst, mut shadowed, mut moved) = (0.0f32, 0, 0);
     for v in (0..pos.len()).step_by(3) {
         let near = c.near_light(v, 1.0, 0.0);
-        let truth = reference.light_at_vertex(v, &Footprint::FibresLitSide { rays: 1 });
-        let axis = reference.light_at_vertex(v, &Footprint::Fibres { rays: 1 });
+        let truth = reference.light_at_vertex(v, &Footprint::FibersLitSide { rays: 1 });
+        let axis = reference.light_at_vertex(v, &Footprint::Fibers { rays: 1 });
         worst = worst.max((near.tf - truth.tf).abs().max_element());
         worst = worst.max((near.direct_fraction - truth.direct_fraction).abs());
         shadowed += (truth.direct_fraction < 0.99) as usize;

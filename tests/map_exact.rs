@@ -5,9 +5,9 @@
 mod common;
 use common::*;
 use glam::Vec3;
+use wisp::accuracy::exact::{ExactInput, ExactReference, Footprint};
 use wisp::hairstyle::SplitMix64;
 use wisp::map::LightFrame;
-use wisp::map::exact::{ExactInput, ExactReference, Footprint};
 
 /// Straight two-point strands from (a, b) pairs, in world coordinates.
 fn strands(pairs: &[(Vec3, Vec3)]) -> Vec<Vec3> {
@@ -21,7 +21,7 @@ fn strip_share(r: f32, big_r: f32) -> f32 {
 }
 
 #[test]
-fn a_single_fibre_shadows_its_strip_of_the_footprint() {
+fn a_single_fiber_shadows_its_strip_of_the_footprint() {
     let fiber = default_fiber();
     let r = fiber.params().radius_m;
     // Light along +X; one fibre along Z at x = 0, passing through the footprint's centre.
@@ -33,7 +33,7 @@ fn a_single_fibre_shadows_its_strip_of_the_footprint() {
             fibers_per_strand: 1,
             bundle_radius_m: 0.0,
             placement_seed: 0,
-            fibre_share: &[],
+            fiber_share: &[],
             light: Vec3::X.into(),
             fiber: &fiber,
         },
@@ -94,7 +94,7 @@ fn a_regular_layer_blocks_two_radii_per_period() {
             fibers_per_strand: 1,
             bundle_radius_m: 0.0,
             placement_seed: 0,
-            fibre_share: &[],
+            fiber_share: &[],
             light: Vec3::X.into(),
             fiber: &fiber,
         },
@@ -140,7 +140,7 @@ fn a_random_slab_matches_the_poisson_average() {
             fibers_per_strand: 1,
             bundle_radius_m: 0.0,
             placement_seed: 0,
-            fibre_share: &[],
+            fiber_share: &[],
             light: Vec3::X.into(),
             fiber: &fiber,
         },
@@ -170,7 +170,7 @@ fn a_random_slab_matches_the_poisson_average() {
 }
 
 #[test]
-fn a_vertex_is_not_shadowed_by_its_own_fibre() {
+fn a_vertex_is_not_shadowed_by_its_own_fiber() {
     // One strand perpendicular to the light with nothing in front: every footprint reads
     // unshadowed; with a second strand right in front, the fibre footprint sees it.
     let fiber = default_fiber();
@@ -184,14 +184,14 @@ fn a_vertex_is_not_shadowed_by_its_own_fibre() {
             fibers_per_strand: 1,
             bundle_radius_m: 0.0,
             placement_seed: 0,
-            fibre_share: &[],
+            fiber_share: &[],
             light: Vec3::X.into(),
             fiber: &fiber,
         },
         0.001,
     );
     for fp in [
-        Footprint::Fibres { rays: 64 },
+        Footprint::Fibers { rays: 64 },
         Footprint::Ball {
             radius_m: 0.003,
             rays: 64,
@@ -214,13 +214,13 @@ fn a_vertex_is_not_shadowed_by_its_own_fibre() {
             fibers_per_strand: 1,
             bundle_radius_m: 0.0,
             placement_seed: 0,
-            fibre_share: &[],
+            fiber_share: &[],
             light: Vec3::X.into(),
             fiber: &fiber,
         },
         0.001,
     );
-    let l = reference.light_at_vertex(4, &Footprint::Fibres { rays: 64 });
+    let l = reference.light_at_vertex(4, &Footprint::Fibers { rays: 64 });
     assert_eq!(
         l.direct_fraction, 0.0,
         "the fibre right in front crosses every ray"
@@ -228,7 +228,7 @@ fn a_vertex_is_not_shadowed_by_its_own_fibre() {
 }
 
 #[test]
-fn bundles_place_f_fibres_within_their_radius_and_threads_do_not_matter() {
+fn bundles_place_f_fibers_within_their_radius_and_threads_do_not_matter() {
     let style = wisp::hairstyle::Hairstyle::default_smooth();
     let geo = rest_strands(&style);
     let fiber = default_fiber();
@@ -238,7 +238,7 @@ fn bundles_place_f_fibres_within_their_radius_and_threads_do_not_matter() {
         fibers_per_strand: 4,
         bundle_radius_m: 0.5 * style.strand_spacing_m(),
         placement_seed: 0,
-        fibre_share: &geo.fibre_share,
+        fiber_share: &geo.fiber_share,
         light: Vec3::new(-0.75, -0.55, -0.35).into(),
         fiber: &fiber,
     };
@@ -246,7 +246,7 @@ fn bundles_place_f_fibres_within_their_radius_and_threads_do_not_matter() {
     let run = |threads| {
         common::on_threads(threads, || {
             let r = ExactReference::build(&input, 0.002);
-            r.light_at_vertices(&verts, &Footprint::Fibres { rays: 32 })
+            r.light_at_vertices(&verts, &Footprint::Fibers { rays: 32 })
         })
     };
     let (one, two) = (run(1), run(2));
@@ -265,24 +265,24 @@ fn bundles_place_f_fibres_within_their_radius_and_threads_do_not_matter() {
 /// same hair gives other per-vertex values but, over many vertices, the same mean light (the
 /// placement is a fair draw, not a bias).
 #[test]
-fn placement_seed_moves_bundled_fibres_only() {
+fn placement_seed_moves_bundled_fibers_only() {
     let style = wisp::hairstyle::Hairstyle::default_smooth();
     let geo = rest_strands(&style);
     let fiber = default_fiber();
     let verts: Vec<usize> = (0..geo.positions.len()).step_by(53).collect();
-    let light_at = |fibres: u32, seed: u64| {
+    let light_at = |fibers: u32, seed: u64| {
         let input = ExactInput {
             positions: &geo.positions,
             points_per_strand: geo.points_per_strand,
-            fibers_per_strand: fibres,
+            fibers_per_strand: fibers,
             bundle_radius_m: 0.5 * style.strand_spacing_m(),
             placement_seed: seed,
-            fibre_share: &geo.fibre_share,
+            fiber_share: &geo.fiber_share,
             light: Vec3::new(-0.75, -0.55, -0.35).into(),
             fiber: &fiber,
         };
         ExactReference::build(&input, 0.002)
-            .light_at_vertices(&verts, &Footprint::Fibres { rays: 32 })
+            .light_at_vertices(&verts, &Footprint::Fibers { rays: 32 })
     };
     assert!(
         light_at(1, 0) == light_at(1, 7),

@@ -25,7 +25,7 @@ fn build(
         positions: pos,
         tangents: tan,
         lengths_m: len,
-        fibre_share: &[],
+        fiber_share: &[],
         fibers_per_strand: fibers,
         light: light.into(),
         fiber,
@@ -56,7 +56,7 @@ fn probes() -> Vec<Vec3> {
 }
 
 #[test]
-fn two_hundred_million_fibres_in_one_cell_give_black_not_nan() {
+fn two_hundred_million_fibers_in_one_cell_give_black_not_nan() {
     let fiber = Fiber::new(&FiberParams::default());
     let n = 200_000;
     let pos = vec![Vec3::new(0.001, 0.002, 0.003); n];
@@ -83,7 +83,7 @@ fn two_hundred_million_fibres_in_one_cell_give_black_not_nan() {
 }
 
 #[test]
-fn degenerate_samples_and_fibres_along_the_light() {
+fn degenerate_samples_and_fibers_along_the_light() {
     let fiber = Fiber::new(&FiberParams::default());
     let light = Vec3::new(0.0, -1.0, 0.0);
     let pos = vec![

@@ -14,12 +14,12 @@ use wisp::hairstyle::SplitMix64;
 use wisp::interp::StrandGeometry;
 use wisp::map::{CountModel, LightFrame, LightMap, MapBuildInput, MapGeometry};
 
-struct Fibre {
+struct Fiber {
     centre: Vec2,
     dir: Vec2,
 }
 
-fn seg_dist(p: Vec2, f: &Fibre, half: f32) -> f32 {
+fn seg_dist(p: Vec2, f: &Fiber, half: f32) -> f32 {
     let t = (p - f.centre).dot(f.dir).clamp(-half, half);
     (p - (f.centre + f.dir * t)).length()
 }
@@ -38,7 +38,7 @@ fn poisson_average_matches_ray_shooting_and_mean_count_does_not() {
     let light = Vec3::NEG_X;
     let frame = LightFrame::new(light);
     let mut rng = SplitMix64::new(42);
-    let mut fibres = Vec::with_capacity(count);
+    let mut fibers = Vec::with_capacity(count);
     let mut geo = StrandGeometry {
         points_per_strand: 1,
         ..Default::default()
@@ -51,7 +51,7 @@ fn poisson_average_matches_ray_shooting_and_mean_count_does_not() {
         geo.positions.push(frame.to_world(Vec3::new(x, c.x, c.y)));
         geo.tangents.push(frame.y * dir.x + frame.z * dir.y);
         geo.lengths_m.push(len);
-        fibres.push(Fibre { centre: c, dir });
+        fibers.push(Fiber { centre: c, dir });
     }
     let a_f = fiber.forward_scatter(0.0).a_f;
     let build = |model| {
@@ -67,7 +67,7 @@ fn poisson_average_matches_ray_shooting_and_mean_count_does_not() {
             positions: &geo.positions,
             tangents: &geo.tangents,
             lengths_m: &geo.lengths_m,
-            fibre_share: &geo.fibre_share,
+            fiber_share: &geo.fiber_share,
             fibers_per_strand: 1.0,
             light: light.into(),
             fiber: &fiber,
@@ -87,7 +87,7 @@ fn poisson_average_matches_ray_shooting_and_mean_count_does_not() {
                 4.0 * ds + 8.0 * ds * (a as f32 + 0.5) / rays as f32,
                 4.0 * ds + 8.0 * ds * (b as f32 + 0.5) / rays as f32,
             );
-            let hits = fibres
+            let hits = fibers
                 .iter()
                 .filter(|f| seg_dist(p, f, 0.5 * len) < r)
                 .count();

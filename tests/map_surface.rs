@@ -6,7 +6,7 @@ mod common;
 use common::*;
 use glam::{Affine3A, Vec3};
 use wisp::accuracy::skin::measure_skin;
-use wisp::frame::{Engine, EngineConfig};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::interp::StrandGeometry;
 use wisp::map::{CountModel, LightFrame, LightMap, MapBuildInput, MapGeometry, Solid};
@@ -39,7 +39,7 @@ fn map_with_sphere(
         positions: &geo.positions,
         tangents: &geo.tangents,
         lengths_m: &geo.lengths_m,
-        fibre_share: &geo.fibre_share,
+        fiber_share: &geo.fiber_share,
         fibers_per_strand: FIBERS,
         light: light.into(),
         fiber: &fiber,

@@ -6,9 +6,9 @@
 mod common;
 
 use glam::{Affine3A, Vec2, Vec3};
-use wisp::frame::{Engine, EngineConfig};
+use wisp::disc::bundle_disc_points;
+use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
-use wisp::map::exact::bundle_disc_points;
 use wisp::motion::Motion;
 use wisp::raster::{
     Bundle, Camera, Framebuffer, LineScratch, LineStyle, Polylines, draw_polylines,
@@ -61,10 +61,10 @@ fn draw_shares(
     let pts: Vec<Vec3> = pix.iter().map(|&(x, y)| at(x, y)).collect();
     let m_per_px = 2.0 / 200.0;
     let radius_m = r_px * m_per_px;
-    let fibre_radius_m = rho * radius_m;
+    let fiber_radius_m = rho * radius_m;
     let widths: Vec<f32> = shares
         .iter()
-        .map(|s| s * FIBRES as f32 * 2.0 * fibre_radius_m)
+        .map(|s| s * FIBRES as f32 * 2.0 * fiber_radius_m)
         .collect();
     let cols = vec![Vec3::ONE; pts.len()];
     let disc = bundle_disc_points(FIBRES);
@@ -75,7 +75,7 @@ fn draw_shares(
         points_per_line: pts.len(),
         bundle: bundle.then_some(Bundle {
             radius_m,
-            fibre_radius_m,
+            fiber_radius_m,
             points: &disc,
         }),
     };
@@ -102,7 +102,7 @@ fn total(fb: &Framebuffer) -> f64 {
 /// not their sum): the bundle then covers less than the opaque band, never more (measured:
 /// 0.98 at R = 6 px, 0.83 at 25 px, where the band's 30 px of fibre lie in 50 px).
 #[test]
-fn a_bundle_covers_what_its_fibres_cover_at_every_scale() {
+fn a_bundle_covers_what_its_fibers_cover_at_every_scale() {
     for r_px in [0.2f32, 0.8, 2.0, 6.0, 25.0] {
         let w_px = f64::from(2.0 * FIBRES as f32 * RHO * r_px);
         let expected = 300.0 * w_px;
@@ -177,7 +177,7 @@ fn column(fb: &Framebuffer, x: usize) -> Vec<f32> {
 /// stripes: the profile across has many peaks and near-empty gaps, where the plain line of
 /// the same coverage is one flat band 15 px wide.
 #[test]
-fn a_wide_bundle_shows_its_fibres() {
+fn a_wide_bundle_shows_its_fibers() {
     let line: Vec<(f32, f32)> = (0..5).map(|i| (50.0 + 75.0 * i as f32, 200.0)).collect();
     let bundle = column(&draw_rho(&line, 25.0, 0.01, true), 200);
     let plain = column(&draw_rho(&line, 25.0, 0.01, false), 200);
@@ -265,7 +265,7 @@ fn a_bent_bundle_meets_itself_on_the_mitre() {
 /// image is written; `WISP_UPDATE_GOLDEN=1` rewrites it after a deliberate change. The same
 /// frame is byte-identical on 1 and 2 threads.
 #[test]
-fn a_close_up_draws_the_fibres_the_same_on_any_thread_count() {
+fn a_close_up_draws_the_fibers_the_same_on_any_thread_count() {
     let config = EngineConfig {
         width: 128,
         height: 128,
@@ -325,7 +325,7 @@ fn hostile_bundles_never_panic_and_stay_within_the_unit_range() {
                 let widths = [width_m; 4];
                 // At depth 2 on the 48-row image (focal 24 px) a 0.5 m bundle is 6 px in
                 // radius: drawn as its fibres.
-                for (radius_m, fibre_radius_m, points) in [
+                for (radius_m, fiber_radius_m, points) in [
                     (0.5f32, 0.01f32, &disc[..]),
                     (0.3, 0.006, &disc[..]),
                     (f32::NAN, 0.01, &disc[..]),
@@ -342,7 +342,7 @@ fn hostile_bundles_never_panic_and_stay_within_the_unit_range() {
                         points_per_line: 4,
                         bundle: Some(Bundle {
                             radius_m,
-                            fibre_radius_m,
+                            fiber_radius_m,
                             points,
                         }),
                     };

@@ -98,10 +98,10 @@ fn summed_alpha_is_the_projected_area_for_thin_and_wide_lines() {
             mean += got / f64::from(steps);
             // White over black: the colour is the coverage (up to float rounding: one sums
             // each layer's seen share, the other is one minus what is left).
-            let colour: f64 = fb.color.iter().map(|c| f64::from(c.y)).sum();
+            let color: f64 = fb.color.iter().map(|c| f64::from(c.y)).sum();
             assert!(
-                (colour - got).abs() < 1e-5 * got.max(1.0),
-                "{colour} vs {got}"
+                (color - got).abs() < 1e-5 * got.max(1.0),
+                "{color} vs {got}"
             );
             // Thin lines keep the minimum footprint: 1 px wide covers a row's worth of
             // sub-samples across, in one or two rows, never fewer pixels than its length.
@@ -271,6 +271,6 @@ fn solids_write_their_coverage() {
     let got = sum(&fb.coverage);
     assert!((got - area).abs() < 0.01 * area, "{got} vs {area}");
     assert_eq!(fb.coverage[60 * 120 + 60], 1.0);
-    let colour: f64 = fb.color.iter().map(|c| f64::from(c.x)).sum();
-    assert!((colour - got).abs() < 1e-3 * got);
+    let color: f64 = fb.color.iter().map(|c| f64::from(c.x)).sum();
+    assert!((color - got).abs() < 1e-3 * got);
 }

@@ -145,7 +145,7 @@ fn diagonal_line_coverage_is_close_to_length_times_width() {
 }
 
 #[test]
-fn colour_is_interpolated_along_the_segment() {
+fn color_is_interpolated_along_the_segment() {
     let cam = axis_camera(101, 11);
     let pts = [
         unproject(&cam, 0.5, 5.5, 1.0),
@@ -237,7 +237,7 @@ fn nearer_hair_is_on_top_in_any_order() {
 /// share their edges), so no red shows there. Composited as independent layers, each pixel
 /// would let (3/4)⁴ ≈ 0.32 of the red through its four quarter-pixel lines.
 #[test]
-fn fibres_side_by_side_hide_what_is_behind_them() {
+fn fibers_side_by_side_hide_what_is_behind_them() {
     let cam = axis_camera(64, 64);
     let (xa, xb) = (4.0, 60.0);
     let mut pts = Vec::new();

@@ -8,7 +8,7 @@
 
 use glam::{Vec2, Vec3};
 use proptest::prelude::*;
-use wisp::frame::{Engine, EngineConfig};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
 use wisp::raster::{
@@ -45,9 +45,9 @@ fn draw(fb: &Framebuffer, lines: &Polylines, style: &LineStyle) -> (Vec<u32>, Ve
         style,
         &mut LineScratch::default(),
     );
-    let colour = fb.color.iter().flat_map(|c| c.to_array().map(f32::to_bits));
+    let color = fb.color.iter().flat_map(|c| c.to_array().map(f32::to_bits));
     (
-        colour.collect(),
+        color.collect(),
         fb.coverage.iter().map(|c| c.to_bits()).collect(),
     )
 }
@@ -65,9 +65,9 @@ fn draw_seen(
     let mut scratch = LineScratch::default();
     seen_points(&fb, &camera(), lines, style, &mut scratch, &mut Vec::new());
     draw_seen_polylines(&mut fb, &camera(), shaded, style, &mut scratch);
-    let colour = fb.color.iter().flat_map(|c| c.to_array().map(f32::to_bits));
+    let color = fb.color.iter().flat_map(|c| c.to_array().map(f32::to_bits));
     (
-        colour.collect(),
+        color.collect(),
         fb.coverage.iter().map(|c| c.to_bits()).collect(),
     )
 }
@@ -88,18 +88,18 @@ fn check(
             Vec2::new(r * a.cos(), r * a.sin())
         })
         .collect();
-    let colours: Vec<Vec3> = (0..points.len())
+    let colors: Vec<Vec3> = (0..points.len())
         .map(|i| Vec3::new(0.2 + 0.1 * (i % 7) as f32, 0.5, 0.3))
         .collect();
     let widths = vec![width_m; points.len()];
     let lines = Polylines {
         points,
-        colors: &colours,
+        colors: &colors,
         widths_m: &widths,
         points_per_line: per_line,
         bundle: bundle.then_some(Bundle {
             radius_m: width_m,
-            fibre_radius_m: width_m / 50.0,
+            fiber_radius_m: width_m / 50.0,
             points: &disc,
         }),
     };
@@ -115,7 +115,7 @@ fn check(
     );
     assert_eq!(seen.len(), points.len());
     // The unmarked points get other colours (as the engine leaves them black).
-    let other: Vec<Vec3> = colours
+    let other: Vec<Vec3> = colors
         .iter()
         .zip(&seen)
         .map(|(c, &s)| if s { *c } else { Vec3::new(5.0, 0.0, 9.0) })
@@ -176,10 +176,10 @@ fn hair_behind_nearer_hair_is_unmarked() {
     let open = with_solids(&[None; 384]);
     check(&points, 8, 0.06, false, &open);
     let widths = vec![0.06; points.len()];
-    let colours = vec![Vec3::ONE; points.len()];
+    let colors = vec![Vec3::ONE; points.len()];
     let lines = Polylines {
         points: &points,
-        colors: &colours,
+        colors: &colors,
         widths_m: &widths,
         points_per_line: 8,
         bundle: None,
@@ -209,7 +209,7 @@ proptest! {
     /// screen) over random blocks of opaque depth, the colours of unmarked points never reach
     /// a pixel.
     #[test]
-    fn unmarked_colours_never_reach_a_pixel(
+    fn unmarked_colors_never_reach_a_pixel(
         pts in prop::collection::vec((-1.2f32..1.2, -0.8f32..0.8, -1.5f32..2.5), 12),
         width_m in 0.0005f32..0.1,
         bundle in any::<bool>(),
@@ -271,13 +271,13 @@ fn second_pass_without_its_kept_fragments_draws_everything() {
             })
         })
         .collect();
-    let colours: Vec<Vec3> = (0..points.len())
+    let colors: Vec<Vec3> = (0..points.len())
         .map(|i| Vec3::new(0.1 * (i % 9) as f32, 0.4, 0.7))
         .collect();
     let widths = vec![0.01; points.len()];
     let lines = Polylines {
         points: &points,
-        colors: &colours,
+        colors: &colors,
         widths_m: &widths,
         points_per_line: 6,
         bundle: None,
@@ -288,12 +288,12 @@ fn second_pass_without_its_kept_fragments_draws_everything() {
     let second = |scratch: &mut LineScratch| {
         let mut out = fb.clone();
         draw_seen_polylines(&mut out, &camera(), &lines, &style, scratch);
-        let colour = out
+        let color = out
             .color
             .iter()
             .flat_map(|c| c.to_array().map(f32::to_bits));
         (
-            colour.collect::<Vec<_>>(),
+            color.collect::<Vec<_>>(),
             out.coverage.iter().map(|c| c.to_bits()).collect::<Vec<_>>(),
         )
     };
@@ -301,7 +301,7 @@ fn second_pass_without_its_kept_fragments_draws_everything() {
     assert!(second(&mut scratch) == whole, "no seen pass");
     let other = Polylines {
         points: &points[..points.len() / 2],
-        colors: &colours[..points.len() / 2],
+        colors: &colors[..points.len() / 2],
         widths_m: &widths[..points.len() / 2],
         ..lines
     };
@@ -331,7 +331,7 @@ fn second_pass_without_its_kept_fragments_draws_everything() {
     // A non-finite shaded colour: the kept fragments of its segments draw black.
     let mut seen = Vec::new();
     seen_points(&fb, &camera(), &lines, &style, &mut scratch, &mut seen);
-    let bad: Vec<Vec3> = colours
+    let bad: Vec<Vec3> = colors
         .iter()
         .zip(&seen)
         .enumerate()
@@ -368,13 +368,13 @@ fn bands_over_the_kept_bound_are_emitted_again() {
             ]
         })
         .collect();
-    let colours: Vec<Vec3> = (0..points.len())
+    let colors: Vec<Vec3> = (0..points.len())
         .map(|i| Vec3::new(0.01 * (i % 97) as f32, 0.3, 0.9 - 0.005 * (i % 61) as f32))
         .collect();
     let widths = vec![0.48; points.len()];
     let lines = Polylines {
         points: &points,
-        colors: &colours,
+        colors: &colors,
         widths_m: &widths,
         points_per_line: 3,
         bundle: None,

@@ -3,8 +3,8 @@
 mod common;
 
 use glam::{Affine3A, Vec3};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::fiber::ShadingMode;
-use wisp::frame::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
 use wisp::raster::{Framebuffer, draw_ellipsoid};
@@ -153,12 +153,12 @@ fn frames_are_byte_identical_with_one_and_two_threads() {
 }
 
 #[test]
-fn one_fibre_hair_with_contact_shadows_is_byte_identical_with_one_and_two_threads() {
+fn one_fiber_hair_with_contact_shadows_is_byte_identical_with_one_and_two_threads() {
     // Contact shadows (`map::contact`) for one fibre per strand: their binning (parallel
     // collect, sorted bins) and per-vertex queries must not depend on the thread count; and
     // they must change the picture (the test would pass vacuously if they were off).
-    let style = wisp::accuracy::single_fibre_variant(&Hairstyle::default_smooth(), 1);
-    let render = |threads: usize, contact: wisp::frame::ContactShadowing| {
+    let style = wisp::accuracy::single_fiber_variant(&Hairstyle::default_smooth(), 1);
+    let render = |threads: usize, contact: wisp::engine::ContactShadowing| {
         common::on_threads(threads, || {
             let config = EngineConfig {
                 width: 160,
@@ -170,8 +170,8 @@ fn one_fibre_hair_with_contact_shadows_is_byte_identical_with_one_and_two_thread
             engine.frame(3.5).to_srgb8()
         })
     };
-    use wisp::frame::ContactShadowing::{Off, WindowM};
-    let on = WindowM(wisp::frame::DEFAULT_CONTACT_WINDOW_M);
+    use wisp::engine::ContactShadowing::{Off, WindowM};
+    let on = WindowM(wisp::engine::DEFAULT_CONTACT_WINDOW_M);
     let a = render(1, on);
     let b = render(2, on);
     assert!(
@@ -211,7 +211,7 @@ fn volume_shading_is_byte_identical_with_one_and_two_threads_and_adds_light() {
             let mut config = EngineConfig {
                 width: 160,
                 height: 160,
-                volume: wisp::volume::VolumeParams {
+                volume: wisp::light_paths::LightPathParams {
                     paths: 20_000,
                     ..Default::default()
                 },

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use glam::Vec3;
-use wisp::frame::EngineConfig;
+use wisp::engine::EngineConfig;
 use wisp::output::{linear_to_srgb8, read_exr_rgba_f32};
 
 /// Small frames keep each run to a few seconds (most of it the settle and the light map).
@@ -155,9 +155,9 @@ fn png16_and_exr_carry_the_8_bit_frame_and_its_coverage() {
             (w8, h8, d8, c8),
             (64, 64, png::BitDepth::Eight, png::ColorType::Rgb)
         );
-        let (w, h, depth, colour, rgba16) = decode_png(&dirs[1].join(format!("{name}.png")));
+        let (w, h, depth, color, rgba16) = decode_png(&dirs[1].join(format!("{name}.png")));
         assert_eq!(
-            (w, h, depth, colour),
+            (w, h, depth, color),
             (64, 64, png::BitDepth::Sixteen, png::ColorType::Rgba)
         );
         let (we, he, rgb, alpha) = read_exr_rgba_f32(&dirs[2].join(format!("{name}.exr")))

@@ -5,7 +5,7 @@
 mod common;
 
 use glam::{Affine3A, Vec3};
-use wisp::frame::{Engine, EngineConfig};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
 use wisp::raster::LineStyle;
@@ -142,7 +142,7 @@ fn irradiance_and_ambient_are_settable() {
 /// The default (physical coverage) frame and its coverage channel are byte-identical for 1
 /// and 2 threads.
 #[test]
-fn coverage_and_colour_identical_for_one_and_two_threads() {
+fn coverage_and_color_identical_for_one_and_two_threads() {
     let render = |threads: usize| {
         common::on_threads(threads, || {
             let mut e = engine(small());

@@ -10,12 +10,12 @@
 mod common;
 
 use glam::{Affine3A, Vec3};
+use wisp::accuracy::exact::Footprint;
 use wisp::accuracy::{measure_map, sweep_geometries};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::fiber::ShadingMode;
-use wisp::frame::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::light::Light;
-use wisp::map::exact::Footprint;
 use wisp::map::{CountModel, LightMap, MapBuildInput, MapLight};
 use wisp::motion::Motion;
 use wisp::scene::SceneFile;
@@ -122,14 +122,14 @@ fn a_far_point_light_reads_as_the_directional_light() {
     let geo = common::rest_strands(&style);
     let fiber = common::default_fiber();
     let travel = Vec3::new(-0.6, -0.5, -0.4).normalize();
-    let geom = wisp::frame::map_geometry(&style, &EngineConfig::default());
+    let geom = wisp::engine::map_geometry(&style, &EngineConfig::default());
     let build = |light: MapLight| {
         let mut map = LightMap::new(geom, CountModel::Poisson);
         map.build(&MapBuildInput {
             positions: &geo.positions,
             tangents: &geo.tangents,
             lengths_m: &geo.lengths_m,
-            fibre_share: &geo.fibre_share,
+            fiber_share: &geo.fiber_share,
             fibers_per_strand: style.strands.fibers_per_strand,
             light,
             fiber: &fiber,
@@ -151,7 +151,7 @@ fn a_far_point_light_reads_as_the_directional_light() {
         positions: &moved,
         tangents: &geo.tangents,
         lengths_m: &geo.lengths_m,
-        fibre_share: &geo.fibre_share,
+        fiber_share: &geo.fiber_share,
         fibers_per_strand: style.strands.fibers_per_strand,
         light: MapLight::Directional(travel),
         fiber: &fiber,
@@ -199,7 +199,7 @@ fn point_light_map_against_the_exact_reference() {
     config.lighting.lights = vec![Light::point(Vec3::new(-0.7, 0.2, -0.3), Vec3::ONE).unwrap()];
     let mut engine = still_engine(config);
     engine.frame(0.0);
-    let fp = Footprint::Fibres { rays: 64 };
+    let fp = Footprint::Fibers { rays: 64 };
     let rows = measure_map(
         &engine,
         &sweep_geometries(&engine, &[]),

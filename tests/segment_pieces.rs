@@ -3,14 +3,14 @@
 //! in `interp::subdivide`; here, whole frames.
 
 use glam::Affine3A;
-use wisp::frame::{ContactShadowing, DEFAULT_CONTACT_WINDOW_M, Engine, EngineConfig};
+use wisp::engine::{ContactShadowing, DEFAULT_CONTACT_WINDOW_M, Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
 
 const SIDE: u32 = 96;
 
 /// Smooth at one fibre per strand (so contact shadows apply), few strands.
-fn one_fibre_style() -> Hairstyle {
+fn one_fiber_style() -> Hairstyle {
     let mut style = Hairstyle::default_smooth();
     style.wisps.strands_per_wisp = 40;
     style.strands.fibers_per_strand = 1.0;
@@ -25,7 +25,7 @@ fn frame(pieces: u32) -> wisp::raster::Framebuffer {
         segment_pieces: pieces,
         ..Default::default()
     };
-    let mut e = Engine::new(one_fibre_style(), Motion::still(Affine3A::IDENTITY), config);
+    let mut e = Engine::new(one_fiber_style(), Motion::still(Affine3A::IDENTITY), config);
     e.frame(0.0).clone()
 }
 

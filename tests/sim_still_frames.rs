@@ -5,7 +5,7 @@
 
 use glam::{Affine3A, Vec3};
 use std::path::PathBuf;
-use wisp::frame::{Engine, EngineConfig};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
 

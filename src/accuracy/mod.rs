@@ -9,16 +9,18 @@
 //! - [`skin::measure_skin`]: the hair's shadow on the skin against the same reference, per
 //!   pixel.
 
+pub mod comparison;
+pub mod exact;
 pub mod skin;
 
+use crate::accuracy::comparison::{BIN_EDGES, Bin, Comparison, sample_vertices};
+use crate::accuracy::exact::{ExactInput, ExactReference, Footprint};
+use crate::engine::{ContactShadowing, Engine};
 use crate::fiber::Fiber;
 use crate::fiber::LightAtPoint;
-use crate::frame::{ContactShadowing, Engine};
 use crate::hairstyle::Hairstyle;
 use crate::interp::StrandGeometry;
-use crate::map::accuracy::{BIN_EDGES, Bin, Comparison, sample_vertices};
 use crate::map::contact::ContactInput;
-use crate::map::exact::{ExactInput, ExactReference, Footprint};
 use crate::map::{CountModel, LightMap, MapBuildInput, MapGeometry, MapLight};
 use crate::shade::{Lighting, VertexGeometry, shade_vertices_with};
 use glam::Vec3;
@@ -50,7 +52,7 @@ pub struct Row {
 
 /// The exact-geometry variant of a hairstyle: K render strands of one fibre for every render
 /// strand of F fibres.
-pub fn single_fibre_variant(style: &Hairstyle, k: u32) -> Hairstyle {
+pub fn single_fiber_variant(style: &Hairstyle, k: u32) -> Hairstyle {
     let mut s = style.clone();
     s.wisps.strands_per_wisp = s.wisps.strands_per_wisp.saturating_mul(k);
     s.strands.fibers_per_strand = 1.0;
@@ -138,7 +140,7 @@ pub fn measure_map(
         positions: &strands.positions,
         tangents: &strands.tangents,
         lengths_m: &strands.lengths_m,
-        fibre_share: &strands.fibre_share,
+        fiber_share: &strands.fiber_share,
         fibers_per_strand: style.strands.fibers_per_strand,
         light,
         fiber: &engine.fiber,
@@ -151,7 +153,7 @@ pub fn measure_map(
         .map(|window_m| ContactInput {
             positions: &strands.positions,
             points_per_strand: strands.points_per_strand,
-            fibre_share: &strands.fibre_share,
+            fiber_share: &strands.fiber_share,
             window_m,
             fiber: &engine.fiber,
         });
@@ -264,13 +266,13 @@ pub fn ensemble_light(
 /// where at least one fibre is present (past the tips, hair is not drawn).
 fn sampled_vertices(engine: &Engine, vertices: usize) -> Vec<usize> {
     let strands = &engine.strands;
-    let fibres = engine.style.strands.fibers_per_strand.round().max(1.0);
+    let fibers = engine.style.strands.fibers_per_strand.round().max(1.0);
     let with_hair: Vec<usize> = (0..strands.positions.len())
         .filter(|&i| {
             strands
-                .fibre_share
+                .fiber_share
                 .get(i)
-                .is_none_or(|s| *s >= 0.5 / fibres)
+                .is_none_or(|s| *s >= 0.5 / fibers)
         })
         .collect();
     sample_vertices(with_hair.len(), vertices)
@@ -339,7 +341,7 @@ pub fn exact_reference_placed<'a>(
             fibers_per_strand: style.strands.fibers_per_strand.round().max(1.0) as u32,
             bundle_radius_m: 0.5 * style.strand_spacing_m(),
             placement_seed,
-            fibre_share: &strands.fibre_share,
+            fiber_share: &strands.fiber_share,
             light,
             fiber,
         },

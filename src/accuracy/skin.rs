@@ -4,7 +4,7 @@
 //! the head and body ellipsoids) fully, facing the key light, the T_f the skin shader reads
 //! from the map ([`crate::map::LightMap::light_at_surface`], at the normal-offset point the
 //! shader uses) against the exact reference's
-//! ([`crate::map::exact::ExactReference::light_at_point`]: rays toward the light through the
+//! ([`crate::accuracy::exact::ExactReference::light_at_point`]: rays toward the light through the
 //! explicit fibres, from a disc across the light of half a pixel's width at the point's depth,
 //! so the reference is the pixel's own average, what an ideal renderer shows at this
 //! resolution). The solids' own shadow (the head on the body) is the map's occluder grid in
@@ -15,9 +15,9 @@
 //! ACCURACY.md §1).
 
 use super::{exact_reference, key_light};
+use crate::accuracy::comparison::Comparison;
+use crate::engine::Engine;
 use crate::fiber::LightAtPoint;
-use crate::frame::Engine;
-use crate::map::accuracy::Comparison;
 use crate::raster::Framebuffer;
 use glam::Vec3;
 use std::time::Instant;

@@ -9,7 +9,7 @@
 //! size). The camera that follows the head is framed once on the hair as it settled at time 0,
 //! so the cache stores that settled state as well. A cache therefore stores, per frame, the
 //! frame's time and every guide particle's position as the f32 bits the simulation left, and
-//! [`Engine::set_guide_state`](crate::frame::Engine::set_guide_state) puts them back: a frame
+//! [`Engine::set_guide_state`](crate::engine::Engine::set_guide_state) puts them back: a frame
 //! rendered from the cache is the same bytes as the frame rendered in one run (tested in
 //! `tests/cache.rs` and, through the binary and the local shard runner, `tests/cache_cli.rs`).
 //! The simulation is deterministic for any thread count, so it does not matter how many

@@ -8,12 +8,12 @@
 //! vertex of the hair (the map's whole per-frame cost), median of `--repeats` runs.
 
 use super::{AppError, SceneArgs};
+use wisp::accuracy::exact::Footprint;
 use wisp::accuracy::skin::measure_skin;
 use wisp::accuracy::{
-    bias_per_bin, markdown, measure_map, placement_floor, single_fibre_variant, sweep_geometries,
+    bias_per_bin, markdown, measure_map, placement_floor, single_fiber_variant, sweep_geometries,
 };
-use wisp::frame::{ContactShadowing, DEFAULT_CONTACT_WINDOW_M};
-use wisp::map::exact::Footprint;
+use wisp::engine::{ContactShadowing, DEFAULT_CONTACT_WINDOW_M};
 use wisp::output::write_png_rgb8;
 
 #[derive(clap::Args, Debug)]
@@ -42,7 +42,7 @@ pub struct AccuracyArgs {
     /// Replace every render strand of F fibres by K render strands of one fibre each (the
     /// exact-geometry variant: with one fibre per strand the reference needs no placement).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=64))]
-    pub single_fibre_strands: Option<u32>,
+    pub single_fiber_strands: Option<u32>,
     /// Measure the hair's shadow on the skin and clothes instead: every pixel of the solids
     /// facing the light, the map's T_f against `--rays` exact rays from half a pixel's width
     /// (shot per pixel: 800 × 800 with 64 rays takes about 2 s for the smooth preset).
@@ -79,8 +79,8 @@ fn parse_footprint(s: &str, rays: u32) -> Result<Footprint, AppError> {
         }
     };
     match s.split_once(':') {
-        None if s == "fibres" => Ok(Footprint::Fibres { rays }),
-        None if s == "fibres-lit" => Ok(Footprint::FibresLitSide { rays }),
+        None if s == "fibres" => Ok(Footprint::Fibers { rays }),
+        None if s == "fibres-lit" => Ok(Footprint::FibersLitSide { rays }),
         Some(("ball", r)) => Ok(Footprint::Ball {
             radius_m: mm(r)?,
             rays,
@@ -105,8 +105,8 @@ pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
         None => ContactShadowing::WindowM(DEFAULT_CONTACT_WINDOW_M),
     };
     config.contact = ContactShadowing::Off;
-    if let Some(k) = args.single_fibre_strands {
-        style = single_fibre_variant(&style, k);
+    if let Some(k) = args.single_fiber_strands {
+        style = single_fiber_variant(&style, k);
     }
     let footprint = parse_footprint(&args.footprint, args.rays)?;
     if let Some(path) = &args.skin_image {
@@ -195,7 +195,7 @@ pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
 }
 
 /// `--skin`: the hair's shadow on the solids against exact rays.
-fn skin(engine: &mut wisp::frame::Engine, args: &AccuracyArgs) -> Result<(), AppError> {
+fn skin(engine: &mut wisp::engine::Engine, args: &AccuracyArgs) -> Result<(), AppError> {
     let report = measure_skin(engine, args.rays);
     println!(
         "wisp accuracy --skin: {}, t = {} s, {}×{} px, {} rays per pixel from half a pixel's \

@@ -16,8 +16,8 @@
 
 use super::{AppError, SceneArgs};
 use std::path::PathBuf;
-use wisp::frame::{MapPartTimings, StageTimings};
-use wisp::map::exact::Footprint;
+use wisp::accuracy::exact::Footprint;
+use wisp::engine::{MapPartTimings, StageTimings};
 
 #[derive(clap::Args, Debug)]
 pub struct BenchArgs {
@@ -91,7 +91,7 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         cache: wisp::budget::CacheUse::None,
     };
     for &n in &args.map_res_list {
-        let mut sweep = wisp::frame::EngineConfig {
+        let mut sweep = wisp::engine::EngineConfig {
             map_res: Some(n),
             ..config.clone()
         };
@@ -149,15 +149,15 @@ struct BenchScene {
     style: wisp::hairstyle::Hairstyle,
     hair: super::ImportedHair,
     motion: wisp::motion::Motion,
-    config: wisp::frame::EngineConfig,
+    config: wisp::engine::EngineConfig,
 }
 
 impl BenchScene {
-    fn engine(&self) -> wisp::frame::Engine {
+    fn engine(&self) -> wisp::engine::Engine {
         self.engine_with(self.config.clone())
     }
 
-    fn engine_with(&self, config: wisp::frame::EngineConfig) -> wisp::frame::Engine {
+    fn engine_with(&self, config: wisp::engine::EngineConfig) -> wisp::engine::Engine {
         super::engine(
             self.style.clone(),
             self.hair.clone(),
@@ -310,7 +310,7 @@ fn accuracy_part(args: &BenchArgs, at_s: f64, scene: &BenchScene, json: &mut Jso
     let placements =
         wisp::accuracy::placements_used(&engine.style, wisp::accuracy::DEFAULT_PLACEMENTS);
     let rays = if placements > 1 { 32 } else { 128 };
-    let footprint = Footprint::Fibres { rays };
+    let footprint = Footprint::Fibers { rays };
     let wisp::accuracy::MapMeasurement {
         rows, reference_ms, ..
     } = wisp::accuracy::measure_map(

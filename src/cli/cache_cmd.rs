@@ -18,7 +18,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 use wisp::budget::{CacheUse, RunPlan};
 use wisp::cache::{CacheError, CacheHeader, CacheReader, CacheWriter, Expected};
-use wisp::frame::Engine;
+use wisp::engine::Engine;
 use wisp::motion::Motion;
 
 #[derive(clap::Args, Debug)]
@@ -125,7 +125,7 @@ pub fn simulate(args: SimulateArgs) -> Result<(), AppError> {
             .first()
             .and_then(|l| l.travel())
             .unwrap_or(glam::Vec3::NEG_Y),
-        map_res: wisp::frame::map_geometry(&style, &config).n,
+        map_res: wisp::engine::map_geometry(&style, &config).n,
         simulated: config.simulate,
         self_collision: config.self_collision,
         draw_solids: config.draw_solids,

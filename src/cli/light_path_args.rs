@@ -1,7 +1,7 @@
-//! The light paths' flags (`--shading volume`, `wisp::volume`), flattened into `SceneArgs`.
+//! The light paths' flags (`--shading volume`, `wisp::light_paths`), flattened into `SceneArgs`.
 
 use super::parse_finite_f32;
-use wisp::frame::EngineConfig;
+use wisp::engine::EngineConfig;
 
 /// Cell edges of the volume of `--shading volume`, millimetres.
 pub const VOLUME_CELL_MM: std::ops::RangeInclusive<f32> = 0.5..=100.0;
@@ -21,7 +21,7 @@ pub fn parse_volume_cell_mm(s: &str) -> Result<f32, String> {
 }
 
 #[derive(clap::Args, Debug, Clone)]
-pub struct VolumeArgs {
+pub struct LightPathArgs {
     /// `--shading volume`: the volume's cell edge in millimetres, 0.5..=100 (default 4).
     #[arg(long, value_name = "MM", value_parser = parse_volume_cell_mm)]
     pub volume_cell_mm: Option<f32>,
@@ -34,7 +34,7 @@ pub struct VolumeArgs {
     pub volume_bins: Option<u32>,
 }
 
-impl VolumeArgs {
+impl LightPathArgs {
     /// Writes the flags given over the configuration's defaults.
     pub fn apply(&self, config: &mut EngineConfig) {
         if let Some(mm) = self.volume_cell_mm {

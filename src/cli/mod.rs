@@ -39,11 +39,11 @@ pub mod bench_cmd;
 pub mod cache_cmd;
 pub mod export_cmd;
 pub mod fiber_cmd;
+pub mod light_path_args;
 pub mod play_cmd;
 pub mod render_cmd;
 pub mod shard;
 pub mod view_args;
-pub mod volume_args;
 
 mod parse;
 pub use parse::*;
@@ -53,8 +53,8 @@ use glam::Vec3;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use wisp::budget::{Budget, RunPlan};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::fiber::ShadingMode;
-use wisp::frame::{Engine, EngineConfig};
 use wisp::hairstyle::{Hairstyle, HairstyleError};
 use wisp::motion::{Fit, JointRef, Motion, MotionError, MotionOptions};
 use wisp::scene::file::LightJson;
@@ -222,7 +222,7 @@ pub struct SceneArgs {
     #[arg(long, value_enum, default_value = "dual")]
     pub shading: ShadingArg,
     #[command(flatten)]
-    pub volume: volume_args::VolumeArgs,
+    pub volume: light_path_args::LightPathArgs,
     /// Turn off density-based self-collision.
     #[arg(long)]
     pub no_self_collision: bool,
@@ -286,7 +286,7 @@ impl SceneArgs {
         .with_scene(&scene);
         config.lighting.mode = self.shading.into();
         if let Some(mm) = self.contact_mm {
-            config.contact = wisp::frame::ContactShadowing::from_mm(mm);
+            config.contact = wisp::engine::ContactShadowing::from_mm(mm);
         }
         if let Some(n) = self.segment_pieces {
             config.segment_pieces = n;
@@ -407,8 +407,8 @@ impl SceneArgs {
         motion: &Motion,
     ) -> Result<(), AppError> {
         let roots = match hair {
-            Some((guides, _)) => wisp::frame::roots_of_guides_on_head(guides, style, motion),
-            None => wisp::frame::roots_on_head(style, motion),
+            Some((guides, _)) => wisp::engine::roots_of_guides_on_head(guides, style, motion),
+            None => wisp::engine::roots_on_head(style, motion),
         };
         let Some(r) = roots else {
             return Ok(());

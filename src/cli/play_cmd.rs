@@ -26,8 +26,8 @@ use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 use std::time::{Duration, Instant};
+use wisp::engine::{Engine, StageTimings};
 use wisp::fiber::ShadingMode;
-use wisp::frame::{Engine, StageTimings};
 use wisp::output::write_png_rgb8;
 use wisp::scene::CameraSetup;
 

@@ -26,7 +26,7 @@ use super::{AppError, SceneArgs};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use wisp::budget::RunPlan;
-use wisp::frame::{Engine, StageTimings};
+use wisp::engine::{Engine, StageTimings};
 use wisp::output::{FrameFormat, OutputError};
 use wisp::raster::Framebuffer;
 

@@ -4,7 +4,7 @@
 
 use super::{AppError, parse_finite_f32, parse_point, parse_positive_f32};
 use glam::Vec3;
-use wisp::frame::EngineConfig;
+use wisp::engine::EngineConfig;
 use wisp::raster::LineWidth;
 use wisp::scene::SceneFile;
 use wisp::scene::file::{CameraJson, LightJson};

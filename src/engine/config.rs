@@ -119,7 +119,7 @@ pub struct EngineConfig {
     pub segment_pieces: u32,
     /// The light-path volume of [`crate::fiber::ShadingMode::Volume`] (unused by the other
     /// shaders).
-    pub volume: crate::volume::VolumeParams,
+    pub volume: crate::light_paths::LightPathParams,
 }
 
 /// Whether the maps take the fibres just in front of each vertex exactly (`map::contact`).
@@ -189,7 +189,7 @@ impl Default for EngineConfig {
             draw_solids: true,
             contact: ContactShadowing::Off,
             segment_pieces: 1,
-            volume: crate::volume::VolumeParams::default(),
+            volume: crate::light_paths::LightPathParams::default(),
         }
     }
 }

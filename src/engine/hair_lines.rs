@@ -22,7 +22,7 @@ pub(super) fn strand_widths_m(
     widths_m.clear();
     widths_m.extend(
         strands
-            .fibre_share
+            .fiber_share
             .iter()
             .map(|share| strand_width_m * share),
     );
@@ -45,7 +45,7 @@ pub(super) fn hair_lines<'a>(
         points_per_line: strands.points_per_strand,
         bundle: (!bundle_points.is_empty()).then_some(Bundle {
             radius_m: 0.5 * style.strand_spacing_m(),
-            fibre_radius_m: style.fiber.radius_m,
+            fiber_radius_m: style.fiber.radius_m,
             points: bundle_points,
         }),
     }

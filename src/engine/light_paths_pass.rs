@@ -1,9 +1,9 @@
-//! The multiply scattered light of `ShadingMode::Volume` (`crate::volume`), added to the
+//! The multiply scattered light of `ShadingMode::Volume` (`crate::light_paths`), added to the
 //! vertices' single scattering: one volume of light paths per light, gathered at
 //! each shaded vertex.
 
 use super::Engine;
-use crate::volume::{PhotonVolume, pick_of};
+use crate::light_paths::{LightPaths, pick_of};
 use rayon::prelude::*;
 
 impl Engine {
@@ -23,7 +23,7 @@ impl Engine {
         let solids = self.config.draw_solids;
         let colliders = crate::sim::collide::CollisionScene::new(&self.frame_colliders);
         for light in &self.config.lighting.lights {
-            let Some(volume) = PhotonVolume::build(
+            let Some(volume) = LightPaths::build(
                 &self.fiber,
                 &strands.positions,
                 &strands.tangents,

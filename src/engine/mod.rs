@@ -26,9 +26,9 @@
 
 mod config;
 mod hair_lines;
+mod light_paths_pass;
 mod map_reuse;
 mod setup;
-mod volume_pass;
 
 pub use config::{
     ContactShadowing, DEFAULT_CONTACT_WINDOW_M, DEFAULT_MIN_LINE_WIDTH_PX, EngineConfig,
@@ -209,9 +209,9 @@ impl Engine {
             config.height,
         );
         let fb = Framebuffer::new(config.width, config.height, config.background);
-        let fibres = style.strands.fibers_per_strand.round();
-        let bundle_points = if fibres >= 2.0 {
-            crate::map::exact::bundle_disc_points(fibres.min(256.0) as u32)
+        let fibers = style.strands.fibers_per_strand.round();
+        let bundle_points = if fibers >= 2.0 {
+            crate::disc::bundle_disc_points(fibers.min(256.0) as u32)
         } else {
             Vec::new()
         };
@@ -597,7 +597,7 @@ impl Engine {
             positions: &self.strands.positions,
             tangents: &self.strands.tangents,
             lengths_m: &self.strands.lengths_m,
-            fibre_share: &self.strands.fibre_share,
+            fiber_share: &self.strands.fiber_share,
             fibers_per_strand: self.style.strands.fibers_per_strand,
             light: crate::map::MapLight::of(light, aim_m),
             fiber: &self.fiber,
@@ -612,7 +612,7 @@ impl Engine {
             .map(|window_m| crate::map::contact::ContactInput {
                 positions: &self.strands.positions,
                 points_per_strand: self.strands.points_per_strand,
-                fibre_share: &self.strands.fibre_share,
+                fiber_share: &self.strands.fiber_share,
                 window_m,
                 fiber: &self.fiber,
             });

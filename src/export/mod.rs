@@ -25,7 +25,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use crate::frame::Engine;
+use crate::engine::Engine;
 use crate::output::{OutputError, write_atomically, write_exr_rgba_f32, write_png_rgb8};
 use crate::scene::CameraSpec;
 use cyhair::CyHairError;

@@ -1,5 +1,5 @@
 //! Sampling the Chiang 2016 fibre model (`chiang.rs`): where light arriving from one direction
-//! leaves, for tracing light through hair (`crate::volume`).
+//! leaves, for tracing light through hair (`crate::light_paths`).
 //!
 //! The near-field model at offset h (`chiang.rs`, module doc) is a sum of lobes, each a product
 //! of densities: g = Σ_p A_p(θ, h) M_p(θ', θ) N_p(φ − Φ_p(θ, h)) (p ≥ 3: N uniform). Drawing

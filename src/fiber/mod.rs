@@ -90,7 +90,7 @@ pub enum ShadingMode {
     /// the fibre model (ACCURACY.md §2, "Where the side-lit deficit comes from").
     Visibility,
     /// Single scattering with hard shadows (as [`ShadingMode::SingleScattering`]) plus the
-    /// multiply scattered light of paths traced through the hair volume (`crate::volume`,
+    /// multiply scattered light of paths traced through the hair volume (`crate::light_paths`,
     /// Moon, Walter & Marschner 2008's split): all orders without dual scattering's
     /// assumptions, at seconds per frame.
     Volume,

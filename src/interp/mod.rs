@@ -54,7 +54,7 @@ pub struct StrandGeometry {
     pub lengths_m: Vec<f32>,
     /// Share of the strand's fibres present at each point, in [0, 1]: 1 along the strand, falling
     /// linearly to 0 over its tip taper (fibres end one by one toward the tip).
-    pub fibre_share: Vec<f32>,
+    pub fiber_share: Vec<f32>,
 }
 
 impl StrandGeometry {
@@ -100,14 +100,14 @@ pub fn interpolate_among(
     out.positions.resize(total, Vec3::ZERO);
     out.tangents.resize(total, Vec3::ZERO);
     out.lengths_m.resize(total, 0.0);
-    out.fibre_share.resize(total, 1.0);
+    out.fiber_share.resize(total, 1.0);
     let ppg = guides.points_per_guide;
     debug_assert!(ppg <= MAX_GUIDE_POINTS);
     out.positions
         .par_chunks_mut(n)
         .zip(out.tangents.par_chunks_mut(n))
         .zip(out.lengths_m.par_chunks_mut(n))
-        .zip(out.fibre_share.par_chunks_mut(n))
+        .zip(out.fiber_share.par_chunks_mut(n))
         .enumerate()
         .for_each(|(s, (((pos, tan), len), share))| {
             let wisp = layout.wisp_guides[layout.strand_wisp[s] as usize];

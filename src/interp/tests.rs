@@ -71,7 +71,7 @@ fn strands_end_short_of_their_guides_and_thin_toward_the_tips() {
             arc(&full.positions[s * n..(s + 1) * n]),
         );
         assert!((a / b - f).abs() < 0.05, "strand {s}: {a} / {b} vs {f}");
-        let share = &geo.fibre_share[s * n..(s + 1) * n];
+        let share = &geo.fiber_share[s * n..(s + 1) * n];
         assert_eq!(share[0], 1.0);
         assert_eq!(share[n - 1], 0.0, "no fibre reaches past the tip");
         assert!(
@@ -87,7 +87,7 @@ fn strands_end_short_of_their_guides_and_thin_toward_the_tips() {
             "strand {s}: {filled} vs {expect}"
         );
     }
-    assert!(full.fibre_share.iter().all(|s| *s == 1.0));
+    assert!(full.fiber_share.iter().all(|s| *s == 1.0));
 }
 
 #[test]

@@ -27,7 +27,7 @@ fn point_light_follows_the_inverse_square_law_and_stays_finite_at_its_centre() {
 }
 
 #[test]
-fn colours_must_be_finite_and_non_negative() {
+fn colors_must_be_finite_and_non_negative() {
     assert!(Light::directional(Vec3::X, Vec3::new(1.0, -0.1, 1.0)).is_err());
     assert!(Light::point(Vec3::X, Vec3::splat(f32::NAN)).is_err());
     assert!(Light::point(Vec3::splat(f32::INFINITY), Vec3::ONE).is_err());

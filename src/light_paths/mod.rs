@@ -69,7 +69,7 @@ const FLIGHTS_PER_PATH: u64 = 32;
 
 /// How the volume is built.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct VolumeParams {
+pub struct LightPathParams {
     /// Cell edge, metres (> 0).
     pub cell_m: f32,
     /// Light paths per light, each sent where it meets the hair's columns (`emit.rs`). The
@@ -89,7 +89,7 @@ pub struct VolumeParams {
     pub max_bins_bytes: u64,
 }
 
-impl Default for VolumeParams {
+impl Default for LightPathParams {
     fn default() -> Self {
         Self {
             cell_m: 0.004,
@@ -312,7 +312,7 @@ pub(crate) struct Record {
 
 /// The multiply scattered light of one directional light in the hair (module doc).
 #[derive(Clone, Debug, Default)]
-pub struct PhotonVolume {
+pub struct LightPaths {
     cells: Cells,
     /// Per slot ([`Cells::slot`]), its merged records' range: `starts[s]..starts[s + 1]`.
     starts: Vec<u32>,
@@ -325,7 +325,7 @@ pub struct PhotonVolume {
     pub scatterings: u64,
 }
 
-impl PhotonVolume {
+impl LightPaths {
     /// Traces `params.paths` light paths of `light` through the hair the points stand for
     /// (`lengths_m`: metres of fibre each, in units of the strand's `fibers_per_strand`
     /// fibres), with `fiber`'s Chiang constants. `solid_depth_m(p)`, when given, says how deep
@@ -339,9 +339,9 @@ impl PhotonVolume {
         lengths_m: &[f32],
         fibers_per_strand: f32,
         light: &Light,
-        params: &VolumeParams,
+        params: &LightPathParams,
         solid_depth_m: Option<D>,
-    ) -> Option<PhotonVolume> {
+    ) -> Option<LightPaths> {
         let n = params.bins_per_axis.max(1) as u64;
         let mut cell_m = params.cell_m;
         let mut cells = loop {
@@ -390,7 +390,7 @@ impl PhotonVolume {
             scatterings += traced.scatterings;
         }
         let (starts, from, fluence) = bins.finish();
-        Some(PhotonVolume {
+        Some(LightPaths {
             cell_m: cells.cell_m,
             cells,
             starts,
@@ -408,7 +408,7 @@ impl PhotonVolume {
         points: u64,
         sample_len_m: f32,
         extent_m: f32,
-        params: &VolumeParams,
+        params: &LightPathParams,
     ) -> u64 {
         let cell_m = params
             .cell_m

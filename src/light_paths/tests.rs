@@ -54,9 +54,9 @@ fn free_flights_follow_beer_lambert_in_a_slab() {
     // Fibre length per volume: the pieces fill [−w − len/2, w + len/2] along X.
     let lambda = n as f32 * len / ((2.0 * w + len) * depth * (2.0 * w));
     let mut rng = SplitMix64::new(9);
-    for cos_to_fibre in [0.0f32, 0.5] {
-        let sin = (1.0 - cos_to_fibre * cos_to_fibre).sqrt();
-        let d = Vec3::new(cos_to_fibre, -sin, 0.0);
+    for cos_to_fiber in [0.0f32, 0.5] {
+        let sin = (1.0 - cos_to_fiber * cos_to_fiber).sqrt();
+        let d = Vec3::new(cos_to_fiber, -sin, 0.0);
         let tau = 2.0 * r * lambda * (depth / sin) * sin;
         let shots = 200_000;
         let mut passed = 0;
@@ -82,7 +82,7 @@ fn free_flights_follow_beer_lambert_in_a_slab() {
         // Binomial error (0.001) plus the cells' Poisson counts (about 0.5% of the value).
         assert!(
             (measured - want).abs() < 0.004 + 0.01 * want,
-            "cos to fibre {cos_to_fibre}: τ {tau:.3}, passed {measured:.4}, Beer–Lambert {want:.4}"
+            "cos to fibre {cos_to_fiber}: τ {tau:.3}, passed {measured:.4}, Beer–Lambert {want:.4}"
         );
     }
 }
@@ -92,7 +92,7 @@ fn free_flights_follow_beer_lambert_in_a_slab() {
 /// ∫ S cos θi dωi = 1 for every ωo (`chiang.rs`, "Energy"), so the gather's units are those
 /// of the shader's (radiance = S cos θi × irradiance).
 #[test]
-fn isotropic_records_light_a_white_fibre_by_a_quarter_pi() {
+fn isotropic_records_light_a_white_fiber_by_a_quarter_pi() {
     let fiber = chiang([0.0; 3]);
     let (p, u, l) = slab(10, 0.001, 0.004, 0.004, 1);
     let cells = Cells::build(&p, &u, &l, 1.0, 0.004).expect("cells");
@@ -115,7 +115,7 @@ fn isotropic_records_light_a_white_fibre_by_a_quarter_pi() {
         all_from.extend_from_slice(&from);
         starts[c + 1] = ((c + 1) * k) as u32;
     }
-    let volume = PhotonVolume {
+    let volume = LightPaths {
         fluence: vec![Vec3::splat(phi / k as f32); all_from.len()],
         from: all_from,
         starts,
@@ -148,7 +148,7 @@ fn isotropic_records_light_a_white_fibre_by_a_quarter_pi() {
 fn the_same_records_for_any_thread_count() {
     let fiber = chiang([0.3, 0.5, 0.9]);
     let (p, u, l) = slab(3_000, 0.002, 0.01, 0.006, 2);
-    let params = VolumeParams {
+    let params = LightPathParams {
         cell_m: 0.002,
         paths: 5_000,
         seed: 77,
@@ -161,7 +161,7 @@ fn the_same_records_for_any_thread_count() {
             .build()
             .expect("pool")
             .install(|| {
-                PhotonVolume::build(&fiber, &p, &u, &l, 1.0, &overhead, &params, NO_SOLIDS)
+                LightPaths::build(&fiber, &p, &u, &l, 1.0, &overhead, &params, NO_SOLIDS)
                     .expect("volume")
             })
     };
@@ -185,7 +185,7 @@ fn the_same_records_for_any_thread_count() {
 fn a_distant_point_light_is_a_directional_light_of_irradiance_i_over_d_squared() {
     let fiber = chiang([0.2, 0.3, 0.5]);
     let (p, u, l) = slab(4_000, 0.002, 0.01, 0.006, 8);
-    let params = VolumeParams {
+    let params = LightPathParams {
         cell_m: 0.002,
         paths: 40_000,
         seed: 3,
@@ -201,8 +201,8 @@ fn a_distant_point_light_is_a_directional_light_of_irradiance_i_over_d_squared()
     let sun =
         Light::directional(-Vec3::Y, Vec3::splat(400.0 / (distance * distance))).expect("light");
     let total = |light: &Light| {
-        let v = PhotonVolume::build(&fiber, &p, &u, &l, 1.0, light, &params, NO_SOLIDS)
-            .expect("volume");
+        let v =
+            LightPaths::build(&fiber, &p, &u, &l, 1.0, light, &params, NO_SOLIDS).expect("volume");
         v.fluence.iter().copied().sum::<Vec3>()
     };
     let (a, b) = (total(&point), total(&sun));
@@ -224,7 +224,7 @@ fn a_distant_point_light_is_a_directional_light_of_irradiance_i_over_d_squared()
 fn solids_absorb_the_light_that_enters_them() {
     let fiber = chiang([0.2, 0.3, 0.5]);
     let (p, u, l) = slab(2_000, 0.002, 0.01, 0.006, 4);
-    let params = VolumeParams {
+    let params = LightPathParams {
         cell_m: 0.002,
         paths: 10_000,
         seed: 1,
@@ -234,7 +234,7 @@ fn solids_absorb_the_light_that_enters_them() {
     let roof = |q: Vec3| if q.y > 0.0065 { 1.0 } else { 0.0 };
     let shallow = |q: Vec3| if q.y > 0.0065 { 1e-4 } else { 0.0 };
     let build = |depth: Option<&(dyn Fn(Vec3) -> f32 + Sync)>| {
-        PhotonVolume::build(
+        LightPaths::build(
             &fiber,
             &p,
             &u,
@@ -340,16 +340,16 @@ fn cells_grow_until_the_bins_fit_their_cap() {
     let (p, u, l) = slab(4_000, 0.002, 0.02, 0.01, 6);
     let overhead = Light::directional(-Vec3::Y, Vec3::ONE).expect("light");
     let build = |max_bins_bytes: u64| {
-        let params = VolumeParams {
+        let params = LightPathParams {
             cell_m: 0.001,
             paths: 2_000,
             max_bins_bytes,
             ..Default::default()
         };
-        PhotonVolume::build(&fiber, &p, &u, &l, 1.0, &overhead, &params, NO_SOLIDS).expect("volume")
+        LightPaths::build(&fiber, &p, &u, &l, 1.0, &overhead, &params, NO_SOLIDS).expect("volume")
     };
     let (free, capped) = (build(u64::MAX), build(2_000_000));
-    let bytes = |v: &PhotonVolume| super::bins::Bins::estimated_bytes(v.cells.slots as u64, 8);
+    let bytes = |v: &LightPaths| super::bins::Bins::estimated_bytes(v.cells.slots as u64, 8);
     assert_eq!(free.cell_m, 0.001);
     assert!(
         bytes(&free) > 2_000_000,

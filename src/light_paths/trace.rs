@@ -2,7 +2,7 @@
 //! grid walked cell by cell (Amanatides & Woo 1987), Chiang scattering, Russian roulette.
 
 use super::emit::Emitter;
-use super::{Cells, NO_SLOT, Record, VolumeParams};
+use super::{Cells, LightPathParams, NO_SLOT, Record};
 use crate::fiber::Fiber;
 use crate::fiber::chiang::TrimmedLogistic;
 use crate::fiber::chiang_sample::sample_scatter;
@@ -82,7 +82,7 @@ pub(super) fn trace(
     fiber: &Fiber,
     radius_m: f32,
     emitter: &Emitter,
-    params: &VolumeParams,
+    params: &LightPathParams,
     blocks: std::ops::Range<u32>,
     (span, ranges): (usize, usize),
 ) -> Traced {

@@ -49,7 +49,7 @@ pub struct MapBuildInput<'a> {
     /// sample stands for is `lengths_m / share` long: a tapered tip's fewer fibres still run
     /// along its whole piece, so its crossings are spread over that length, not packed into a
     /// shorter one.
-    pub fibre_share: &'a [f32],
+    pub fiber_share: &'a [f32],
     /// Real fibres per render strand.
     pub fibers_per_strand: f32,
     /// The light's geometry: the direction it travels, or where a point light is.
@@ -65,7 +65,7 @@ impl MapBuildInput<'_> {
     #[inline]
     pub fn span_m(&self, s: usize) -> f32 {
         let len = self.lengths_m.get(s).copied().unwrap_or(0.0);
-        match self.fibre_share.get(s) {
+        match self.fiber_share.get(s) {
             Some(&share) if share > 0.0 && share < 1.0 && (len / share).is_finite() => len / share,
             _ => len,
         }

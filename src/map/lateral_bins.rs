@@ -13,7 +13,7 @@ pub(super) type BinRect = Option<([usize; 2], [usize; 2])>;
 /// Lists items `0..count` in the bins of a grid of `dims` bins (row-major, `dims[1]` bins a
 /// row) given by `rect(i)`, each bin ordered by `x_min(i)` (the item's nearest depth) then by
 /// index. Returns the bins' starts (one more than the bins) and the concatenated lists.
-pub(super) fn list_by_depth(
+pub(crate) fn list_by_depth(
     dims: [usize; 2],
     count: usize,
     rect: impl Fn(usize) -> BinRect,

@@ -140,9 +140,9 @@ impl LightMap {
         p: Vec3,
         to_eye: Vec3,
         tangent: Vec3,
-        fibre_radius_m: f32,
+        fiber_radius_m: f32,
     ) -> LightAtPoint {
-        let s_c = self.shared_tube_m(p, to_eye, tangent, fibre_radius_m);
+        let s_c = self.shared_tube_m(p, to_eye, tangent, fiber_radius_m);
         let min_shift = 0.05 * self.geom.ds_m / crate::map::DEPTH_BINS as f32;
         if s_c <= min_shift {
             return self.light_at(p);
@@ -174,17 +174,17 @@ impl LightMap {
         p: Vec3,
         to_eye: Vec3,
         tangent: Vec3,
-        fibre_radius_m: f32,
+        fiber_radius_m: f32,
     ) -> LightAtPoint {
         let Some(contact) = &self.contact else {
-            return self.light_at_seen(p, to_eye, tangent, fibre_radius_m);
+            return self.light_at_seen(p, to_eye, tangent, fiber_radius_m);
         };
         // Where the map says the point itself is dark, the exact window cannot make it
         // noticeably brighter (the map is calibrated there, ACCURACY.md §1): the map's value
         // stands, given the camera sees the point as everywhere else.
         let here = self.light_at(p);
         if here.tf.max_element() <= DARK {
-            return self.light_at_seen(p, to_eye, tangent, fibre_radius_m);
+            return self.light_at_seen(p, to_eye, tangent, fiber_radius_m);
         }
         // The window holds about CONTACT_CROSSINGS of the map's expected crossings in front of
         // the point (all of them up to the full window near the lit surface; a shorter window
@@ -193,7 +193,7 @@ impl LightMap {
         let delta = contact.window_m() * (CONTACT_CROSSINGS / n_here.max(CONTACT_CROSSINGS));
         let to_light = self.proj.toward_light(p);
         let far_p = p + to_light * delta;
-        let s_c = self.shared_tube_m(p, to_eye, tangent, fibre_radius_m);
+        let s_c = self.shared_tube_m(p, to_eye, tangent, fiber_radius_m);
         let far = if s_c <= delta {
             self.light_at(far_p)
         } else {
@@ -224,7 +224,7 @@ impl LightMap {
     /// The length s_c over which the ray toward the light and the ray toward the eye share
     /// the fibres they pass (module doc of [`Self::light_at_seen`]), metres; 0 when they
     /// share none.
-    fn shared_tube_m(&self, p: Vec3, to_eye: Vec3, tangent: Vec3, fibre_radius_m: f32) -> f32 {
+    fn shared_tube_m(&self, p: Vec3, to_eye: Vec3, tangent: Vec3, fiber_radius_m: f32) -> f32 {
         let to_light = self.proj.toward_light(p);
         let v = to_eye.normalize_or_zero();
         let cos_g = v.dot(to_light);
@@ -240,7 +240,7 @@ impl LightMap {
         let limit = 2.0 * self.geom.n as f32 * self.geom.ds_m;
         // Opposite half-spaces (g ≥ 90°): the rays share only the point itself.
         let s_c = if cos_g > 0.0 {
-            (2.0 * fibre_radius_m / (sin_g * across).max(1e-9)).min(limit)
+            (2.0 * fiber_radius_m / (sin_g * across).max(1e-9)).min(limit)
         } else {
             0.0
         };

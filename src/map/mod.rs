@@ -72,14 +72,12 @@
 //! [`exact`] shoots rays through explicit fibre cylinders (no grid, no statistics), and
 //! [`accuracy`] compares the map with it; `wisp accuracy` prints the tables of ACCURACY.md.
 
-pub mod accuracy;
 mod budget;
 mod build;
 mod column;
 pub mod contact;
 mod entry_depths;
-pub mod exact;
-mod lateral_bins;
+pub(crate) mod lateral_bins;
 mod lookup;
 pub(crate) mod occluders;
 pub mod surface;

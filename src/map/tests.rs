@@ -24,7 +24,7 @@ fn build(points: &[Vec3], len: f32, n: u32, ds: f32) -> LightMap {
         positions: points,
         tangents: &tangents,
         lengths_m: &lengths,
-        fibre_share: &[],
+        fiber_share: &[],
         fibers_per_strand: 10.0,
         light: Vec3::X.into(),
         fiber: &f,
@@ -135,7 +135,7 @@ fn every_column_is_monotonic_exactly() {
         positions: &geo.positions,
         tangents: &geo.tangents,
         lengths_m: &geo.lengths_m,
-        fibre_share: &geo.fibre_share,
+        fiber_share: &geo.fiber_share,
         fibers_per_strand: style.strands.fibers_per_strand,
         light: Vec3::new(-0.5, -0.7, 0.5).into(),
         fiber: &f,
@@ -219,7 +219,7 @@ fn a_tapered_sample_spreads_its_crossings_along_its_whole_piece() {
     let piece_m = 0.04;
     let share = 0.25;
     let f = fiber();
-    let build_one = |lengths_m: f32, fibre_share: &[f32]| {
+    let build_one = |lengths_m: f32, fiber_share: &[f32]| {
         let mut map = LightMap::new(
             MapGeometry {
                 n: 16,
@@ -233,7 +233,7 @@ fn a_tapered_sample_spreads_its_crossings_along_its_whole_piece() {
             positions: &[Vec3::new(0.005, 0.04, 0.005)],
             tangents: &[Vec3::Y],
             lengths_m: &[lengths_m],
-            fibre_share,
+            fiber_share,
             fibers_per_strand: 10.0,
             light: Vec3::X.into(),
             fiber: &f,

@@ -151,7 +151,7 @@ fn check_png(
     let got = (info.bit_depth, info.color_type);
     size(got_width, got_height)?;
     if got != want {
-        let colour = match got.1 {
+        let color = match got.1 {
             png::ColorType::Grayscale => "grey",
             png::ColorType::Rgb => "RGB",
             png::ColorType::Indexed => "palette",
@@ -159,7 +159,7 @@ fn check_png(
             png::ColorType::Rgba => "RGBA",
         };
         return Err(FrameDefect::WrongKind {
-            got: format!("a PNG of {}-bit {colour}", got.0 as u8),
+            got: format!("a PNG of {}-bit {color}", got.0 as u8),
             want: want_words,
         });
     }

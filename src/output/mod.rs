@@ -15,4 +15,4 @@ pub use frames::{FrameDefect, FrameFormat, check_frame};
 pub use png_file::{OutputError, write_atomically, write_png_rgb8, write_png_rgba16};
 
 /// The sRGB encodings, where the output writers have always offered them.
-pub use crate::colour::{linear_to_srgb8, linear_to_srgb16};
+pub use crate::color::{linear_to_srgb8, linear_to_srgb16};

@@ -2,7 +2,7 @@
 //! before they exist, from the sizes and constants `framebuffer.rs` and `lines.rs` use.
 
 use super::fragment::Frag;
-use super::segment::{Fibres, Seg, SegColours};
+use super::segment::{Fibers, Seg, SegColors};
 use super::{Framebuffer, LineScratch};
 use glam::Vec3;
 
@@ -56,7 +56,7 @@ impl LineScratch {
         let binned = (segments as f64 * touched).ceil() as u64;
         let per_binned =
             2 * size_of::<Seg>() as u64 + 2 * size_of::<u64>() as u64 + size_of::<u32>() as u64;
-        let colours = segments.saturating_mul(size_of::<SegColours>() as u64);
+        let colors = segments.saturating_mul(size_of::<SegColors>() as u64);
         let headers = segments.div_ceil(SETUP_CHUNK) * bands * size_of::<Vec<Seg>>() as u64;
         let fragments = segments as f64 * 3.0 * (rows_per_segment.max(0.0) + 1.0);
         let densest_band = (fragments * DENSEST_BAND / bands as f64)
@@ -68,21 +68,21 @@ impl LineScratch {
             .ceil() as u64;
         let per_thread = densest_band
             .saturating_mul(2 * FRAG_BYTES)
-            .saturating_add(densest_segments.saturating_mul(size_of::<SegColours>() as u64));
+            .saturating_add(densest_segments.saturating_mul(size_of::<SegColors>() as u64));
         let band_pixels = BAND_ROWS.saturating_mul(width as u64);
         let kept_at_most = bands.saturating_mul(band_pixels.saturating_mul(KEEP_PER_PIXEL + 1));
         let kept = (fragments.ceil() as u64)
             .min(kept_at_most)
             .saturating_mul(FRAG_BYTES);
-        let fibres = if bundles {
-            segments.saturating_mul(size_of::<Fibres>() as u64)
+        let fibers = if bundles {
+            segments.saturating_mul(size_of::<Fibers>() as u64)
         } else {
             0
         };
         binned
             .saturating_mul(per_binned)
-            .saturating_add(fibres)
-            .saturating_add(colours)
+            .saturating_add(fibers)
+            .saturating_add(colors)
             .saturating_add(kept)
             .saturating_add(headers)
             .saturating_add(per_thread.saturating_mul(threads))

@@ -39,7 +39,7 @@ pub struct Bundle<'a> {
     /// Radius of the disc the fibres fill, world metres.
     pub radius_m: f32,
     /// Radius of one fibre, world metres.
-    pub fibre_radius_m: f32,
+    pub fiber_radius_m: f32,
     /// Each fibre's place in the unit disc (at least two; one fibre is a plain line).
     pub points: &'a [Vec2],
 }
@@ -66,7 +66,7 @@ impl Profiles {
     /// one: fewer than two fibres, non-finite or non-positive radii, or fibres as wide as the
     /// bundle.
     pub(super) fn prepare(&mut self, bundle: &Bundle) -> bool {
-        let rho = bundle.fibre_radius_m / bundle.radius_m;
+        let rho = bundle.fiber_radius_m / bundle.radius_m;
         if bundle.points.len() < 2
             || !(rho > 0.0 && rho < 0.5)
             || bundle.points.iter().any(|p| !p.is_finite())

@@ -11,7 +11,7 @@ use super::hiding::Hiding;
 use super::samples::{
     ALL_SAMPLES, HIDDEN, NIBBLE_LANES, SAMPLE_COUNT, SAMPLE_X, SAMPLE_Y, sample_reach,
 };
-use super::segment::{Fibres, NO_FIBRES, Params, Seg, SegColours};
+use super::segment::{Fibers, NO_FIBRES, Params, Seg, SegColors};
 use crate::keysort::sort_keys;
 
 /// One segment's coverage of one pixel: 24 bytes. It holds where on its segment the pixel
@@ -60,19 +60,19 @@ impl Emitted {
 /// The colours of `ids`' segments, taken from the draw call's table `colours` (its index
 /// [`Seg::k`]) into `out`, the table [`sort_by_pixel`] reads with [`Frag::seg`] (black for
 /// a segment the draw call's table does not hold).
-pub(super) fn band_colours(ids: &[u32], colours: &[SegColours], out: &mut Vec<SegColours>) {
+pub(super) fn band_colors(ids: &[u32], colors: &[SegColors], out: &mut Vec<SegColors>) {
     out.clear();
     out.extend(
         ids.iter()
-            .map(|&k| colours.get(k as usize).copied().unwrap_or_default()),
+            .map(|&k| colors.get(k as usize).copied().unwrap_or_default()),
     );
 }
 
 /// A fragment's linear RGB: its segment's colours at its place along it (black for a segment
 /// the table does not hold).
 #[inline(always)]
-fn colour_of(f: &Frag, colours: &[SegColours]) -> Vec3 {
-    let [c0, c1] = colours.get(f.seg as usize).copied().unwrap_or_default();
+fn color_of(f: &Frag, colors: &[SegColors]) -> Vec3 {
+    let [c0, c1] = colors.get(f.seg as usize).copied().unwrap_or_default();
     c0 + (c1 - c0) * f.t
 }
 
@@ -128,7 +128,7 @@ fn fmax(a: f32, b: f32) -> f32 {
 pub(super) fn emit_fragments(
     p: &Params,
     segs: &[Seg],
-    fibres: &[Fibres],
+    fibers: &[Fibers],
     keys: &[u64],
     band: Rows,
     hiding: &mut Hiding,
@@ -146,7 +146,7 @@ pub(super) fn emit_fragments(
             continue;
         }
         let before = frags.len();
-        emit_one(p, s, ids.len() as u32, fibres, band, hiding, frags);
+        emit_one(p, s, ids.len() as u32, fibers, band, hiding, frags);
         let kept = frags.len() > before;
         if kept {
             ids.push(s.k);
@@ -171,15 +171,15 @@ fn emit_one(
     p: &Params,
     s: &Seg,
     id: u32,
-    fibres: &[Fibres],
+    fibers: &[Fibers],
     band: Rows,
     hiding: &mut Hiding,
     frags: &mut Vec<Frag>,
 ) {
     // A bundle drawn as its fibres, with mitred joints; else a plain band. The choice is
     // made once per segment, so each pixel loop is compiled for one kind.
-    let fib = match (p.bundle, s.fibres) {
-        (Some(prof), k) if k != NO_FIBRES => fibres.get(k as usize).map(|f| (prof, *f)),
+    let fib = match (p.bundle, s.fibers) {
+        (Some(prof), k) if k != NO_FIBRES => fibers.get(k as usize).map(|f| (prof, *f)),
         _ => None,
     };
     match fib {
@@ -347,7 +347,7 @@ pub(super) struct Layer {
     /// As the fragment's.
     pub(super) iz_bits: u32,
     pub(super) alpha: f32,
-    pub(super) colour: Vec3,
+    pub(super) color: Vec3,
     pub(super) mask: u16,
 }
 
@@ -357,7 +357,7 @@ pub(super) struct Layer {
 /// runs come far to near by mid-point depth, in `keys` order.
 pub(super) fn sort_by_pixel(
     frags: &[Frag],
-    colours: &[SegColours],
+    colors: &[SegColors],
     sorted: &mut Vec<Layer>,
     starts: &mut Vec<u32>,
     pixels: usize,
@@ -385,7 +385,7 @@ pub(super) fn sort_by_pixel(
                 *dst = Layer {
                     iz_bits: f.iz_bits,
                     alpha: f.alpha,
-                    colour: colour_of(f, colours),
+                    color: color_of(f, colors),
                     mask: f.mask,
                 };
             }
@@ -442,7 +442,7 @@ pub(super) fn composite(
                 seen += m * *t;
                 *t -= *t * (m * a);
             }
-            acc += f.colour * (alpha * seen.element_sum() * (1.0 / SAMPLE_COUNT as f32));
+            acc += f.color * (alpha * seen.element_sum() * (1.0 / SAMPLE_COUNT as f32));
             // Stop where every sub-sample is hidden: what is behind (farther hair, and the
             // background) would add under 1/1024 of itself, and the pixel counts as covered.
             let most = trans[0]

@@ -9,7 +9,7 @@
 //! background the colour is premultiplied by the coverage (what an RGBA EXR stores).
 //!
 //! How: [`Framebuffer::clear`] reuses the allocation between frames. The 8-bit conversions give
-//! exactly what [`crate::colour::linear_to_srgb8`] gives (NaN to 0, clamped, so a stray NaN
+//! exactly what [`crate::color::linear_to_srgb8`] gives (NaN to 0, clamped, so a stray NaN
 //! never reaches a PNG or a window as garbage), through a table built once from that function:
 //! [0, 1] is cut into 4096 equal buckets, and since the sRGB curve never climbs more than 0.81
 //! of an 8-bit level per bucket (its steepest slope is 12.92·255 per unit), each bucket holds
@@ -32,7 +32,7 @@ use std::sync::OnceLock;
 use glam::Vec3;
 use rayon::prelude::*;
 
-use crate::colour::{linear_to_srgb8, linear_to_srgb16};
+use crate::color::{linear_to_srgb8, linear_to_srgb16};
 
 /// Pixels per parallel task of the 8-bit conversions.
 const CONVERT_CHUNK: usize = 16 * 1024;

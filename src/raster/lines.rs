@@ -101,12 +101,12 @@ use super::bundle::Profiles;
 use super::camera::Camera;
 use super::cull::FarDepth;
 use super::fragment::{
-    Band, Emitted, Frag, Layer, Rows, band_colours, composite, emit_fragments, sort_by_pixel,
+    Band, Emitted, Frag, Layer, Rows, band_colors, composite, emit_fragments, sort_by_pixel,
 };
 use super::framebuffer::Framebuffer;
 use super::hiding::Hiding;
 use super::polyline::{LineStyle, LineWidth, Polylines};
-use super::segment::{Fibres, Params, Seg, SegColours, setup_segment};
+use super::segment::{Fibers, Params, Seg, SegColors, setup_segment};
 use crate::keysort::sort_keys;
 
 /// Image rows per band (the unit of parallel work and of binning).
@@ -126,17 +126,17 @@ pub struct LineScratch {
     pub(super) profiles: Profiles,
     /// With bundles, each segment's [`Fibres`] (by segment index): grown to the largest call,
     /// never cleared; an entry is read only for a segment whose set-up wrote it this call.
-    pub(super) fibres: Vec<Fibres>,
+    pub(super) fibers: Vec<Fibers>,
     /// Each segment's colours at its ends (by segment index), what its fragments are
     /// composited with: written by the set-up, or for the seen segments by
     /// [`super::draw_seen_polylines`]. Only grown; an entry is read only for a segment that
     /// kept a fragment this call.
-    pub(super) colours: Vec<SegColours>,
+    pub(super) colors: Vec<SegColors>,
     /// Every band's farthest opaque depth per tile (`cull.rs`), rebuilt by each call from
     /// the framebuffer's depth; and for [`seen_points`] a colour per point for the set-up
     /// (which reads colours only to reject non-finite ones; always zero).
     pub(super) far_bands: Vec<FarDepth>,
-    pub(super) blank_colours: Vec<Vec3>,
+    pub(super) blank_colors: Vec<Vec3>,
     /// For [`super::seen_points`]: per segment of the call, whether it kept a fragment in some
     /// band (set from any thread; a union, so the same for any thread count). Only grown.
     pub(super) seen_segs: Vec<AtomicBool>,
@@ -199,7 +199,7 @@ pub(super) struct BandScratch {
     /// colours (`sorted`, with each pixel's first index in `starts`); the colours of the
     /// segments of the band being composited ([`band_colours`]).
     pub(super) out: Emitted,
-    pub(super) colours: Vec<SegColours>,
+    pub(super) colors: Vec<SegColors>,
     pub(super) sorted: Vec<Layer>,
     pub(super) starts: Vec<u32>,
     /// One out-of-order pixel's sort keys, when its insertion sort gives up.
@@ -226,7 +226,7 @@ impl LineScratch {
                     + t.out.frags.capacity() * size_of::<Frag>()
                     + t.sorted.capacity() * size_of::<Layer>()
                     + t.out.ids.capacity() * 4
-                    + t.colours.capacity() * size_of::<SegColours>()
+                    + t.colors.capacity() * size_of::<SegColors>()
                     + t.starts.capacity() * 4
                     + t.run_keys.capacity() * 8
                     + t.hiding.capacity_bytes()
@@ -243,12 +243,12 @@ impl LineScratch {
             })
             .sum();
         segs * size_of::<Seg>()
-            + self.colours.capacity() * size_of::<SegColours>()
+            + self.colors.capacity() * size_of::<SegColors>()
             + kept
-            + self.fibres.capacity() * size_of::<Fibres>()
+            + self.fibers.capacity() * size_of::<Fibers>()
             + far
             + self.far_bands.capacity() * size_of::<FarDepth>()
-            + self.blank_colours.capacity() * size_of::<Vec3>()
+            + self.blank_colors.capacity() * size_of::<Vec3>()
             + self.seen_segs.capacity()
             + per_thread
             + self.chunks.capacity()
@@ -324,8 +324,8 @@ pub fn draw_polylines(
         &params,
         lines,
         &mut scratch.chunks,
-        &mut scratch.fibres,
-        &mut scratch.colours,
+        &mut scratch.fibers,
+        &mut scratch.colors,
     ) else {
         return;
     };
@@ -338,10 +338,10 @@ pub fn draw_polylines(
     let source = BandSource {
         params: &params,
         chunks: &scratch.chunks[..chunk_count],
-        fibres: &scratch.fibres,
+        fibers: &scratch.fibers,
         far_bands: &scratch.far_bands,
     };
-    let colours = &scratch.colours[..];
+    let colors = &scratch.colors[..];
     let pool = &scratch.threads;
     fb.color
         .par_chunks_mut(width * BAND_ROWS)
@@ -361,7 +361,7 @@ pub fn draw_polylines(
                 depth,
                 coverage,
             };
-            t.composite(None, colours, band);
+            t.composite(None, colors, band);
         });
     // Which thread draws which band varies between frames: give every thread the largest
     // capacities any of them needed, so a warmed-up frame allocates nothing whichever bands
@@ -376,17 +376,17 @@ impl BandScratch {
     pub(super) fn composite(
         &mut self,
         kept: Option<&mut Emitted>,
-        colours: &[SegColours],
+        colors: &[SegColors],
         band: Band,
     ) {
         let out = match kept {
             Some(kept) => kept,
             None => &mut self.out,
         };
-        band_colours(&out.ids, colours, &mut self.colours);
+        band_colors(&out.ids, colors, &mut self.colors);
         sort_by_pixel(
             &out.frags,
-            &self.colours,
+            &self.colors,
             &mut self.sorted,
             &mut self.starts,
             band.color.len(),
@@ -410,8 +410,8 @@ pub(super) fn bin_segments(
     params: &Params,
     lines: &Polylines,
     chunks: &mut Vec<Vec<Vec<Seg>>>,
-    fibres: &mut Vec<Fibres>,
-    colours: &mut Vec<SegColours>,
+    fibers: &mut Vec<Fibers>,
+    colors: &mut Vec<SegColors>,
 ) -> Option<usize> {
     let seg_count = lines.segment_count().min(MAX_SEGMENTS);
     if seg_count == 0 {
@@ -424,8 +424,8 @@ pub(super) fn bin_segments(
     }
     let setup_chunk = |chunk: usize,
                        bins: &mut Vec<Vec<Seg>>,
-                       fibres: &mut [Fibres],
-                       colours: &mut [SegColours]| {
+                       fibers: &mut [Fibers],
+                       colors: &mut [SegColors]| {
         if bins.len() < band_count {
             bins.resize_with(band_count, Vec::new);
         }
@@ -436,10 +436,10 @@ pub(super) fn bin_segments(
         let first = chunk * SETUP_CHUNK;
         for k in first..(first + SETUP_CHUNK).min(seg_count) {
             if let Some((seg, f, c)) = setup_segment(params, lines, k) {
-                if let Some(slot) = fibres.get_mut(k - first) {
+                if let Some(slot) = fibers.get_mut(k - first) {
                     *slot = f;
                 }
-                if let Some(slot) = colours.get_mut(k - first) {
+                if let Some(slot) = colors.get_mut(k - first) {
                     *slot = c;
                 }
                 let (b0, b1) = (
@@ -453,22 +453,22 @@ pub(super) fn bin_segments(
         }
     };
     // Only grown: a segment's entries are read only when its set-up wrote them this call.
-    if colours.len() < seg_count {
-        colours.resize(seg_count, SegColours::default());
+    if colors.len() < seg_count {
+        colors.resize(seg_count, SegColors::default());
     }
     let chunks = chunks[..chunk_count]
         .par_iter_mut()
-        .zip(colours.par_chunks_mut(SETUP_CHUNK))
+        .zip(colors.par_chunks_mut(SETUP_CHUNK))
         .enumerate();
     if params.bundle.is_some() {
-        if fibres.len() < seg_count {
-            fibres.resize(seg_count, Fibres::default());
+        if fibers.len() < seg_count {
+            fibers.resize(seg_count, Fibers::default());
         }
-        chunks.zip(fibres.par_chunks_mut(SETUP_CHUNK)).for_each(
-            |((chunk, (bins, colours)), fibres)| setup_chunk(chunk, bins, fibres, colours),
-        );
+        chunks
+            .zip(fibers.par_chunks_mut(SETUP_CHUNK))
+            .for_each(|((chunk, (bins, colors)), fibers)| setup_chunk(chunk, bins, fibers, colors));
     } else {
-        chunks.for_each(|(chunk, (bins, colours))| setup_chunk(chunk, bins, &mut [], colours));
+        chunks.for_each(|(chunk, (bins, colors))| setup_chunk(chunk, bins, &mut [], colors));
     }
     Some(chunk_count)
 }
@@ -552,7 +552,7 @@ const CHUNK_BITS: usize = 12;
 pub(super) struct BandSource<'a> {
     pub(super) params: &'a Params<'a>,
     pub(super) chunks: &'a [Vec<Vec<Seg>>],
-    pub(super) fibres: &'a [Fibres],
+    pub(super) fibers: &'a [Fibers],
     pub(super) far_bands: &'a [FarDepth],
 }
 
@@ -581,7 +581,7 @@ impl BandSource<'_> {
         emit_fragments(
             self.params,
             &t.segs,
-            self.fibres,
+            self.fibers,
             &t.keys,
             rows,
             &mut t.hiding,
@@ -624,7 +624,7 @@ pub(super) fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
             t.starts.capacity(),
             t.run_keys.capacity(),
             t.out.ids.capacity(),
-            t.colours.capacity(),
+            t.colors.capacity(),
         ]
     };
     for t in threads.iter_mut() {
@@ -649,7 +649,7 @@ pub(super) fn equalise_capacities(threads: &mut [Mutex<BandScratch>]) {
         grow_to(&mut t.starts, need[5]);
         grow_to(&mut t.run_keys, need[6]);
         grow_to(&mut t.out.ids, need[7]);
-        grow_to(&mut t.colours, need[8]);
+        grow_to(&mut t.colors, need[8]);
     }
 }
 

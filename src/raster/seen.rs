@@ -39,7 +39,7 @@ use super::lines::{
     prepare, prepare_threads,
 };
 use super::polyline::{LineStyle, Polylines};
-use super::segment::{SegColours, setup_segment};
+use super::segment::{SegColors, setup_segment};
 
 /// Marks in `seen` (one flag per point of `lines`, resized to match) the points of every
 /// segment [`super::draw_polylines`] would keep a fragment of in `fb` as it is now (module
@@ -68,9 +68,9 @@ pub fn seen_points(
     }
     build_far_bands(fb, &mut scratch.far_bands);
     // Zero whatever the length: only its length needs setting.
-    scratch.blank_colours.resize(lines.points.len(), Vec3::ZERO);
+    scratch.blank_colors.resize(lines.points.len(), Vec3::ZERO);
     let blank = Polylines {
-        colors: &scratch.blank_colours,
+        colors: &scratch.blank_colors,
         ..*lines
     };
     let Some(params) = prepare(fb, cam, &blank, style, &mut scratch.profiles) else {
@@ -80,8 +80,8 @@ pub fn seen_points(
         &params,
         &blank,
         &mut scratch.chunks,
-        &mut scratch.fibres,
-        &mut scratch.colours,
+        &mut scratch.fibers,
+        &mut scratch.colors,
     ) else {
         return;
     };
@@ -104,7 +104,7 @@ pub fn seen_points(
     let source = BandSource {
         params: &params,
         chunks: &scratch.chunks[..chunk_count],
-        fibres: &scratch.fibres,
+        fibers: &scratch.fibers,
         far_bands: &scratch.far_bands,
     };
     let pool = &scratch.threads;
@@ -164,26 +164,26 @@ pub fn draw_seen_polylines(
     let seg_count = lines.segment_count().min(MAX_SEGMENTS);
     let flags = &scratch.seen_segs[..seg_count.min(scratch.seen_segs.len())];
     scratch
-        .colours
+        .colors
         .par_chunks_mut(SETUP_CHUNK)
         .zip(flags.par_chunks(SETUP_CHUNK))
         .enumerate()
-        .for_each(|(chunk, (colours, flags))| {
-            for (i, (c, f)) in colours.iter_mut().zip(flags).enumerate() {
+        .for_each(|(chunk, (colors, flags))| {
+            for (i, (c, f)) in colors.iter_mut().zip(flags).enumerate() {
                 if f.load(Ordering::Relaxed) {
                     *c = setup_segment(&params, lines, chunk * SETUP_CHUNK + i)
-                        .map_or(SegColours::default(), |(_, _, c)| c);
+                        .map_or(SegColors::default(), |(_, _, c)| c);
                 }
             }
         });
     prepare_threads(&mut scratch.threads, width);
-    let colours = &scratch.colours[..];
+    let colors = &scratch.colors[..];
     let pool = &scratch.threads;
     // For bands that kept too many: the pass's bins, bundle table and solids' depth tiles.
     let source = BandSource {
         params: &params,
         chunks: &scratch.chunks[..chunk_count.min(scratch.chunks.len())],
-        fibres: &scratch.fibres,
+        fibers: &scratch.fibers,
         far_bands: &scratch.far_bands,
     };
     fb.color
@@ -202,11 +202,11 @@ pub fn draw_seen_polylines(
                 coverage,
             };
             if kept.whole {
-                t.composite(Some(&mut kept.out), colours, band);
+                t.composite(Some(&mut kept.out), colors, band);
             } else {
                 // The same emission again, now storing every kept fragment.
                 source.emit(t, b, band.depth, None, None);
-                t.composite(None, colours, band);
+                t.composite(None, colors, band);
             }
         });
     equalise_capacities(&mut scratch.threads);

@@ -45,7 +45,7 @@ pub(super) struct Seg {
     pub(super) opacity: f32,
     /// Where its [`Fibres`] are in the draw call's table (the segment's index), or
     /// [`NO_FIBRES`] for a line drawn as a plain band.
-    pub(super) fibres: u32,
+    pub(super) fibers: u32,
     /// Free end of a polyline (box-filtered end) at the start / end.
     pub(super) cap0: bool,
     pub(super) cap1: bool,
@@ -72,7 +72,7 @@ pub(super) const NO_FIBRES: u32 = u32::MAX;
 /// How a bundle's segment is drawn as its fibres (`bundle.rs`); kept beside the segments, one
 /// per segment, only in a draw call with bundles, so plain lines stay small.
 #[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Fibres {
+pub(super) struct Fibers {
     /// 1 / the bundle's projected radius R in pixels, the scale from its profile to coverage
     /// (k·`w_px / A(+∞)`, k the blend from the band), and its pattern's first sample.
     pub(super) inv_r: f32,
@@ -109,7 +109,7 @@ pub(super) struct Params<'a> {
 /// A segment's colours at its two (clipped) ends, linear RGB: its fragments are composited
 /// with `c0 + (c1 − c0)·t`, t their place along it. Kept apart from [`Seg`] (by segment
 /// index), so fragments can be emitted before the hair is shaded.
-pub(super) type SegColours = [Vec3; 2];
+pub(super) type SegColors = [Vec3; 2];
 
 /// Clips and projects segment `k` of `lines`; `None` when nothing of it can be seen. A
 /// bundle's segment drawn as its fibres comes with its [`Fibres`] (and [`Seg::fibres`] = k);
@@ -119,7 +119,7 @@ pub(super) fn setup_segment(
     p: &Params,
     lines: &Polylines,
     k: usize,
-) -> Option<(Seg, Fibres, SegColours)> {
+) -> Option<(Seg, Fibers, SegColors)> {
     let n = lines.points_per_line;
     let segs_per_line = n.checked_sub(1).filter(|&s| s > 0)?;
     let (line, i) = (k / segs_per_line, k % segs_per_line);
@@ -326,7 +326,7 @@ pub(super) fn setup_segment(
     if !(row_lo <= row_hi) || xmax < 0.0 || xmin > p.width as f32 {
         return None;
     }
-    let fibres = Fibres {
+    let fibers = Fibers {
         inv_r,
         cov_scale,
         pattern,
@@ -352,14 +352,14 @@ pub(super) fn setup_segment(
         iz1,
         half_w,
         opacity,
-        fibres: if inv_r > 0.0 { k as u32 } else { NO_FIBRES },
+        fibers: if inv_r > 0.0 { k as u32 } else { NO_FIBRES },
         cap0,
         cap1,
         row_lo: row_lo as u32,
         row_hi: row_hi as u32,
         k: k as u32,
     };
-    Some((seg, fibres, [c0, c1]))
+    Some((seg, fibers, [c0, c1]))
 }
 
 /// A segment's projected width in pixels, from its ends' physical widths over their depths

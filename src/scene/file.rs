@@ -167,7 +167,7 @@ pub struct Scene {
     pub draw_solids: bool,
 }
 
-fn colour(field: String, c: [f32; 3]) -> Result<Vec3, (String, String)> {
+fn color(field: String, c: [f32; 3]) -> Result<Vec3, (String, String)> {
     let v = Vec3::from(c);
     if v.is_finite() && v.min_element() >= 0.0 {
         Ok(v)
@@ -302,7 +302,7 @@ impl SceneFile {
                     direction,
                     irradiance,
                 } => {
-                    let e = colour(field("irradiance"), irradiance)?;
+                    let e = color(field("irradiance"), irradiance)?;
                     Light::directional(Vec3::from(direction), e * gain).map_err(|err| {
                         let name = match err {
                             LightError::Direction(_) => "direction",
@@ -315,7 +315,7 @@ impl SceneFile {
                     position_m,
                     intensity,
                 } => {
-                    let i_rgb = colour(field("intensity"), intensity)?;
+                    let i_rgb = color(field("intensity"), intensity)?;
                     Light::point(Vec3::from(position_m), i_rgb * gain).map_err(|err| {
                         let name = match err {
                             LightError::Position(_) => "position_m",
@@ -327,8 +327,8 @@ impl SceneFile {
             };
             lights.push(light);
         }
-        let ambient = colour("ambient".into(), self.ambient)? * gain;
-        let background = colour("background".into(), self.background)? * gain;
+        let ambient = color("ambient".into(), self.ambient)? * gain;
+        let background = color("background".into(), self.background)? * gain;
         Ok(Scene {
             width: self.image.width,
             height: self.image.height,

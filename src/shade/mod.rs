@@ -51,7 +51,7 @@ impl Lighting {
 
 /// Colour of light after one pass through a fibre at normal incidence: the chord is two radii,
 /// so exp(−2σa) with σa per unit radius. Used to tint the ambient term only.
-pub fn fibre_tint(fiber: &Fiber) -> Vec3 {
+pub fn fiber_tint(fiber: &Fiber) -> Vec3 {
     (-2.0 * Vec3::from(fiber.params().sigma_a)).exp()
 }
 
@@ -214,7 +214,7 @@ fn hair_ambient(fiber: &Fiber, lighting: &Lighting) -> Vec3 {
     if lighting.mode == ShadingMode::Visibility {
         Vec3::ZERO
     } else {
-        lighting.ambient * fibre_tint(fiber)
+        lighting.ambient * fiber_tint(fiber)
     }
 }
 

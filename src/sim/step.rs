@@ -198,7 +198,7 @@ pub struct Simulator {
 /// √(1 + (2π R / P)²) of curled strands (a curl of radius R and period P puts that much more
 /// fibre length along each metre of guide).
 pub fn hair_section_per_guide_m2(style: &Hairstyle, guides: &GuideSet) -> f32 {
-    let fibres = style.wisps.count as f64
+    let fibers = style.wisps.count as f64
         * f64::from(style.wisps.strands_per_wisp)
         * f64::from(style.strands.fibers_per_strand);
     let r = f64::from(style.fiber.radius_m);
@@ -211,7 +211,7 @@ pub fn hair_section_per_guide_m2(style: &Hairstyle, guides: &GuideSet) -> f32 {
     } else {
         1.0
     };
-    let per_guide = fibres * std::f64::consts::PI * r * r * curl / guides.count().max(1) as f64;
+    let per_guide = fibers * std::f64::consts::PI * r * r * curl / guides.count().max(1) as f64;
     if per_guide.is_finite() {
         per_guide as f32
     } else {

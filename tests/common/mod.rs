@@ -54,7 +54,7 @@ pub fn slab(
                     geo.positions.push(frame.to_world(m));
                     geo.tangents.push(frame.y);
                     geo.lengths_m.push(len_m);
-                    geo.fibre_share.push(1.0);
+                    geo.fiber_share.push(1.0);
                 }
             }
         }
@@ -75,7 +75,7 @@ pub fn build_map(
         positions: &geo.positions,
         tangents: &geo.tangents,
         lengths_m: &geo.lengths_m,
-        fibre_share: &geo.fibre_share,
+        fiber_share: &geo.fiber_share,
         fibers_per_strand: fibers,
         light: light.into(),
         fiber,

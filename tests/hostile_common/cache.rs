@@ -9,7 +9,7 @@ use wisp::cache::format::{
     CHECKSUM_BYTES, FIXED_HEADER_BYTES, POSITION_BYTES, TIME_BYTES, offset, record_bytes,
 };
 use wisp::cache::{CacheHeader, CacheWriter, Expected};
-use wisp::frame::{Engine, EngineConfig};
+use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
 
@@ -70,7 +70,7 @@ pub fn simulate_to(
         light_dir: config.lighting.lights[0]
             .travel()
             .unwrap_or(glam::Vec3::NEG_Y),
-        map_res: wisp::frame::map_geometry(&style, &config).n,
+        map_res: wisp::engine::map_geometry(&style, &config).n,
         simulated: config.simulate,
         self_collision: config.self_collision,
         draw_solids: config.draw_solids,

@@ -234,7 +234,7 @@ fn load_hairstyle(case: &Case, _dir: &Path) -> Result<Verdict, String> {
             let est = wisp::budget::estimate(
                 &style,
                 &Motion::still(glam::Affine3A::IDENTITY),
-                &wisp::frame::EngineConfig::default(),
+                &wisp::engine::EngineConfig::default(),
                 &wisp::budget::RunPlan::default(),
             );
             if !est.work_cpu_s().is_finite() {

@@ -49,17 +49,17 @@
 //! run in parallel and the results do not depend on the thread count (each query is
 //! independent and sums its rays in a fixed order).
 
-use super::lateral_bins::list_by_depth;
-use super::{MapLight, Projection};
 use crate::fiber::Fiber;
+use crate::map::lateral_bins::list_by_depth;
+use crate::map::{MapLight, Projection};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
 mod placement;
-pub use placement::bundle_disc_points;
+
 mod rays;
 
-use placement::place_fibres;
+use placement::place_fibers;
 
 /// What the exact reference is built from.
 #[derive(Clone, Copy)]
@@ -82,7 +82,7 @@ pub struct ExactInput<'a> {
     /// Share of each strand's fibres present at each point (`StrandGeometry::fibre_share`), or
     /// empty for all. Fibre f of F covers a segment where the mean share of its two ends is at
     /// least (f + ½)/F, so the fibres end one by one as the share falls.
-    pub fibre_share: &'a [f32],
+    pub fiber_share: &'a [f32],
     /// The light's geometry (a direction, or a point light and the point it aims at).
     pub light: MapLight,
     /// The fibre: radius and per-crossing forward scattering.
@@ -105,7 +105,7 @@ pub enum Footprint {
     /// the piece of strand the vertex represents (half a segment on each side). Each ray
     /// ignores its own fibre near its start; the other fibres of the bundle shadow it as any
     /// fibre does. This is the light the hair drawn for this vertex actually receives.
-    Fibres {
+    Fibers {
         /// Rays per vertex (spread evenly over the fibres and along the piece).
         rays: u32,
     },
@@ -114,7 +114,7 @@ pub enum Footprint {
     /// lights the fibre's surface; a ray from the axis also meets fibres lying against the
     /// lit side, which the surface there sees past. With one ray per fibre this is the ray
     /// contact shadows take (`map::contact`).
-    FibresLitSide {
+    FibersLitSide {
         /// Rays per vertex (spread evenly over the fibres and along the piece).
         rays: u32,
     },
@@ -146,7 +146,7 @@ struct Segment {
     sin_theta: f32,
     /// Render strand, fibre within it, and segment index along the fibre (for exclusions).
     strand: u32,
-    fibre: u32,
+    fiber: u32,
     seg: u32,
 }
 
@@ -154,7 +154,7 @@ struct Segment {
 #[derive(Clone, Copy)]
 struct Exclude {
     strand: u32,
-    fibre: Option<u32>,
+    fiber: Option<u32>,
     segs: (i64, i64),
 }
 
@@ -166,12 +166,12 @@ pub struct ExactReference<'a> {
     fiber: &'a Fiber,
     radius_m: f32,
     points_per_strand: usize,
-    fibres_per_strand: usize,
+    fibers_per_strand: usize,
     /// Light-frame points of every placed fibre: fibre f of strand s, point k at
     /// [(s·F + f)·P + k].
-    fibre_points: Vec<Vec3>,
+    fiber_points: Vec<Vec3>,
     /// Share of each strand's fibres present at each point (empty: all).
-    fibre_share: Vec<f32>,
+    fiber_share: Vec<f32>,
     segments: Vec<Segment>,
     /// Bin grid across the light.
     origin: Vec2,
@@ -193,20 +193,20 @@ impl<'a> ExactReference<'a> {
         let strands = input.positions.len() / ppl;
         let f_count = input.fibers_per_strand.max(1) as usize;
         let r = input.fiber.params().radius_m;
-        let fibre_points: Vec<Vec3> = (0..strands)
+        let fiber_points: Vec<Vec3> = (0..strands)
             .into_par_iter()
             .flat_map_iter(|s| {
-                place_fibres(&input.positions[s * ppl..(s + 1) * ppl], s, input, &proj)
+                place_fibers(&input.positions[s * ppl..(s + 1) * ppl], s, input, &proj)
             })
             .collect();
         let segments: Vec<Segment> = (0..strands * f_count)
             .into_par_iter()
             .flat_map_iter(|fi| {
-                let pts = &fibre_points[fi * ppl..(fi + 1) * ppl];
+                let pts = &fiber_points[fi * ppl..(fi + 1) * ppl];
                 let finite = pts.iter().all(|p| p.is_finite());
                 let (strand, f) = (fi / f_count, fi % f_count);
                 let threshold = (f as f32 + 0.5) / f_count as f32;
-                let share = input.fibre_share;
+                let share = input.fiber_share;
                 // Segment k holds the fibres whose threshold is under the mean share of its two
                 // ends: the expected count is then F × that mean, as the map fills (each point
                 // carries its share over half of each adjacent segment).
@@ -242,7 +242,7 @@ impl<'a> ExactReference<'a> {
                             dx: b.x - a.x,
                             sin_theta: u.dot(to_light).clamp(-1.0, 1.0),
                             strand: (fi / f_count) as u32,
-                            fibre: (fi % f_count) as u32,
+                            fiber: (fi % f_count) as u32,
                             seg: k as u32,
                         })
                     })
@@ -296,9 +296,9 @@ impl<'a> ExactReference<'a> {
             fiber: input.fiber,
             radius_m: r,
             points_per_strand: ppl,
-            fibres_per_strand: f_count,
-            fibre_points,
-            fibre_share: input.fibre_share.to_vec(),
+            fibers_per_strand: f_count,
+            fiber_points,
+            fiber_share: input.fiber_share.to_vec(),
             segments,
             origin,
             inv_bin,
@@ -316,9 +316,9 @@ impl<'a> ExactReference<'a> {
     /// Whether fibre `f` of the strand reaches point `vertex` (fibres end one by one where the
     /// strand's fibre share falls: fibre f ends below (f + ½)/F).
     #[inline]
-    fn fibre_present(&self, vertex: usize, f: usize) -> bool {
-        let threshold = (f as f32 + 0.5) / self.fibres_per_strand as f32;
-        self.fibre_share
+    fn fiber_present(&self, vertex: usize, f: usize) -> bool {
+        let threshold = (f as f32 + 0.5) / self.fibers_per_strand as f32;
+        self.fiber_share
             .get(vertex)
             .is_none_or(|sh| *sh >= threshold)
     }

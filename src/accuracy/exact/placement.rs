@@ -10,24 +10,8 @@
 //! strand itself (offset 0): the geometry is then exact, not a model.
 
 use super::{ExactInput, Projection};
+use crate::disc::vogel;
 use glam::{Vec2, Vec3};
-
-/// Golden angle, radians.
-const GOLDEN_ANGLE: f32 = 2.399_963_2;
-
-/// Point `i` of `count` of a Vogel spiral filling the unit disc evenly.
-#[inline]
-pub(super) fn vogel(i: u32, count: u32) -> Vec2 {
-    let rho = ((i as f32 + 0.5) / count as f32).sqrt();
-    let (s, c) = (i as f32 * GOLDEN_ANGLE).sin_cos();
-    Vec2::new(c, s) * rho
-}
-
-/// Where the fibres of a bundle of `count` lie in its unit disc (fibre f at `vogel(f, count)`,
-/// before the per-strand turn): the raster draws a bundle's fibres there too.
-pub fn bundle_disc_points(count: u32) -> Vec<Vec2> {
-    (0..count).map(|f| vogel(f, count)).collect()
-}
 
 /// A per-strand angle in [0, 2π) from a hash of its index and the placement seed (SplitMix64
 /// finaliser).
@@ -43,7 +27,7 @@ fn strand_angle(s: usize, seed: u64) -> f32 {
 
 /// The points of the F fibres of one render strand (light frame), fibre after fibre; NaN
 /// points when the strand has a non-finite point.
-pub(super) fn place_fibres(
+pub(super) fn place_fibers(
     pts: &[Vec3],
     s: usize,
     input: &ExactInput,
@@ -83,6 +67,3 @@ pub(super) fn place_fibres(
         })
         .collect()
 }
-
-#[cfg(test)]
-mod tests;

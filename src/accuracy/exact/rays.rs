@@ -7,7 +7,7 @@ use crate::fiber::LightAtPoint;
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
-use super::placement::vogel;
+use crate::disc::vogel;
 
 impl ExactReference<'_> {
     /// The light reaching render-strand point `vertex` (index into the positions it was built
@@ -15,7 +15,7 @@ impl ExactReference<'_> {
     pub fn light_at_vertex(&self, vertex: usize, fp: &Footprint) -> LightAtPoint {
         let ppl = self.points_per_strand;
         let (strand, k) = (vertex / ppl, vertex % ppl);
-        if strand * self.fibres_per_strand * ppl >= self.fibre_points.len() {
+        if strand * self.fibers_per_strand * ppl >= self.fiber_points.len() {
             return LightAtPoint::UNSHADOWED;
         }
         let mut acc = RayAverage::default();
@@ -26,20 +26,20 @@ impl ExactReference<'_> {
                 exclude_segments,
             } => {
                 // The strand's axis point (fibre 0 at F = 1; the bundle centre otherwise).
-                let base = strand * self.fibres_per_strand * ppl;
-                let centre = if self.fibres_per_strand == 1 {
-                    self.fibre_points[base + k]
+                let base = strand * self.fibers_per_strand * ppl;
+                let centre = if self.fibers_per_strand == 1 {
+                    self.fiber_points[base + k]
                 } else {
-                    (0..self.fibres_per_strand)
-                        .map(|f| self.fibre_points[base + f * ppl + k])
+                    (0..self.fibers_per_strand)
+                        .map(|f| self.fiber_points[base + f * ppl + k])
                         .sum::<Vec3>()
-                        / self.fibres_per_strand as f32
+                        / self.fibers_per_strand as f32
                 };
                 let excl = exclude_segments as i64;
                 // Segments k−excl .. k+excl−1 touch the points within `excl` segments of k.
                 let own = Exclude {
                     strand: strand as u32,
-                    fibre: None,
+                    fiber: None,
                     segs: (k as i64 - excl, k as i64 + excl - 1),
                 };
                 let rays = rays.max(1);
@@ -48,18 +48,18 @@ impl ExactReference<'_> {
                     acc.add(self.trace(centre + Vec3::new(0.0, v.x, v.y), Some(own)));
                 }
             }
-            Footprint::Fibres { rays } => {
-                self.for_each_fibre_origin(vertex, rays, false, |o, own| {
+            Footprint::Fibers { rays } => {
+                self.for_each_fiber_origin(vertex, rays, false, |o, own| {
                     acc.add(self.trace(o, Some(own)));
                 });
             }
-            Footprint::FibresLitSide { rays } => {
-                self.for_each_fibre_origin(vertex, rays, true, |o, own| {
+            Footprint::FibersLitSide { rays } => {
+                self.for_each_fiber_origin(vertex, rays, true, |o, own| {
                     acc.add(self.trace(o, Some(own)));
                 });
             }
             Footprint::Ball { radius_m, rays } => {
-                let centre = self.fibre_points[strand * self.fibres_per_strand * ppl + k];
+                let centre = self.fiber_points[strand * self.fibers_per_strand * ppl + k];
                 self.trace_ball(centre, radius_m, rays.max(1), &mut acc);
             }
         }
@@ -146,7 +146,7 @@ impl ExactReference<'_> {
             let o = Vec3::new(s.x_a + t * s.dx, s.a.x + t * s.d.x, s.a.y + t * s.d.y);
             let own = Exclude {
                 strand: s.strand,
-                fibre: Some(s.fibre),
+                fiber: Some(s.fiber),
                 segs: (s.seg as i64 - 2, s.seg as i64 + 2),
             };
             acc.add(self.trace(o, Some(own)));
@@ -163,11 +163,11 @@ impl ExactReference<'_> {
     pub fn seen_and_lit(&self, view: &ExactReference, vertex: usize, rays: u32) -> (f32, f32) {
         let ppl = self.points_per_strand;
         let strand = vertex / ppl;
-        if (strand + 1) * self.fibres_per_strand * ppl > self.fibre_points.len() {
+        if (strand + 1) * self.fibers_per_strand * ppl > self.fiber_points.len() {
             return (0.0, 0.0);
         }
         let (mut n, mut seen, mut both) = (0u32, 0u32, 0u32);
-        self.for_each_fibre_origin(vertex, rays, false, |o, own| {
+        self.for_each_fiber_origin(vertex, rays, false, |o, own| {
             let o_view = view.proj.point(self.proj.to_world(o));
             let is_seen = view.trace(o_view, Some(own)).0 == 0;
             let is_lit = self.trace(o, Some(own)).0 == 0;
@@ -185,7 +185,7 @@ impl ExactReference<'_> {
     /// excluded. Origins are in the map frame: on the fibre's axis, or with `lit_side` on its
     /// lit side ([`Projection::lit_side`]; at the point itself the tangent is the chord between
     /// its neighbours, as contact shadows take it, elsewhere the segment holding the origin).
-    fn for_each_fibre_origin(
+    fn for_each_fiber_origin(
         &self,
         vertex: usize,
         rays: u32,
@@ -194,21 +194,21 @@ impl ExactReference<'_> {
     ) {
         let ppl = self.points_per_strand;
         let (strand, k) = (vertex / ppl, vertex % ppl);
-        let f_count = self.fibres_per_strand;
+        let f_count = self.fibers_per_strand;
         let present = (0..f_count)
-            .filter(|&f| self.fibre_present(vertex, f))
+            .filter(|&f| self.fiber_present(vertex, f))
             .count();
-        let per_fibre = (rays.max(1) as usize).div_ceil(present.max(1));
-        for f in (0..f_count).filter(|&f| self.fibre_present(vertex, f)) {
+        let per_fiber = (rays.max(1) as usize).div_ceil(present.max(1));
+        for f in (0..f_count).filter(|&f| self.fiber_present(vertex, f)) {
             let base = (strand * f_count + f) * ppl;
-            let pts = &self.fibre_points[base..base + ppl];
+            let pts = &self.fiber_points[base..base + ppl];
             let own = Exclude {
                 strand: strand as u32,
-                fibre: Some(f as u32),
+                fiber: Some(f as u32),
                 segs: (k as i64 - 2, k as i64 + 1),
             };
-            for j in 0..per_fibre {
-                let t = (j as f32 + 0.5) / per_fibre as f32 - 0.5;
+            for j in 0..per_fiber {
+                let t = (j as f32 + 0.5) / per_fiber as f32 - 0.5;
                 let (o, chord) = if t < 0.0 && k > 0 {
                     (pts[k].lerp(pts[k - 1], -t), (pts[k - 1], pts[k]))
                 } else if t > 0.0 && k + 1 < ppl {
@@ -290,7 +290,7 @@ impl ExactReference<'_> {
             }
             if let Some(e) = own
                 && s.strand == e.strand
-                && e.fibre.is_none_or(|f| f == s.fibre)
+                && e.fiber.is_none_or(|f| f == s.fiber)
                 && (e.segs.0..=e.segs.1).contains(&(s.seg as i64))
             {
                 continue;

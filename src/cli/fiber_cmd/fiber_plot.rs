@@ -204,9 +204,9 @@ pub fn plot(out: &Path, params: &FiberParams) -> Result<(), AppError> {
             .collect()
     };
     let mut p = Plot::new(-90.0, 90.0, 0.0, 1.0, 15.0, 0.1);
-    for (ch, colour) in CHANNEL_COLOURS.iter().enumerate() {
-        p.polyline(&series(&fiber, 0, ch), *colour, false);
-        p.polyline(&series(&fiber, 1, ch), *colour, true);
+    for (ch, color) in CHANNEL_COLOURS.iter().enumerate() {
+        p.polyline(&series(&fiber, 0, ch), *color, false);
+        p.polyline(&series(&fiber, 1, ch), *color, true);
     }
     p.save(&out.join("a_f_a_b.png"))?;
     let _ = writeln!(
@@ -215,9 +215,9 @@ pub fn plot(out: &Path, params: &FiberParams) -> Result<(), AppError> {
          1, grid every 0.1. solid = a_f, dashed = a_b; red/green/blue = channel."
     );
     let mut p = Plot::new(-90.0, 90.0, 0.0, 1.0, 15.0, 0.1);
-    for (ch, colour) in CHANNEL_COLOURS.iter().enumerate() {
-        p.polyline(&series(&fiber, 0, ch), *colour, false);
-        p.polyline(&series(&lighter, 0, ch), *colour, true);
+    for (ch, color) in CHANNEL_COLOURS.iter().enumerate() {
+        p.polyline(&series(&fiber, 0, ch), *color, false);
+        p.polyline(&series(&lighter, 0, ch), *color, true);
     }
     p.save(&out.join("a_f_lighter.png"))?;
     let _ = writeln!(

@@ -8,8 +8,8 @@
 
 use font8x8::legacy::BASIC_LEGACY;
 use std::fmt::Write;
+use wisp::engine::StageTimings;
 use wisp::fiber::ShadingMode;
-use wisp::frame::StageTimings;
 
 /// Glyph cell size in font pixels (the font is 8×8; lines are 2 pixels apart).
 const GLYPH_PX: usize = 8;

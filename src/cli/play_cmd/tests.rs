@@ -49,7 +49,7 @@ fn screenshot_names_never_clobber() {
 /// still hair as the engine first did.
 #[test]
 fn the_mouse_camera_replaces_and_restores_the_engines() {
-    let config = wisp::frame::EngineConfig {
+    let config = wisp::engine::EngineConfig {
         width: 48,
         height: 32,
         simulate: false,

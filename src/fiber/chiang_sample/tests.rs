@@ -31,7 +31,7 @@ fn dir(theta: f64, phi: f64) -> DVec3 {
 }
 
 #[test]
-fn white_fibre_weights_are_one_and_directions_unit() {
+fn white_fiber_weights_are_one_and_directions_unit() {
     // σa = 0: Σ_p A_p = 1 at every h, so the weight A_p / P_p is exactly 1 per sample.
     let (c, l) = constants([0.0; 3], -7.5);
     let mut rng = SplitMix64::new(3);

@@ -65,7 +65,7 @@ fn interpolated_strands_cut_in_two_are_the_same_hair() {
             let (a, b) = (s * n + i, s * (2 * n - 1) + 2 * i);
             assert_eq!(one.positions[a], two.positions[b]);
             assert!(one.tangents[a].dot(two.tangents[b]) > 1.0 - 1e-5, "{s} {i}");
-            assert!((one.fibre_share[a] - two.fibre_share[b]).abs() < 1e-5);
+            assert!((one.fiber_share[a] - two.fiber_share[b]).abs() < 1e-5);
         }
     }
     let total = |g: &StrandGeometry| g.lengths_m.iter().map(|&l| l as f64).sum::<f64>();

@@ -44,7 +44,7 @@ fn points_of(cells: &Cells, i: usize, rng: &mut SplitMix64) -> Vec<(Vec3, Vec3)>
 /// (what the footprint saves, seen obliquely). The paths' powers sum to the irradiance
 /// over the columns.
 #[test]
-fn the_footprint_holds_every_cell_with_fibre() {
+fn the_footprint_holds_every_cell_with_fiber() {
     let mut rng = SplitMix64::new(21);
     let (cells, filled) = sheet(&mut rng);
     let directions = [
@@ -105,7 +105,7 @@ fn the_footprint_holds_every_cell_with_fibre() {
 /// cover under half the cone for the sheet seen obliquely; the paths' powers sum to the
 /// intensity over the bins' solid angle.
 #[test]
-fn the_cone_footprint_holds_every_cell_with_fibre() {
+fn the_cone_footprint_holds_every_cell_with_fiber() {
     let mut rng = SplitMix64::new(22);
     let (cells, filled) = sheet(&mut rng);
     let centre = cells.origin + cells.dims.as_vec3() * (0.5 * cells.cell_m);

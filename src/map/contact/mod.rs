@@ -76,7 +76,7 @@ pub struct ContactInput<'a> {
     pub points_per_strand: usize,
     /// Share of the strand's fibre present at each point, or empty for all: the fibre covers a
     /// segment where the mean share of its two ends is at least ½.
-    pub fibre_share: &'a [f32],
+    pub fiber_share: &'a [f32],
     /// How far in front of a vertex the fibres are taken exactly, metres (> 0).
     pub window_m: f32,
     /// The fibre: radius and per-crossing forward scattering.
@@ -100,7 +100,7 @@ struct Segment {
 
 /// What a fibre segment's parts share: how a crossing scatters, and whose it is.
 #[derive(Clone, Copy, Debug)]
-struct FibreSegment {
+struct FiberSegment {
     /// Per-crossing forward transmittance ā_f and spread β̄_f² (Zinke 2008 Eqs. 6, 19, 20)
     /// for the light's inclination to this segment.
     a_f: [f32; 3],
@@ -140,7 +140,7 @@ pub struct ContactShadows {
     /// Light-frame points of every render strand (NaN for strands with a non-finite point).
     points: Vec<Vec3>,
     /// The fibre segments, and their parts of at most a bin across and along the light.
-    fibres: Vec<FibreSegment>,
+    fibers: Vec<FiberSegment>,
     segments: Vec<Segment>,
     /// Largest depth extent of any segment, metres (bounds the window's binary search).
     max_dx: f32,
@@ -191,9 +191,9 @@ impl ContactShadows {
                     .map(move |p| if finite { proj.point(*p) } else { Vec3::NAN })
             })
             .collect();
-        let share = input.fibre_share;
+        let share = input.fiber_share;
         let fiber = input.fiber;
-        let pairs: Vec<(FibreSegment, Segment)> = (0..strands)
+        let pairs: Vec<(FiberSegment, Segment)> = (0..strands)
             .into_par_iter()
             .flat_map_iter(|s| {
                 let pts = &points[s * ppl..(s + 1) * ppl];
@@ -215,7 +215,7 @@ impl ContactShadows {
                     let sin_theta = u.dot(proj.toward_light(0.5 * (wa + wb)));
                     let f = fiber.forward_scatter(sin_theta);
                     let a_f = f.a_f.clamp(Vec3::ZERO, Vec3::ONE);
-                    let fibre = FibreSegment {
+                    let fiber = FiberSegment {
                         a_f: a_f.into(),
                         beta2: f.beta_f2.max(Vec3::ZERO).into(),
                         strand: s as u32,
@@ -229,7 +229,7 @@ impl ContactShadows {
                         dx: b.x - a.x,
                         parent: 0,
                     };
-                    Some((fibre, seg))
+                    Some((fiber, seg))
                 })
             })
             .collect();
@@ -239,7 +239,7 @@ impl ContactShadows {
             proj: *proj,
             points_per_strand: ppl,
             points,
-            fibres: Vec::new(),
+            fibers: Vec::new(),
             segments: Vec::new(),
             max_dx: 0.0,
             origin: Vec2::ZERO,
@@ -248,7 +248,7 @@ impl ContactShadows {
             bin_start: Vec::new(),
             bin_items: Vec::new(),
         };
-        let (fibres, segments): (Vec<FibreSegment>, Vec<Segment>) = pairs
+        let (fibers, segments): (Vec<FiberSegment>, Vec<Segment>) = pairs
             .into_par_iter()
             .enumerate()
             .map(|(i, (f, s))| {
@@ -261,7 +261,7 @@ impl ContactShadows {
                 )
             })
             .unzip();
-        c.fibres = fibres;
+        c.fibers = fibers;
         c.bin(segments, bin_m);
         c
     }
@@ -294,7 +294,7 @@ impl ContactShadows {
         let parts = points.saturating_mul(parts_each);
         let rect = size_of::<Option<([usize; 2], [usize; 2])>>() as u64;
         let per_part = size_of::<Segment>() as u64 + rect + 9 * size_of::<u32>() as u64;
-        let per_point = (size_of::<Vec3>() + size_of::<FibreSegment>()) as u64;
+        let per_point = (size_of::<Vec3>() + size_of::<FiberSegment>()) as u64;
         let bins = (MAX_BINS * MAX_BINS) as u64 * 2 * size_of::<u32>() as u64;
         points
             .saturating_mul(per_point)

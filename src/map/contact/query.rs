@@ -54,9 +54,9 @@ impl ContactShadows {
             let Some(dist) = crossing(s, p, self.radius_m, central_ref_m, window_m) else {
                 continue;
             };
-            let fibre = &self.fibres[s.parent as usize];
-            if fibre.strand == strand as u32
-                && (k as i64 - OWN_BEFORE..=k as i64 + OWN_AFTER).contains(&(fibre.seg as i64))
+            let fiber = &self.fibers[s.parent as usize];
+            if fiber.strand == strand as u32
+                && (k as i64 - OWN_BEFORE..=k as i64 + OWN_AFTER).contains(&(fiber.seg as i64))
             {
                 continue;
             }
@@ -70,9 +70,9 @@ impl ContactShadows {
             };
             // Present with probability q, independently: it lets 1 − q(1 − ā_f) through on
             // average and leaves the direct ray unblocked with probability 1 − q.
-            light.tf *= Vec3::ONE - q * (Vec3::ONE - Vec3::from(fibre.a_f));
+            light.tf *= Vec3::ONE - q * (Vec3::ONE - Vec3::from(fiber.a_f));
             direct *= 1.0 - q;
-            light.sigma_f2 += q * Vec3::from(fibre.beta2);
+            light.sigma_f2 += q * Vec3::from(fiber.beta2);
             light.crossings += q;
         }
         light.direct_fraction = direct.clamp(0.0, 1.0);

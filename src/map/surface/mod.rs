@@ -314,7 +314,7 @@ impl SurfaceShadow {
         let half_w = 0.5 * width_m * inv_texel;
         let piece_of = |s: usize| -> Option<Piece> {
             let (p, u, len) = (input.positions[s], input.tangents[s], input.lengths_m[s]);
-            let share = input.fibre_share.get(s).copied().unwrap_or(1.0);
+            let share = input.fiber_share.get(s).copied().unwrap_or(1.0);
             if !(p.is_finite() && u.is_finite() && len.is_finite() && len > 0.0 && share > 0.0) {
                 return None;
             }

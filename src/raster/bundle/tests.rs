@@ -10,12 +10,12 @@ fn disc(n: u32) -> Vec<Vec2> {
 }
 
 #[test]
-fn the_cumulative_width_rises_from_zero_to_the_fibres_summed_width() {
+fn the_cumulative_width_rises_from_zero_to_the_fibers_summed_width() {
     let pts = disc(30);
     let mut p = Profiles::default();
     assert!(p.prepare(&Bundle {
         radius_m: 2e-3,
-        fibre_radius_m: 4e-5,
+        fiber_radius_m: 4e-5,
         points: &pts,
     }));
     assert!((p.total - 30.0 * 2.0 * 0.02).abs() < 1e-5);
@@ -34,13 +34,13 @@ fn the_cumulative_width_rises_from_zero_to_the_fibres_summed_width() {
 }
 
 #[test]
-fn one_fibre_or_fibres_as_wide_as_the_bundle_are_not_a_bundle() {
+fn one_fiber_or_fibers_as_wide_as_the_bundle_are_not_a_bundle() {
     let mut p = Profiles::default();
     let one = [Vec2::ZERO];
     let pts = disc(8);
     let b = |radius_m, points| Bundle {
         radius_m,
-        fibre_radius_m: 1e-3,
+        fiber_radius_m: 1e-3,
         points,
     };
     assert!(!p.prepare(&b(2e-3, &one)));

@@ -6,7 +6,7 @@ use crate::raster::bundle::{Bundle, Profiles};
 use crate::raster::camera::Camera;
 use crate::raster::fragment::{Band, Emitted, Rows, emit_fragments};
 use crate::raster::polyline::{LineWidth, Polylines};
-use crate::raster::segment::{Fibres, Params, setup_segment};
+use crate::raster::segment::{Fibers, Params, setup_segment};
 
 const W: usize = 96;
 const H: usize = 64;
@@ -54,7 +54,7 @@ fn check(points: &[Vec3], width_m: f32, bundle: bool, depth: &[f32]) -> (usize, 
         points_per_line: points.len(),
         bundle: bundle.then_some(Bundle {
             radius_m: width_m,
-            fibre_radius_m: width_m / 40.0,
+            fiber_radius_m: width_m / 40.0,
             points: &disc,
         }),
     };
@@ -68,7 +68,7 @@ fn check(points: &[Vec3], width_m: f32, bundle: bool, depth: &[f32]) -> (usize, 
         height: H,
         bundle: with_bundle.then_some(&profiles),
     };
-    let mut fibres = vec![Fibres::default(); points.len()];
+    let mut fibers = vec![Fibers::default(); points.len()];
     let (mut color, mut coverage) = (vec![Vec3::ZERO; W * H], vec![0.0; W * H]);
     let (mut dropped, mut kept) = (0, 0);
     let mut out = Emitted::default();
@@ -76,7 +76,7 @@ fn check(points: &[Vec3], width_m: f32, bundle: bool, depth: &[f32]) -> (usize, 
         let Some((seg, f, _)) = setup_segment(&params, &lines, k) else {
             continue;
         };
-        fibres[k] = f;
+        fibers[k] = f;
         for b in (seg.row_lo as usize / 16)..=(seg.row_hi as usize / 16) {
             let rows = b * 16 * W..((b + 1) * 16 * W).min(W * H);
             let mut far = FarDepth::default();
@@ -90,7 +90,7 @@ fn check(points: &[Vec3], width_m: f32, bundle: bool, depth: &[f32]) -> (usize, 
             emit_fragments(
                 &params,
                 &[seg],
-                &fibres,
+                &fibers,
                 &[0],
                 Rows {
                     row0: b * 16,

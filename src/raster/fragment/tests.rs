@@ -33,7 +33,7 @@ proptest::proptest! {
                 t: (i % 4) as f32 * 0.25,
             })
             .collect();
-        let colours = [
+        let colors = [
             [Vec3::ZERO, Vec3::ONE],
             [Vec3::X, Vec3::Y],
             [Vec3::splat(0.5), Vec3::Z],
@@ -42,20 +42,20 @@ proptest::proptest! {
         let mut expected: Vec<Frag> = frags.iter().rev().copied().collect();
         expected.sort_by_key(|f| (f.pixel, f.iz_bits));
         let (mut sorted, mut starts, mut keys) = (Vec::new(), Vec::new(), Vec::new());
-        sort_by_pixel(&frags, &colours, &mut sorted, &mut starts, pixels);
+        sort_by_pixel(&frags, &colors, &mut sorted, &mut starts, pixels);
         let mut got = Vec::new();
         for p in 0..pixels {
             let run = &mut sorted[starts[p] as usize..starts[p + 1] as usize];
             sort_run(run, &mut keys, &mut Vec::new());
             got.extend(run.iter().map(|l| {
-                (p as u32, l.iz_bits, l.alpha.to_bits(), l.colour.to_array().map(f32::to_bits))
+                (p as u32, l.iz_bits, l.alpha.to_bits(), l.color.to_array().map(f32::to_bits))
             }));
         }
         let want: Vec<_> = expected
             .iter()
             .map(|f| {
-                let colour = colour_of(f, &colours).to_array().map(f32::to_bits);
-                (f.pixel, f.iz_bits, f.alpha.to_bits(), colour)
+                let color = color_of(f, &colors).to_array().map(f32::to_bits);
+                (f.pixel, f.iz_bits, f.alpha.to_bits(), color)
             })
             .collect();
         proptest::prop_assert_eq!(got, want);
@@ -74,7 +74,7 @@ fn insertion_gives_up_beyond_its_budget_and_keys_finish() {
             .map(|(i, &d)| Layer {
                 iz_bits: (1.0 + d as f32).to_bits(),
                 alpha: i as f32,
-                colour: Vec3::ONE,
+                color: Vec3::ONE,
                 mask: ALL_SAMPLES,
             })
             .collect()

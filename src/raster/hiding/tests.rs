@@ -4,11 +4,11 @@ use proptest::prelude::*;
 use super::*;
 use crate::raster::camera::Camera;
 use crate::raster::fragment::{
-    Band, Emitted, Rows, band_colours, composite, emit_fragments, sort_by_pixel,
+    Band, Emitted, Rows, band_colors, composite, emit_fragments, sort_by_pixel,
 };
 use crate::raster::lines::{BAND_ROWS, band_key};
 use crate::raster::polyline::{LineWidth, Polylines};
-use crate::raster::segment::{Fibres, Params, setup_segment};
+use crate::raster::segment::{Fibers, Params, setup_segment};
 
 const W: usize = 64;
 const H: usize = 32;
@@ -65,15 +65,15 @@ fn draw(points: &[Vec3], per_line: usize, width_m: f32, opacity: f32, depth_m: f
             }
         })
         .collect();
-    let mut colours = vec![[Vec3::ZERO; 2]; lines.segment_count()];
+    let mut colors = vec![[Vec3::ZERO; 2]; lines.segment_count()];
     let segs_all: Vec<Seg> = (0..lines.segment_count())
         .filter_map(|k| {
             let (s, _, c) = setup_segment(&params, &lines, k)?;
-            colours[k] = c;
+            colors[k] = c;
             Some(s)
         })
         .collect();
-    let fibres: Vec<Fibres> = Vec::new();
+    let fibers: Vec<Fibers> = Vec::new();
     let mut drawn = Drawn {
         culled: Vec::new(),
         every: Vec::new(),
@@ -113,7 +113,7 @@ fn draw(points: &[Vec3], per_line: usize, width_m: f32, opacity: f32, depth_m: f
                 emit_fragments(
                     &params,
                     &segs,
-                    &fibres,
+                    &fibers,
                     &keys,
                     band_rows,
                     &mut hiding,
@@ -129,7 +129,7 @@ fn draw(points: &[Vec3], per_line: usize, width_m: f32, opacity: f32, depth_m: f
                     emit_fragments(
                         &params,
                         &segs,
-                        &fibres,
+                        &fibers,
                         &[k],
                         band_rows,
                         &mut hiding,
@@ -141,7 +141,7 @@ fn draw(points: &[Vec3], per_line: usize, width_m: f32, opacity: f32, depth_m: f
             }
             let (mut sorted, mut starts) = (Vec::new(), Vec::new());
             let mut band_table = Vec::new();
-            band_colours(&out.ids, &colours, &mut band_table);
+            band_colors(&out.ids, &colors, &mut band_table);
             sort_by_pixel(
                 &out.frags,
                 &band_table,
