@@ -40,7 +40,18 @@ fn main() {
         .unwrap_or(2.0);
     e.run_up_to(at_s);
     e.frame(at_s);
-    let maps = e.maps().to_vec();
+    // The shadows copied: the solids are drawn into the engine while they are read.
+    let shadows = e.shadows();
+    let (maps, solids, skin) = (
+        shadows.maps.to_vec(),
+        shadows.solids.to_vec(),
+        shadows.skin.to_vec(),
+    );
+    let shadows = wisp::map::Shadows {
+        maps: &maps,
+        solids: &solids,
+        skin: &skin,
+    };
     let t = std::time::Instant::now();
     for _ in 0..reps {
         match stage.as_str() {
@@ -53,7 +64,7 @@ fn main() {
             }
             "solids" => {
                 e.solids_image(|p, n, albedo| {
-                    wisp::shade::shade_skin(&maps, &lighting, albedo, p, n)
+                    wisp::shade::shade_skin(shadows, &lighting, albedo, p, n)
                 });
             }
             _ => e.shade(),

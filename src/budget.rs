@@ -391,7 +391,10 @@ pub fn estimate(
                 grouped(points),
                 geom.n
             ),
-            bytes: geom.estimated_bytes(points, pieces).saturating_mul(lights),
+            bytes: geom
+                .estimated_bytes(points, pieces)
+                .saturating_add(crate::map::OccluderGrid::estimated_bytes())
+                .saturating_mul(lights),
             set_by: "wisps.count × wisps.strands_per_wisp × strands.points (× --segment-pieces), --map-res and the lights",
         },
         MemoryPart {

@@ -295,7 +295,7 @@ fn the_mesh_shadows_hair_and_hair_shadows_the_mesh() {
     engine.frame(0.0);
     let ch = engine.character_pose();
     assert!(!ch.positions.is_empty());
-    let map = engine.map();
+    let map = engine.shadows().light(0).expect("one light");
     let light = engine.config.lighting.lights[0].travel().unwrap();
     // Behind the body along the light (deep inside it and beyond): no light.
     let chest = Vec3::new(0.0, 1.3, 0.0);

@@ -9,13 +9,34 @@ use wisp::accuracy::skin::measure_skin;
 use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::interp::StrandGeometry;
-use wisp::map::{CountModel, LightFrame, LightMap, MapBuildInput, MapGeometry, Solid};
+use wisp::map::surface::SurfaceShadow;
+use wisp::map::{
+    CountModel, LightFrame, LightMap, MapBuildInput, MapGeometry, OccluderGrid, OccluderMesh,
+    Shadow, Solid,
+};
 use wisp::motion::Motion;
 
 const DS: f32 = 1.0 / 128.0;
 const FIBERS: f32 = 20.0;
 const LEN: f32 = 0.002;
 const PER_CELL: f32 = 8.0;
+
+/// A light's shadows built by hand: the hair map, the solids' grid and the skin texture.
+struct Built {
+    map: LightMap,
+    solids: OccluderGrid,
+    skin: Option<SurfaceShadow>,
+}
+
+impl Built {
+    fn shadow(&self) -> Shadow<'_> {
+        Shadow {
+            hair: &self.map,
+            solids: &self.solids,
+            skin: self.skin.as_ref(),
+        }
+    }
+}
 
 /// The map of `geo` with a sphere of radius `radius_m` centred at map point `centre_cells`
 /// (cells) as the solid, and its surface texture.
@@ -24,7 +45,7 @@ fn map_with_sphere(
     light: Vec3,
     centre_cells: Vec3,
     radius_m: f32,
-) -> LightMap {
+) -> Built {
     let frame = LightFrame::new(light);
     let fiber = default_fiber();
     let mut map = LightMap::new(
@@ -46,20 +67,23 @@ fn map_with_sphere(
     };
     map.build(&input);
     let centre = frame.to_world(centre_cells * DS);
-    map.set_occluders(&[Solid {
+    let mut solids = OccluderGrid::default();
+    let sphere = Solid {
         unit_sphere_to_world: Affine3A::from_scale_rotation_translation(
             Vec3::splat(radius_m),
             glam::Quat::IDENTITY,
             centre,
         ),
-    }]);
-    map.build_surface(&input, 0.5 * DS);
-    map
+    };
+    solids.build_for(&map, &[sphere], OccluderMesh::EMPTY);
+    let mut skin = None;
+    SurfaceShadow::build_for(&mut skin, &map, &solids, &input, 0.5 * DS);
+    Built { map, solids, skin }
 }
 
 /// The lit pole of the sphere (the point facing the light), nudged off it as the skin shader
 /// does.
-fn lit_pole(map: &LightMap, light: Vec3, centre_cells: Vec3, radius_m: f32) -> Vec3 {
+fn lit_pole(map: &Shadow, light: Vec3, centre_cells: Vec3, radius_m: f32) -> Vec3 {
     let frame = LightFrame::new(light);
     let toward = -light.normalize();
     frame.to_world(centre_cells * DS) + toward * (radius_m + map.surface_offset_m())
@@ -73,7 +97,8 @@ fn a_slab_over_a_solid_gives_the_analytic_attenuation() {
     let light = Vec3::new(0.3, -1.0, 0.2);
     let frame = LightFrame::new(light);
     let (centre, radius) = (Vec3::new(40.0, 0.3, -0.6), 10.0 * DS);
-    let map = map_with_sphere(&slab(&frame, 10..14, DS, LEN), light, centre, radius);
+    let built = map_with_sphere(&slab(&frame, 10..14, DS, LEN), light, centre, radius);
+    let map = built.shadow();
     let fiber = default_fiber();
     let r = fiber.params().radius_m;
     let n = 4.0 * PER_CELL * FIBERS * LEN * 2.0 * r / (DS * DS);
@@ -99,12 +124,12 @@ fn hair_behind_the_first_solid_casts_no_shadow_on_it() {
     let light = Vec3::new(0.3, -1.0, 0.2);
     let frame = LightFrame::new(light);
     let (centre, radius) = (Vec3::new(15.0, 0.3, -0.6), 10.0 * DS);
-    let map = map_with_sphere(&slab(&frame, 10..14, DS, LEN), light, centre, radius);
-    let p = lit_pole(&map, light, centre, radius);
-    assert_eq!(map.light_at_surface(p), Vec3::ONE);
+    let built = map_with_sphere(&slab(&frame, 10..14, DS, LEN), light, centre, radius);
+    let p = lit_pole(&built.shadow(), light, centre, radius);
+    assert_eq!(built.shadow().light_at_surface(p), Vec3::ONE);
     // Hair in front of the pole (slices 0..3) does shadow it.
-    let map = map_with_sphere(&slab(&frame, 0..3, DS, LEN), light, centre, radius);
-    let tf = map.light_at_surface(p);
+    let built = map_with_sphere(&slab(&frame, 0..3, DS, LEN), light, centre, radius);
+    let tf = built.shadow().light_at_surface(p);
     assert!(tf.max_element() < 0.99, "{tf}");
 }
 
@@ -124,7 +149,7 @@ fn the_texture_is_the_same_for_any_thread_count() {
             );
             e.run_up_to(0.5);
             e.frame(0.5);
-            let map = &e.maps()[0];
+            let map = e.shadows().light(0).expect("one light");
             // Read over a lattice around the head.
             let mut out = Vec::new();
             for i in -20..20 {

@@ -75,7 +75,7 @@ impl Case {
         let mut colors = Vec::new();
         shade_vertices(
             &self.fiber,
-            &[],
+            wisp::map::Shadows::hair_only(&[]),
             &self.lighting,
             self.eye,
             VertexGeometry {

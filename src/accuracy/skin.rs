@@ -18,6 +18,7 @@ use super::{exact_reference, key_light};
 use crate::accuracy::comparison::Comparison;
 use crate::engine::Engine;
 use crate::fiber::LightAtPoint;
+use crate::map::Shadow;
 use crate::raster::Framebuffer;
 use glam::Vec3;
 use std::time::Instant;
@@ -52,7 +53,18 @@ pub fn measure_skin(engine: &mut Engine, rays: u32) -> SkinReport {
     let facing = |p: Vec3, n: Vec3| n.dot(key.toward_and_irradiance(p).0) > 0.0;
     let mask = engine.solids_image(|p, n, _| Vec3::splat(f32::from(u8::from(facing(p, n)))));
     let measured: Vec<bool> = mask.color.iter().map(|c| c.x >= 0.999).collect();
-    let map = engine.maps()[0].clone();
+    // The key light's shadows, copied: the engine is drawn into while they are read.
+    let key_shadow = engine.shadows().light(0).expect("an engine has a map per light");
+    let (hair, solids, skin) = (
+        key_shadow.hair.clone(),
+        key_shadow.solids.clone(),
+        key_shadow.skin.cloned(),
+    );
+    let map = Shadow {
+        hair: &hair,
+        solids: &solids,
+        skin: skin.as_ref(),
+    };
     let offset_m = map.surface_offset_m();
     let map_img = engine.solids_image(|p, n, _| {
         if facing(p, n) {

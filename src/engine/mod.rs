@@ -42,7 +42,10 @@ pub use setup::{
 use crate::fiber::Fiber;
 use crate::hairstyle::{GuideSet, Hairstyle, StrandLayout, generate};
 use crate::interp::{StrandGeometry, interpolate_among};
-use crate::map::{CountModel, LightMap, MapGeometry, MapStats, OccluderMesh, Solid};
+use crate::map::surface::SurfaceShadow;
+use crate::map::{
+    CountModel, LightMap, MapGeometry, MapStats, OccluderGrid, OccluderMesh, Shadows, Solid,
+};
 use crate::motion::{CharacterPose, Motion, Pose};
 use crate::raster::{
     Camera, Framebuffer, LineScratch, Mesh, MeshScratch, Surface, Texture, draw_ellipsoid,
@@ -78,6 +81,10 @@ pub struct Engine {
     pub state: SimState,
     /// One light-oriented map per light of `config.lighting`, in its order.
     maps: Vec<LightMap>,
+    /// Per light, the solids' entry depths in its map's frame.
+    occluders: Vec<OccluderGrid>,
+    /// Per light, the hair's shadow texture on skin (when solids are drawn).
+    skin_textures: Vec<Option<SurfaceShadow>>,
     /// What the maps were last built from, and whether the last build kept them.
     map_inputs: MapInputs,
     map_reused: bool,
@@ -230,6 +237,8 @@ impl Engine {
                 LightMap::new(geom, CountModel::Poisson);
                 config.lighting.lights.len().max(1)
             ],
+            occluders: Vec::new(),
+            skin_textures: Vec::new(),
             map_inputs: MapInputs::default(),
             map_reused: false,
             strands: StrandGeometry::default(),
@@ -271,6 +280,15 @@ impl Engine {
     /// Every light's map, in the order of `config.lighting.lights`.
     pub fn maps(&self) -> &[LightMap] {
         &self.maps
+    }
+    /// Every light's shadows (hair map, solids, skin texture), in the order of
+    /// `config.lighting.lights`.
+    pub fn shadows(&self) -> Shadows<'_> {
+        Shadows {
+            maps: &self.maps,
+            solids: &self.occluders,
+            skin: &self.skin_textures,
+        }
     }
     pub fn camera(&self) -> &Camera {
         &self.camera
@@ -421,9 +439,14 @@ impl Engine {
     /// those [`Engine::render`] found the raster could draw (the rest black).
     fn shade_where(&mut self, only_seen: bool) {
         let eye = self.camera.eye();
+        let shadows = Shadows {
+            maps: &self.maps,
+            solids: &self.occluders,
+            skin: &self.skin_textures,
+        };
         shade_vertices(
             &self.fiber,
-            &self.maps,
+            shadows,
             &self.config.lighting,
             eye,
             VertexGeometry {
@@ -486,6 +509,8 @@ impl Engine {
         // The maps move out for the call (no copy) so the shader can read them while the
         // solids are drawn into the engine's own framebuffer.
         let maps = std::mem::take(&mut self.maps);
+        let occluders = std::mem::take(&mut self.occluders);
+        let skin_textures = std::mem::take(&mut self.skin_textures);
         let mode = self.config.lighting.mode;
         let lighting = std::mem::replace(
             &mut self.config.lighting,
@@ -495,8 +520,15 @@ impl Engine {
                 mode,
             },
         );
-        self.draw_solids_with(|p, n, albedo| shade_skin(&maps, &lighting, albedo, p, n));
+        let shadows = Shadows {
+            maps: &maps,
+            solids: &occluders,
+            skin: &skin_textures,
+        };
+        self.draw_solids_with(|p, n, albedo| shade_skin(shadows, &lighting, albedo, p, n));
         self.maps = maps;
+        self.occluders = occluders;
+        self.skin_textures = skin_textures;
         self.config.lighting = lighting;
     }
 
@@ -631,12 +663,21 @@ impl Engine {
             },
             None => OccluderMesh::EMPTY,
         };
-        for (map, light) in self.maps.iter_mut().zip(lights) {
+        self.occluders
+            .resize_with(self.maps.len(), OccluderGrid::default);
+        self.skin_textures.resize_with(self.maps.len(), || None);
+        for (k, (map, light)) in self.maps.iter().zip(lights).enumerate() {
             let t = Instant::now();
-            map.set_occluders_with_mesh(&self.solids, mesh);
+            self.occluders[k].build_for(map, &self.solids, mesh);
             let t_surface = Instant::now();
             if draw_solids {
-                map.build_surface(&input(light), bundle_radius_m);
+                SurfaceShadow::build_for(
+                    &mut self.skin_textures[k],
+                    map,
+                    &self.occluders[k],
+                    &input(light),
+                    bundle_radius_m,
+                );
             }
             self.map_parts.occluders_s += (t_surface - t).as_secs_f64();
             self.map_parts.surface_s += t_surface.elapsed().as_secs_f64();

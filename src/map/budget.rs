@@ -3,10 +3,10 @@
 //! exists. Keep it in step with `build.rs` (the vectors listed below) when the map changes;
 //! `tests/hostile_budget.rs` measures a real build against it.
 
+use super::Cell;
 use super::MapGeometry;
 use super::build::{MAX_PIECES, SLOT_SPAN_PER_CELL};
 use super::column::{Piece, PieceStats, Placed, SPLAT};
-use super::{Cell, OccluderGrid, occluders::MAX_TEXELS};
 
 impl MapGeometry {
     /// Pieces each sample is split into when the longest sample is `sample_len_m` long
@@ -29,7 +29,6 @@ impl MapGeometry {
     /// - the scratch `entries` (one [`Piece`] per piece) and `sorted` (one [`Placed`] per
     ///   piece), and `stats` (one per sample);
     /// - `cells` (at most one per piece and column it is shared with, `SPLAT` = 4);
-    /// - the occluder grid (at most `MAX_TEXELS`² depths);
     /// - `slots`: at most `SLOT_SPAN_PER_CELL` per filled cell (sparser columns have none).
     ///   `slots` grows by `push`, so its capacity may reach twice its length.
     pub fn estimated_bytes(&self, samples: u64, pieces: u64) -> u64 {
@@ -39,8 +38,6 @@ impl MapGeometry {
         let pieces = samples.saturating_mul(pieces);
         let cells = pieces.saturating_mul(SPLAT as u64);
         let piece_bytes = (size_of::<Piece>() + size_of::<Placed>()) as u64 + u32_bytes;
-        let occluders =
-            (MAX_TEXELS * MAX_TEXELS * size_of::<f32>()) as u64 + size_of::<OccluderGrid>() as u64;
         let cell_bytes = size_of::<Cell>() as u64;
         let offsets =
             (3 * columns + 2) * u32_bytes + columns * size_of::<super::ColumnIndex>() as u64;
@@ -53,6 +50,5 @@ impl MapGeometry {
             .saturating_add(cells.saturating_mul(cell_bytes))
             .saturating_add(stats)
             .saturating_add(slots)
-            .saturating_add(occluders)
     }
 }

@@ -1,7 +1,8 @@
 //! Reading the map: the trilinear filter of Bertails 2005 §3.3 and the cell density used by
 //! self-collision (§4.1).
 
-use super::{Cell, LightMap, on_map};
+use super::occluders::NO_SOLIDS;
+use super::{Cell, LightMap, OccluderGrid, on_map};
 use crate::fiber::LightAtPoint;
 use glam::Vec3;
 
@@ -87,37 +88,12 @@ impl LightMap {
     /// its column's whole sums. Inside a map whose span holds the hair (no overflow) this is
     /// exactly the unaliased answer, also for points far from the hair (a character's feet).
     pub fn light_at(&self, p: Vec3) -> LightAtPoint {
-        self.light_with_taps(p, &[(1.0, 0.0)])
+        self.light_past(&NO_SOLIDS, p)
     }
 
-    /// Forward transmittance T_f (R, G, B) reaching a point of a surface (skin, clothes) at
-    /// world point `p` facing the light, past the hair and the solids. With the surface
-    /// texture ([`Self::build_surface`]): exp(−L)·V, L the texture's optical depth of the hair
-    /// in front of the first solid along the ray (`super::surface`), V the solids' visibility.
-    /// Without it: [`Self::light_at`].
-    pub fn light_at_surface(&self, p: Vec3) -> Vec3 {
-        let Some(surface) = &self.surface else {
-            return self.light_at(p).tf;
-        };
-        let m = self.proj.point(p);
-        if !m.is_finite() {
-            return Vec3::ONE;
-        }
-        // No hair in front (most of the body): exp(−0) is exactly 1, without three `exp`s.
-        let depth = surface.optical_depth(m);
-        let hair = if depth == Vec3::ZERO {
-            Vec3::ONE
-        } else {
-            (-depth).exp()
-        };
-        let tf = hair * self.occluders.visibility(m);
-        tf.clamp(Vec3::ZERO, Vec3::ONE)
-    }
-
-    /// Fraction of the light reaching world point `p` past the opaque solids alone (head,
-    /// body; not the hair), in [0, 1].
-    pub fn solid_visibility(&self, p: Vec3) -> f32 {
-        self.occluders.visibility(self.proj.point(p))
+    /// [`Self::light_at`] past the opaque `solids` too (their grid in this map's frame).
+    pub(crate) fn light_past(&self, solids: &OccluderGrid, p: Vec3) -> LightAtPoint {
+        self.light_with_taps(solids, p, &[(1.0, 0.0)])
     }
 
     /// The light reaching world point `p` *on a fibre the camera sees* from direction
@@ -142,15 +118,27 @@ impl LightMap {
         tangent: Vec3,
         fiber_radius_m: f32,
     ) -> LightAtPoint {
+        self.light_at_seen_past(&NO_SOLIDS, p, to_eye, tangent, fiber_radius_m)
+    }
+
+    /// [`Self::light_at_seen`] past the opaque `solids` too.
+    pub(crate) fn light_at_seen_past(
+        &self,
+        solids: &OccluderGrid,
+        p: Vec3,
+        to_eye: Vec3,
+        tangent: Vec3,
+        fiber_radius_m: f32,
+    ) -> LightAtPoint {
         let s_c = self.shared_tube_m(p, to_eye, tangent, fiber_radius_m);
         let min_shift = 0.05 * self.geom.ds_m / crate::map::DEPTH_BINS as f32;
         if s_c <= min_shift {
-            return self.light_at(p);
+            return self.light_past(solids, p);
         }
         // Gauss–Legendre nodes on [0, s_c]: s_c (1/2 ∓ 1/(2√3)), in cells.
         let h = 0.5 / 3f32.sqrt();
         let sc = s_c * self.inv_ds;
-        self.light_with_taps(p, &[(0.5, sc * (0.5 - h)), (0.5, sc * (0.5 + h))])
+        self.light_with_taps(solids, p, &[(0.5, sc * (0.5 - h)), (0.5, sc * (0.5 + h))])
     }
 
     /// [`Self::light_at_seen`] for render-strand point `vertex` at `p`, with the fibres in the
@@ -176,15 +164,28 @@ impl LightMap {
         tangent: Vec3,
         fiber_radius_m: f32,
     ) -> LightAtPoint {
+        self.light_at_vertex_seen_past(&NO_SOLIDS, vertex, p, to_eye, tangent, fiber_radius_m)
+    }
+
+    /// [`Self::light_at_vertex_seen`] past the opaque `solids` too.
+    pub(crate) fn light_at_vertex_seen_past(
+        &self,
+        solids: &OccluderGrid,
+        vertex: usize,
+        p: Vec3,
+        to_eye: Vec3,
+        tangent: Vec3,
+        fiber_radius_m: f32,
+    ) -> LightAtPoint {
         let Some(contact) = &self.contact else {
-            return self.light_at_seen(p, to_eye, tangent, fiber_radius_m);
+            return self.light_at_seen_past(solids, p, to_eye, tangent, fiber_radius_m);
         };
         // Where the map says the point itself is dark, the exact window cannot make it
         // noticeably brighter (the map is calibrated there, ACCURACY.md §1): the map's value
         // stands, given the camera sees the point as everywhere else.
-        let here = self.light_at(p);
+        let here = self.light_past(solids, p);
         if here.tf.max_element() <= DARK {
-            return self.light_at_seen(p, to_eye, tangent, fiber_radius_m);
+            return self.light_at_seen_past(solids, p, to_eye, tangent, fiber_radius_m);
         }
         // The window holds about CONTACT_CROSSINGS of the map's expected crossings in front of
         // the point (all of them up to the full window near the lit surface; a shorter window
@@ -195,12 +196,13 @@ impl LightMap {
         let far_p = p + to_light * delta;
         let s_c = self.shared_tube_m(p, to_eye, tangent, fiber_radius_m);
         let far = if s_c <= delta {
-            self.light_at(far_p)
+            self.light_past(solids, far_p)
         } else {
             let h = 0.5 / 3f32.sqrt();
             let rest = (s_c - delta) * self.inv_ds;
             let w = 0.5 * (s_c - delta) / s_c;
             self.light_with_taps(
+                solids,
                 far_p,
                 &[
                     (delta / s_c, 0.0),
@@ -250,13 +252,13 @@ impl LightMap {
     /// The light at `p` with the sums along the light averaged over `taps` (weight, shift
     /// toward the light in cells); `crossings_behind` from the point itself.
     #[inline]
-    fn light_with_taps(&self, p: Vec3, taps: &[(f32, f32)]) -> LightAtPoint {
+    fn light_with_taps(&self, solids: &OccluderGrid, p: Vec3, taps: &[(f32, f32)]) -> LightAtPoint {
         let m = self.proj.point(p);
         let c = m * self.inv_cell;
         if !on_map(c) {
             return LightAtPoint::UNSHADOWED;
         }
-        let visible = self.occluders.visibility(m);
+        let visible = solids.visibility(m);
         let (yj, zk) = (c.y - 0.5, c.z - 0.5);
         let (j0, k0) = (yj.floor(), zk.floor());
         let (wy, wz) = (yj - j0, zk - k0);

@@ -80,10 +80,12 @@ mod entry_depths;
 pub(crate) mod lateral_bins;
 mod lookup;
 pub(crate) mod occluders;
+mod shadows;
 pub mod surface;
 
 pub use build::{CountModel, MapBuildInput, MapLight, MapStats};
 pub use occluders::{OccluderGrid, OccluderMesh, Solid};
+pub use shadows::{Shadow, Shadows};
 
 use glam::{Vec2, Vec3};
 
@@ -463,13 +465,9 @@ pub struct LightMap {
     index: Vec<ColumnIndex>,
     scratch: build::Scratch,
     stats: MapStats,
-    /// Opaque solids (head, body) in the same light frame.
-    occluders: OccluderGrid,
     /// The exact fibres in front of each vertex, for one-fibre-per-strand hair
     /// ([`LightMap::build_contact`]).
     contact: Option<contact::ContactShadows>,
-    /// The hair's shadow on surfaces, finer than the columns ([`LightMap::build_surface`]).
-    surface: Option<surface::SurfaceShadow>,
 }
 
 impl LightMap {
@@ -497,9 +495,7 @@ impl LightMap {
             index: vec![ColumnIndex::EMPTY; cols],
             scratch: build::Scratch::default(),
             stats: MapStats::default(),
-            occluders: OccluderGrid::default(),
             contact: None,
-            surface: None,
         }
     }
 
@@ -516,30 +512,6 @@ impl LightMap {
         });
     }
 
-    /// Builds the map's surface shadow texture (`super::surface`) from the same `input` as
-    /// [`LightMap::build`] (call after it and after [`LightMap::set_occluders_with_mesh`]: it
-    /// uses the frame, the hair's extent and the solids' entry depths), for render strands
-    /// whose fibres spread over `bundle_radius_m`. Skin and clothes read it through
-    /// [`LightMap::light_at_surface`]; without it they read the columns.
-    pub fn build_surface(&mut self, input: &MapBuildInput, bundle_radius_m: f32) {
-        let dc = self.geom.column_m();
-        if self.hair_lo[1] > self.hair_hi[1] {
-            self.surface = None;
-            return;
-        }
-        let lo = Vec2::new(self.hair_lo[1] as f32, self.hair_lo[2] as f32) * dc;
-        let hi = Vec2::new(self.hair_hi[1] as f32 + 1.0, self.hair_hi[2] as f32 + 1.0) * dc;
-        self.surface.get_or_insert_with(Default::default).build(
-            input,
-            &self.proj,
-            &self.occluders,
-            (lo, hi),
-            dc,
-            bundle_radius_m,
-            &self.scratch.forward_a,
-        );
-    }
-
     pub fn geometry(&self) -> MapGeometry {
         self.geom
     }
@@ -550,18 +522,32 @@ impl LightMap {
         &self.stats
     }
 
-    /// Places opaque solids (head, body) in the map's current light frame (call after
-    /// [`LightMap::build`], which sets the frame): they shadow whatever lies behind them along
-    /// the light, hair and skin alike. Texels are a quarter of a cell.
-    pub fn set_occluders(&mut self, solids: &[Solid]) {
-        self.set_occluders_with_mesh(solids, OccluderMesh::EMPTY);
+    /// The texel size of the solids' entry depths in this map's light frame
+    /// ([`OccluderGrid::build`]): a quarter of a cell, metres.
+    pub fn occluder_texel_m(&self) -> f32 {
+        OCCLUDER_TEXEL_CELLS * self.geom.ds_m
     }
 
-    /// [`LightMap::set_occluders`] with an opaque triangle mesh too (a character's body).
-    pub fn set_occluders_with_mesh(&mut self, solids: &[Solid], mesh: OccluderMesh) {
-        let texel = OCCLUDER_TEXEL_CELLS * self.geom.ds_m;
-        self.occluders
-            .build_with_mesh(&self.proj, texel, solids, mesh);
+    /// The map's projection of world points into its light frame.
+    pub fn projection(&self) -> &Projection {
+        &self.proj
+    }
+
+    /// The lateral extent of the filled columns (map metres, Y and Z: low and high corners),
+    /// or `None` when the map holds no hair.
+    pub(crate) fn hair_extent_m(&self) -> Option<(Vec2, Vec2)> {
+        if self.hair_lo[1] > self.hair_hi[1] {
+            return None;
+        }
+        let dc = self.geom.column_m();
+        let lo = Vec2::new(self.hair_lo[1] as f32, self.hair_lo[2] as f32) * dc;
+        let hi = Vec2::new(self.hair_hi[1] as f32 + 1.0, self.hair_hi[2] as f32 + 1.0) * dc;
+        Some((lo, hi))
+    }
+
+    /// Each sample's clamped ā_f as the last build's fill evaluated it (NaN where it did not).
+    pub(crate) fn sample_forward_a(&self) -> &[Vec3] {
+        &self.scratch.forward_a
     }
 
     /// How far a point on an occluder's surface should be moved along its normal before a

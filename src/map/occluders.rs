@@ -29,7 +29,7 @@
 //!   the light), capped at `MAX_TEXELS` a side (a larger scene gets coarser texels), and a point
 //!   outside it is unoccluded.
 
-use super::{LightFrame, Projection};
+use super::{LightFrame, LightMap, Projection};
 use crate::tri_span;
 use glam::{Affine3A, Vec2, Vec3, Vec4};
 use rayon::prelude::*;
@@ -193,7 +193,32 @@ impl TriangleSetup {
 const SPHERE_STACKS: u32 = 16;
 const SPHERE_SLICES: u32 = 32;
 
+/// A grid with no solids, for lookups of the hair alone: every point is visible.
+pub static NO_SOLIDS: OccluderGrid = OccluderGrid::EMPTY;
+
 impl OccluderGrid {
+    /// A grid with no solids: every point is visible.
+    pub const EMPTY: OccluderGrid = OccluderGrid {
+        origin: Vec2::ZERO,
+        texel_m: 0.0,
+        dims: [0, 0],
+        depth: Vec::new(),
+        mesh_light: Vec::new(),
+        solid_triangles: Vec::new(),
+        triangle_setups: Vec::new(),
+    };
+
+    /// Recomputes the grid for `solids` and `mesh` in the light frame of `map` (after its
+    /// build, which sets the frame), with texels of [`LightMap::occluder_texel_m`].
+    pub fn build_for(&mut self, map: &LightMap, solids: &[Solid], mesh: OccluderMesh) {
+        self.build_with_mesh(map.projection(), map.occluder_texel_m(), solids, mesh);
+    }
+
+    /// Upper bound, in bytes, of what a grid holds once built: at most `MAX_TEXELS`² depths.
+    pub fn estimated_bytes() -> u64 {
+        (MAX_TEXELS * MAX_TEXELS * size_of::<f32>()) as u64 + size_of::<OccluderGrid>() as u64
+    }
+
     /// Recomputes the grid for `solids` in light frame `frame`, with texels of `texel_m`.
     /// Reuses its allocation. Degenerate or non-finite solids are skipped.
     pub fn build(&mut self, frame: &LightFrame, texel_m: f32, solids: &[Solid]) {

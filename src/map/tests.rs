@@ -261,10 +261,17 @@ fn a_tapered_sample_spreads_its_crossings_along_its_whole_piece() {
 fn occluders_shadow_what_lies_behind_them() {
     use crate::map::Solid;
     // An empty map (no hair) with a sphere of radius 2 cm at the origin; light along +X.
-    let mut map = build(&[Vec3::new(0.3, 0.3, 0.3)], 0.01, 64, 0.01);
-    map.set_occluders(&[Solid {
+    let hair = build(&[Vec3::new(0.3, 0.3, 0.3)], 0.01, 64, 0.01);
+    let mut solids = crate::map::OccluderGrid::default();
+    let sphere = Solid {
         unit_sphere_to_world: glam::Affine3A::from_scale(Vec3::splat(0.02)),
-    }]);
+    };
+    solids.build_for(&hair, &[sphere], crate::map::OccluderMesh::EMPTY);
+    let map = crate::map::Shadow {
+        hair: &hair,
+        solids: &solids,
+        skin: None,
+    };
     assert!(map.light_at(Vec3::new(0.05, 0.0, 0.0)).direct_fraction < 1e-6);
     assert_eq!(map.light_at(Vec3::new(0.05, 0.0, 0.0)).tf, Vec3::ZERO);
     assert_eq!(map.light_at(Vec3::new(-0.05, 0.0, 0.0)), OPEN);

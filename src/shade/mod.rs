@@ -13,7 +13,9 @@ mod bend;
 
 use crate::fiber::{Fiber, LightAtPoint, ShadingMode};
 use crate::light::{Light, default_light};
-use crate::map::LightMap;
+use crate::map::Shadows;
+#[cfg(doc)]
+use crate::map::{LightMap, Shadow};
 use bend::{BendTest, Directions};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -86,8 +88,9 @@ pub struct ShadeScratch {
 
 /// Shades every vertex, or with `seen` only those it flags (the rest are black: the engine
 /// leaves out the hair the raster would not draw, `raster::seen_points`): `colors[i]` is the
-/// linear RGB radiance of vertex `i` seen from `eye`, summed over the lights (`maps[k]` is light `k`'s map). The light a vertex receives is the
-/// map's, given that the camera sees it ([`LightMap::light_at_vertex_seen`]: with the light
+/// linear RGB radiance of vertex `i` seen from `eye`, summed over the lights (light `k`'s
+/// shadows are `shadows.light(k)`). The light a vertex receives is the map's past the solids,
+/// given that the camera sees it ([`Shadow::light_at_vertex_seen`]: with the light
 /// near the camera the view and light rays cross the same fibres, so a fibre that is seen is
 /// lit more often than the average), with the fibres just in front of it taken exactly when
 /// the map has contact shadows (one fibre per strand). Non-finite results (which the fibre model must never produce) are
@@ -101,7 +104,7 @@ pub struct ShadeScratch {
 #[allow(clippy::too_many_arguments)]
 pub fn shade_vertices(
     fiber: &Fiber,
-    maps: &[LightMap],
+    shadows: Shadows,
     lighting: &Lighting,
     eye: Vec3,
     strands: VertexGeometry,
@@ -109,7 +112,7 @@ pub fn shade_vertices(
     colors: &mut Vec<Vec3>,
     scratch: &mut ShadeScratch,
 ) {
-    let Some(first) = maps.first() else {
+    let Some(first) = shadows.first_map() else {
         shade_vertices_with(
             fiber,
             lighting,
@@ -194,8 +197,8 @@ pub fn shade_vertices(
                     eye,
                     positions[i],
                     dirs(i),
-                    |k, p| match maps.get(k) {
-                        Some(map) => map.light_at_vertex_seen(i, p, eye - p, tangents[i], r),
+                    |k, p| match shadows.light(k) {
+                        Some(s) => s.light_at_vertex_seen(i, p, eye - p, tangents[i], r),
                         None => LightAtPoint::UNSHADOWED,
                     },
                 );
@@ -335,25 +338,28 @@ fn shade_in_order<D, L>(
 
 /// Skin: Lambertian with albedo `albedo`, lit through the hair and past the other solids (each
 /// light's map gives T_f at the skin point, from its surface texture where it has one,
-/// [`LightMap::light_at_surface`]: hair casts its shadow on the head, the head on the body),
+/// [`Shadow::light_at_surface`]: hair casts its shadow on the head, the head on the body),
 /// plus ambient. The lookup point is moved off the surface along its normal by
 /// [`LightMap::surface_offset_m`] ("normal offset" shadow mapping), so that near the terminator,
 /// where the light grazes the surface, the solid does not shadow itself through the finite
 /// resolution of the occluder grid.
 #[inline]
 pub fn shade_skin(
-    maps: &[LightMap],
+    shadows: Shadows,
     lighting: &Lighting,
     albedo: Vec3,
     p: Vec3,
     normal: Vec3,
 ) -> Vec3 {
     let mut lit = Vec3::ZERO;
-    for (l, map) in lighting.lights.iter().zip(maps) {
+    for (k, l) in lighting.lights.iter().enumerate() {
+        let Some(shadow) = shadows.light(k) else {
+            break;
+        };
         let (wi, irradiance) = l.toward_and_irradiance(p);
         let cos = normal.dot(wi).max(0.0);
         if cos > 0.0 {
-            let tf = map.light_at_surface(p + normal * map.surface_offset_m());
+            let tf = shadow.light_at_surface(p + normal * shadow.surface_offset_m());
             lit += irradiance * tf * cos * std::f32::consts::FRAC_1_PI;
         }
     }

@@ -28,7 +28,7 @@
 
 use super::entry_depths::EntryDepths;
 use super::occluders::OccluderGrid;
-use super::{MapBuildInput, Projection};
+use super::{LightMap, MapBuildInput, Projection};
 use crate::keysort::sort_keys;
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -204,6 +204,32 @@ impl SurfaceShadow {
         } else {
             u64::MAX
         }
+    }
+
+    /// The texture of `map`'s hair in front of `solids` (call after the map's build and the
+    /// solids' grid in its frame: it uses the frame, the hair's extent and the entry depths),
+    /// for render strands whose fibres spread over `bundle_radius_m`; `None` when the map
+    /// holds no hair. `texture` is reused when it has one.
+    pub fn build_for(
+        texture: &mut Option<SurfaceShadow>,
+        map: &LightMap,
+        solids: &OccluderGrid,
+        input: &MapBuildInput,
+        bundle_radius_m: f32,
+    ) {
+        let Some(extent) = map.hair_extent_m() else {
+            *texture = None;
+            return;
+        };
+        texture.get_or_insert_with(Default::default).build(
+            input,
+            map.projection(),
+            solids,
+            extent,
+            map.geometry().column_m(),
+            bundle_radius_m,
+            map.sample_forward_a(),
+        );
     }
 
     /// Fills the texture from `input`'s samples in the map's light frame `proj`, over the
