@@ -34,11 +34,7 @@ fn stages(c: &mut Criterion) {
                 eprintln!("cannot build a pool of {threads} threads; skipped");
                 continue;
             };
-            let config = EngineConfig {
-                width: 1280,
-                height: 720,
-                ..EngineConfig::default()
-            };
+            let config = EngineConfig::sized(1280, 720);
             let motion = if still {
                 Motion::still(glam::Affine3A::IDENTITY)
             } else {

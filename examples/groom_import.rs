@@ -13,11 +13,7 @@ use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
 
 fn settled_distance_mm(groom: &wisp::groom::Groom) -> (f32, f32) {
-    let config = EngineConfig {
-        width: 64,
-        height: 64,
-        ..Default::default()
-    };
+    let config = EngineConfig::sized(64, 64);
     let engine = Engine::with_hair(
         groom.style.clone(),
         groom.guides.clone(),
@@ -51,7 +47,7 @@ fn settled_distance_mm(groom: &wisp::groom::Groom) -> (f32, f32) {
         &groom.guides,
         &bare,
         &groom.style.curl,
-        &engine.state.positions,
+        &engine.simulation.state.positions,
         &mut c_now,
     );
     let dc: Vec<f32> = c_rest
@@ -68,7 +64,7 @@ fn settled_distance_mm(groom: &wisp::groom::Groom) -> (f32, f32) {
     let d: Vec<f32> = rest
         .positions
         .iter()
-        .zip(&engine.strands.positions)
+        .zip(&engine.strands().positions)
         .map(|(a, b)| (*a - *b).length() * 1e3)
         .collect();
     (

@@ -55,18 +55,14 @@ fn png16(rgba: &[u16], width: u32, height: u32, compression: png::Compression) -
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
-    let config = EngineConfig {
-        width: arg(&args, "--width", 800),
-        height: arg(&args, "--height", 800),
-        ..Default::default()
-    };
-    let (w, h) = (config.width, config.height);
+    let config = { EngineConfig::sized(arg(&args, "--width", 800), arg(&args, "--height", 800)) };
+    let (w, h) = (config.scene.width, config.scene.height);
     let time_s: f64 = arg(&args, "--time-s", 1.0);
     let repeat: usize = arg(&args, "--repeat", 10);
     let mut engine = Engine::new(Hairstyle::default_smooth(), Motion::default_dance(), config);
     engine.run_up_to(time_s);
     let fb = engine.frame(time_s).clone();
-    let bg = engine.config.background;
+    let bg = engine.scene.background;
     let dir = std::env::temp_dir().join(format!("wisp-output-formats-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
 

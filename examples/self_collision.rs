@@ -104,11 +104,10 @@ fn run() -> Result<(), String> {
     println!("|---|---|---|---|");
     let mut volumes = [0.0f64; 2];
     for (k, on) in [false, true].into_iter().enumerate() {
-        let config = EngineConfig {
-            width: 16,
-            height: 16,
-            self_collision: on,
-            ..EngineConfig::default()
+        let config = {
+            let mut config = EngineConfig::sized(16, 16);
+            config.simulation.self_collision = on;
+            config
         };
         let mut engine = Engine::new(style.clone(), motion.clone(), config);
         let (mut peak, mut volume, mut sim_s) = (0.0f64, 0.0f64, Vec::new());

@@ -24,15 +24,10 @@ fn main() {
             None => Hairstyle::default_smooth(),
         },
     };
-    let mut config = EngineConfig {
-        width: 1280,
-        height: 720,
-        ..EngineConfig::default()
-    };
+    let mut config = EngineConfig::sized(1280, 720);
     if let Some(mm) = std::env::args().nth(4).and_then(|a| a.parse::<f32>().ok()) {
-        config.contact = wisp::engine::ContactShadowing::from_mm(mm);
+        config.hair_map.contact = wisp::engine::ContactShadowing::from_mm(mm);
     }
-    let lighting = config.lighting.clone();
     let mut e = Engine::new(style, Motion::default_dance(), config);
     let at_s: f64 = std::env::var("WISP_AT_S")
         .ok()
@@ -52,6 +47,8 @@ fn main() {
         solids: &solids,
         skin: &skin,
     };
+    let scene = e.scene.clone();
+    let lighting = e.shading.lighting(&scene);
     let t = std::time::Instant::now();
     for _ in 0..reps {
         match stage.as_str() {

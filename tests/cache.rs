@@ -42,11 +42,10 @@ fn frame_bits(engine: &Engine) -> Vec<u32> {
 }
 
 fn small_config() -> EngineConfig {
-    EngineConfig {
-        width: 48,
-        height: 48,
-        settle_s: 0.5,
-        ..EngineConfig::default()
+    {
+        let mut config = EngineConfig::sized(48, 48);
+        config.simulation.settle_s = 0.5;
+        config
     }
 }
 
@@ -98,7 +97,7 @@ fn check_cached_frames_match_a_single_run(
         (0..frames)
             .map(|i| {
                 let t = reader.header().frame_time_s(i);
-                let p = reader.read_frame(i, &engine.motion).expect("frame");
+                let p = reader.read_frame(i, engine.motion()).expect("frame");
                 engine.set_guide_state(t, p);
                 engine.render();
                 frame_bits(&engine)
@@ -124,11 +123,11 @@ fn frames_from_a_cache_are_the_bytes_of_a_single_run() {
 #[test]
 fn a_cache_relit_is_the_bytes_of_a_single_run_in_the_new_light() {
     let mut relit = small_config();
-    relit.lighting.lights = vec![
+    relit.scene.lights = vec![
         wisp::light::Light::directional(glam::Vec3::new(1.0, -0.5, -0.3), glam::Vec3::splat(6.0))
             .unwrap(),
     ];
-    relit.map_res = Some(48);
+    relit.hair_map.map_res = Some(48);
     check_cached_frames_match_a_single_run(small_config(), relit, "cache-relit");
 }
 
@@ -449,7 +448,7 @@ fn a_nudged_state_renders_finite_pixels() {
     let settled = r.read_settled(&motion).unwrap().to_vec();
     let mut engine = Engine::from_settled(seed_style(), motion, seed_config(), &settled);
     let t = r.header().frame_time_s(0);
-    let pts = r.read_frame(0, &engine.motion).unwrap().to_vec();
+    let pts = r.read_frame(0, engine.motion()).unwrap().to_vec();
     engine.set_guide_state(t, &pts);
     let fb = engine.render();
     assert!(fb.color.iter().all(|c| c.is_finite()));

@@ -285,18 +285,17 @@ fn broken_meshes_are_refused_with_the_rule() {
 /// darker than skin beside it.
 #[test]
 fn the_mesh_shadows_hair_and_hair_shadows_the_mesh() {
-    let config = EngineConfig {
-        width: 96,
-        height: 96,
-        settle_s: 0.5,
-        ..EngineConfig::default()
+    let config = {
+        let mut config = EngineConfig::sized(96, 96);
+        config.simulation.settle_s = 0.5;
+        config
     };
     let mut engine = Engine::new(Hairstyle::default_smooth(), Motion::default_dance(), config);
     engine.frame(0.0);
     let ch = engine.character_pose();
     assert!(!ch.positions.is_empty());
     let map = engine.shadows().light(0).expect("one light");
-    let light = engine.config.lighting.lights[0].travel().unwrap();
+    let light = engine.scene.lights[0].travel().unwrap();
     // Behind the body along the light (deep inside it and beyond): no light.
     let chest = Vec3::new(0.0, 1.3, 0.0);
     let behind = chest + light * 0.5;
@@ -317,7 +316,7 @@ fn the_mesh_shadows_hair_and_hair_shadows_the_mesh() {
     // surface offset along its normal): on the crown (head vertices above 0.7 of the head's
     // height, polar angle under 45°, all under the scalp's hair) nothing but hair lies above
     // it, so its shadow is the hair's; facing the light elsewhere, some skin is fully lit.
-    let def = engine.motion.character().expect("the mannequin");
+    let def = engine.motion().character().expect("the mannequin");
     let head = engine.pose().head;
     let crown_y = head.translation.y + 0.7 * engine.style.head.radii_m[1];
     let to_light = -light;
@@ -404,14 +403,10 @@ fn roots_lie_on_the_drawn_head_and_a_wrong_fit_is_told() {
 /// up to the pinch tolerance of `tests/dance_clip.rs`.
 #[test]
 fn hair_stays_out_of_the_drawn_mesh_over_the_dance() {
-    let config = EngineConfig {
-        width: 64,
-        height: 64,
-        ..EngineConfig::default()
-    };
+    let config = EngineConfig::sized(64, 64);
     let mut engine = Engine::new(Hairstyle::default_smooth(), Motion::default_dance(), config);
     let ch = engine
-        .motion
+        .motion()
         .character()
         .expect("the dance has its mannequin")
         .clone();
@@ -427,7 +422,7 @@ fn hair_stays_out_of_the_drawn_mesh_over_the_dance() {
             &pose.positions,
             &pose.normals,
             &ch.triangles,
-            &engine.strands.positions,
+            &engine.strands().positions,
         );
         deep += depths.iter().filter(|d| **d > 0.003).count();
         total += depths.len();
@@ -461,11 +456,10 @@ fn robot_expressive_is_drawn_with_its_own_mesh() {
     let half = motion.head_half_extents_m().expect("a head mesh");
     // Its head is flatter than it is wide (a visor): the fit gives the hair that shape.
     assert!(half.y < 0.8 * half.x && half.y < 0.8 * half.z, "{half}");
-    let config = EngineConfig {
-        width: 120,
-        height: 120,
-        settle_s: 0.5,
-        ..EngineConfig::default()
+    let config = {
+        let mut config = EngineConfig::sized(120, 120);
+        config.simulation.settle_s = 0.5;
+        config
     };
     // Its frames, with 1 and with 2 threads: byte-identical.
     let render = |threads: usize| {

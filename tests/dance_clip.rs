@@ -36,11 +36,7 @@ struct Run {
 }
 
 fn dance(style: Hairstyle, motion: Motion, seconds: f64, fps: f64) -> Run {
-    let config = EngineConfig {
-        width: 64,
-        height: 64,
-        ..Default::default()
-    };
+    let config = EngineConfig::sized(64, 64);
     let mut engine = Engine::new(style, motion, config);
     let mut run = Run {
         max_length_error: 0.0,
@@ -56,8 +52,8 @@ fn dance(style: Hairstyle, motion: Motion, seconds: f64, fps: f64) -> Run {
         engine.build_map(); // the next advance's self-collision reads this map
         run.max_penetration_m = run
             .max_penetration_m
-            .max(engine.step_stats.max_penetration_m);
-        let pos = &engine.state.positions;
+            .max(engine.simulation.stats.max_penetration_m);
+        let pos = &engine.simulation.state.positions;
         run.finite &= pos.iter().all(|p| p.is_finite());
         let head = Colliders::head_only(engine.pose().head, Vec3::from(engine.style.head.radii_m));
         for (i, p) in pos.iter().enumerate() {
@@ -160,11 +156,7 @@ fn robot_expressive_dances_with_hair_on_its_head() {
     assert!(run.max_penetration_m <= ROBOT_BODY_TOLERANCE_M);
 
     // Rendered: the hair's roots sit on the robot's head and hair covers part of the image.
-    let config = EngineConfig {
-        width: 160,
-        height: 160,
-        ..Default::default()
-    };
+    let config = EngineConfig::sized(160, 160);
     let mut engine = Engine::new(Hairstyle::default_smooth(), motion, config);
     let fb = engine.frame(1.0).clone();
     let head: Affine3A = engine.pose().head;
@@ -173,13 +165,13 @@ fn robot_expressive_dances_with_hair_on_its_head() {
     for g in 0..engine.guides.count() {
         let root_local = head
             .inverse()
-            .transform_point3(engine.state.positions[g * ppg]);
+            .transform_point3(engine.simulation.state.positions[g * ppg]);
         assert!(
             ((root_local / radii).length() - 1.0).abs() < 1e-3,
             "root {g} is off the head"
         );
     }
-    let background = engine.config.background;
+    let background = engine.scene.background;
     let drawn = fb
         .color
         .iter()

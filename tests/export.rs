@@ -21,12 +21,11 @@ fn tmp(name: &str) -> std::path::PathBuf {
 #[test]
 fn exported_scene_reads_back() {
     let dir = tmp("export-roundtrip");
-    let config = EngineConfig {
-        width: 96,
-        height: 64,
-        background: Vec3::ZERO,
-        draw_solids: false,
-        ..Default::default()
+    let config = {
+        let mut config = EngineConfig::sized(96, 64);
+        config.scene.background = Vec3::ZERO;
+        config.scene.draw_solids = false;
+        config
     };
     let mut e = Engine::new(
         Hairstyle::default_smooth(),
@@ -52,10 +51,10 @@ fn exported_scene_reads_back() {
 
     // cyHair: every strand, root first, bit for bit; thickness = fibre diameter.
     let hair = cyhair::read_hair(&dir.join("hair.hair")).unwrap();
-    let n = e.strands.points_per_strand;
-    assert_eq!(hair.segments.len(), e.strands.strand_count());
+    let n = e.strands().points_per_strand;
+    assert_eq!(hair.segments.len(), e.strands().strand_count());
     assert!(hair.segments.iter().all(|s| usize::from(*s) == n - 1));
-    assert_eq!(hair.points, e.strands.positions);
+    assert_eq!(hair.points, e.strands().positions);
     let d = 2.0 * e.style.fiber.radius_m;
     assert!(hair.thickness.iter().all(|t| *t == d));
     assert!(hair.info.contains("metres"));

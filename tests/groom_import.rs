@@ -414,13 +414,12 @@ fn the_shared_ponytail_loads_as_one_groom_on_the_head() {
 
 /// An engine for a groom, head at the identity, no solids so only hair is drawn.
 fn groom_engine(g: &Groom, motion: Motion, size: u32, simulate: bool) -> Engine {
-    let config = EngineConfig {
-        width: size,
-        height: size,
-        draw_solids: false,
-        simulate,
-        settle_s: 0.5,
-        ..Default::default()
+    let config = {
+        let mut config = EngineConfig::sized(size, size);
+        config.scene.draw_solids = false;
+        config.simulation.simulate = simulate;
+        config.simulation.settle_s = 0.5;
+        config
     };
     Engine::with_hair(
         g.style.clone(),
@@ -444,7 +443,7 @@ fn a_generated_cyhair_file_renders() {
     )
     .unwrap();
     let mut e = groom_engine(&g, Motion::still(Affine3A::IDENTITY), 96, true);
-    let bg = e.config.background;
+    let bg = e.scene.background;
     let fb = e.frame(0.0);
     let mut hair = 0;
     for y in 0..96 {
@@ -554,10 +553,10 @@ fn an_imported_groom_moves_with_the_head() {
     let mut still = groom_engine(&g, Motion::still(Affine3A::IDENTITY), 32, false);
     still.advance(0.0);
     let worst = e
-        .strands
+        .strands()
         .positions
         .iter()
-        .zip(&still.strands.positions)
+        .zip(&still.strands().positions)
         .map(|(moved, r)| (*moved - head.transform_point3(*r)).length())
         .fold(0.0f32, f32::max);
     // f32 rounding at 1.5 m from the origin (an ulp is 0.12 µm) over the ~30 operations of the

@@ -1,6 +1,6 @@
 //! The memory budget against the memory really allocated: an engine is built and run for a few
 //! frames on its own thread under the counting allocator, and its peak heap is compared with
-//! `wisp::budget::estimate`. The estimate must hold the peak (it is what refuses runs before
+//! `wisp::engine::estimate`. The estimate must hold the peak (it is what refuses runs before
 //! they allocate), and stay within a stated factor of it for the presets (a budget that
 //! overstates ten-fold refuses runs that would fit).
 
@@ -9,7 +9,8 @@ mod hostile_common;
 use hostile_common::run_bounded;
 use serde_json::{Value, json};
 use std::time::Duration;
-use wisp::budget::{RunPlan, estimate};
+use wisp::budget::RunPlan;
+use wisp::engine::estimate;
 use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::{Hairstyle, SMOOTH_JSON};
 use wisp::motion::Motion;
@@ -61,18 +62,17 @@ fn smooth_with(edit: impl FnOnce(&mut Value)) -> Hairstyle {
 }
 
 fn small() -> EngineConfig {
-    EngineConfig {
-        width: 200,
-        height: 200,
-        settle_s: 0.2,
-        ..EngineConfig::default()
+    {
+        let mut config = EngineConfig::sized(200, 200);
+        config.simulation.settle_s = 0.2;
+        config
     }
 }
 
 /// `config` with the light paths' shader (`--shading volume`) and `paths` paths.
 fn volume(mut config: EngineConfig, paths: u32) -> EngineConfig {
-    config.lighting.mode = wisp::fiber::ShadingMode::Volume;
-    config.volume.paths = paths;
+    config.shading.mode = wisp::fiber::ShadingMode::Volume;
+    config.shading.light_paths.paths = paths;
     config
 }
 
@@ -81,14 +81,11 @@ fn the_estimate_holds_the_peak_heap() {
     let cases: Vec<(&str, Hairstyle, EngineConfig)> = vec![
         ("smooth", Hairstyle::default_smooth(), small()),
         ("curly", Hairstyle::default_curly(), small()),
-        (
-            "smooth, map 384",
-            Hairstyle::default_smooth(),
-            EngineConfig {
-                map_res: Some(384),
-                ..small()
-            },
-        ),
+        ("smooth, map 384", Hairstyle::default_smooth(), {
+            let mut config = small();
+            config.hair_map.map_res = Some(384);
+            config
+        }),
         (
             "1 cm head",
             smooth_with(|v| v["head"]["radii_m"] = json!([0.01, 0.01, 0.01])),

@@ -11,7 +11,8 @@ use fixture::{Fx, fixed_fit, load};
 use hostile_common::{run_bounded, scratch_dir};
 use serde_json::{Value, json};
 use std::time::Duration;
-use wisp::budget::{Budget, BudgetError, RunPlan, estimate};
+use wisp::budget::{Budget, BudgetError, RunPlan};
+use wisp::engine::estimate;
 use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::{Hairstyle, SMOOTH_JSON};
 use wisp::input::{ReadError, read_capped};
@@ -465,13 +466,12 @@ fn a_step_of_2e_5_seconds_is_charged_as_work() {
 /// Hair pixels (neither background nor the head's skin tone would be guessed reliably, so count
 /// pixels that differ from the background) and whether all are finite.
 fn render_one(style: Hairstyle, motion: Motion) -> (usize, bool, wisp::map::MapStats) {
-    let config = EngineConfig {
-        width: 96,
-        height: 96,
-        settle_s: 0.5,
-        ..EngineConfig::default()
+    let config = {
+        let mut config = EngineConfig::sized(96, 96);
+        config.simulation.settle_s = 0.5;
+        config
     };
-    let background = config.background;
+    let background = config.scene.background;
     let mut engine = Engine::new(style, motion, config);
     engine.frame(0.0);
     let fb = engine.framebuffer();

@@ -132,8 +132,9 @@ fn mutated_inputs_never_panic_hang_or_balloon() {
 /// small budget have rendered (`WISP_HOSTILE_RENDERS=<n>` for more).
 #[test]
 fn accepted_hairstyles_render_finite_nonblank_frames() {
-    use wisp::budget::{Budget, RunPlan, estimate, fit_map_resolution};
+    use wisp::budget::{Budget, RunPlan};
     use wisp::engine::{Engine, EngineConfig};
+    use wisp::engine::{estimate, fit_map_resolution};
     use wisp::hairstyle::Hairstyle;
     use wisp::motion::Motion;
 
@@ -159,14 +160,13 @@ fn accepted_hairstyles_render_finite_nonblank_frames() {
             continue;
         };
         let motion = Motion::default_dance();
-        let mut config = EngineConfig {
-            width: 48,
-            height: 48,
-            settle_s: 0.2,
-            ..EngineConfig::default()
+        let mut config = {
+            let mut config = EngineConfig::sized(48, 48);
+            config.simulation.settle_s = 0.2;
+            config
         };
         if let Some((_, n)) = fit_map_resolution(&style, &motion, &config, &plan, &small) {
-            config.map_res = Some(n);
+            config.hair_map.map_res = Some(n);
         }
         if estimate(&style, &motion, &config, &plan)
             .check(&small)
@@ -177,7 +177,7 @@ fn accepted_hairstyles_render_finite_nonblank_frames() {
         }
         let outcome = run_bounded(
             move || {
-                let background = config.background;
+                let background = config.scene.background;
                 let mut engine = Engine::new(style, motion, config);
                 engine.frame(0.3);
                 let fb = engine.framebuffer();
@@ -238,13 +238,12 @@ fn accepted_motions_render_finite_nonblank_frames() {
         };
         let outcome = run_bounded(
             move || {
-                let config = EngineConfig {
-                    width: 48,
-                    height: 48,
-                    settle_s: 0.2,
-                    ..EngineConfig::default()
+                let config = {
+                    let mut config = EngineConfig::sized(48, 48);
+                    config.simulation.settle_s = 0.2;
+                    config
                 };
-                let background = config.background;
+                let background = config.scene.background;
                 let mut engine = Engine::new(Hairstyle::default_smooth(), motion, config);
                 for t in [0.3, 2.1] {
                     engine.frame(t);
@@ -319,7 +318,7 @@ fn accepted_caches_render_finite_nonblank_frames() {
         let outcome = run_bounded(
             move || {
                 let config = seed_config();
-                let background = config.background;
+                let background = config.scene.background;
                 let mut engine = Engine::from_settled(seed_style(), motion, config, &settled);
                 for (t, p) in &frames {
                     engine.set_guide_state(*t, p);

@@ -26,11 +26,7 @@ fn engine_at_4s(style: Hairstyle) -> Engine {
         ..MotionOptions::default()
     };
     let motion = try_dance(&opts).expect("embedded dance");
-    let config = EngineConfig {
-        width: 160,
-        height: 160,
-        ..Default::default()
-    };
+    let config = EngineConfig::sized(160, 160);
     let mut engine = Engine::new(style, motion, config);
     engine.run_up_to(4.0);
     engine.frame(4.0);
@@ -274,7 +270,7 @@ fn fibers_the_camera_sees_near_the_light_are_lit_as_the_exact_rays_say() {
     use wisp::map::{CountModel, LightMap, MapBuildInput, MapGeometry};
     let style = single_fiber_variant(&Hairstyle::default_smooth(), 4);
     let engine = engine_at_4s(style.clone());
-    let strands = &engine.strands;
+    let strands = &engine.strands();
     let view = Vec3::new(-0.5, -0.2, -1.0).normalize(); // camera looking along `view`
     let verts = sample_vertices(strands.positions.len(), 1500);
     for (g_deg, axis) in [
@@ -348,7 +344,7 @@ fn fibers_the_camera_sees_near_the_light_are_lit_as_the_exact_rays_say() {
 fn the_ensemble_is_the_mean_of_its_placements_and_one_fiber_has_one() {
     use wisp::accuracy::{ensemble_light, exact_reference_placed, key_light, placements_used};
     let engine = engine_at_4s(Hairstyle::default_smooth());
-    let (style, strands, fiber) = (&engine.style, &engine.strands, &engine.fiber);
+    let (style, strands, fiber) = (&engine.style, &engine.strands(), &engine.fiber);
     let light = key_light(&engine);
     let verts = wisp::accuracy::comparison::sample_vertices(strands.positions.len(), 300);
     let fp = Footprint::Fibers { rays: 30 };

@@ -40,12 +40,7 @@ impl Built {
 
 /// The map of `geo` with a sphere of radius `radius_m` centred at map point `centre_cells`
 /// (cells) as the solid, and its surface texture.
-fn map_with_sphere(
-    geo: &StrandGeometry,
-    light: Vec3,
-    centre_cells: Vec3,
-    radius_m: f32,
-) -> Built {
+fn map_with_sphere(geo: &StrandGeometry, light: Vec3, centre_cells: Vec3, radius_m: f32) -> Built {
     let frame = LightFrame::new(light);
     let fiber = default_fiber();
     let mut map = LightMap::new(
@@ -141,11 +136,7 @@ fn the_texture_is_the_same_for_any_thread_count() {
             let mut e = Engine::new(
                 style.clone(),
                 Motion::default_dance(),
-                EngineConfig {
-                    width: 64,
-                    height: 64,
-                    ..EngineConfig::default()
-                },
+                EngineConfig::sized(64, 64),
             );
             e.run_up_to(0.5);
             e.frame(0.5);
@@ -179,11 +170,7 @@ fn skin_shadow_on_the_dance_matches_exact_rays() {
     let mut e = Engine::new(
         Hairstyle::default_smooth(),
         Motion::default_dance(),
-        EngineConfig {
-            width: 200,
-            height: 200,
-            ..EngineConfig::default()
-        },
+        EngineConfig::sized(200, 200),
     );
     e.run_up_to(4.0);
     e.frame(4.0);

@@ -266,10 +266,9 @@ fn a_bent_bundle_meets_itself_on_the_mitre() {
 /// frame is byte-identical on 1 and 2 threads.
 #[test]
 fn a_close_up_draws_the_fibers_the_same_on_any_thread_count() {
-    let config = EngineConfig {
-        width: 128,
-        height: 128,
-        camera: CameraSetup::Fixed(
+    let config = {
+        let mut config = EngineConfig::sized(128, 128);
+        config.scene.camera = CameraSetup::Fixed(
             CameraSpec::new(
                 Vec3::new(0.2, 0.25, 0.4),
                 Vec3::new(0.02, 0.08, 0.05),
@@ -277,8 +276,8 @@ fn a_close_up_draws_the_fibers_the_same_on_any_thread_count() {
                 6f32.to_radians(),
             )
             .unwrap(),
-        ),
-        ..Default::default()
+        );
+        config
     };
     let frame = |threads| {
         common::on_threads(threads, || {

@@ -225,11 +225,7 @@ proptest! {
 /// (83,736 of 103,850 at t = 2 s; 28,241 behind the character alone) cannot reach a pixel.
 #[test]
 fn engine_frame_is_the_frame_of_shading_every_point() {
-    let config = EngineConfig {
-        width: 1280,
-        height: 720,
-        ..EngineConfig::default()
-    };
+    let config = EngineConfig::sized(1280, 720);
     let mut e = Engine::new(Hairstyle::default_smooth(), Motion::default_dance(), config);
     e.run_up_to(2.0);
     e.frame(2.0);

@@ -10,12 +10,8 @@ use wisp::motion::Motion;
 use wisp::raster::{Framebuffer, draw_ellipsoid};
 
 fn still_engine(style: Hairstyle, light: Vec3, size: u32) -> Engine {
-    let mut config = EngineConfig {
-        width: size,
-        height: size,
-        ..Default::default()
-    };
-    config.lighting.lights =
+    let mut config = EngineConfig::sized(size, size);
+    config.scene.lights =
         vec![wisp::light::Light::directional(light, glam::Vec3::splat(6.0)).unwrap()];
     Engine::new(style, Motion::still(Affine3A::IDENTITY), config)
 }
@@ -38,7 +34,7 @@ fn default_render_has_the_right_size_covers_the_frame_and_is_darker_away_from_th
     );
 
     // Hair pixels: where the frame differs from the head drawn alone with the same camera.
-    let mut head_only = Framebuffer::new(fb.width, fb.height, engine.config.background);
+    let mut head_only = Framebuffer::new(fb.width, fb.height, engine.scene.background);
     let radii = Vec3::from(engine.style.head.radii_m);
     draw_ellipsoid(
         &mut head_only,
@@ -70,7 +66,7 @@ fn default_render_has_the_right_size_covers_the_frame_and_is_darker_away_from_th
     engine.shade();
     let (mut lit, mut nl, mut dark, mut nd) = (0.0f64, 0usize, 0.0f64, 0usize);
     let (mut lit_direct, mut dark_direct) = (0.0f64, 0.0f64);
-    for (p, c) in engine.strands.positions.iter().zip(engine.colors()) {
+    for (p, c) in engine.strands().positions.iter().zip(engine.colors()) {
         let facing = p.normalize_or_zero().dot(-light.normalize());
         let direct = engine.map().light_at(*p).direct_fraction as f64;
         if facing > 0.5 {
@@ -127,18 +123,14 @@ fn default_render_has_the_right_size_covers_the_frame_and_is_darker_away_from_th
 fn frames_are_byte_identical_with_one_and_two_threads() {
     let render = |threads: usize| {
         common::on_threads(threads, || {
-            let config = EngineConfig {
-                width: 200,
-                height: 200,
-                ..Default::default()
-            };
+            let config = EngineConfig::sized(200, 200);
             let mut engine =
                 Engine::new(Hairstyle::default_curly(), Motion::default_dance(), config);
             let mut frames = Vec::new();
             for i in 0..3 {
                 frames.push(engine.frame(3.5 + i as f64 / 30.0).to_srgb8());
             }
-            (frames, engine.state.positions.clone())
+            (frames, engine.simulation.state.positions.clone())
         })
     };
     let (a, pa) = render(1);
@@ -160,11 +152,10 @@ fn one_fiber_hair_with_contact_shadows_is_byte_identical_with_one_and_two_thread
     let style = wisp::accuracy::single_fiber_variant(&Hairstyle::default_smooth(), 1);
     let render = |threads: usize, contact: wisp::engine::ContactShadowing| {
         common::on_threads(threads, || {
-            let config = EngineConfig {
-                width: 160,
-                height: 160,
-                contact,
-                ..Default::default()
+            let config = {
+                let mut config = EngineConfig::sized(160, 160);
+                config.hair_map.contact = contact;
+                config
             };
             let mut engine = Engine::new(style.clone(), Motion::default_dance(), config);
             engine.frame(3.5).to_srgb8()
@@ -208,17 +199,16 @@ fn volume_shading_is_byte_identical_with_one_and_two_threads_and_adds_light() {
     let style = Hairstyle::default_smooth();
     let render = |threads: usize, mode: ShadingMode| {
         common::on_threads(threads, || {
-            let mut config = EngineConfig {
-                width: 160,
-                height: 160,
-                volume: wisp::light_paths::LightPathParams {
+            let mut config = {
+                let mut config = EngineConfig::sized(160, 160);
+                config.shading.light_paths = wisp::light_paths::LightPathParams {
                     paths: 20_000,
                     ..Default::default()
-                },
-                ..Default::default()
+                };
+                config
             };
-            config.lighting.mode = mode;
-            config.lighting.ambient = Vec3::ZERO;
+            config.shading.mode = mode;
+            config.scene.ambient = Vec3::ZERO;
             let mut engine = Engine::new(style.clone(), Motion::default_dance(), config);
             engine.frame(1.0).color.clone()
         })

@@ -146,7 +146,7 @@ fn png16_and_exr_carry_the_8_bit_frame_and_its_coverage() {
     assert!(o.status.success());
     assert_eq!(stderr(&o), "");
 
-    let bg = EngineConfig::default().background;
+    let bg = EngineConfig::default().scene.background;
     let (mut transparent, mut opaque, mut partial) = (0, 0, 0);
     for i in 0..3 {
         let name = format!("frame_{i:05}");

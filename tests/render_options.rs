@@ -20,11 +20,7 @@ fn engine(config: EngineConfig) -> Engine {
 }
 
 fn small() -> EngineConfig {
-    EngineConfig {
-        width: 160,
-        height: 160,
-        ..Default::default()
-    }
+    EngineConfig::sized(160, 160)
 }
 
 /// `tests/golden/default_still_160.png` is `wisp render --still --frames 1 --width 160
@@ -46,7 +42,7 @@ fn small() -> EngineConfig {
 #[test]
 fn pre_issue_14_configuration_renders_byte_identical_png() {
     let mut config = small();
-    config.line = LineStyle::pixels(1.0, 0.85);
+    config.raster.line = LineStyle::pixels(1.0, 0.85);
     let mut e = engine(config);
     let rgb = e.frame(0.0).to_srgb8();
     common::golden::assert_golden("default_still_160.png", 160, 160, &rgb, 0);
@@ -61,7 +57,7 @@ fn fixed_camera_at_the_framing_renders_the_same_frame() {
     let cam = *follow.camera();
     let spec = CameraSpec::new(cam.eye, cam.target, cam.up, cam.fov_y_rad).unwrap();
     let mut config = small();
-    config.camera = CameraSetup::Fixed(spec);
+    config.scene.camera = CameraSetup::Fixed(spec);
     let mut fixed = engine(config);
     let b = fixed.frame(0.0).clone();
     assert_eq!(*fixed.camera(), cam);
@@ -74,9 +70,9 @@ fn fixed_camera_at_the_framing_renders_the_same_frame() {
 #[test]
 fn no_solids_over_black_gives_premultiplied_hair_only() {
     let mut config = small();
-    config.draw_solids = false;
-    config.background = Vec3::ZERO;
-    config.lighting.ambient = Vec3::ZERO;
+    config.scene.draw_solids = false;
+    config.scene.background = Vec3::ZERO;
+    config.scene.ambient = Vec3::ZERO;
     let mut e = engine(config);
     let fb = e.frame(0.0).clone();
     let brightest = e
@@ -114,14 +110,14 @@ fn no_solids_over_black_gives_premultiplied_hair_only() {
 #[test]
 fn irradiance_and_ambient_are_settable() {
     let mut config = small();
-    config.lighting.ambient = Vec3::ZERO;
-    config.lighting.lights = vec![
+    config.scene.ambient = Vec3::ZERO;
+    config.scene.lights = vec![
         wisp::light::Light::directional(wisp::light::DEFAULT_LIGHT_TRAVEL.into(), Vec3::ONE)
             .unwrap(),
     ];
     let mut one = engine(config.clone());
     one.frame(0.0);
-    config.lighting.lights = vec![
+    config.scene.lights = vec![
         wisp::light::Light::directional(wisp::light::DEFAULT_LIGHT_TRAVEL.into(), Vec3::splat(2.0))
             .unwrap(),
     ];
@@ -130,7 +126,7 @@ fn irradiance_and_ambient_are_settable() {
     for (a, b) in one.colors().iter().zip(two.colors()) {
         assert!((*b - 2.0 * *a).abs().max_element() <= 1e-6 * b.max_element().max(1e-3));
     }
-    config.lighting.lights = vec![
+    config.scene.lights = vec![
         wisp::light::Light::directional(wisp::light::DEFAULT_LIGHT_TRAVEL.into(), Vec3::ZERO)
             .unwrap(),
     ];

@@ -32,11 +32,7 @@ fn still_engine(config: EngineConfig) -> Engine {
 }
 
 fn small() -> EngineConfig {
-    EngineConfig {
-        width: SIDE,
-        height: SIDE,
-        ..Default::default()
-    }
+    EngineConfig::sized(SIDE, SIDE)
 }
 
 #[test]
@@ -47,7 +43,7 @@ fn golden_frames_of_each_shader_mode() {
         (ShadingMode::KajiyaKay, "mode_kajiya_kay_96.png"),
     ] {
         let mut config = small();
-        config.lighting.mode = mode;
+        config.shading.mode = mode;
         let mut e = still_engine(config);
         let rgb = e.frame(0.0).to_srgb8();
         common::golden::assert_golden(name, SIDE, SIDE, &rgb, TOLERANCE);
@@ -64,8 +60,8 @@ fn two_light_scene() -> EngineConfig {
 #[test]
 fn golden_frame_of_a_scene_file_with_two_lights() {
     let config = two_light_scene();
-    assert_eq!(config.lighting.lights.len(), 2);
-    let (w, h) = (config.width, config.height);
+    assert_eq!(config.scene.lights.len(), 2);
+    let (w, h) = (config.scene.width, config.scene.height);
     let mut e = still_engine(config);
     let rgb = e.frame(0.0).to_srgb8();
     common::golden::assert_golden("two_lights_96.png", w, h, &rgb, TOLERANCE);
@@ -79,14 +75,14 @@ fn two_lights_render_the_sum_of_each_alone() {
     let both = two_light_scene();
     let render = |lights: Vec<Light>| {
         let mut c = both.clone();
-        c.lighting.lights = lights;
-        c.lighting.ambient = Vec3::ZERO;
-        c.background = Vec3::ZERO;
+        c.scene.lights = lights;
+        c.scene.ambient = Vec3::ZERO;
+        c.scene.background = Vec3::ZERO;
         still_engine(c).frame(0.0).clone()
     };
-    let ab = render(both.lighting.lights.clone());
-    let a = render(vec![both.lighting.lights[0]]);
-    let b = render(vec![both.lighting.lights[1]]);
+    let ab = render(both.scene.lights.clone());
+    let a = render(vec![both.scene.lights[0]]);
+    let b = render(vec![both.scene.lights[1]]);
     let (mut worst, mut total) = (0.0f32, 0.0f32);
     for ((x, y), z) in ab.color.iter().zip(&a.color).zip(&b.color) {
         worst = worst.max((*x - (*y + *z)).abs().max_element());
@@ -122,7 +118,7 @@ fn a_far_point_light_reads_as_the_directional_light() {
     let geo = common::rest_strands(&style);
     let fiber = common::default_fiber();
     let travel = Vec3::new(-0.6, -0.5, -0.4).normalize();
-    let geom = wisp::engine::map_geometry(&style, &EngineConfig::default());
+    let geom = wisp::engine::map_geometry(&style, &EngineConfig::default().hair_map);
     let build = |light: MapLight| {
         let mut map = LightMap::new(geom, CountModel::Poisson);
         map.build(&MapBuildInput {
@@ -196,7 +192,7 @@ fn a_far_point_light_reads_as_the_directional_light() {
 #[test]
 fn point_light_map_against_the_exact_reference() {
     let mut config = small();
-    config.lighting.lights = vec![Light::point(Vec3::new(-0.7, 0.2, -0.3), Vec3::ONE).unwrap()];
+    config.scene.lights = vec![Light::point(Vec3::new(-0.7, 0.2, -0.3), Vec3::ONE).unwrap()];
     let mut engine = still_engine(config);
     engine.frame(0.0);
     let fp = Footprint::Fibers { rays: 64 };
@@ -207,7 +203,7 @@ fn point_light_map_against_the_exact_reference() {
         &fp,
         1,
         1,
-        engine.config.contact,
+        engine.hair_map.config.contact,
     )
     .rows;
     let row = rows.iter().find(|r| r.is_default).expect("default row");
@@ -231,7 +227,7 @@ fn point_light_map_against_the_exact_reference() {
 #[test]
 fn point_lights_near_and_far_keep_pixels_finite() {
     let mut config = small();
-    config.lighting.lights = vec![
+    config.scene.lights = vec![
         Light::point(Vec3::new(0.0, 0.0, 0.42), Vec3::splat(0.5)).unwrap(),
         Light::point(Vec3::new(1e4, 1e4, 0.0), Vec3::splat(2e8)).unwrap(),
     ];
@@ -257,11 +253,11 @@ fn reused_maps_give_the_same_frames_as_rebuilt_ones() {
     assert!(fresh.frame(1.0 / 30.0).to_srgb8() == second);
     // Move the light: the maps must rebuild, and match a fresh engine lit that way.
     let turned = Light::directional(Vec3::new(0.5, -0.6, -0.4), Vec3::splat(6.0)).unwrap();
-    e.config.lighting.lights = vec![turned];
+    e.scene.lights = vec![turned];
     let relit = e.frame(2.0 / 30.0).to_srgb8();
     assert!(!e.map_reused());
     let mut config = small();
-    config.lighting.lights = vec![turned];
+    config.scene.lights = vec![turned];
     let mut fresh = still_engine(config);
     fresh.run_up_to(2.0 / 30.0);
     assert!(fresh.frame(2.0 / 30.0).to_srgb8() == relit);
@@ -274,40 +270,39 @@ fn shading_in_map_order_is_shading_in_vertex_order() {
     let mut e = Engine::new(
         Hairstyle::default_smooth(),
         Motion::default_dance(),
-        EngineConfig {
-            width: 64,
-            height: 64,
-            ..EngineConfig::default()
-        },
+        EngineConfig::sized(64, 64),
     );
     e.frame(0.5);
     // A frame shades only the points the raster can show; this shades them all, in map order.
     e.shade();
     let eye = e.camera().eye();
     let r = e.fiber.params().radius_m;
-    let tangents = e.strands.tangents.clone();
-    let maps = e.maps();
+    let tangents = e.strands().tangents.clone();
+    let shadows = e.shadows();
     let mut natural = Vec::new();
     wisp::shade::shade_vertices_with(
         &e.fiber,
-        &e.config.lighting,
+        &e.shading.lighting(&e.scene),
         eye,
         wisp::shade::VertexGeometry {
-            positions: &e.strands.positions,
+            positions: &e.strands().positions,
             tangents: &tangents,
-            points_per_strand: e.strands.points_per_strand,
-            segment_pieces: e.strands.segment_pieces,
+            points_per_strand: e.strands().points_per_strand,
+            segment_pieces: e.strands().segment_pieces,
         },
-        |k, i, p| maps[k].light_at_seen(p, eye - p, tangents[i], r),
+        |k, i, p| {
+            let shadow = shadows.light(k).expect("a map per light");
+            shadow.light_at_seen(p, eye - p, tangents[i], r)
+        },
         &mut natural,
     );
     assert_eq!(natural.len(), e.colors().len());
     // Partly shadowed vertices exercise every branch of the lookup (cells, depth CDF, taps).
     let partial = e
-        .strands
+        .strands()
         .positions
         .iter()
-        .filter(|p| (0.05..0.95).contains(&maps[0].light_at(**p).tf.x))
+        .filter(|p| (0.05..0.95).contains(&shadows.light(0).expect("one light").light_at(**p).tf.x))
         .count();
     assert!(partial > 1000, "only {partial} partly shadowed vertices");
     for (i, (a, b)) in natural.iter().zip(e.colors()).enumerate() {

@@ -18,12 +18,11 @@ fn one_fiber_style() -> Hairstyle {
 }
 
 fn frame(pieces: u32) -> wisp::raster::Framebuffer {
-    let config = EngineConfig {
-        width: SIDE,
-        height: SIDE,
-        contact: ContactShadowing::WindowM(DEFAULT_CONTACT_WINDOW_M),
-        segment_pieces: pieces,
-        ..Default::default()
+    let config = {
+        let mut config = EngineConfig::sized(SIDE, SIDE);
+        config.hair_map.contact = ContactShadowing::WindowM(DEFAULT_CONTACT_WINDOW_M);
+        config.interpolation.segment_pieces = pieces;
+        config
     };
     let mut e = Engine::new(one_fiber_style(), Motion::still(Affine3A::IDENTITY), config);
     e.frame(0.0).clone()

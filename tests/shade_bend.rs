@@ -49,10 +49,25 @@ fn tangents(p: &[Vec3]) -> Vec<Vec3> {
         .collect()
 }
 
-fn lighting(mode: ShadingMode, toward_light: Vec3) -> Lighting {
-    Lighting {
+/// One directional light of unit irradiance and a shader, with no ambient.
+struct LightSet {
+    lights: Vec<Light>,
+    mode: ShadingMode,
+}
+
+impl LightSet {
+    fn get(&self) -> Lighting<'_> {
+        Lighting {
+            lights: &self.lights,
+            ambient: Vec3::ZERO,
+            mode: self.mode,
+        }
+    }
+}
+
+fn lighting(mode: ShadingMode, toward_light: Vec3) -> LightSet {
+    LightSet {
         lights: vec![Light::directional(-toward_light, Vec3::ONE).expect("a valid light")],
-        ambient: Vec3::ZERO,
         mode,
     }
 }
@@ -65,7 +80,7 @@ fn drawn(colors: &[Vec3]) -> Vec3 {
 
 struct Case {
     fiber: Fiber,
-    lighting: Lighting,
+    lighting: LightSet,
     eye: Vec3,
     points: Vec<Vec3>,
 }
@@ -76,7 +91,7 @@ impl Case {
         shade_vertices(
             &self.fiber,
             wisp::map::Shadows::hair_only(&[]),
-            &self.lighting,
+            &self.lighting.get(),
             self.eye,
             VertexGeometry {
                 positions: &self.points,
@@ -101,7 +116,7 @@ impl Case {
         let mut c = Vec::new();
         shade_vertices_with(
             &self.fiber,
-            &self.lighting,
+            &self.lighting.get(),
             self.eye,
             VertexGeometry {
                 positions: points,

@@ -31,12 +31,11 @@ fn write_diff(name: &str, width: u32, height: u32, a: &[u8], b: &[u8]) -> PathBu
 /// writing a difference image for the first that does.
 fn changed_frames(name: &str, style: Hairstyle, motion: Motion) -> usize {
     let size = 200;
-    let config = EngineConfig {
-        width: size,
-        height: size,
-        ..Default::default()
-    };
-    assert!(config.self_collision, "self-collision is on by default");
+    let config = EngineConfig::sized(size, size);
+    assert!(
+        config.simulation.self_collision,
+        "self-collision is on by default"
+    );
     let mut engine = Engine::new(style, motion, config);
     let first = engine.frame(0.0).to_srgb8();
     let mut changed = 0;
@@ -53,9 +52,9 @@ fn changed_frames(name: &str, style: Hairstyle, motion: Motion) -> usize {
             changed += 1;
         }
         assert!(
-            engine.step_stats.resting_guides as usize == engine.guides.count(),
+            engine.simulation.stats.resting_guides as usize == engine.guides.count(),
             "{name}: frame {f}: only {} of {} guides at rest",
-            engine.step_stats.resting_guides,
+            engine.simulation.stats.resting_guides,
             engine.guides.count()
         );
     }

@@ -65,7 +65,7 @@ fn play_runs_in_a_window_under_xvfb() {
     );
     // The screenshot is the engine's frame, without the readout: the readout's box (from
     // 4 px in) would darken the background there to 31%.
-    let bg_linear = wisp::engine::EngineConfig::default().background;
+    let bg_linear = wisp::engine::EngineConfig::default().scene.background;
     let bg_srgb = bg_linear.to_array().map(wisp::output::linear_to_srgb8);
     for (x, y) in [(0, 0), (5, 5), (10, 6), (6, 10)] {
         let i = 3 * (y * 240 + x);

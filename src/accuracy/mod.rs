@@ -88,8 +88,8 @@ pub fn measure_map(
     contact: ContactShadowing,
 ) -> MapMeasurement {
     let style = &engine.style;
-    let strands = &engine.strands;
-    let key = engine.config.lighting.lights[0];
+    let strands = &engine.strands();
+    let key = engine.scene.lights[0];
     let t0 = Instant::now();
     let light = key_light(engine);
     let verts = sampled_vertices(engine, vertices);
@@ -107,9 +107,10 @@ pub fn measure_map(
     let pos: Vec<Vec3> = verts.iter().map(|&v| strands.positions[v]).collect();
     let tan: Vec<Vec3> = verts.iter().map(|&v| strands.tangents[v]).collect();
     let eye = engine.camera().eye();
+    let key_only = [key];
     let lighting = &Lighting {
-        lights: vec![key],
-        ..engine.config.lighting.clone()
+        lights: &key_only,
+        ..engine.shading.lighting(&engine.scene)
     };
     let lum = |c: &Vec3| c.dot(Vec3::new(0.2126, 0.7152, 0.0722)) as f64;
     // The sampled vertices shaded with the given light at each.
@@ -265,7 +266,7 @@ pub fn ensemble_light(
 /// The `vertices` vertices a measurement samples, spread evenly over the strands' points
 /// where at least one fibre is present (past the tips, hair is not drawn).
 fn sampled_vertices(engine: &Engine, vertices: usize) -> Vec<usize> {
-    let strands = &engine.strands;
+    let strands = &engine.strands();
     let fibers = engine.style.strands.fibers_per_strand.round().max(1.0);
     let with_hair: Vec<usize> = (0..strands.positions.len())
         .filter(|&i| {
@@ -300,7 +301,7 @@ pub fn placement_floor(
         .iter()
         .map(|&seed| {
             let placed =
-                exact_reference_placed(&engine.style, &engine.strands, &engine.fiber, light, seed)
+                exact_reference_placed(&engine.style, engine.strands(), &engine.fiber, light, seed)
                     .light_at_vertices(&measured.vertices, &measured.footprint);
             Comparison::new(&measured.truth, &placed)
         })
@@ -309,7 +310,7 @@ pub fn placement_floor(
 
 /// The key light (the first: its map is the one measured) in the map's terms.
 pub fn key_light(engine: &Engine) -> MapLight {
-    let key = engine.config.lighting.lights[0];
+    let key = engine.scene.lights[0];
     MapLight::of(&key, glam::Vec3::from(engine.pose().head.translation))
 }
 

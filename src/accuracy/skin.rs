@@ -47,14 +47,17 @@ pub struct SkinReport {
 /// Measures the skin's shadow in the engine's current frame (after [`Engine::frame`] or
 /// [`Engine::build_map`]) for the key light (the first), with `rays` rays per pixel.
 pub fn measure_skin(engine: &mut Engine, rays: u32) -> SkinReport {
-    let key = engine.config.lighting.lights[0];
-    let (width, height) = (engine.config.width, engine.config.height);
+    let key = engine.scene.lights[0];
+    let (width, height) = (engine.scene.width, engine.scene.height);
     // Which pixels a solid covers fully and that face the light.
     let facing = |p: Vec3, n: Vec3| n.dot(key.toward_and_irradiance(p).0) > 0.0;
     let mask = engine.solids_image(|p, n, _| Vec3::splat(f32::from(u8::from(facing(p, n)))));
     let measured: Vec<bool> = mask.color.iter().map(|c| c.x >= 0.999).collect();
     // The key light's shadows, copied: the engine is drawn into while they are read.
-    let key_shadow = engine.shadows().light(0).expect("an engine has a map per light");
+    let key_shadow = engine
+        .shadows()
+        .light(0)
+        .expect("an engine has a map per light");
     let (hair, solids, skin) = (
         key_shadow.hair.clone(),
         key_shadow.solids.clone(),
@@ -78,7 +81,7 @@ pub fn measure_skin(engine: &mut Engine, rays: u32) -> SkinReport {
     // The reference borrows the strands; the engine is drawn into meanwhile.
     let (style, strands, fiber) = (
         engine.style.clone(),
-        engine.strands.clone(),
+        engine.strands().clone(),
         engine.fiber.clone(),
     );
     let reference = exact_reference(&style, &strands, &fiber, key_light(engine));

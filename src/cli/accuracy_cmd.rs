@@ -104,7 +104,7 @@ pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
         Some(mm) => ContactShadowing::from_mm(mm),
         None => ContactShadowing::WindowM(DEFAULT_CONTACT_WINDOW_M),
     };
-    config.contact = ContactShadowing::Off;
+    config.hair_map.contact = ContactShadowing::Off;
     if let Some(k) = args.single_fiber_strands {
         style = single_fiber_variant(&style, k);
     }
@@ -147,7 +147,7 @@ pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
         style.wisps.count as u64 * style.wisps.strands_per_wisp as u64,
         style.strands.fibers_per_strand,
         args.vertices,
-        engine.strands.positions.len(),
+        engine.strands().positions.len(),
         args.at_s,
         footprint,
         measured.placements,

@@ -91,9 +91,10 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         cache: wisp::budget::CacheUse::None,
     };
     for &n in &args.map_res_list {
-        let mut sweep = wisp::engine::EngineConfig {
-            map_res: Some(n),
-            ..config.clone()
+        let mut sweep = {
+            let mut config = config.clone();
+            config.hair_map.map_res = Some(n);
+            config
         };
         args.scene
             .check_budget(&style, &motion, &mut sweep, &plan)?;
@@ -109,8 +110,8 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         style.wisps.count as u64
             * style.wisps.strands_per_wisp as u64
             * (style.strands.points as u64 - 1),
-        config.width,
-        config.height,
+        config.scene.width,
+        config.scene.height,
         args.frames,
         motion.clip_name()
     );
@@ -264,7 +265,7 @@ fn self_collision_part(args: &BenchArgs, scene: &BenchScene, json: &mut Json) {
     let mut frame_ms = 0.0f64;
     for (k, on) in [false, true].into_iter().enumerate() {
         let mut cfg = scene.config.clone();
-        cfg.self_collision = on;
+        cfg.simulation.self_collision = on;
         let mut engine = scene.engine_with(cfg);
         let (mut peak, mut volume, mut sims, mut totals) = (0.0f64, 0.0f64, Vec::new(), Vec::new());
         for i in 0..args.frames {
@@ -320,7 +321,7 @@ fn accuracy_part(args: &BenchArgs, at_s: f64, scene: &BenchScene, json: &mut Jso
         &footprint,
         placements,
         args.repeats,
-        engine.config.contact,
+        engine.hair_map.config.contact,
     );
     println!(
         "\nspeed against error at t = {} s: map build + a lookup at all {} vertices, against the \
@@ -328,7 +329,7 @@ fn accuracy_part(args: &BenchArgs, at_s: f64, scene: &BenchScene, json: &mut Jso
          on each of {placements} placement(s) of the fibres, {:.0} ms; see ACCURACY.md); the \
          scene's own choice is N = {default_n}:\n",
         at_s,
-        engine.strands.positions.len(),
+        engine.strands().positions.len(),
         rays,
         reference_ms,
     );

@@ -116,19 +116,19 @@ pub fn simulate(args: SimulateArgs) -> Result<(), AppError> {
         points_per_guide: expected.points_per_guide,
         fps: args.fps,
         start_s,
-        settle_s: config.settle_s,
+        settle_s: config.simulation.settle_s,
         hairstyle_digest: expected.hairstyle_digest,
         motion_digest: expected.motion_digest,
         light_dir: config
-            .lighting
+            .scene
             .lights
             .first()
             .and_then(|l| l.travel())
             .unwrap_or(glam::Vec3::NEG_Y),
-        map_res: wisp::engine::map_geometry(&style, &config).n,
-        simulated: config.simulate,
-        self_collision: config.self_collision,
-        draw_solids: config.draw_solids,
+        map_res: wisp::engine::map_geometry(&style, &config.hair_map).n,
+        simulated: config.simulation.simulate,
+        self_collision: config.simulation.self_collision,
+        draw_solids: config.scene.draw_solids,
         hairstyle_name: style.name.clone(),
         motion_label: label,
     };
@@ -138,15 +138,15 @@ pub fn simulate(args: SimulateArgs) -> Result<(), AppError> {
     let name = style.name.clone();
     let mut engine = Engine::new(style, motion, config);
     let write_err = cache_error;
-    if engine.state.positions.len() != header.particles as usize {
+    if engine.simulation.state.positions.len() != header.particles as usize {
         return Err(AppError::other(anyhow::anyhow!(
             "the engine has {} guide particles, the hairstyle implies {}",
-            engine.state.positions.len(),
+            engine.simulation.state.positions.len(),
             header.particles
         )));
     }
     writer
-        .write_sim_state(0.0, &engine.state)
+        .write_sim_state(0.0, &engine.simulation.state)
         .map_err(write_err)?;
     engine.run_up_to(start_s);
     if !args.quiet {
@@ -154,7 +154,7 @@ pub fn simulate(args: SimulateArgs) -> Result<(), AppError> {
             "wisp: simulating {} ({} guide particles), clip \"{}\", {frames} frames at {} fps from {start_s:.3} s into {}",
             printable(&name),
             header.particles,
-            printable(engine.motion.clip_name()),
+            printable(engine.motion().clip_name()),
             args.fps,
             args.out.display()
         );
@@ -167,7 +167,7 @@ pub fn simulate(args: SimulateArgs) -> Result<(), AppError> {
         engine.advance(t);
         let t1 = Instant::now();
         writer
-            .write_sim_state(t, &engine.state)
+            .write_sim_state(t, &engine.simulation.state)
             .map_err(write_err)?;
         write_s += t1.elapsed().as_secs_f64();
         sim_s += (t1 - t0).as_secs_f64();
@@ -268,19 +268,24 @@ pub fn render_from_cache(args: RenderArgs) -> Result<(), AppError> {
     };
     let output = FrameOutput::of(&args);
     prepare_output_dir(&args.out, &tidy, output.format, args.quiet)?;
-    let todo = plan_frames(&output, part.clone(), config.width, config.height);
+    let todo = plan_frames(
+        &output,
+        part.clone(),
+        config.scene.width,
+        config.scene.height,
+    );
     if todo.nothing_to_render() {
         return Ok(());
     }
     let started = Instant::now();
     let settled = reader.read_settled(&motion).map_err(cache_error)?.to_vec();
     let mut engine = Engine::from_settled(style, motion, config, &settled);
-    if engine.state.positions.len() != settled.len() {
+    if engine.simulation.state.positions.len() != settled.len() {
         return Err(AppError::input(anyhow::anyhow!(
             "{}: holds {} guide particles, this hairstyle makes {}",
             path.display(),
             settled.len(),
-            engine.state.positions.len()
+            engine.simulation.state.positions.len()
         )));
     }
     if !args.quiet {
@@ -292,15 +297,15 @@ pub fn render_from_cache(args: RenderArgs) -> Result<(), AppError> {
             part.start,
             part.end - 1,
             path.display(),
-            engine.config.width,
-            engine.config.height,
+            engine.scene.width,
+            engine.scene.height,
             engine.map_geometry().n,
             started.elapsed().as_secs_f64()
         );
     }
     export_frames(&mut engine, &todo, &output, started, |engine, i| {
         let t = header.frame_time_s(i);
-        let positions = reader.read_frame(i, &engine.motion).map_err(cache_error)?;
+        let positions = reader.read_frame(i, engine.motion()).map_err(cache_error)?;
         engine.set_guide_state(t, positions);
         Ok(t)
     })

@@ -27,9 +27,9 @@ pub struct ExportArgs {
 pub fn run(args: ExportArgs) -> Result<(), AppError> {
     let (style, hair, motion, mut config) = args.scene.resolve()?;
     // A path tracer's reference scene has one directional light: refused before any work.
-    wisp::export::reference_light(&config.lighting.lights)
+    wisp::export::reference_light(&config.scene.lights)
         .map_err(|e| AppError::input(anyhow::anyhow!("export: {e}")))?;
-    config.background = Vec3::ZERO;
+    config.scene.background = Vec3::ZERO;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("{}: cannot create the output directory", args.out.display()))
         .map_err(AppError::input)?;

@@ -38,13 +38,13 @@ impl LightPathArgs {
     /// Writes the flags given over the configuration's defaults.
     pub fn apply(&self, config: &mut EngineConfig) {
         if let Some(mm) = self.volume_cell_mm {
-            config.volume.cell_m = mm * 1e-3;
+            config.shading.light_paths.cell_m = mm * 1e-3;
         }
         if let Some(n) = self.volume_paths {
-            config.volume.paths = n;
+            config.shading.light_paths.paths = n;
         }
         if let Some(n) = self.volume_bins {
-            config.volume.bins_per_axis = n;
+            config.shading.light_paths.bins_per_axis = n;
         }
     }
 }

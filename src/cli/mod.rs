@@ -279,21 +279,22 @@ impl SceneArgs {
         let reach = style.max_length_m() + style.head.radii_m.iter().copied().fold(0.0, f32::max);
         wisp::scene::file::check_point_lights_outside(&scene.lights, head, reach)
             .map_err(|(field, rule)| AppError::input(anyhow::anyhow!("{file}: {field}: {rule}")))?;
-        let mut config = EngineConfig {
-            map_res: self.map_res,
-            ..Default::default()
+        let mut config = {
+            let mut config = EngineConfig::default();
+            config.hair_map.map_res = self.map_res;
+            config
         }
         .with_scene(&scene);
-        config.lighting.mode = self.shading.into();
+        config.shading.mode = self.shading.into();
         if let Some(mm) = self.contact_mm {
-            config.contact = wisp::engine::ContactShadowing::from_mm(mm);
+            config.hair_map.contact = wisp::engine::ContactShadowing::from_mm(mm);
         }
         if let Some(n) = self.segment_pieces {
-            config.segment_pieces = n;
+            config.interpolation.segment_pieces = n;
         }
         self.volume.apply(&mut config);
-        config.self_collision = !self.no_self_collision;
-        config.simulate = !self.no_sim;
+        config.simulation.self_collision = !self.no_self_collision;
+        config.simulation.simulate = !self.no_sim;
         self.view.apply(&mut config);
         self.check_roots_on_head(&style, &hair, &motion)?;
         Ok((style, hair, motion, config))
@@ -478,15 +479,15 @@ impl SceneArgs {
         plan: &RunPlan,
     ) -> Result<(), AppError> {
         if let Some((auto, n)) =
-            wisp::budget::fit_map_resolution(style, motion, config, plan, &self.budget())
+            wisp::engine::fit_map_resolution(style, motion, config, plan, &self.budget())
         {
             eprintln!(
                 "wisp: warning: the automatic map resolution {auto} (cells of 1.5 strand spacings at the scalp) could need more memory than --max-memory-gb {}; using {n}",
                 self.max_memory_gb
             );
-            config.map_res = Some(n);
+            config.hair_map.map_res = Some(n);
         }
-        wisp::budget::estimate(style, motion, config, plan)
+        wisp::engine::estimate(style, motion, config, plan)
             .check(&self.budget())
             .map_err(|e| {
                 let flag = match e {

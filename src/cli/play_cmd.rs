@@ -66,7 +66,7 @@ pub fn run(args: PlayArgs) -> Result<(), AppError> {
     };
     args.scene
         .check_budget(&style, &motion, &mut config, &plan)?;
-    let (w, h) = (config.width as usize, config.height as usize);
+    let (w, h) = (config.scene.width as usize, config.scene.height as usize);
     let mut window = Window::new("wisp", w, h, WindowOptions::default()).map_err(|e| {
         AppError::other(anyhow::anyhow!(
             "cannot open a window ({e}); without a display, use `wisp render` to write PNG frames"
@@ -102,7 +102,7 @@ pub fn run(args: PlayArgs) -> Result<(), AppError> {
                 Key::Escape | Key::Q => break 'frames,
                 Key::Space => paused = !paused,
                 Key::S => {
-                    engine.config.lighting.mode = match engine.config.lighting.mode {
+                    engine.shading.config.mode = match engine.shading.config.mode {
                         ShadingMode::DualScattering => ShadingMode::SingleScattering,
                         ShadingMode::SingleScattering => ShadingMode::KajiyaKay,
                         ShadingMode::KajiyaKay => ShadingMode::Visibility,
@@ -111,7 +111,10 @@ pub fn run(args: PlayArgs) -> Result<(), AppError> {
                         }
                     }
                 }
-                Key::C => engine.config.self_collision = !engine.config.self_collision,
+                Key::C => {
+                    engine.simulation.config.self_collision =
+                        !engine.simulation.config.self_collision
+                }
                 Key::H => show_readout = !show_readout,
                 Key::R => t_s = 0.0,
                 Key::V => view.reset(&mut engine),
@@ -154,8 +157,8 @@ pub fn run(args: PlayArgs) -> Result<(), AppError> {
             readout_clock = Instant::now();
         }
         if let Some(r) = &mut readout {
-            r.mode = engine.config.lighting.mode;
-            r.self_collision = engine.config.self_collision;
+            r.mode = engine.shading.config.mode;
+            r.self_collision = engine.simulation.config.self_collision;
             r.paused = paused;
         }
         if args.frames.is_some_and(|n| shown >= n) {
@@ -222,9 +225,8 @@ fn turn_lights(window: &Window, engine: &mut Engine, dt_s: f32) {
         if window.is_key_down(key) {
             let pivot = Vec3::from(engine.pose().head.translation);
             engine
-                .config
-                .lighting
-                .turn(Quat::from_axis_angle(axis, angle), pivot);
+                .scene
+                .turn_lights(Quat::from_axis_angle(axis, angle), pivot);
         }
     }
 }
@@ -243,7 +245,7 @@ struct ViewControl {
 impl ViewControl {
     fn new(engine: &Engine) -> Self {
         ViewControl {
-            initial: engine.config.camera,
+            initial: engine.scene.camera,
             orbit: None,
             last_mouse: None,
         }
@@ -286,7 +288,7 @@ impl ViewControl {
         if let Some((dx, dy)) = delta {
             match drag {
                 Drag::Orbit => orbit.orbit(dx, dy),
-                Drag::Pan => orbit.pan(dx, dy, engine.config.height),
+                Drag::Pan => orbit.pan(dx, dy, engine.scene.height),
                 Drag::None => {}
             }
         }

@@ -23,15 +23,14 @@
 mod out_dir;
 
 use super::{AppError, SceneArgs};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 use wisp::budget::RunPlan;
 use wisp::engine::{Engine, StageTimings};
-use wisp::output::{FrameFormat, OutputError};
-use wisp::raster::Framebuffer;
+use wisp::output::{FrameFormat, FrameWriter};
 
 pub use super::shard::MAX_FRAMES;
-pub use out_dir::{FramePlan, Tidy, frame_path, plan_frames, prepare_output_dir};
+pub use out_dir::{FramePlan, Tidy, plan_frames, prepare_output_dir};
 
 /// `--format`: the file format of the frames.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -132,53 +131,6 @@ impl FrameOutput {
     }
 }
 
-/// A converted frame, in the layout its format's writer takes.
-enum Pixels {
-    /// 8-bit sRGB RGB.
-    Rgb8(Vec<u8>),
-    /// 16-bit sRGB RGBA, straight alpha.
-    Rgba16(Vec<u16>),
-    /// Linear RGB premultiplied by alpha, and alpha.
-    Premultiplied(Vec<glam::Vec3>, Vec<f32>),
-}
-
-impl Pixels {
-    fn empty(format: FrameFormat) -> Self {
-        match format {
-            FrameFormat::Png8 => Pixels::Rgb8(Vec::new()),
-            FrameFormat::Png16 => Pixels::Rgba16(Vec::new()),
-            FrameFormat::Exr => Pixels::Premultiplied(Vec::new(), Vec::new()),
-        }
-    }
-
-    /// Fills the buffers from `fb`, drawn over `background`.
-    fn convert(&mut self, fb: &Framebuffer, background: glam::Vec3) {
-        match self {
-            Pixels::Rgb8(rgb) => fb.to_srgb8_into(rgb),
-            Pixels::Rgba16(rgba) => fb.to_srgb16_rgba_into(background, rgba),
-            Pixels::Premultiplied(rgb, alpha) => fb.premultiplied_into(background, rgb, alpha),
-        }
-    }
-
-    fn write(&self, path: &Path, width: u32, height: u32) -> Result<(), OutputError> {
-        match self {
-            Pixels::Rgb8(rgb) => wisp::output::write_png_rgb8(path, width, height, rgb),
-            Pixels::Rgba16(rgba) => wisp::output::write_png_rgba16(path, width, height, rgba),
-            Pixels::Premultiplied(rgb, alpha) => {
-                wisp::output::write_exr_rgba_f32(path, width, height, rgb, alpha)
-            }
-        }
-    }
-}
-
-/// A rendered frame on its way to the writer thread.
-struct Job {
-    index: u32,
-    width: u32,
-    height: u32,
-    pixels: Pixels,
-}
-
 /// The first frame's time in seconds, wrapped into one loop of the motion (`duration_s /
 /// speed` seconds long; a still motion starts at 0), and whether it was wrapped.
 pub fn wrapped_start_s(start_s: f64, duration_s: f32, speed: f32) -> (f64, bool) {
@@ -236,7 +188,7 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
         output.format,
         args.quiet,
     )?;
-    let todo = plan_frames(&output, 0..frames, config.width, config.height);
+    let todo = plan_frames(&output, 0..frames, config.scene.width, config.scene.height);
     if todo.nothing_to_render() {
         return Ok(());
     }
@@ -247,7 +199,7 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
     let setup_s = started.elapsed().as_secs_f64();
     if !args.quiet {
         let g = engine.map_geometry();
-        let pieces = match engine.config.segment_pieces {
+        let pieces = match engine.interpolation.config.segment_pieces {
             0 | 1 => String::new(),
             k => format!(" cut into {k} pieces"),
         };
@@ -257,12 +209,12 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
             engine.layout.wisp_guides.len(),
             engine.layout.count(),
             engine.layout.segments(),
-            super::printable(engine.motion.clip_name()),
-            engine.motion.duration_s(),
+            super::printable(engine.motion().clip_name()),
+            engine.motion().duration_s(),
             g.n,
             g.ds_m * 1e3,
-            engine.config.width,
-            engine.config.height,
+            engine.scene.width,
+            engine.scene.height,
             setup_s
         );
     }
@@ -312,27 +264,9 @@ pub fn export_frames(
 ) -> Result<(), AppError> {
     let format = output.format;
     let quiet = output.quiet;
-    let (to_writer, jobs) = crossbeam_channel::bounded::<Job>(2);
-    let (to_renderer, spare) = crossbeam_channel::bounded::<Pixels>(3);
-    for _ in 0..3 {
-        let _ = to_renderer.send(Pixels::empty(format));
-    }
-    let out_dir = output.dir.clone();
-    let writer = std::thread::spawn(move || -> Result<f64, OutputError> {
-        let mut write_s = 0.0;
-        for job in jobs {
-            let path = frame_path(&out_dir, format, job.index);
-            let t0 = Instant::now();
-            job.pixels.write(&path, job.width, job.height)?;
-            write_s += t0.elapsed().as_secs_f64();
-            let _ = to_renderer.send(job.pixels);
-        }
-        Ok(write_s)
-    });
+    let mut writer = FrameWriter::start(output.dir.clone(), format);
     let mut total = StageTimings::default();
-    let mut convert_s = 0.0;
-    let (width, height) = (engine.config.width, engine.config.height);
-    let background = engine.config.background;
+    let background = engine.scene.background;
     let frames = plan.indices.len();
     let last = plan.last_to_render();
     // Kept frames that need no work: all of them when frames are independent, else those
@@ -376,20 +310,8 @@ pub fn export_frames(
             bar.suspend(|| warn_about_first_frame(engine));
         }
         rendered += 1;
-        let t0 = Instant::now();
-        let mut pixels = spare.recv().unwrap_or_else(|_| Pixels::empty(format));
-        pixels.convert(engine.framebuffer(), background);
-        convert_s += t0.elapsed().as_secs_f64();
         total.add(&engine.timings);
-        if to_writer
-            .send(Job {
-                index: i,
-                pixels,
-                width,
-                height,
-            })
-            .is_err()
-        {
+        if writer.write(engine.framebuffer(), background, i).is_err() {
             failed = Some(i);
             break;
         }
@@ -400,11 +322,7 @@ pub fn export_frames(
         }
     }
     bar.finish_and_clear();
-    drop(to_writer);
-    let write_s = writer
-        .join()
-        .map_err(|_| AppError::other(anyhow::anyhow!("the frame writer thread panicked")))?
-        .map_err(AppError::other)?;
+    let output_s = writer.finish().map_err(AppError::other)?;
     if let Some(e) = hair_error {
         return Err(e);
     }
@@ -419,8 +337,8 @@ pub fn export_frames(
         eprintln!(
             "wisp: output ({}, ms per frame): conversion {:.1}, encoding and writing {:.1} (on the writer thread, beside the next frame)",
             format.describe(),
-            per_frame_ms(convert_s),
-            per_frame_ms(write_s)
+            per_frame_ms(output_s.convert_s),
+            per_frame_ms(output_s.write_s)
         );
         let shown = output.dir.display();
         let range = if plan.indices.start == 0 {
@@ -469,7 +387,7 @@ pub fn warn_about_first_frame(engine: &Engine) {
         );
     }
     let fb = engine.framebuffer();
-    let background = engine.config.background;
+    let background = engine.scene.background;
     if fb.color.iter().all(|c| *c == background) {
         eprintln!(
             "wisp: warning: the first frame shows only the background: the head and the hair are out of view"

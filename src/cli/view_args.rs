@@ -82,7 +82,7 @@ impl ViewArgs {
     /// The flags that are not part of the scene.
     pub fn apply(&self, config: &mut EngineConfig) {
         if let Some(w) = self.min_line_width_px {
-            config.line.width = LineWidth::Projected { min_px: w };
+            config.raster.line.width = LineWidth::Projected { min_px: w };
         }
     }
 }

@@ -1,13 +1,11 @@
 //! Setting up an engine's scene: the hairstyle fitted to a character's head, where the roots lie
-//! on the head mesh, the map's size, and the solids and colliders of a pose.
+//! on the head mesh, and the solids and colliders of a pose.
 
 use crate::hairstyle::{GuideSet, Hairstyle, generate};
-use crate::map::{MapGeometry, Solid};
+use crate::map::Solid;
 use crate::motion::{Motion, Pose, RootsOnHead};
 use crate::sim::{CapsuleCollider, Colliders, SphereCollider};
 use glam::{Affine3A, Vec3};
-
-use super::EngineConfig;
 
 /// The hairstyle an [`Engine`] grows on `motion`'s character: when the character has a head
 /// mesh, the head ellipsoid takes the half extents of that mesh's box (pose metres, clamped to
@@ -47,21 +45,6 @@ pub fn roots_of_guides_on_head(
     let roots: Vec<Vec3> = (0..guides.count()).map(|g| guides.guide(g)[0]).collect();
     let [x, y, z] = style.head.radii_m;
     motion.roots_on_head(&roots, (x * y * z).cbrt())
-}
-
-/// The map geometry an engine uses for `style` under `config`: `config.map_res` cells per axis
-/// over the span the hair needs, or sized from the scene (`MapGeometry::for_scene`).
-pub fn map_geometry(style: &Hairstyle, config: &EngineConfig) -> MapGeometry {
-    let span = MapGeometry::span_m(style.max_length_m(), style.head_size_m());
-    match config.map_res {
-        Some(n) => MapGeometry::with_resolution(span, n),
-        None => MapGeometry::for_scene(
-            style.max_length_m(),
-            style.head_size_m(),
-            style.strand_spacing_m(),
-            style.strands.fibers_per_strand,
-        ),
-    }
 }
 
 /// The opaque solids of a pose: the head ellipsoid first, then the body spheres.

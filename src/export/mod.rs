@@ -143,8 +143,8 @@ impl ReferenceScene {
         let fiber = serde_json::to_string(&engine.style.fiber)
             .and_then(|t| serde_json::from_str::<serde_json::Value>(&t))
             .map_err(|e| e.to_string())?;
-        let l = &engine.config.lighting;
-        let (direction, irradiance) = reference_light(&l.lights)?;
+        let l = engine.shading.lighting(&engine.scene);
+        let (direction, irradiance) = reference_light(l.lights)?;
         let fb = engine.framebuffer();
         Ok(ReferenceScene {
             format: SCENE_FORMAT.into(),
@@ -153,8 +153,8 @@ impl ReferenceScene {
             time_s,
             hair_file: HAIR_FILE.into(),
             wisp_image: WISP_EXR.into(),
-            strands: engine.strands.strand_count(),
-            points_per_strand: engine.strands.points_per_strand,
+            strands: engine.strands().strand_count(),
+            points_per_strand: engine.strands().points_per_strand,
             fibers_per_strand: engine.style.strands.fibers_per_strand,
             fiber_radius_m: engine.style.fiber.radius_m,
             image: ImageSize {
@@ -173,7 +173,7 @@ impl ReferenceScene {
             },
             ambient: l.ambient.to_array(),
             shading: format!("{:?}", l.mode),
-            draw_solids: engine.config.draw_solids,
+            draw_solids: engine.scene.draw_solids,
             fiber_model: mitsuba::fiber_model(&fiber),
             mitsuba_hair_bsdf: mitsuba::mitsuba_hair(&fiber),
             fiber,
@@ -214,8 +214,8 @@ pub fn write_reference_scene(
         })?;
     cyhair::write_hair(
         &dir.join(HAIR_FILE),
-        &engine.strands.positions,
-        engine.strands.points_per_strand,
+        &engine.strands().positions,
+        engine.strands().points_per_strand,
         2.0 * engine.style.fiber.radius_m,
         &format!(
             "{}: {}, metres, root first",

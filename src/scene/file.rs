@@ -167,6 +167,32 @@ pub struct Scene {
     pub draw_solids: bool,
 }
 
+impl Scene {
+    /// Turns every light by `rotation` about `pivot` ([`Light::turned`]).
+    pub fn turn_lights(&mut self, rotation: glam::Quat, pivot: Vec3) {
+        for l in &mut self.lights {
+            *l = l.turned(rotation, pivot);
+        }
+    }
+}
+
+impl Default for Scene {
+    /// The engine's default scene: [`SceneFile::default`] validated (800 × 800, the camera
+    /// following the head, one directional light of irradiance 6, the default ambient and
+    /// background, the solids drawn).
+    fn default() -> Self {
+        Scene {
+            width: 800,
+            height: 800,
+            camera: CameraSetup::HeadFollowing,
+            lights: vec![crate::light::default_light()],
+            ambient: Vec3::new(0.035, 0.04, 0.05),
+            background: Vec3::new(0.012, 0.014, 0.018),
+            draw_solids: true,
+        }
+    }
+}
+
 fn color(field: String, c: [f32; 3]) -> Result<Vec3, (String, String)> {
     let v = Vec3::from(c);
     if v.is_finite() && v.min_element() >= 0.0 {

@@ -12,7 +12,7 @@
 mod bend;
 
 use crate::fiber::{Fiber, LightAtPoint, ShadingMode};
-use crate::light::{Light, default_light};
+use crate::light::Light;
 use crate::map::Shadows;
 #[cfg(doc)]
 use crate::map::{LightMap, Shadow};
@@ -20,35 +20,16 @@ use bend::{BendTest, Directions};
 use glam::Vec3;
 use rayon::prelude::*;
 
-/// Lighting of a frame: any number of lights (each with its own map), an ambient term and the
-/// fibre shader.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Lighting {
-    /// The lights, validated ([`Light`]); the engine builds one map per light, in this order.
-    pub lights: Vec<Light>,
+/// Lighting of a frame: the lights (each with its own map, in this order), an ambient term and
+/// the fibre shader.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lighting<'a> {
+    /// The lights, validated ([`Light`]).
+    pub lights: &'a [Light],
     /// Ambient (sky) radiance, linear RGB.
     pub ambient: Vec3,
     /// Fibre shader.
     pub mode: ShadingMode,
-}
-
-impl Default for Lighting {
-    fn default() -> Self {
-        Self {
-            lights: vec![default_light()],
-            ambient: Vec3::new(0.035, 0.04, 0.05),
-            mode: ShadingMode::DualScattering,
-        }
-    }
-}
-
-impl Lighting {
-    /// Turns every light by `rotation` about `pivot` ([`Light::turned`]).
-    pub fn turn(&mut self, rotation: glam::Quat, pivot: Vec3) {
-        for l in &mut self.lights {
-            *l = l.turned(rotation, pivot);
-        }
-    }
 }
 
 /// Colour of light after one pass through a fibre at normal incidence: the chord is two radii,

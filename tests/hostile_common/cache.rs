@@ -38,11 +38,10 @@ pub fn expected() -> Expected {
 
 /// The engine configuration the seed is simulated with (and small renders of it use).
 pub fn seed_config() -> EngineConfig {
-    EngineConfig {
-        width: 24,
-        height: 24,
-        settle_s: 0.5,
-        ..EngineConfig::default()
+    {
+        let mut config = EngineConfig::sized(24, 24);
+        config.simulation.settle_s = 0.5;
+        config
     }
 }
 
@@ -64,28 +63,28 @@ pub fn simulate_to(
         points_per_guide: e.points_per_guide,
         fps: 30.0,
         start_s,
-        settle_s: config.settle_s,
+        settle_s: config.simulation.settle_s,
         hairstyle_digest: e.hairstyle_digest,
         motion_digest: e.motion_digest,
-        light_dir: config.lighting.lights[0]
-            .travel()
-            .unwrap_or(glam::Vec3::NEG_Y),
-        map_res: wisp::engine::map_geometry(&style, &config).n,
-        simulated: config.simulate,
-        self_collision: config.self_collision,
-        draw_solids: config.draw_solids,
+        light_dir: config.scene.lights[0].travel().unwrap_or(glam::Vec3::NEG_Y),
+        map_res: wisp::engine::map_geometry(&style, &config.hair_map).n,
+        simulated: config.simulation.simulate,
+        self_collision: config.simulation.self_collision,
+        draw_solids: config.scene.draw_solids,
         hairstyle_name: style.name.clone(),
         motion_label: label.to_string(),
     };
     let mut w = CacheWriter::create(path, header.clone()).expect("create cache");
     let mut engine = Engine::new(style, motion, config);
-    w.write_sim_state(0.0, &engine.state).expect("settled");
+    w.write_sim_state(0.0, &engine.simulation.state)
+        .expect("settled");
     engine.run_up_to(start_s);
     for i in 0..frames {
         let t = header.frame_time_s(i);
         engine.advance(t);
         engine.build_map();
-        w.write_sim_state(t, &engine.state).expect("frame");
+        w.write_sim_state(t, &engine.simulation.state)
+            .expect("frame");
     }
     w.finish().expect("finish cache");
 }

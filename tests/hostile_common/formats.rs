@@ -231,7 +231,7 @@ fn load_hairstyle(case: &Case, _dir: &Path) -> Result<Verdict, String> {
                 .validate()
                 .map_err(|e| format!("accepted but invalid: {e:?}"))?;
             // An accepted hairstyle has a finite budget estimate.
-            let est = wisp::budget::estimate(
+            let est = wisp::engine::estimate(
                 &style,
                 &Motion::still(glam::Affine3A::IDENTITY),
                 &wisp::engine::EngineConfig::default(),

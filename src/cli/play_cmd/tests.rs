@@ -49,12 +49,11 @@ fn screenshot_names_never_clobber() {
 /// still hair as the engine first did.
 #[test]
 fn the_mouse_camera_replaces_and_restores_the_engines() {
-    let config = wisp::engine::EngineConfig {
-        width: 48,
-        height: 32,
-        simulate: false,
-        map_res: Some(16),
-        ..Default::default()
+    let config = {
+        let mut config = wisp::engine::EngineConfig::sized(48, 32);
+        config.simulation.simulate = false;
+        config.hair_map.map_res = Some(16);
+        config
     };
     let style = Hairstyle::default_smooth();
     let motion = Motion::still(glam::Affine3A::IDENTITY);

@@ -159,7 +159,7 @@ fn frame_name(name: &str) -> Option<FrameName<'_>> {
 }
 
 /// `DIR/frame_00012.png` (or `.exr`).
-pub fn frame_path(dir: &Path, format: FrameFormat, index: u32) -> PathBuf {
+fn frame_path(dir: &Path, format: FrameFormat, index: u32) -> PathBuf {
     dir.join(format.file_name(index))
 }
 

@@ -1,0 +1,192 @@
+//! The shading pass: the colour of every render-strand point the raster will draw, from each
+//! light's shadows (`crate::shade`: a filtered map lookup into the fibre shader), and with the
+//! light-path shader the multiply scattered light of paths traced through the hair
+//! (`crate::light_paths`), gathered at the same points.
+
+use super::sizes::RunSizes;
+use crate::budget::{MemoryPart, grouped};
+use crate::fiber::{Fiber, ShadingMode};
+use crate::interp::StrandGeometry;
+use crate::light_paths::{LightPathParams, LightPaths, pick_of};
+use crate::map::Shadows;
+use crate::scene::Scene;
+use crate::shade::{Lighting, ShadeScratch, VertexGeometry, shade_vertices};
+use crate::sim::Colliders;
+use crate::sim::collide::CollisionScene;
+use glam::Vec3;
+use rayon::prelude::*;
+
+/// How the hair is shaded.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShadingConfig {
+    /// The fibre shader (default dual scattering).
+    pub mode: ShadingMode,
+    /// The light paths of [`ShadingMode::Volume`] (unused by the other shaders).
+    pub light_paths: LightPathParams,
+}
+
+impl Default for ShadingConfig {
+    fn default() -> Self {
+        Self {
+            mode: ShadingMode::DualScattering,
+            light_paths: LightPathParams::default(),
+        }
+    }
+}
+
+/// What a frame's hair is shaded from, besides the shadows.
+#[derive(Clone, Copy)]
+pub struct ShadingInput<'a> {
+    pub fiber: &'a Fiber,
+    pub fibers_per_strand: f32,
+    pub scene: &'a Scene,
+    pub strands: &'a StrandGeometry,
+    /// The eye, world metres.
+    pub eye: Vec3,
+    /// Per point, whether the raster will draw it (`None`: shade every point).
+    pub seen: Option<&'a [bool]>,
+    /// The head and body colliders, which stop the light paths where solids are drawn.
+    pub colliders: &'a Colliders,
+}
+
+/// The points' colours and the shader's reusable buffers.
+#[derive(Default)]
+pub struct ShadingPass {
+    pub config: ShadingConfig,
+    colors: Vec<Vec3>,
+    scratch: ShadeScratch,
+}
+
+impl ShadingPass {
+    pub fn new(config: ShadingConfig) -> Self {
+        Self {
+            config,
+            ..Self::default()
+        }
+    }
+
+    /// Shades the points of `input` (all, or those it says the raster will draw; the rest
+    /// black) through `shadows`, plus each light's multiply scattered light with the
+    /// light-path shader.
+    pub fn run(&mut self, shadows: Shadows, input: &ShadingInput) {
+        let strands = input.strands;
+        shade_vertices(
+            input.fiber,
+            shadows,
+            &self.lighting(input.scene),
+            input.eye,
+            VertexGeometry {
+                positions: &strands.positions,
+                tangents: &strands.tangents,
+                points_per_strand: strands.points_per_strand,
+                segment_pieces: strands.segment_pieces,
+            },
+            input.seen,
+            &mut self.colors,
+            &mut self.scratch,
+        );
+        if self.config.mode == ShadingMode::Volume {
+            self.add_light_paths(input);
+        }
+    }
+
+    /// The scene's lights and ambient with this pass's shader.
+    pub fn lighting<'a>(&self, scene: &'a Scene) -> Lighting<'a> {
+        Lighting {
+            lights: &scene.lights,
+            ambient: scene.ambient,
+            mode: self.config.mode,
+        }
+    }
+
+    /// Adds each light's multiply scattered light, from light paths traced through the hair,
+    /// to the points shaded.
+    fn add_light_paths(&mut self, input: &ShadingInput) {
+        let strands = input.strands;
+        // The solids stop light where they are drawn (the head and body's colliders stand for
+        // them, a character's capsules for its mesh), prepared once (the head's inverse).
+        let colliders = CollisionScene::new(input.colliders);
+        let solids = input.scene.draw_solids;
+        for light in &input.scene.lights {
+            let Some(paths) = LightPaths::build(
+                input.fiber,
+                &strands.positions,
+                &strands.tangents,
+                &strands.lengths_m,
+                input.fibers_per_strand,
+                light,
+                &self.config.light_paths,
+                solids.then_some(|p: Vec3| colliders.penetration_m(p.into())),
+            ) else {
+                continue;
+            };
+            self.colors
+                .par_iter_mut()
+                .enumerate()
+                .with_min_len(256)
+                .for_each(|(i, c)| {
+                    if input
+                        .seen
+                        .is_some_and(|s| !s.get(i).copied().unwrap_or(false))
+                    {
+                        return;
+                    }
+                    let (Some(&p), Some(&u)) = (strands.positions.get(i), strands.tangents.get(i))
+                    else {
+                        return;
+                    };
+                    let wo = (input.eye - p).normalize_or_zero();
+                    if wo == Vec3::ZERO {
+                        return;
+                    }
+                    *c += paths.indirect(input.fiber, p, u, wo, pick_of(i));
+                });
+        }
+    }
+
+    /// The colours of the last run, indexed like the render strands' points (black where
+    /// not shaded).
+    pub fn colors(&self) -> &[Vec3] {
+        &self.colors
+    }
+
+    /// The colours and the shader's ordering buffers, and the light paths when they are on.
+    pub fn estimate(config: &ShadingConfig, sizes: &RunSizes) -> Vec<MemoryPart> {
+        let points = sizes.points;
+        let mut parts = vec![MemoryPart {
+            what: "shading",
+            product: format!(
+                "{} render points × {} B (colour; the shading's order and colour in that order)",
+                grouped(points),
+                POINT_BYTES
+            ),
+            bytes: points * POINT_BYTES as u64,
+            set_by: "wisps.count × wisps.strands_per_wisp × strands.points (× --segment-pieces)",
+        }];
+        if config.mode == ShadingMode::Volume {
+            // The hair spans at most its length either side of the head, and the head.
+            let extent_m = 2.0 * sizes.max_length_m + sizes.head_size_m;
+            parts.push(MemoryPart {
+                what: "light paths (--shading volume)",
+                product: format!(
+                    "{} light(s) × {} render points, bins at most {} MB",
+                    sizes.lights,
+                    grouped(points),
+                    config.light_paths.max_bins_bytes / 1_000_000
+                ),
+                bytes: LightPaths::estimated_bytes(
+                    points,
+                    sizes.sample_len_m as f32,
+                    extent_m,
+                    &config.light_paths,
+                )
+                .saturating_mul(sizes.lights),
+                set_by: "render points, --volume-cell-mm and --volume-bins",
+            });
+        }
+        parts
+    }
+}
+
+/// Bytes per render point: its colour, and the shading's key, index and colour in map order.
+const POINT_BYTES: usize = 2 * size_of::<Vec3>() + 2 * size_of::<u32>();

@@ -1,0 +1,158 @@
+//! The simulation pass: the guide strands of every wisp as rigid links (Bertails 2005 §4),
+//! roots on the moving scalp, with gravity, damping, bending, collisions with the head and
+//! body, and self-collision from the simulator's own density grid (`crate::sim`). Without
+//! simulation the guides ride rigidly on the head in their rest pose.
+
+use super::setup::{colliders_of, write_colliders};
+use super::sizes::RunSizes;
+use crate::budget::{MemoryPart, WorkPart, cost_ns, grouped};
+use crate::hairstyle::{GuideSet, Hairstyle};
+use crate::motion::{Motion, Pose};
+use crate::sim::{Colliders, SimState, Simulator, StepStats};
+use glam::Vec3;
+
+/// How the guides move.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SimulationConfig {
+    /// Simulate the guides; `false` keeps them in their rest pose riding on the head
+    /// (default true).
+    pub simulate: bool,
+    /// Density-based self-collision (Bertails §4.1; default true).
+    pub self_collision: bool,
+    /// Seconds of simulated time with the head held at the first pose before frame 0, so the
+    /// hair starts settled (default 2).
+    pub settle_s: f64,
+}
+
+impl Default for SimulationConfig {
+    fn default() -> Self {
+        Self {
+            simulate: true,
+            self_collision: true,
+            settle_s: 2.0,
+        }
+    }
+}
+
+/// The simulator, the guides' state and the figures of the last advance.
+pub struct SimulationPass {
+    pub config: SimulationConfig,
+    sim: Simulator,
+    /// The guide particles (positions, velocities) and the simulation's clock.
+    pub state: SimState,
+    /// Scratch pose for the sub-steps' collider queries (reused, no allocation).
+    scratch_pose: Pose,
+    /// Figures of the last advance.
+    pub stats: StepStats,
+}
+
+impl SimulationPass {
+    /// The guides at rest on the head of `pose` (the motion at t = 0), at −`settle_s`.
+    pub fn new(
+        config: SimulationConfig,
+        style: &Hairstyle,
+        guides: &GuideSet,
+        pose: &Pose,
+        head_radii_m: Vec3,
+    ) -> Self {
+        let mut sim = Simulator::from_hairstyle(style, guides);
+        sim.set_self_collision(config.self_collision);
+        let state = SimState::at_rest(guides, &colliders_of(pose, head_radii_m), -config.settle_s);
+        Self {
+            config,
+            sim,
+            state,
+            scratch_pose: pose.clone(),
+            stats: StepStats::default(),
+        }
+    }
+
+    /// Advances the guides to `t_s` with the head and body following `motion` (sampled at each
+    /// sub-step); `pose` is the motion at `t_s`, which rigid guides ride on.
+    pub fn run(
+        &mut self,
+        t_s: f64,
+        motion: &Motion,
+        pose: &Pose,
+        guides: &GuideSet,
+        head_radii_m: Vec3,
+    ) {
+        if self.config.simulate {
+            let scratch_pose = &mut self.scratch_pose;
+            let colliders_at = |t: f64, c: &mut Colliders| {
+                motion.sample_into(t.max(0.0) as f32, scratch_pose);
+                write_colliders(scratch_pose, head_radii_m, c);
+            };
+            self.sim.set_self_collision(self.config.self_collision);
+            self.stats = self.sim.advance(&mut self.state, t_s, colliders_at);
+        } else {
+            let head = pose.head;
+            for (p, r) in self.state.positions.iter_mut().zip(&guides.rest) {
+                *p = head.transform_point3(*r);
+            }
+            self.state.time_s = t_s;
+        }
+    }
+
+    /// Sets the guide particles to `positions` (a frame of a simulation cache) at `t_s`:
+    /// extra entries are ignored, missing ones keep their value. Velocities and the step clock
+    /// are not set, so a later [`Self::run`] does not continue the cached motion.
+    pub fn set_positions(&mut self, positions: &[Vec3]) {
+        for (p, q) in self.state.positions.iter_mut().zip(positions) {
+            *p = *q;
+        }
+    }
+
+    /// The simulator's state and buffers.
+    pub fn estimate(sizes: &RunSizes) -> Vec<MemoryPart> {
+        vec![MemoryPart {
+            what: "simulation",
+            product: format!(
+                "{} guides × {} particles",
+                grouped(sizes.guides),
+                sizes.points_per_guide
+            ),
+            bytes: Simulator::estimated_bytes(sizes.guides, sizes.points_per_guide),
+            set_by: "wisps.count × guides.links",
+        }]
+    }
+
+    /// The simulation before the first frame: the settle, the warm-up and the first frame's
+    /// steps (or rigid updates without simulation); nothing when the guides are read from a
+    /// cache.
+    pub fn work_before_first_frame(config: &SimulationConfig, sizes: &RunSizes) -> WorkPart {
+        let particles = sizes.particles;
+        let (product, cpu_s) = if sizes.from_cache {
+            (
+                format!("{} guide particles read from the cache", grouped(particles)),
+                0.0,
+            )
+        } else if config.simulate {
+            let steps = ((sizes.before_first_s + sizes.frame_s) / sizes.step_s).ceil();
+            (
+                format!(
+                    "{} guide particles × {} steps of {:.4} s",
+                    grouped(particles),
+                    grouped(steps as u64),
+                    sizes.step_s
+                ),
+                particles as f64 * steps * cost_ns::PARTICLE_STEP * 1e-9,
+            )
+        } else {
+            (
+                format!(
+                    "{} guide particles × {} rigid updates",
+                    grouped(particles),
+                    sizes.warm_up_slices + 1.0
+                ),
+                particles as f64 * (sizes.warm_up_slices + 1.0) * cost_ns::POINT_INTERP * 1e-9,
+            )
+        };
+        WorkPart {
+            what: "settle and warm-up simulation",
+            product,
+            cpu_s,
+            set_by: "wisps.count × guides.links, dynamics.step_s, --start-s",
+        }
+    }
+}
