@@ -10,7 +10,7 @@ use glam::{Quat, Vec3};
 use proptest::prelude::*;
 use wisp::fiber::{Fiber, FiberModel, FiberParams, ShadingMode};
 use wisp::light::Light;
-use wisp::shade::{Lighting, ShadeScratch, VertexGeometry, shade_vertices, shade_vertices_with};
+use wisp::shade::{Lighting, VertexColors, VertexGeometry, shade_vertices, shade_vertices_with};
 
 const SEGMENT_M: f32 = 0.005;
 
@@ -87,7 +87,7 @@ struct Case {
 
 impl Case {
     fn shade(&self) -> Vec<Vec3> {
-        let mut colors = Vec::new();
+        let mut colors = VertexColors::default();
         shade_vertices(
             &self.fiber,
             wisp::map::Shadows::hair_only(&[]),
@@ -101,9 +101,8 @@ impl Case {
             },
             None,
             &mut colors,
-            &mut ShadeScratch::default(),
         );
-        colors
+        colors.colors().to_vec()
     }
 
     /// Unshadowed colours of `points` with `tangents`, strands of `points_per_strand`.

@@ -10,7 +10,7 @@ use crate::interp::StrandGeometry;
 use crate::light_paths::{LightPathParams, LightPaths, pick_of};
 use crate::map::Shadows;
 use crate::scene::Scene;
-use crate::shade::{Lighting, ShadeScratch, VertexGeometry, shade_vertices};
+use crate::shade::{Lighting, VertexColors, VertexGeometry, shade_vertices};
 use crate::sim::Colliders;
 use crate::sim::collide::CollisionScene;
 use glam::Vec3;
@@ -53,8 +53,7 @@ pub struct ShadingInput<'a> {
 #[derive(Default)]
 pub struct ShadingPass {
     pub config: ShadingConfig,
-    colors: Vec<Vec3>,
-    scratch: ShadeScratch,
+    colors: VertexColors,
 }
 
 impl ShadingPass {
@@ -83,7 +82,6 @@ impl ShadingPass {
             },
             input.seen,
             &mut self.colors,
-            &mut self.scratch,
         );
         if self.config.mode == ShadingMode::Volume {
             self.add_light_paths(input);
@@ -121,6 +119,7 @@ impl ShadingPass {
                 continue;
             };
             self.colors
+                .colors_mut()
                 .par_iter_mut()
                 .enumerate()
                 .with_min_len(256)
@@ -147,7 +146,7 @@ impl ShadingPass {
     /// The colours of the last run, indexed like the render strands' points (black where
     /// not shaded).
     pub fn colors(&self) -> &[Vec3] {
-        &self.colors
+        self.colors.colors()
     }
 
     /// The colours and the shader's ordering buffers, and the light paths when they are on.

@@ -54,35 +54,102 @@ pub struct VertexGeometry<'a> {
     pub segment_pieces: usize,
 }
 
-/// Reusable buffers of [`shade_vertices`]: the vertices in map order and their colours in
-/// that order. Allocation-free once warmed up.
+/// The colours [`shade_vertices`] makes, and its reusable buffers: the vertices in map order
+/// and their colours in that order. Allocation-free once warmed up.
 #[derive(Clone, Debug, Default)]
-pub struct ShadeScratch {
+pub struct VertexColors {
+    /// Per vertex, its linear RGB colour (black where not shaded).
+    colors: Vec<Vec3>,
     /// The vertices' keys (map columns).
     keys: Vec<u32>,
     /// The vertex indices in key order (ties by index).
     order: Vec<u32>,
     /// Per key (map column, and one for points off the map): its count, then its cursor.
     counts: Vec<u32>,
+    /// The colours in key order.
     shaded: Vec<Vec3>,
 }
 
+impl VertexColors {
+    /// The colours of the last [`shade_vertices`], indexed like its vertices.
+    pub fn colors(&self) -> &[Vec3] {
+        &self.colors
+    }
+
+    /// Mutable colours (the light paths add their light to the shaded vertices).
+    pub fn colors_mut(&mut self) -> &mut [Vec3] {
+        &mut self.colors
+    }
+
+    /// Puts the indices of the first `n` vertices that `wanted` keeps in `order`, by the map
+    /// column `key(i)` they read (`columns` buckets, and one for points off the map), ties by
+    /// index: a counting sort, O(vertices + columns).
+    fn order_by_column(
+        &mut self,
+        n: usize,
+        columns: usize,
+        key: impl Fn(usize) -> u32 + Sync,
+        wanted: impl Fn(usize) -> bool + Sync,
+    ) {
+        let keys = &mut self.keys;
+        keys.clear();
+        keys.par_extend(
+            (0..n)
+                .into_par_iter()
+                .map(|i| if wanted(i) { key(i) } else { u32::MAX }),
+        );
+        let bucket = |key: u32| (key as usize).min(columns);
+        let counts = &mut self.counts;
+        counts.clear();
+        counts.resize(columns + 1, 0);
+        for (i, &key) in keys.iter().enumerate() {
+            if wanted(i) {
+                counts[bucket(key)] += 1;
+            }
+        }
+        let mut at = 0u32;
+        for c in counts.iter_mut() {
+            (*c, at) = (at, at + *c);
+        }
+        let order = &mut self.order;
+        order.clear();
+        order.resize(at as usize, 0);
+        for (i, &key) in keys.iter().enumerate() {
+            if !wanted(i) {
+                continue;
+            }
+            let slot = &mut counts[bucket(key)];
+            order[*slot as usize] = i as u32;
+            *slot += 1;
+        }
+    }
+
+    /// The colours shaded in `order`, put back in vertex order (`n` vertices, the others
+    /// black).
+    fn scatter_back(&mut self, n: usize) {
+        self.colors.clear();
+        self.colors.resize(n, Vec3::ZERO);
+        for (c, &i) in self.shaded.iter().zip(self.order.iter()) {
+            self.colors[i as usize] = *c;
+        }
+    }
+}
+
 /// Shades every vertex, or with `seen` only those it flags (the rest are black: the engine
-/// leaves out the hair the raster would not draw, `raster::seen_points`): `colors[i]` is the
-/// linear RGB radiance of vertex `i` seen from `eye`, summed over the lights (light `k`'s
+/// leaves out the hair the raster would not draw, `raster::seen_points`): `out.colors()[i]` is
+/// the linear RGB radiance of vertex `i` seen from `eye`, summed over the lights (light `k`'s
 /// shadows are `shadows.light(k)`). The light a vertex receives is the map's past the solids,
-/// given that the camera sees it ([`Shadow::light_at_vertex_seen`]: with the light
-/// near the camera the view and light rays cross the same fibres, so a fibre that is seen is
-/// lit more often than the average), with the fibres just in front of it taken exactly when
-/// the map has contact shadows (one fibre per strand). Non-finite results (which the fibre model must never produce) are
-/// replaced by black, so nothing invalid can reach a pixel.
+/// given that the camera sees it ([`Shadow::light_at_vertex_seen`]: with the light near the
+/// camera the view and light rays cross the same fibres, so a fibre that is seen is lit more
+/// often than the average), with the fibres just in front of it taken exactly when the map
+/// has contact shadows (one fibre per strand). Non-finite results (which the fibre model must
+/// never produce) are replaced by black, so nothing invalid can reach a pixel.
 ///
 /// Vertices are shaded in the order of the first map's columns
 /// ([`LightMap::lookup_order_key`], ties by index), so that neighbouring lookups read
 /// neighbouring memory, and the colours are then put back in vertex order. Each vertex's
 /// colour does not depend on the order: only the time does (measured on smooth, one thread:
 /// the lookups of every vertex 50 ms in strand order, 36 ms in map order with the sort).
-#[allow(clippy::too_many_arguments)]
 pub fn shade_vertices(
     fiber: &Fiber,
     shadows: Shadows,
@@ -90,8 +157,7 @@ pub fn shade_vertices(
     eye: Vec3,
     strands: VertexGeometry,
     seen: Option<&[bool]>,
-    colors: &mut Vec<Vec3>,
-    scratch: &mut ShadeScratch,
+    out: &mut VertexColors,
 ) {
     let Some(first) = shadows.first_map() else {
         shade_vertices_with(
@@ -100,7 +166,7 @@ pub fn shade_vertices(
             eye,
             strands,
             |_, _, _| LightAtPoint::UNSHADOWED,
-            colors,
+            &mut out.colors,
         );
         return;
     };
@@ -115,46 +181,14 @@ pub fn shade_vertices(
     let dirs =
         |i: usize| bend.directions(positions, tangents[i], points_per_strand, segment_pieces, i);
     let n = positions.len().min(tangents.len());
-    let wanted = |i: usize| seen.is_none_or(|s| s.get(i).copied().unwrap_or(false));
-    // Vertices by (key, index): a counting sort by key (the map's column, or one bucket for
-    // points off the map) that keeps the indices in order, O(vertices + columns). Vertices
-    // left out are in no bucket.
-    let keys = &mut scratch.keys;
-    keys.clear();
-    keys.par_extend(positions[..n].par_iter().enumerate().map(|(i, p)| {
-        if wanted(i) {
-            first.lookup_order_key(*p)
-        } else {
-            u32::MAX
-        }
-    }));
     let columns = first.geometry().columns_per_axis() as usize;
-    let columns = columns.saturating_mul(columns);
-    let bucket = |key: u32| (key as usize).min(columns);
-    let counts = &mut scratch.counts;
-    counts.clear();
-    counts.resize(columns + 1, 0);
-    for (i, &key) in keys.iter().enumerate() {
-        if wanted(i) {
-            counts[bucket(key)] += 1;
-        }
-    }
-    let mut at = 0u32;
-    for c in counts.iter_mut() {
-        (*c, at) = (at, at + *c);
-    }
-    let order = &mut scratch.order;
-    order.clear();
-    order.resize(at as usize, 0);
-    for (i, &key) in keys.iter().enumerate() {
-        if !wanted(i) {
-            continue;
-        }
-        let slot = &mut counts[bucket(key)];
-        order[*slot as usize] = i as u32;
-        *slot += 1;
-    }
-    let shaded = &mut scratch.shaded;
+    out.order_by_column(
+        n,
+        columns.saturating_mul(columns),
+        |i| first.lookup_order_key(positions[i]),
+        |i| seen.is_none_or(|s| s.get(i).copied().unwrap_or(false)),
+    );
+    let (order, shaded) = (&out.order, &mut out.shaded);
     shaded.clear();
     shaded.resize(order.len(), Vec3::ZERO);
     let ambient = hair_ambient(fiber, lighting);
@@ -185,11 +219,7 @@ pub fn shade_vertices(
                 );
             }
         });
-    colors.clear();
-    colors.resize(positions.len(), Vec3::ZERO);
-    for (c, &i) in shaded.iter().zip(order.iter()) {
-        colors[i as usize] = *c;
-    }
+    out.scatter_back(positions.len());
 }
 
 /// The ambient radiance added to every hair vertex: the sky tinted by the fibre, none when the
