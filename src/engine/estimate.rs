@@ -11,7 +11,7 @@ use super::raster::RasterPass;
 use super::setup::fit_style_to_character;
 use super::shading::ShadingPass;
 use super::simulation::SimulationPass;
-use super::sizes::RunSizes;
+use super::sizes::{RunSizes, SizedBy};
 use super::skin_texture::SkinTexturePass;
 use crate::budget::{Budget, CacheUse, Estimate, MemoryPart, RunPlan, WorkPart, cost_ns, grouped};
 use crate::hairstyle::Hairstyle;
@@ -28,7 +28,13 @@ pub fn estimate(
     plan: &RunPlan,
 ) -> Estimate {
     let style = &fit_style_to_character(style, motion);
-    let sizes = RunSizes::of(style, motion, config, plan);
+    let by = SizedBy {
+        scene: &config.scene,
+        segment_pieces: config.interpolation.segment_pieces,
+        geom: map_geometry(style, &config.hair_map),
+        settle_s: config.simulation.settle_s,
+    };
+    let sizes = RunSizes::of(style, motion, by, plan);
     let mut memory = hair_parts(&sizes);
     memory.extend(SimulationPass::estimate(&sizes));
     memory.extend(InterpolationPass::estimate(&sizes));

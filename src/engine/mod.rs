@@ -57,7 +57,7 @@ pub use raster::{
 pub use setup::{fit_style_to_character, roots_of_guides_on_head, roots_on_head, write_colliders};
 pub use shading::{ShadingConfig, ShadingInput, ShadingPass};
 pub use simulation::{SimulationConfig, SimulationPass};
-pub use sizes::RunSizes;
+pub use sizes::{RunSizes, SizedBy};
 pub use skin_texture::SkinTexturePass;
 pub use timings::{MapPartTimings, StageTimings};
 

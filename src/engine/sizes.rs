@@ -2,12 +2,11 @@
 //! the configuration and the run's plan before anything large exists: what each pass's
 //! estimate multiplies its per-item sizes by.
 
-use super::config::EngineConfig;
-use super::hair_map::map_geometry;
 use crate::budget::{CacheUse, RunPlan};
 use crate::hairstyle::Hairstyle;
 use crate::map::MapGeometry;
 use crate::motion::Motion;
+use crate::scene::Scene;
 
 /// The sizes of a run (see the module doc).
 #[derive(Clone, Copy, Debug)]
@@ -58,28 +57,38 @@ pub struct RunSizes {
     pub warm_up_slices: f64,
 }
 
+/// What of a run's configuration the sizes follow from: the scene, each segment's pieces, the
+/// map's geometry and the settle.
+#[derive(Clone, Copy, Debug)]
+pub struct SizedBy<'a> {
+    pub scene: &'a Scene,
+    pub segment_pieces: u32,
+    pub geom: MapGeometry,
+    pub settle_s: f64,
+}
+
 impl RunSizes {
-    /// The sizes of running `style` (as fitted to `motion`'s character) on `motion` under
-    /// `config` and `plan`.
-    pub fn of(style: &Hairstyle, motion: &Motion, config: &EngineConfig, plan: &RunPlan) -> Self {
+    /// The sizes of running `style` (as fitted to `motion`'s character) on `motion` as `by`
+    /// says, under `plan`.
+    pub fn of(style: &Hairstyle, motion: &Motion, by: SizedBy, plan: &RunPlan) -> Self {
         let wisps = style.wisps.count as u64;
         let guides = 3 * wisps;
         let points_per_guide = style.guides.links as u64 + 1;
         let strands = wisps * style.wisps.strands_per_wisp as u64;
         let points_per_strand = crate::interp::subdivided_points(
             style.strands.points as usize,
-            config.interpolation.segment_pieces as usize,
+            by.segment_pieces as usize,
         ) as u64;
-        let (width, height) = (config.scene.width, config.scene.height);
+        let (width, height) = (by.scene.width, by.scene.height);
         let sample_len_m = style.max_length_m() as f64
             / points_per_strand.saturating_sub(1).max(1) as f64
             + 2.0 * style.curl.radius_m as f64;
-        let geom = map_geometry(style, &config.hair_map);
+        let geom = by.geom;
         let from_cache = plan.cache == CacheUse::Read;
         let before_first_s = if from_cache {
             0.0
         } else {
-            (config.simulation.settle_s.max(0.0) + plan.warm_up_s.max(0.0)).min(1e15)
+            (by.settle_s.max(0.0) + plan.warm_up_s.max(0.0)).min(1e15)
         };
         let character = motion.character();
         Self {
@@ -94,7 +103,7 @@ impl RunSizes {
             width,
             height,
             pixels: width as u64 * height as u64,
-            lights: config.scene.lights.len().max(1) as u64,
+            lights: by.scene.lights.len().max(1) as u64,
             sample_len_m,
             px_per_m: height as f64 / (style.max_length_m() + style.head_size_m()) as f64,
             geom,
