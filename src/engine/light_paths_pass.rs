@@ -3,7 +3,7 @@
 //! each shaded vertex.
 
 use super::Engine;
-use crate::light_paths::{LightPaths, pick_of};
+use crate::light_paths::{LightPaths, StrandPoints, pick_of};
 use rayon::prelude::*;
 
 impl Engine {
@@ -16,19 +16,21 @@ impl Engine {
         let eye = self.camera.eye();
         let strands = &self.strands;
         let seen = &self.seen;
-        let fibers = self.style.strands.fibers_per_strand;
         // The solids stop light where they are drawn (the head and body's colliders stand for
         // them, a character's capsules for its mesh).
         // `CollisionScene` holds them prepared (the head's inverse once, not per cell).
         let solids = self.config.draw_solids;
         let colliders = crate::sim::collide::CollisionScene::new(&self.frame_colliders);
+        let points = StrandPoints {
+            positions: &strands.positions,
+            tangents: &strands.tangents,
+            lengths_m: &strands.lengths_m,
+            fibers_per_strand: self.style.strands.fibers_per_strand,
+        };
         for light in &self.config.lighting.lights {
             let Some(volume) = LightPaths::build(
                 &self.fiber,
-                &strands.positions,
-                &strands.tangents,
-                &strands.lengths_m,
-                fibers,
+                &points,
                 light,
                 &self.config.volume,
                 solids.then_some(|p: glam::Vec3| colliders.penetration_m(p.into())),
