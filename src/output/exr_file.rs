@@ -90,8 +90,8 @@ pub fn read_exr_rgba_f32(path: &Path) -> Result<(u32, u32, Vec<Vec3>, Vec<f32>),
 
 /// The crate's fast lossless encoding (RLE, 64 × 64 tiles) with the tiles in increasing order.
 /// Its default order, "unspecified", lets the parallel writer put each tile in the file when
-/// its compression finishes: the same pixels, but bytes that changed from run to run
-/// (found 2026-12-05 comparing two exports of one scene).
+/// its compression finishes: the same pixels, but bytes that differ from run to run (two
+/// exports of one scene compared).
 const ENCODING: Encoding = Encoding {
     line_order: LineOrder::Increasing,
     ..Encoding::FAST_LOSSLESS

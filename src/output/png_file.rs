@@ -90,8 +90,8 @@ pub fn write_png_rgb8(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Resul
 ///
 /// Compressed with the png crate's `Fast` setting (fdeflate): on an 800×800 frame of the dance
 /// 9 ms and 1.01 MB, against 161 ms and 0.79 MB with the default `Balanced` and 390 ms and
-/// 0.78 MB with `High` (`examples/output_formats.rs`, docs/notes/output-formats.md). 16-bit frames are
-/// intermediates for compositing, and the encoder would otherwise cost as much as rendering.
+/// 0.78 MB with `High` (`examples/output_formats.rs`). 16-bit frames are intermediates for
+/// compositing, and the encoder would otherwise cost as much as rendering.
 pub fn write_png_rgba16(
     path: &Path,
     width: u32,
