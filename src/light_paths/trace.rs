@@ -10,11 +10,12 @@
 //! projected cross-section per volume: the slab test pins it against Beer–Lambert. Why:
 //! it needs no intersection with a fibre and is unbiased, whatever the pieces' spread.
 //!
-//! **Scattering.** At a collision the path's direction and weight come from
-//! `fiber::chiang_sample::sample_scatter` (Chiang et al. 2016's importance sampling of the
-//! same BCSDF the shader evaluates). After [`ROULETTE_AFTER`] scatterings a path of weight w
-//! (of its start's w₀) survives with probability q = max(w)/max(w₀) and is divided by it: no
-//! bias, and no time spent on paths that carry nothing.
+//! **Scattering.** At a collision the path's new direction and the factor its power takes come
+//! from `fiber::chiang_sample::sample_scatter`: Chiang et al. 2016's lobes sampled as pbrt-v3
+//! §9.9.6 does, at a random offset across the fibre, so the factor's expectation is the
+//! far-field ḡ the gather evaluates. After [`ROULETTE_AFTER`] scatterings a path whose largest
+//! channel w has fallen below its start's w₀ survives with probability q = w / w₀ and is
+//! divided by q: no bias, and no time spent on paths that carry almost nothing.
 //!
 //! **Determinism.** Paths are traced in blocks of [`BLOCK`], block b drawing from stream b of
 //! the seed (`rng::SplitMix64::stream`), so the paths are the same for any thread count.

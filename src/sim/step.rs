@@ -53,7 +53,7 @@ pub struct StepStats {
     pub max_penetration_m: f32,
     /// Guides reset to their rest shape because a value became non-finite (0 in normal use).
     pub reset_guides: u32,
-    /// Guides held exactly still at the last step (see the module doc, rest).
+    /// Guides held exactly still at the last step (`guide_step.rs`, stage 6).
     pub resting_guides: u32,
     /// Simulated time skipped by the catch-up cap, seconds (the hair was carried rigidly with
     /// the head over it).
