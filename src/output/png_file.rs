@@ -1,5 +1,9 @@
 //! PNG frames, written atomically (`atomic.rs`): 8-bit sRGB RGB, and 16-bit sRGB RGBA with
 //! straight alpha, both tagged sRGB. The samples come already encoded (`crate::color`).
+//!
+//! Both use the png crate's `Fast` deflate: an order of magnitude faster than its default for
+//! files 20–30% larger, so encoding does not compete with rendering for the cores (the
+//! measurements are with each writer).
 
 use super::atomic::{OutputError, write_atomically};
 use std::io::{BufWriter, Write};
