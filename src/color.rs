@@ -1,5 +1,7 @@
 //! Colour encodings shared by the stages that turn linear radiance into pixels (the raster's
-//! conversions, the output files): the sRGB transfer curve of IEC 61966-2-1.
+//! conversions, the output files): the sRGB transfer curve of IEC 61966-2-1,
+//! C' = 12.92 C for C ≤ 0.0031308 and C' = 1.055 C^{1/2.4} − 0.055 above, applied to the
+//! linear value clamped to [0, 1] (NaN as 0) and rounded to the nearest 8- or 16-bit code.
 
 /// Linear [0, 1] -> sRGB-encoded [0, 1] (IEC 61966-2-1); NaN maps to 0 and values outside
 /// [0, 1] are clamped, so no invalid value reaches a pixel.

@@ -1,6 +1,10 @@
 //! Points spread evenly over the unit disc (a Vogel spiral): where the fibres of a render
 //! strand's bundle lie across it. The raster draws a bundle's fibres there, and the exact
 //! reference places its fibres and its rays' footprints the same way.
+//!
+//! Point i of n sits at radius ρ = √((i + ½)/n) and angle i·g, g = π(3 − √5) the golden angle:
+//! the √ keeps the area density uniform (each point holds an area π/n), and the golden angle
+//! keeps successive points from lining up in spokes, whatever n.
 
 use glam::Vec2;
 

@@ -1,5 +1,13 @@
 //! A small deterministic random generator shared by the stages that draw numbers (strand
 //! placement, light paths): results must not depend on a crate's version of its streams.
+//!
+//! SplitMix64 (Steele, Lea & Flood 2014): the state advances by the odd constant
+//! γ = ⌊2⁶⁴/φ⌋ (φ the golden ratio), x_{n+1} = x_n + γ mod 2⁶⁴, and each number is a bijective
+//! mix of the state, z ← (z ⊕ z≫30)·c₁, z ← (z ⊕ z≫27)·c₂, z ⊕ z≫31. Floats take the top bits:
+//! [`SplitMix64::unit`] the top 24 (uniform in [0, 1), f32's mantissa), and
+//! [`SplitMix64::open_unit_f64`] the top 53 plus a half, (k + ½)/2⁵³, which is never 0 nor 1
+//! (a logarithm's argument). Independent streams for parallel blocks come from
+//! [`SplitMix64::stream`].
 
 /// SplitMix64's step: 2⁶⁴ over the golden ratio, odd.
 const GOLDEN: u64 = 0x9E37_79B9_7F4A_7C15;
@@ -23,10 +31,9 @@ impl SplitMix64 {
 
     /// Independent stream number `index` of `seed`: its state is the seed's own output
     /// number `index`, a hashed word. Why not `new(seed ^ index · k)`: states that differ by a
-    /// multiple of the step run the same numbers shifted, and with k the step itself
-    /// (as the light paths' blocks had it until stop 54) blocks b and b + 4 of seed 3 drew
-    /// the same sequence four numbers apart, so their paths fell into step and repeated
-    /// (`tests::streams_do_not_repeat_each_other`).
+    /// multiple of the step run the same numbers shifted, and with k the step itself blocks
+    /// b and b + 4 of seed 3 draw the same sequence four numbers apart, so light paths traced
+    /// from them fall into step and repeat (`tests::streams_do_not_repeat_each_other`).
     pub fn stream(seed: u64, index: u64) -> Self {
         let state = seed.wrapping_add(index.wrapping_add(1).wrapping_mul(GOLDEN));
         Self(mix(state))

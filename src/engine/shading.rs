@@ -7,7 +7,7 @@ use super::sizes::RunSizes;
 use crate::budget::{MemoryPart, grouped};
 use crate::fiber::{Fiber, ShadingMode};
 use crate::interp::StrandGeometry;
-use crate::light_paths::{LightPathParams, LightPaths, pick_of};
+use crate::light_paths::{LightPathParams, LightPaths, StrandPoints, pick_of};
 use crate::map::Shadows;
 use crate::scene::Scene;
 use crate::shade::{Lighting, VertexColors, VertexGeometry, shade_vertices};
@@ -105,13 +105,16 @@ impl ShadingPass {
         // them, a character's capsules for its mesh), prepared once (the head's inverse).
         let colliders = CollisionScene::new(input.colliders);
         let solids = input.scene.draw_solids;
+        let points = StrandPoints {
+            positions: &strands.positions,
+            tangents: &strands.tangents,
+            lengths_m: &strands.lengths_m,
+            fibers_per_strand: input.fibers_per_strand,
+        };
         for light in &input.scene.lights {
             let Some(paths) = LightPaths::build(
                 input.fiber,
-                &strands.positions,
-                &strands.tangents,
-                &strands.lengths_m,
-                input.fibers_per_strand,
+                &points,
                 light,
                 &self.config.light_paths,
                 solids.then_some(|p: Vec3| colliders.penetration_m(p.into())),

@@ -59,50 +59,12 @@ pub fn write_hair(
     thickness: f32,
     info: &str,
 ) -> Result<(), CyHairError> {
-    let invalid = |rule: String| CyHairError::Invalid {
+    check_strands(points, points_per_strand, thickness).map_err(|rule| CyHairError::Invalid {
         path: path.into(),
         rule,
-    };
-    if !(2..=usize::from(u16::MAX) + 1).contains(&points_per_strand) {
-        return Err(invalid(format!(
-            "points per strand must be in [2, 65536] (got {points_per_strand})"
-        )));
-    }
-    if !points.len().is_multiple_of(points_per_strand) || points.len() > MAX_POINTS as usize {
-        return Err(invalid(format!(
-            "{} points do not make whole strands of {points_per_strand} (or exceed {MAX_POINTS})",
-            points.len()
-        )));
-    }
-    if let Some(i) = points.iter().position(|p| !p.is_finite()) {
-        return Err(invalid(format!("point {i} is not finite ({})", points[i])));
-    }
-    if !(thickness.is_finite() && thickness >= 0.0) {
-        return Err(invalid(format!(
-            "thickness must be finite and >= 0 (got {thickness})"
-        )));
-    }
+    })?;
     let strands = points.len() / points_per_strand;
-    let mut header = Vec::with_capacity(HEADER_BYTES);
-    header.extend_from_slice(b"HAIR");
-    for v in [
-        strands as u32,
-        points.len() as u32,
-        HAS_SEGMENTS | HAS_POINTS | HAS_THICKNESS,
-        (points_per_strand - 1) as u32,
-    ] {
-        header.extend_from_slice(&v.to_le_bytes());
-    }
-    for v in [thickness, 0.0, 1.0, 1.0, 1.0] {
-        header.extend_from_slice(&v.to_le_bytes());
-    }
-    let mut text = [0u8; INFO_BYTES];
-    let info = info.as_bytes();
-    let n = info.len().min(INFO_BYTES - 1);
-    text[..n].copy_from_slice(&info[..n]);
-    header.extend_from_slice(&text);
-    debug_assert_eq!(header.len(), HEADER_BYTES);
-
+    let header = header(strands, points.len(), points_per_strand, thickness, info);
     write_atomically(path, |file| {
         let io = |error| OutputError::Io {
             path: path.into(),
@@ -126,6 +88,64 @@ pub fn write_hair(
         w.into_inner().map_err(|e| io(e.into_error()))
     })?;
     Ok(())
+}
+
+/// The rule `points` (strands of `points_per_strand`) and `thickness` break, if any: 2 to
+/// 65,536 points a strand (the segment count is a `u16`), whole strands, at most
+/// [`MAX_POINTS`], every point finite, a finite thickness ≥ 0.
+fn check_strands(points: &[Vec3], points_per_strand: usize, thickness: f32) -> Result<(), String> {
+    if !(2..=usize::from(u16::MAX) + 1).contains(&points_per_strand) {
+        return Err(format!(
+            "points per strand must be in [2, 65536] (got {points_per_strand})"
+        ));
+    }
+    if !points.len().is_multiple_of(points_per_strand) || points.len() > MAX_POINTS as usize {
+        return Err(format!(
+            "{} points do not make whole strands of {points_per_strand} (or exceed {MAX_POINTS})",
+            points.len()
+        ));
+    }
+    if let Some(i) = points.iter().position(|p| !p.is_finite()) {
+        return Err(format!("point {i} is not finite ({})", points[i]));
+    }
+    if !(thickness.is_finite() && thickness >= 0.0) {
+        return Err(format!(
+            "thickness must be finite and >= 0 (got {thickness})"
+        ));
+    }
+    Ok(())
+}
+
+/// The 128-byte header (module doc) of `strands` strands of `points_per_strand` points,
+/// `points` in all, with segments, points and thickness present, the default thickness
+/// `thickness`, transparency 0, colour white, and `info` cut to 87 bytes (NUL-terminated).
+fn header(
+    strands: usize,
+    points: usize,
+    points_per_strand: usize,
+    thickness: f32,
+    info: &str,
+) -> Vec<u8> {
+    let mut header = Vec::with_capacity(HEADER_BYTES);
+    header.extend_from_slice(b"HAIR");
+    for v in [
+        strands as u32,
+        points as u32,
+        HAS_SEGMENTS | HAS_POINTS | HAS_THICKNESS,
+        (points_per_strand - 1) as u32,
+    ] {
+        header.extend_from_slice(&v.to_le_bytes());
+    }
+    for v in [thickness, 0.0, 1.0, 1.0, 1.0] {
+        header.extend_from_slice(&v.to_le_bytes());
+    }
+    let mut text = [0u8; INFO_BYTES];
+    let info = info.as_bytes();
+    let n = info.len().min(INFO_BYTES - 1);
+    text[..n].copy_from_slice(&info[..n]);
+    header.extend_from_slice(&text);
+    debug_assert_eq!(header.len(), HEADER_BYTES);
+    header
 }
 
 /// Reads a `.hair` file with the groom reader ([`crate::input::cyhair::parse_cyhair`]):

@@ -5,7 +5,7 @@
 //!
 //! The paper is not in `../shared/papers`; the formulas below are C16 §4 as pbrt-v3 §9.9 prints
 //! and implements them, and were checked against Mitsuba 3.9.1's `hair` BSDF
-//! (`tools/reference/chiang_eval_check.py`, docs/notes/chiang.md).
+//! (`tools/reference/chiang_eval_check.py`).
 //!
 //! **Near field, far field, and wisp's convention.** A camera ray hits the fibre at the offset
 //! h = sin γo ∈ [−1, 1]; the radiance leaving toward the camera per unit irradiance from ωi is

@@ -3,10 +3,10 @@
 //!
 //! The colours are derived from the fibre, not tuned:
 //! - diffuse: K_d cos θi with K_d = E_d / π², where E_d is the fibre's TT + TRT (+ Chiang's
-//!   p ≥ 3) energy at normal incidence (ā_f + ā_b of those lobes at θ = 0, from the dual tables). Derivation: a radiance
-//!   K_d cos θi leaving uniformly over the sphere carries ∫ K_d cos θo dωo = K_d ∫cos²θo dθo ∫dφ
-//!   = K_d π² per unit irradiance, so this diffuse lobe holds exactly the energy that the
-//!   absorbing interior passes on;
+//!   p ≥ 3) energy at normal incidence (ā_f + ā_b of those lobes at θ = 0, from the dual
+//!   tables). Derivation: a radiance K_d cos θi leaving uniformly over the sphere carries
+//!   ∫ K_d cos θo dωo = K_d ∫cos²θo dθo ∫dφ = K_d π² per unit irradiance, so this diffuse lobe
+//!   holds exactly the energy that the absorbing interior passes on;
 //! - specular: K_s cos^n(θi + θo) (peak on the mirror cone θo = −θi), white, with n = 1/(2β_R)²
 //!   so that cosⁿ ≈ a Gaussian of the R lobe's width 2β_R in θo, and K_s = E_R / (2π √(2π) 2β_R)
 //!   so that at θi = 0 it holds the R lobe's energy E_R.

@@ -13,7 +13,8 @@
 //! `chiang_tables` (tabulated N̄_p), `azimuthal` (integrals of N_p over φ in h-space, N^G),
 //! `dual` (Zinke's ā_f, ā_b and their tables, for either model), `backscatter` (Ā_b, Δ̄_b, σ̄_b²
 //! and their truncation by the local density), `longitudinal` (the shader's f32 lobes),
-//! `shader` (Figure 5 and single scattering), `kajiya_kay`.
+//! `model_shading` (the chosen model's interleaved tables), `shader` (Figure 5 and single
+//! scattering), `kajiya_kay`, `chiang_sample` (sampling Chiang's model for light paths).
 //!
 //! Conventions: radians and SI inside; θ from the normal plane (sin θ = ω·u), ωi toward the
 //! light, ωo toward the camera. Marschner's longitudinal Gaussians live in x = θi + θo (= 2θh)
@@ -49,10 +50,12 @@ pub mod fresnel;
 pub mod kajiya_kay;
 pub mod longitudinal;
 pub mod marschner;
+mod model_shading;
 mod params;
 pub mod shader;
 pub mod tables;
 
+pub(crate) use model_shading::{ChiangShading, MarschnerShading, ModelShading};
 pub use params::{
     ECCENTRICITY_MIN, FiberModel, FiberParams, Lobe, LobeConstants, roughness_for_std,
     std_for_roughness,
@@ -62,12 +65,9 @@ use shader::Trig;
 pub use tables::TableResolution;
 
 use chiang::ChiangConstants;
-use chiang_tables::ChiangTables;
 use dual::DualTables;
 use glam::Vec3;
 use kajiya_kay::KajiyaKay;
-use longitudinal::DeonLobes;
-use tables::NTables;
 
 /// Which fibre shader to use (for comparison and benchmarks).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -77,9 +77,8 @@ pub enum ShadingMode {
     DualScattering,
     /// Single scattering with hard shadows: S cos θi · direct_fraction, the light that reaches
     /// the point through no fibre at all (what a path tracer computes with one scattering
-    /// event). The earlier S cos θi · T_f variant was not single scattering (T_f already holds
-    /// forward-scattered light) and is gone; `DualScattering` with d_b = 0 is its physical
-    /// successor.
+    /// event). Not S cos θi · T_f: T_f already holds forward-scattered light, so that would
+    /// not be single scattering; `DualScattering` with d_b = 0 is its physical form.
     SingleScattering,
     /// Kajiya-Kay diffuse + specular scaled by transmittance (Bertails 2005 §3.3).
     KajiyaKay,
@@ -112,8 +111,8 @@ pub struct LightAtPoint {
     /// hair (dimensionless, >= 0). It truncates the local back-scattering Ā_b, which Zinke
     /// derives for infinitely many fibres behind the point (`backscatter::big_a_b_behind`): 0
     /// (an isolated fibre, or the far side of the hair) gives none, a few crossings give most of
-    /// it (x^{D−1} weights decay fast), +∞ gives Zinke's full term. Default
-    /// [`LightAtPoint::DENSE`] (= +∞), today's behaviour when the map does not provide it.
+    /// it (x^{D−1} weights decay fast), +∞ gives Zinke's full term. [`LightAtPoint::DENSE`]
+    /// (= +∞, Zinke's assumption) where the map does not provide it.
     pub crossings_behind: f32,
 }
 
@@ -137,37 +136,6 @@ pub struct ForwardScatter {
     pub a_f: Vec3,
     /// Mean forward variance β̄_f² in rad² (Zinke 2008 Table 1), RGB.
     pub beta_f2: Vec3,
-}
-
-/// The Marschner model's shading data: N tables and the Gaussian lobes' constants.
-#[derive(Clone, Debug)]
-pub(crate) struct MarschnerShading {
-    pub(crate) n_tables: NTables,
-    /// [N_R, N_TT, N^G_R, N^G_TT, N^G_TRT] interleaved on one (|θd|, |φ|) grid.
-    pub(crate) lobes: tables::Table2x<5>,
-    /// Lobe means 2α_p and variances (2β_p)² in x = θi + θo (radians, rad²).
-    pub(crate) mean_x: [f32; 3],
-    pub(crate) var_x: [f32; 3],
-    /// 1/√(2π var_x) and −1/(2 var_x): the unbroadened lobes' Gaussian constants.
-    pub(crate) m_norm: [f32; 3],
-    pub(crate) m_exp: [f32; 3],
-}
-
-/// The Chiang model's shading data: N̄ and N^G tables and the d'Eon lobes' constants.
-#[derive(Clone, Debug)]
-pub(crate) struct ChiangShading {
-    pub(crate) tables: ChiangTables,
-    /// [N̄_R, N̄_TT, N̄_TRT, N̄_3, N^G_R, N^G_TT, N^G_TRT] interleaved on one (|θo|, |φ|) grid
-    /// (N^G_3 = N̄_3: the residual is uniform in φ).
-    pub(crate) lobes: tables::Table2x<7>,
-    pub(crate) deon: DeonLobes,
-}
-
-/// The chosen model's shading data (matched once per `shade` call).
-#[derive(Clone, Debug)]
-pub(crate) enum ModelShading {
-    Marschner(MarschnerShading),
-    Chiang(ChiangShading),
 }
 
 /// A fibre with everything precomputed (tables of the dual-scattering quantities).
@@ -201,49 +169,12 @@ impl Fiber {
         let window = (params.forward_spread_deg as f64).to_radians();
         let (model, dual) = match params.model {
             FiberModel::Marschner => {
-                let n_tables = NTables::build(&consts, resolution);
-                let dual = DualTables::build(&consts, resolution, window);
-                let lobes = tables::Table2x::zip([
-                    &n_tables.r,
-                    &n_tables.tt,
-                    &dual.n_g[0],
-                    &dual.n_g[1],
-                    &dual.n_g[2],
-                ]);
-                let lobe = |f: &dyn Fn(Lobe) -> f64| Lobe::ALL.map(|l| f(l) as f32);
-                let m = MarschnerShading {
-                    mean_x: lobe(&|l| consts.mean_x(l)),
-                    var_x: lobe(&|l| consts.std_x(l).powi(2)),
-                    m_norm: lobe(&|l| {
-                        1.0 / (2.0 * std::f64::consts::PI * consts.std_x(l).powi(2)).sqrt()
-                    }),
-                    m_exp: lobe(&|l| -0.5 / consts.std_x(l).powi(2)),
-                    n_tables,
-                    lobes,
-                };
+                let (m, dual) = MarschnerShading::build(&consts, resolution, window);
                 (ModelShading::Marschner(m), dual)
             }
             FiberModel::Chiang => {
-                let tables = ChiangTables::build(&chiang, resolution);
-                let dual = DualTables::build(&chiang, resolution, window);
-                let lobes = tables::Table2x::zip([
-                    &tables.n_bar[0],
-                    &tables.n_bar[1],
-                    &tables.n_bar[2],
-                    &tables.n_bar[3],
-                    &dual.n_g[0],
-                    &dual.n_g[1],
-                    &dual.n_g[2],
-                ]);
-                let deon = DeonLobes::new(&chiang);
-                (
-                    ModelShading::Chiang(ChiangShading {
-                        tables,
-                        lobes,
-                        deon,
-                    }),
-                    dual,
-                )
+                let (c, dual) = ChiangShading::build(&chiang, resolution, window);
+                (ModelShading::Chiang(c), dual)
             }
         };
         let kk = KajiyaKay::new(&consts, &dual);

@@ -1,5 +1,6 @@
-//! The per-vertex shaders: hair-frame geometry from world vectors, the tabulated BCSDF of either
-//! fibre model, and Zinke et al. 2008 Figure 5 (dual scattering).
+//! The per-vertex shaders: the tabulated BCSDF of either fibre model, single scattering, and
+//! Zinke et al. 2008 Figure 5 (dual scattering), from the hair-frame angles (`angles.rs`) and
+//! the light the map reports (`arriving.rs`).
 //!
 //! Everything here is f32, allocation-free and branch-light: it runs 100K–200K times a frame.
 //!
@@ -30,13 +31,16 @@
 //!
 //! **Single scattering** is S cos θi · direct_fraction: hard shadows, no forward-scattered light.
 //!
-//! **Degenerate input.** Zero or non-finite vectors give 0. A direction along ±u has no azimuth
-//! (trap 9): it takes the other direction's azimuth (φ = 0), which is finite and deterministic.
-//!
-//! **Eccentricity frame.** η*(φh) needs the azimuth of the cross-section's axes, which strands do
-//! not carry (no twist). Azimuths are measured from the first vector of a branchless orthonormal
-//! basis built from u alone (Duff et al. 2017), so the ellipse orientation is a fixed,
-//! deterministic function of the tangent direction.
+//! **Degenerate input.** Zero or non-finite vectors give 0. The hair frame (`angles.rs`) gives
+//! a direction along ±u the other direction's azimuth (trap 9) and measures azimuths from a
+//! basis built from u alone (the eccentric cross-section's orientation, Duff et al. 2017).
+
+mod angles;
+mod arriving;
+
+pub use angles::HairAngles;
+pub(crate) use angles::Trig;
+use arriving::DualLight;
 
 use super::backscatter;
 use super::marschner::COS_THETA_D_MIN;
@@ -44,89 +48,6 @@ use super::params::Lobe;
 use super::{ChiangShading, Fiber, LightAtPoint, MarschnerShading, ModelShading};
 use glam::Vec3;
 use std::f32::consts::PI;
-
-/// Hair-frame angles of one (u, ωi, ωo) triple (Marschner 2003 §2.2), radians.
-#[derive(Clone, Copy, Debug)]
-pub struct HairAngles {
-    pub theta_i: f32,
-    pub theta_o: f32,
-    /// Relative azimuth φ = φo − φi wrapped to [−π, π].
-    pub phi: f32,
-    /// cos 2φh = cos(φi + φo), with azimuths measured from a frame built from u alone.
-    pub cos_2phi_h: f32,
-}
-
-impl HairAngles {
-    pub fn theta_d(&self) -> f32 {
-        0.5 * (self.theta_o - self.theta_i)
-    }
-
-    /// Angles from world vectors; None for zero or non-finite input. Uses one acos and two
-    /// asin (no atan2): the shader needs only |φ| and cos(φi + φo).
-    #[inline]
-    pub fn from_vectors(u: Vec3, wi: Vec3, wo: Vec3) -> Option<Self> {
-        Self::from_vectors_trig(u, wi, wo).map(|(a, _)| a)
-    }
-
-    /// [`Self::from_vectors`] with the sines of θi and θo it computes on the way (the shader
-    /// needs them; recomputing them from the angles costs two `sin_cos`).
-    #[inline]
-    pub(crate) fn from_vectors_trig(u: Vec3, wi: Vec3, wo: Vec3) -> Option<(Self, [f32; 2])> {
-        let u = unit(u)?;
-        let wi = unit(wi)?;
-        let wo = unit(wo)?;
-        let sin_i = wi.dot(u).clamp(-1.0, 1.0);
-        let sin_o = wo.dot(u).clamp(-1.0, 1.0);
-        // Orthonormal basis around u (Duff et al. 2017, branchless).
-        let sign = 1.0f32.copysign(u.z);
-        let a = -1.0 / (sign + u.z);
-        let b = u.x * u.y * a;
-        let v = Vec3::new(1.0 + sign * u.x * u.x * a, sign * b, -sign * u.x);
-        let w = Vec3::new(b, sign + u.y * u.y * a, -u.y);
-        // Unit azimuth vectors (cos φ, sin φ) of the projections on the normal plane.
-        let azimuth = |d: Vec3, s: f32| {
-            let p = d - u * s;
-            let (x, y) = (p.dot(v), p.dot(w));
-            let l2 = x * x + y * y;
-            (l2 > 1e-12).then(|| {
-                let inv = 1.0 / l2.sqrt();
-                (x * inv, y * inv)
-            })
-        };
-        let (ai, ao) = match (azimuth(wi, sin_i), azimuth(wo, sin_o)) {
-            (Some(i), Some(o)) => (i, o),
-            (Some(i), None) => (i, i),
-            (None, Some(o)) => (o, o),
-            (None, None) => ((1.0, 0.0), (1.0, 0.0)),
-        };
-        let cos_phi = (ai.0 * ao.0 + ai.1 * ao.1).clamp(-1.0, 1.0);
-        let sin_phi = ai.0 * ao.1 - ai.1 * ao.0;
-        let phi = cos_phi.acos().copysign(sin_phi);
-        Some((
-            Self {
-                theta_i: sin_i.asin(),
-                theta_o: sin_o.asin(),
-                phi,
-                cos_2phi_h: ai.0 * ao.0 - ai.1 * ao.1,
-            },
-            [sin_i, sin_o],
-        ))
-    }
-}
-
-/// `v` normalised, or None when it is zero, tiny or not finite. Unit input (the documented
-/// case) skips the square root.
-#[inline]
-fn unit(v: Vec3) -> Option<Vec3> {
-    let l2 = v.length_squared();
-    if (l2 - 1.0).abs() < 1e-6 {
-        Some(v)
-    } else if l2.is_finite() && l2 > 1e-30 {
-        Some(v / l2.sqrt())
-    } else {
-        None
-    }
-}
 
 /// Unit-area Gaussian with variance `var` (rad²) at x (radians), per channel.
 #[inline]
@@ -288,104 +209,6 @@ impl Fiber {
                 }
                 finite_or_zero(out)
             }
-        }
-    }
-}
-
-/// The map's light, sanitised: direct fraction in [0, 1], T_f in [0, 1], the spread of the
-/// light that arrives ([`arriving_spread`], ≥ 0), and the forward-scattered share
-/// max(T_f − direct, 0).
-struct DualLight {
-    direct: f32,
-    sigma_f2: Vec3,
-    scattered: Vec3,
-    any_scattered: bool,
-}
-
-impl DualLight {
-    #[inline]
-    fn new(light: &LightAtPoint) -> Self {
-        let direct = unit_or_zero(light.direct_fraction);
-        let tf = finite_or_zero(light.tf).clamp(Vec3::ZERO, Vec3::ONE);
-        let scattered = (tf - Vec3::splat(direct)).max(Vec3::ZERO);
-        Self {
-            direct,
-            sigma_f2: arriving_spread(finite_or_zero(light.sigma_f2), direct, tf),
-            scattered,
-            any_scattered: scattered.max_element() > 0.0,
-        }
-    }
-}
-
-/// Direct fraction below which the crossings in front are read as this many (f32's `exp`
-/// underflows near 1e-38; what arrives there is below 1e-13 of the light).
-const MIN_DIRECT: f32 = 1e-30;
-
-/// The longitudinal spread σ̄f² (rad², RGB) of the forward-scattered light that *arrives* at a
-/// point, from the map's path sum `path_var` = Σ n β_f² over the crossings in front (Zinke 2008
-/// Eq. 8, averaged over rays), its direct fraction e^(−n̄) and its T_f = e^(−n̄(1 − ā_f)).
-///
-/// Zinke's sum is the spread of a ray that crosses every fibre in front, each scattering it
-/// forward. With crossings counted as the map counts them (Poisson, mean n̄) a ray of N
-/// crossings arrives with weight ā_f^N, so the light that arrives has crossed fewer fibres than
-/// the average ray: among the forward-scattered light (N ≥ 1) the mean count is
-/// E[N ā^N; N ≥ 1] / E[ā^N; N ≥ 1] = λ / (1 − e^(−λ)), λ = n̄ā_f = n̄ + ln T_f, per channel (1 for
-/// a single crossing, n̄ā_f deep in the hair). The spread is that count times the mean β_f² per
-/// crossing, Σ n β_f² / n̄. The path sum over-spread the arriving light by 1/ā_f deep in the
-/// hair (1.6–2.6 × for blond), which flattened the forward lobe: back-lit dense hair showed
-/// under half of the path tracer's multiply scattered light (ACCURACY.md §2).
-///
-/// A solid's shadow (`LightMap::light_at`) scales direct and T_f alike, which leaves λ exact
-/// and n̄ read too high by −ln V; where direct underflows, n̄ reads −ln(1e-30), and the light
-/// there is negligible.
-#[inline]
-fn arriving_spread(path_var: Vec3, direct: f32, tf: Vec3) -> Vec3 {
-    let path_var = path_var.max(Vec3::ZERO);
-    let n_bar = -direct.max(MIN_DIRECT).ln();
-    if n_bar <= 1e-6 {
-        return path_var;
-    }
-    let order = |t: f32| {
-        let lambda = (n_bar + t.max(MIN_DIRECT).ln()).max(0.0);
-        if lambda < 1e-4 {
-            1.0 + 0.5 * lambda
-        } else {
-            lambda / -(-lambda).exp_m1()
-        }
-    };
-    path_var / n_bar * Vec3::new(order(tf.x), order(tf.y), order(tf.z))
-}
-
-/// sin and cos (≥ 0) of θi and θo, computed once per call.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Trig {
-    si: f32,
-    ci: f32,
-    so: f32,
-    co: f32,
-}
-
-impl Trig {
-    /// From sin θi and sin θo.
-    #[inline]
-    pub(crate) fn from_sines([si, so]: [f32; 2]) -> Self {
-        Self {
-            si,
-            ci: (1.0 - si * si).max(0.0).sqrt(),
-            so,
-            co: (1.0 - so * so).max(0.0).sqrt(),
-        }
-    }
-
-    #[inline]
-    fn new(a: &HairAngles) -> Self {
-        let (si, ci) = a.theta_i.sin_cos();
-        let (so, co) = a.theta_o.sin_cos();
-        Self {
-            si,
-            ci: ci.max(0.0),
-            so,
-            co: co.max(0.0),
         }
     }
 }

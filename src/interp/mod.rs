@@ -3,13 +3,14 @@
 //! Each render strand is a barycentric blend of its wisp's three guides, particle by particle;
 //! the blended control polygon is smoothed with a uniform Catmull-Rom spline into the
 //! `points_per_strand` points that are both filled into the map and drawn (Bertails §3.1: "each
-//! hair strand is sampled using a Catmull-Rom spline into nSmooth points"); curls are a helix
-//! added around that centre line in a frame transported along the strand.
+//! hair strand is sampled using a Catmull-Rom spline into nSmooth points", `catmull_rom.rs`);
+//! curls are a helix added around that centre line in a frame transported along the strand
+//! (`curl.rs`).
 //!
-//! The curl frame starts from the vector between two guide roots of the wisp (which turns
-//! with the head, so curls do not spin when the head turns) and is carried along the strand by
-//! projection onto each new normal plane: a discrete parallel transport that costs two dot
-//! products per point and never flips.
+//! Each point then gets a unit tangent by central differences and the length of hair it stands
+//! for, ℓ_i = (|p_i − p_{i−1}| + |p_{i+1} − p_i|)/2, times the share of the strand's fibres
+//! present there: fibres end one by one over the tip taper τ, so the share is
+//! clamp((1 − u)/τ, 0, 1) at arc-length fraction u.
 //!
 //! An imported groom adds each strand's own rest offset from its wisp's blend ([`offset`]),
 //! in a frame carried by the guides, before any curl.
@@ -28,6 +29,10 @@ use glam::Vec3;
 use rayon::prelude::*;
 use solids::SolidsView;
 
+mod catmull_rom;
+pub use catmull_rom::{catmull_rom_resample, catmull_rom_resample_to};
+mod curl;
+use curl::add_curl;
 mod offset;
 pub use offset::{apply_rest_offsets, rest_offsets_of};
 mod subdivide;
@@ -135,90 +140,6 @@ pub fn interpolate_among(
             tangents_and_lengths(pos, tan, len);
             tip_taper(layout.tip_taper, pos, share, len);
         });
-}
-
-/// Samples the uniform Catmull-Rom spline through `ctrl` (>= 2 points) at `out.len()` evenly
-/// spaced parameters from the first to the last control point; end tangents use reflected
-/// phantom points, so the curve passes through both ends.
-pub fn catmull_rom_resample(ctrl: &[Vec3], out: &mut [Vec3]) {
-    catmull_rom_resample_to(ctrl, 1.0, out);
-}
-
-/// [`catmull_rom_resample`] over the first `fraction` ∈ (0, 1] of the spline's parameter
-/// range: a strand that stops short of its guides' tips, still sampled at `out.len()` points.
-/// The guides' links are of equal length, so the parameter is proportional to arc length up to
-/// the spline's bending.
-pub fn catmull_rom_resample_to(ctrl: &[Vec3], fraction: f32, out: &mut [Vec3]) {
-    let m = ctrl.len();
-    let n = out.len();
-    if n == 0 {
-        return;
-    }
-    if m < 2 || n == 1 {
-        out.fill(ctrl.first().copied().unwrap_or(Vec3::ZERO));
-        return;
-    }
-    let at = |i: isize| -> Vec3 {
-        if i < 0 {
-            2.0 * ctrl[0] - ctrl[1]
-        } else if i as usize >= m {
-            2.0 * ctrl[m - 1] - ctrl[m - 2]
-        } else {
-            ctrl[i as usize]
-        }
-    };
-    let fraction = if fraction.is_finite() {
-        fraction.clamp(1e-3, 1.0)
-    } else {
-        1.0
-    };
-    let scale = (m - 1) as f32 * fraction / (n - 1) as f32;
-    for (k, o) in out.iter_mut().enumerate() {
-        let u = k as f32 * scale;
-        let seg = (u as usize).min(m - 2);
-        let t = u - seg as f32;
-        let i = seg as isize;
-        let (p0, p1, p2, p3) = (at(i - 1), at(i), at(i + 1), at(i + 2));
-        // Uniform Catmull-Rom in Hermite form with tangents (p2 - p0)/2 and (p3 - p1)/2.
-        let t2 = t * t;
-        let t3 = t2 * t;
-        *o = 0.5
-            * ((2.0 * p1)
-                + (p2 - p0) * t
-                + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * t2
-                + (3.0 * p1 - p0 - 3.0 * p2 + p3) * t3);
-    }
-}
-
-/// Adds a helix of `curl.radius_m` around the centre line `pos` (in place). The radius ramps up
-/// over the first 2 cm so roots stay on the scalp.
-fn add_curl(pos: &mut [Vec3], reference: Vec3, curl: &CurlSpec, phase: f32) {
-    const RAMP_M: f32 = 0.02;
-    let n = pos.len();
-    if n < 2 {
-        return;
-    }
-    let mut prev = pos[0];
-    let mut t = (pos[1] - pos[0]).normalize_or(Vec3::NEG_Y);
-    let mut b1 = (reference - reference.dot(t) * t).normalize_or(t.any_orthonormal_vector());
-    let mut s = 0.0f32;
-    let k = std::f32::consts::TAU / curl.period_m;
-    for i in 0..n {
-        let centre = pos[i];
-        if i > 0 {
-            s += (centre - prev).length();
-            let next = if i + 1 < n { pos[i + 1] } else { centre };
-            let t_new = (next - prev).normalize_or(t);
-            // Discrete parallel transport: project the old normal onto the new normal plane.
-            b1 = (b1 - b1.dot(t_new) * t_new).normalize_or(t_new.any_orthonormal_vector());
-            t = t_new;
-        }
-        prev = centre;
-        let b2 = t.cross(b1);
-        let r = curl.radius_m * (s / RAMP_M).min(1.0);
-        let a = k * s + phase;
-        pos[i] = centre + r * (a.cos() * b1 + a.sin() * b2);
-    }
 }
 
 /// The share of a strand's fibres present at each point: fibres end one by one over the last

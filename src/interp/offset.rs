@@ -5,7 +5,7 @@
 //! the blend, point by point, is kept in a local frame of the blended centre line: the unit
 //! tangent `t`, a normal `b1` that starts as the vector between the wisp's first two guide
 //! roots (it turns with the head) and is carried along the strand by projection onto each new
-//! normal plane (the discrete parallel transport of the curls, `super::add_curl`), and
+//! normal plane (the discrete parallel transport of the curls, `curl.rs`), and
 //! `b2 = t × b1`. The offset `(x, y, z)` means `x·b1 + y·b2 + z·t`. At rest the frame is
 //! computed the same way from the rest guides, so adding the offsets back reproduces the
 //! file's strand exactly (to rounding); when the guides move and bend, the offsets turn with

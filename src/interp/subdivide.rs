@@ -1,6 +1,9 @@
 //! Segments cut into pieces: the same polyline with evenly spaced points added along each
 //! segment, so that every stage that reads hair point by point (map fill, contact shadows,
 //! shading) reads it more often along the strand while the drawn geometry stays the same.
+//!
+//! n points cut into m pieces a segment become (n − 1)·m + 1: point i·m + k is
+//! p_i + (k/m)(p_{i+1} − p_i), k = 0..m, in place from the tip down.
 
 use glam::Vec3;
 

@@ -1,8 +1,13 @@
-//! Each cell's light by direction (`volume` module doc, step 3): the flights of light through a
-//! cell merged into the bins of an octahedral map of the sphere (Praun & Hoppe 2003's layout:
-//! |x| + |y| + |z| = 1 unfolded onto a square), each bin keeping its summed light and the
-//! light-weighted mean of its directions. The gather evaluates the fibre's BCSDF once per bin
-//! instead of once per flight, and the memory no longer grows with the paths.
+//! Each cell's light by direction (`light_paths` module doc, step 3): the flights of light
+//! through a cell merged into the bins of an octahedral map of the sphere (Praun & Hoppe 2003's
+//! layout: |x| + |y| + |z| = 1 unfolded onto a square), each bin keeping its summed light Σ Φ
+//! (RGB) and the mean of its directions weighted by their light, Σ |Φ|₁ ω / ‖Σ |Φ|₁ ω‖ (|Φ|₁
+//! the sum of the channels). Why: the gather evaluates
+//! the fibre's BCSDF once per bin instead of once per flight (1.5× faster at 4 M paths, the
+//! means within 2% of every flight kept), and the memory is bounded whatever the paths.
+//!
+//! The merge adds each slot's flights in the order the blocks left them, one range of slots
+//! per thread, so the sums are the same bits for any thread count.
 
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;

@@ -1,16 +1,16 @@
-//! Where light paths start (`volume` module doc, step 2): a directional light's over the
+//! Where light paths start (`light_paths` module doc, step 2): a directional light's over the
 //! columns across it that hair reaches, a point light's into the directions, within the cone
 //! of the grid's bounding sphere, that hair subtends. A path anywhere else would cross no
 //! fibre and leave no record; sending none there keeps every estimate's expectation and puts
 //! all the paths where they count.
 
-use super::Cells;
+use super::cells::Cells;
 use crate::light::Light;
 use crate::rng::SplitMix64;
 use glam::{Vec2, Vec3};
 
 /// Where a path starts: a point, its unit direction and its power (W, RGB).
-type Emit = (Vec3, Vec3, Vec3);
+pub(super) type Emit = (Vec3, Vec3, Vec3);
 
 /// How a light sends paths into the grid: each path's start from its random numbers, with
 /// power so that all of them carry the light's whole flux through the hair.
@@ -49,74 +49,85 @@ impl Emitter {
         let size = cells.dims.as_vec3() * cells.cell_m;
         let centre = cells.origin + 0.5 * size;
         let n = paths.max(1) as f32;
-        let (origin, axis, power, kind) = match *light {
+        let emitter = match *light {
             Light::Directional { travel, irradiance } => {
-                let d = travel.get();
-                let (a, b) = d.any_orthonormal_pair();
-                let footprint = Footprint::new(cells, centre, a, b)?;
-                let back = size.length();
-                (
-                    centre,
-                    d,
-                    irradiance * (footprint.area_m2() / n),
-                    Kind::Plane {
-                        a,
-                        b,
-                        footprint,
-                        back,
-                    },
-                )
+                Self::plane(cells, centre, travel.get(), irradiance, n)?
             }
             Light::Point {
                 position_m,
                 intensity,
-            } => {
-                let to = centre - position_m;
-                let (dist, radius) = (to.length(), 0.5 * size.length());
-                if !(dist.is_finite() && radius > 0.0) {
-                    return None;
-                }
-                // A light among the hair (inside the grid's bounding sphere) sends into the
-                // whole sphere of directions: 1 − cos θmax = 2.
-                let inside = !(dist > radius);
-                let axis = if inside { Vec3::Z } else { to / dist };
-                // 1 − √(1 − s²) = s² / (1 + √(1 − s²)), without the cancellation.
-                let s2 = (radius / dist).powi(2);
-                let one_minus_cos_max = if inside {
-                    2.0
-                } else {
-                    s2 / (1.0 + (1.0 - s2).max(0.0).sqrt())
-                };
-                let frame = axis.any_orthonormal_pair();
-                let cone = Cone {
-                    light_m: position_m,
-                    axis,
-                    frame,
-                    one_minus_cos_max,
-                };
-                let footprint = ConeFootprint::new(cells, &cone, radius)?;
-                let solid_angle =
-                    std::f32::consts::TAU * one_minus_cos_max * footprint.share_of_cone();
-                (
-                    position_m,
-                    axis,
-                    intensity * (solid_angle / n),
-                    Kind::Cone {
-                        frame,
-                        one_minus_cos_max,
-                        footprint,
-                    },
-                )
-            }
+            } => Self::cone(cells, centre, position_m, intensity, n)?,
         };
-        if !(power.is_finite() && axis.is_finite()) {
+        (emitter.power.is_finite() && emitter.axis.is_finite()).then_some(emitter)
+    }
+
+    /// A directional light travelling along unit `d` with `irradiance`: `n` paths over the
+    /// columns across it that hair reaches, each with E·A/n for the columns' area A, from a
+    /// grid's diagonal in front of the grid's `centre`.
+    fn plane(cells: &Cells, centre: Vec3, d: Vec3, irradiance: Vec3, n: f32) -> Option<Emitter> {
+        let (a, b) = d.any_orthonormal_pair();
+        let footprint = Footprint::new(cells, centre, a, b)?;
+        let back = (cells.dims.as_vec3() * cells.cell_m).length();
+        Some(Emitter {
+            origin: centre,
+            axis: d,
+            power: irradiance * (footprint.area_m2() / n),
+            kind: Kind::Plane {
+                a,
+                b,
+                footprint,
+                back,
+            },
+        })
+    }
+
+    /// A point light at `position_m` with `intensity`: `n` paths into the directions of the
+    /// cone of the grid's bounding sphere (about the grid's `centre`) that hair subtends, each
+    /// with I·Ω/n for their solid angle Ω.
+    fn cone(
+        cells: &Cells,
+        centre: Vec3,
+        position_m: Vec3,
+        intensity: Vec3,
+        n: f32,
+    ) -> Option<Emitter> {
+        let to = centre - position_m;
+        let (dist, radius) = (
+            to.length(),
+            0.5 * (cells.dims.as_vec3() * cells.cell_m).length(),
+        );
+        if !(dist.is_finite() && radius > 0.0) {
             return None;
         }
-        Some(Emitter {
-            origin,
+        // A light among the hair (inside the grid's bounding sphere) sends into the whole
+        // sphere of directions: 1 − cos θmax = 2.
+        let inside = !(dist > radius);
+        let axis = if inside { Vec3::Z } else { to / dist };
+        // 1 − √(1 − s²) = s² / (1 + √(1 − s²)), without the cancellation.
+        let s2 = (radius / dist).powi(2);
+        let one_minus_cos_max = if inside {
+            2.0
+        } else {
+            s2 / (1.0 + (1.0 - s2).max(0.0).sqrt())
+        };
+        let frame = axis.any_orthonormal_pair();
+        let cone = Cone {
+            light_m: position_m,
             axis,
-            power,
-            kind,
+            frame,
+            one_minus_cos_max,
+        };
+        let footprint = ConeFootprint::new(cells, &cone, radius)?;
+        let solid_angle = std::f32::consts::TAU * one_minus_cos_max * footprint.share_of_cone();
+        Some(Emitter {
+            origin: position_m,
+            axis,
+            power: intensity * (solid_angle / n),
+            kind: Kind::Cone {
+                frame,
+                one_minus_cos_max,
+                footprint,
+            },
         })
     }
 

@@ -1,14 +1,15 @@
-//! The volume's parts against analytic cases: the paths' free flights against Beer–Lambert in a
+//! The light paths' parts against analytic cases: the paths' free flights against Beer–Lambert in a
 //! slab of parallel fibres, the gather's units in a white furnace, and the same records for
 //! any thread count.
 
+use super::cells::Cells;
 use super::trace::Walker;
 use super::*;
 use crate::fiber::{FiberModel, FiberParams};
 use crate::light::Light;
 use crate::rng::SplitMix64;
 
-/// No solids (the type of the closure `PhotonVolume::build` would take).
+/// No solids (the type of the closure `LightPaths::build` would take).
 const NO_SOLIDS: Option<fn(Vec3) -> f32> = None;
 
 fn chiang(sigma_a: [f32; 3]) -> Fiber {
@@ -36,6 +37,16 @@ fn slab(n: usize, len_m: f32, w: f32, depth: f32, seed: u64) -> (Vec<Vec3>, Vec<
     (positions, vec![Vec3::X; n], vec![len_m; n])
 }
 
+/// The points of [`slab`] as one fibre per strand.
+fn points<'a>(p: &'a [Vec3], u: &'a [Vec3], l: &'a [f32]) -> StrandPoints<'a> {
+    StrandPoints {
+        positions: p,
+        tangents: u,
+        lengths_m: l,
+        fibers_per_strand: 1.0,
+    }
+}
+
 /// Paths shot down into a slab of fibres at right angles, and at 60° to them, pass without a
 /// hit with probability exp(−2r λ sin ψ L): λ the fibre length per volume, L the path's length
 /// in the slab. Delta tracking, the majorant and the acceptance (ℓ/ℓ_max · sin ψ) together
@@ -45,7 +56,7 @@ fn free_flights_follow_beer_lambert_in_a_slab() {
     let (w, depth, len) = (0.02f32, 0.008f32, 0.0015f32);
     let n = 12_000;
     let (p, u, l) = slab(n, len, w, depth, 5);
-    let cells = Cells::build(&p, &u, &l, 1.0, 0.004).expect("cells");
+    let cells = Cells::build(&points(&p, &u, &l), 0.004).expect("cells");
     let r = 40e-6f32;
     let walker = Walker {
         cells: &cells,
@@ -95,7 +106,7 @@ fn free_flights_follow_beer_lambert_in_a_slab() {
 fn isotropic_records_light_a_white_fiber_by_a_quarter_pi() {
     let fiber = chiang([0.0; 3]);
     let (p, u, l) = slab(10, 0.001, 0.004, 0.004, 1);
-    let cells = Cells::build(&p, &u, &l, 1.0, 0.004).expect("cells");
+    let cells = Cells::build(&points(&p, &u, &l), 0.004).expect("cells");
     let k = 200_000;
     let phi = 3.0f32;
     let mut rng = SplitMix64::new(4);
@@ -115,7 +126,7 @@ fn isotropic_records_light_a_white_fiber_by_a_quarter_pi() {
         all_from.extend_from_slice(&from);
         starts[c + 1] = ((c + 1) * k) as u32;
     }
-    let volume = LightPaths {
+    let paths = LightPaths {
         fluence: vec![Vec3::splat(phi / k as f32); all_from.len()],
         from: all_from,
         starts,
@@ -123,7 +134,7 @@ fn isotropic_records_light_a_white_fiber_by_a_quarter_pi() {
         cells,
         scatterings: 0,
     };
-    let centre = volume.cells.origin + volume.cells.dims.as_vec3() * (0.5 * volume.cells.cell_m);
+    let centre = paths.cells.origin + paths.cells.dims.as_vec3() * (0.5 * paths.cells.cell_m);
     for (tangent, view) in [
         (Vec3::X, Vec3::Z),
         (Vec3::X, Vec3::new(0.6, 0.0, 0.8)),
@@ -132,7 +143,7 @@ fn isotropic_records_light_a_white_fiber_by_a_quarter_pi() {
             Vec3::new(-0.8, 0.36, -0.48).normalize(),
         ),
     ] {
-        let got = volume.indirect(&fiber, centre, tangent, view, Vec3::splat(0.5));
+        let got = paths.indirect(&fiber, centre, tangent, view, Vec3::splat(0.5));
         let want = phi / (4.0 * std::f32::consts::PI);
         for ch in got.to_array() {
             assert!(
@@ -161,8 +172,8 @@ fn the_same_records_for_any_thread_count() {
             .build()
             .expect("pool")
             .install(|| {
-                LightPaths::build(&fiber, &p, &u, &l, 1.0, &overhead, &params, NO_SOLIDS)
-                    .expect("volume")
+                LightPaths::build(&fiber, &points(&p, &u, &l), &overhead, &params, NO_SOLIDS)
+                    .expect("light paths")
             })
     };
     let (a, b) = (run(1), run(2));
@@ -191,7 +202,7 @@ fn a_distant_point_light_is_a_directional_light_of_irradiance_i_over_d_squared()
         seed: 3,
         ..Default::default()
     };
-    let cells = Cells::build(&p, &u, &l, 1.0, params.cell_m).expect("cells");
+    let cells = Cells::build(&points(&p, &u, &l), params.cell_m).expect("cells");
     let centre = cells.origin + cells.dims.as_vec3() * (0.5 * cells.cell_m);
     let distance = 20.0;
     let point = Light::Point {
@@ -201,8 +212,8 @@ fn a_distant_point_light_is_a_directional_light_of_irradiance_i_over_d_squared()
     let sun =
         Light::directional(-Vec3::Y, Vec3::splat(400.0 / (distance * distance))).expect("light");
     let total = |light: &Light| {
-        let v =
-            LightPaths::build(&fiber, &p, &u, &l, 1.0, light, &params, NO_SOLIDS).expect("volume");
+        let v = LightPaths::build(&fiber, &points(&p, &u, &l), light, &params, NO_SOLIDS)
+            .expect("light paths");
         v.fluence.iter().copied().sum::<Vec3>()
     };
     let (a, b) = (total(&point), total(&sun));
@@ -236,15 +247,12 @@ fn solids_absorb_the_light_that_enters_them() {
     let build = |depth: Option<&(dyn Fn(Vec3) -> f32 + Sync)>| {
         LightPaths::build(
             &fiber,
-            &p,
-            &u,
-            &l,
-            1.0,
+            &points(&p, &u, &l),
             &overhead,
             &params,
             depth.map(|f| move |q: Vec3| f(q)),
         )
-        .expect("volume")
+        .expect("light paths")
         .records()
     };
     let (open, roofed, thin) = (build(None), build(Some(&roof)), build(Some(&shallow)));
@@ -346,7 +354,8 @@ fn cells_grow_until_the_bins_fit_their_cap() {
             max_bins_bytes,
             ..Default::default()
         };
-        LightPaths::build(&fiber, &p, &u, &l, 1.0, &overhead, &params, NO_SOLIDS).expect("volume")
+        LightPaths::build(&fiber, &points(&p, &u, &l), &overhead, &params, NO_SOLIDS)
+            .expect("light paths")
     };
     let (free, capped) = (build(u64::MAX), build(2_000_000));
     let bytes = |v: &LightPaths| super::bins::Bins::estimated_bytes(v.cells.slots as u64, 8);
@@ -378,7 +387,7 @@ fn filed_records_keep_their_order_within_each_range() {
         })
         .collect();
     let (span, ranges) = (10, 4);
-    let filed = super::trace::BlockRecords::new(records.clone(), span, ranges);
+    let filed = super::records::BlockRecords::new(records.clone(), span, ranges);
     let mut seen = 0;
     for j in 0..ranges {
         let want: Vec<f32> = records

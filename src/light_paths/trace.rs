@@ -1,13 +1,34 @@
-//! Light paths through the cells (`volume` module doc, steps 2 and 3): delta tracking across a
-//! grid walked cell by cell (Amanatides & Woo 1987), Chiang scattering, Russian roulette.
+//! Light paths through the cells (`light_paths` module doc, steps 2 and 3): a grid walked
+//! cell by cell (Amanatides & Woo 1987), delta tracking inside the cells that hold fibre,
+//! Chiang scattering at each collision, Russian roulette.
+//!
+//! **Delta tracking** (Woodcock tracking). In a cell of volume V holding n pieces, the longest
+//! ℓ_max, the majorant σ̄ = 2r·n·ℓ_max / V bounds the fibres' cross-section per volume. Free
+//! flights s = −ln ξ / σ̄ give tentative collisions; at each, a piece j is drawn uniformly and
+//! the collision accepted with probability (ℓ_j / ℓ_max)·sin ψ_j, ψ between the path and the
+//! piece. The accepted collisions then occur at the rate Σ_j 2r ℓ_j sin ψ_j / V, the fibres'
+//! projected cross-section per volume: the slab test pins it against Beer–Lambert. Why:
+//! it needs no intersection with a fibre and is unbiased, whatever the pieces' spread.
+//!
+//! **Scattering.** At a collision the path's new direction and the factor its power takes come
+//! from `fiber::chiang_sample::sample_scatter`: Chiang et al. 2016's lobes sampled as pbrt-v3
+//! §9.9.6 does, at a random offset across the fibre, so the factor's expectation is the
+//! far-field ḡ the gather evaluates. After [`ROULETTE_AFTER`] scatterings a path whose largest
+//! channel w has fallen below its start's w₀ survives with probability q = w / w₀ and is
+//! divided by q: no bias, and no time spent on paths that carry almost nothing.
+//!
+//! **Determinism.** Paths are traced in blocks of [`BLOCK`], block b drawing from stream b of
+//! the seed (`rng::SplitMix64::stream`), so the paths are the same for any thread count.
 
-use super::emit::Emitter;
-use super::{Cells, LightPathParams, NO_SLOT, Record};
+use super::LightPathParams;
+use super::cells::{Cells, NO_SLOT};
+use super::emit::{Emit, Emitter};
+use super::records::{BlockRecords, Record};
 use crate::fiber::Fiber;
-use crate::fiber::chiang::TrimmedLogistic;
+use crate::fiber::chiang::{ChiangConstants, TrimmedLogistic};
 use crate::fiber::chiang_sample::sample_scatter;
 use crate::rng::SplitMix64;
-use glam::Vec3;
+use glam::{IVec3, Vec3};
 use rayon::prelude::*;
 
 /// Paths per block: each block draws from its own seed, so the result is the same for any
@@ -25,55 +46,6 @@ pub(super) struct Traced {
     pub(super) scatterings: u64,
 }
 
-/// One block's records, grouped by range of `span` slots (range j: slots j·span..), each
-/// range's in the order the paths left them.
-pub(super) struct BlockRecords {
-    records: Vec<Record>,
-    /// Range j's records: `records[ends[j - 1]..ends[j]]` (from 0 for j = 0).
-    ends: Vec<u32>,
-}
-
-impl BlockRecords {
-    /// Groups `records` by range of `span` slots, `ranges` ranges (a stable counting sort).
-    pub(super) fn new(records: Vec<Record>, span: usize, ranges: usize) -> BlockRecords {
-        let range_of = |r: &Record| (r.slot as usize / span).min(ranges - 1);
-        let mut ends = vec![0u32; ranges];
-        for r in &records {
-            ends[range_of(r)] += 1;
-        }
-        let mut at = 0;
-        let mut cursor: Vec<u32> = ends
-            .iter_mut()
-            .map(|e| {
-                let start = at;
-                at += *e;
-                *e = at;
-                start
-            })
-            .collect();
-        let mut grouped = records.clone();
-        for r in records {
-            let c = &mut cursor[range_of(&r)];
-            grouped[*c as usize] = r;
-            *c += 1;
-        }
-        BlockRecords {
-            records: grouped,
-            ends,
-        }
-    }
-
-    /// The records of range `j`, in the paths' order.
-    pub(super) fn range(&self, j: usize) -> &[Record] {
-        let start = j
-            .checked_sub(1)
-            .and_then(|i| self.ends.get(i))
-            .map_or(0, |&e| e as usize);
-        let end = self.ends.get(j).map_or(start, |&e| e as usize);
-        &self.records[start..end.max(start)]
-    }
-}
-
 /// Traces blocks `blocks` of the `params.paths` paths of `emitter` through `cells` (fibres of
 /// radius `radius_m`): block b is paths b·BLOCK.. of the whole, from its own seed. Each
 /// block's records come grouped by `ranges` ranges of `span` slots, the merge's jobs.
@@ -86,12 +58,14 @@ pub(super) fn trace(
     blocks: std::ops::Range<u32>,
     (span, ranges): (usize, usize),
 ) -> Traced {
-    let c = *fiber.chiang_constants();
-    let logistic = TrimmedLogistic::new(c.s);
-    let sigma_per_len = 2.0 * radius_m / cells.cell_m.powi(3);
+    let c = fiber.chiang_constants();
+    let scatter = Scatter {
+        constants: c,
+        logistic: TrimmedLogistic::new(c.s),
+    };
     let walker = Walker {
         cells,
-        sigma_per_len,
+        sigma_per_len: 2.0 * radius_m / cells.cell_m.powi(3),
     };
     let (span, ranges) = (span.max(1), ranges.max(1));
     let results: Vec<(BlockRecords, u64)> = blocks
@@ -102,8 +76,8 @@ pub(super) fn trace(
             let mut scatterings = 0u64;
             let end = ((block + 1) * BLOCK).min(params.paths);
             for _ in block * BLOCK..end {
-                let (start, d, power) = emitter.emit(&mut rng);
-                scatterings += walker.path(start, d, power, &c, &logistic, &mut rng, &mut records);
+                let start = emitter.emit(&mut rng);
+                scatterings += walker.path(start, &scatter, &mut rng, &mut records);
             }
             (BlockRecords::new(records, span, ranges), scatterings)
         })
@@ -115,6 +89,14 @@ pub(super) fn trace(
     }
 }
 
+/// The fibre's scattering a path samples at each collision: Chiang's constants and the
+/// logistic of its azimuthal lobes.
+struct Scatter<'a> {
+    constants: &'a ChiangConstants,
+    logistic: TrimmedLogistic,
+}
+
+/// Flies paths through the cells (module doc).
 pub(super) struct Walker<'a> {
     pub(super) cells: &'a Cells,
     /// 2r / V: a cell's cross-section per metre of fibre at right angles.
@@ -122,16 +104,12 @@ pub(super) struct Walker<'a> {
 }
 
 impl Walker<'_> {
-    /// One path from `start` along unit `d` with `power`; appends its records, returns its
-    /// scatterings.
-    #[allow(clippy::too_many_arguments)]
+    /// One path from its start (point, unit direction, power); appends its records, returns
+    /// its scatterings.
     fn path(
         &self,
-        start: Vec3,
-        mut d: Vec3,
-        power: Vec3,
-        c: &crate::fiber::chiang::ChiangConstants,
-        logistic: &TrimmedLogistic,
+        (start, mut d, power): Emit,
+        scatter: &Scatter,
         rng: &mut SplitMix64,
         records: &mut Vec<Record>,
     ) -> u64 {
@@ -144,7 +122,13 @@ impl Walker<'_> {
                 return bounces as u64;
             };
             let xi = std::array::from_fn(|_| rng.open_unit_f64());
-            let Some(s) = sample_scatter(c, logistic, u.as_dvec3(), -d.as_dvec3(), xi) else {
+            let Some(s) = sample_scatter(
+                scatter.constants,
+                &scatter.logistic,
+                u.as_dvec3(),
+                -d.as_dvec3(),
+                xi,
+            ) else {
                 return bounces as u64;
             };
             bounces += 1;
@@ -154,14 +138,8 @@ impl Walker<'_> {
             if d == Vec3::ZERO || !weight.is_finite() || bounces >= MAX_SCATTERINGS {
                 return bounces as u64;
             }
-            if bounces >= ROULETTE_AFTER {
-                let keep = weight.max_element() / full;
-                if keep < 1.0 {
-                    if rng.open_unit_f64() as f32 >= keep {
-                        return bounces as u64;
-                    }
-                    weight /= keep;
-                }
+            if bounces >= ROULETTE_AFTER && !survives_roulette(&mut weight, full, rng) {
+                return bounces as u64;
             }
         }
     }
@@ -178,8 +156,130 @@ impl Walker<'_> {
         records: &mut Vec<Record>,
     ) -> Option<(Vec3, Vec3)> {
         let cells = self.cells;
+        let (mut walk, mut t) = Walk::enter(cells, o, d)?;
+        let dims = cells.dims.as_ivec3();
+        loop {
+            if walk.cell.cmplt(IVec3::ZERO).any() || walk.cell.cmpge(dims).any() {
+                return None;
+            }
+            let index = cells.index(walk.cell.as_uvec3());
+            let t_exit = walk.t_max.min_element().max(t);
+            if cells.is_busy(index) {
+                if cells.solid.get(index).copied().unwrap_or(false) {
+                    return None;
+                }
+                let t_cell = t;
+                if let Some(u) = self.collide_in_cell(index, d, &mut t, t_exit, rng) {
+                    if scattered {
+                        record(cells, index, d, weight, t - t_cell, records);
+                    }
+                    return Some((o + d * t, u));
+                }
+                if scattered && t_exit > t_cell {
+                    record(cells, index, d, weight, t_exit - t_cell, records);
+                }
+            }
+            t = t_exit;
+            walk.advance();
+            if t >= walk.t_leave {
+                return None;
+            }
+        }
+    }
+
+    /// Delta tracking through cell `index` from `*t` to `t_exit` (module doc): the tangent of
+    /// the piece hit, with `*t` at the collision, or `None` when the flight leaves the cell
+    /// (`*t` then at its last tentative collision).
+    #[inline]
+    fn collide_in_cell(
+        &self,
+        index: usize,
+        d: Vec3,
+        t: &mut f32,
+        t_exit: f32,
+        rng: &mut SplitMix64,
+    ) -> Option<Vec3> {
+        let cells = self.cells;
+        let (first, last) = (
+            cells.starts[index] as usize,
+            cells.starts[index + 1] as usize,
+        );
+        if last <= first {
+            return None;
+        }
+        let longest = cells.longest[index];
+        let majorant = self.sigma_per_len * (last - first) as f32 * longest;
+        loop {
+            let s = -(rng.open_unit_f64() as f32).ln() / majorant;
+            if !(*t + s < t_exit) {
+                return None;
+            }
+            *t += s;
+            let j = first
+                + ((rng.open_unit_f64() * (last - first) as f64) as usize).min(last - first - 1);
+            let u = cells.tangents[j];
+            let sin = d.cross(u).length();
+            let accept = cells.lengths[j] / longest * sin;
+            if (rng.open_unit_f64() as f32) < accept {
+                return Some(u);
+            }
+        }
+    }
+}
+
+/// Russian roulette on a path of `weight` that started at `full` (its largest channel): it
+/// survives with probability q = max(weight) / full, its weight divided by q. Whether it
+/// survives; a path at or above its start's weight always does, unchanged.
+#[inline]
+fn survives_roulette(weight: &mut Vec3, full: f32, rng: &mut SplitMix64) -> bool {
+    let keep = weight.max_element() / full;
+    if keep < 1.0 {
+        if rng.open_unit_f64() as f32 >= keep {
+            return false;
+        }
+        *weight /= keep;
+    }
+    true
+}
+
+/// Appends the record of a flight of `length_m` along `d` with `weight` through cell `index`,
+/// if a point gathers from that cell.
+#[inline]
+fn record(
+    cells: &Cells,
+    index: usize,
+    d: Vec3,
+    weight: Vec3,
+    length_m: f32,
+    records: &mut Vec<Record>,
+) {
+    let slot = cells.slot[index];
+    if slot != NO_SLOT {
+        records.push(Record {
+            slot,
+            from: -d,
+            power_m: weight * length_m,
+        });
+    }
+}
+
+/// A ray's walk through the grid's cells (Amanatides & Woo 1987): the cell it is in, and the
+/// distances along it to each axis's next cell boundary and between two boundaries.
+struct Walk {
+    cell: IVec3,
+    step: IVec3,
+    t_max: Vec3,
+    t_delta: Vec3,
+    /// Where the ray leaves the grid's box.
+    t_leave: f32,
+}
+
+impl Walk {
+    /// The walk of the ray from `o` along `d` from where it enters the grid's box, and that
+    /// distance; `None` when it misses the box.
+    #[inline]
+    fn enter(cells: &Cells, o: Vec3, d: Vec3) -> Option<(Walk, f32)> {
         let size = cells.dims.as_vec3() * cells.cell_m;
-        // Enter the grid's box.
         let inv = d.recip();
         let t0 = (cells.origin - o) * inv;
         let t1 = (cells.origin + size - o) * inv;
@@ -189,112 +289,43 @@ impl Walker<'_> {
         if !(t_enter < t_leave) {
             return None;
         }
-        // The walk: cell coordinates and the distances to the next boundaries.
         let p = o + d * t_enter;
         let q = ((p - cells.origin) / cells.cell_m)
             .clamp(Vec3::ZERO, cells.dims.as_vec3() - Vec3::splat(1e-3));
-        let mut cell = q.floor().as_ivec3();
+        let cell = q.floor().as_ivec3();
         let step = d.signum().as_ivec3();
-        let next_edge = |c: i32, s: i32| (c + i32::from(s > 0)) as f32;
-        let mut t_max = Vec3::new(
-            axis_t(
-                o.x,
-                d.x,
-                cells.origin.x,
-                cells.cell_m,
-                next_edge(cell.x, step.x),
-            ),
-            axis_t(
-                o.y,
-                d.y,
-                cells.origin.y,
-                cells.cell_m,
-                next_edge(cell.y, step.y),
-            ),
-            axis_t(
-                o.z,
-                d.z,
-                cells.origin.z,
-                cells.cell_m,
-                next_edge(cell.z, step.z),
-            ),
-        );
-        let t_delta = (Vec3::splat(cells.cell_m) * inv).abs();
-        let dims = cells.dims.as_ivec3();
-        let mut t = t_enter;
-        loop {
-            if cell.cmplt(glam::IVec3::ZERO).any() || cell.cmpge(dims).any() {
-                return None;
-            }
-            let index = cells.index(cell.as_uvec3());
-            let t_exit = t_max.min_element().max(t);
-            if cells.is_busy(index) {
-                if cells.solid.get(index).copied().unwrap_or(false) {
-                    return None;
-                }
-                let (first, last) = (
-                    cells.starts[index] as usize,
-                    cells.starts[index + 1] as usize,
-                );
-                let t_cell = t;
-                if last > first {
-                    let longest = cells.longest[index];
-                    let majorant = self.sigma_per_len * (last - first) as f32 * longest;
-                    loop {
-                        let s = -(rng.open_unit_f64() as f32).ln() / majorant;
-                        if !(t + s < t_exit) {
-                            break;
-                        }
-                        t += s;
-                        let j = first
-                            + ((rng.open_unit_f64() * (last - first) as f64) as usize)
-                                .min(last - first - 1);
-                        let u = cells.tangents[j];
-                        let sin = d.cross(u).length();
-                        let accept = cells.lengths[j] / longest * sin;
-                        if (rng.open_unit_f64() as f32) < accept {
-                            let slot = cells.slot[index];
-                            if scattered && slot != NO_SLOT {
-                                records.push(Record {
-                                    slot,
-                                    from: -d,
-                                    power_m: weight * (t - t_cell),
-                                });
-                            }
-                            return Some((o + d * t, u));
-                        }
-                    }
-                }
-                let slot = cells.slot[index];
-                if scattered && t_exit > t_cell && slot != NO_SLOT {
-                    records.push(Record {
-                        slot,
-                        from: -d,
-                        power_m: weight * (t_exit - t_cell),
-                    });
-                }
-            }
-            t = t_exit;
-            // The next cell along the axis whose boundary comes first.
-            if t_max.x <= t_max.y && t_max.x <= t_max.z {
-                cell.x += step.x;
-                t_max.x += t_delta.x;
-            } else if t_max.y <= t_max.z {
-                cell.y += step.y;
-                t_max.y += t_delta.y;
-            } else {
-                cell.z += step.z;
-                t_max.z += t_delta.z;
-            }
-            if t >= t_leave {
-                return None;
-            }
+        let next_edge = |k: usize| (cell[k] + i32::from(step[k] > 0)) as f32;
+        let axis = |k: usize| axis_t(o[k], d[k], cells.origin[k], cells.cell_m, next_edge(k));
+        let walk = Walk {
+            cell,
+            step,
+            t_max: Vec3::new(axis(0), axis(1), axis(2)),
+            t_delta: (Vec3::splat(cells.cell_m) * inv).abs(),
+            t_leave,
+        };
+        Some((walk, t_enter))
+    }
+
+    /// Steps into the next cell, along the axis whose boundary comes first.
+    #[inline]
+    fn advance(&mut self) {
+        let t = self.t_max;
+        if t.x <= t.y && t.x <= t.z {
+            self.cell.x += self.step.x;
+            self.t_max.x += self.t_delta.x;
+        } else if t.y <= t.z {
+            self.cell.y += self.step.y;
+            self.t_max.y += self.t_delta.y;
+        } else {
+            self.cell.z += self.step.z;
+            self.t_max.z += self.t_delta.z;
         }
     }
 }
 
 /// Distance along the ray from `o` (direction component `d`) to the plane at grid coordinate
 /// `edge` (cells from `origin`, `cell_m` each): +∞ when the ray runs parallel to it.
+#[inline]
 fn axis_t(o: f32, d: f32, origin: f32, cell_m: f32, edge: f32) -> f32 {
     if d == 0.0 {
         f32::INFINITY

@@ -1,5 +1,8 @@
 //! Atomic OpenEXR writing: linear RGBA in 32-bit float, for measurements against other
 //! renderers (no transfer curve, no clamping, coverage as alpha).
+//!
+//! Lossless RLE in 64 × 64 tiles, compressed in parallel but written in increasing order, so
+//! the same image gives the same bytes on every run and for any thread count.
 
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
@@ -90,8 +93,8 @@ pub fn read_exr_rgba_f32(path: &Path) -> Result<(u32, u32, Vec<Vec3>, Vec<f32>),
 
 /// The crate's fast lossless encoding (RLE, 64 × 64 tiles) with the tiles in increasing order.
 /// Its default order, "unspecified", lets the parallel writer put each tile in the file when
-/// its compression finishes: the same pixels, but bytes that changed from run to run
-/// (found 2026-12-05 comparing two exports of one scene).
+/// its compression finishes: the same pixels, but bytes that differ from run to run (two
+/// exports of one scene compared).
 const ENCODING: Encoding = Encoding {
     line_order: LineOrder::Increasing,
     ..Encoding::FAST_LOSSLESS

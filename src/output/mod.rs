@@ -4,17 +4,19 @@
 //!
 //! A file is encoded to `<name>.tmp` in the same directory, flushed and synced, then renamed
 //! over `<name>` (rename is atomic within a directory on POSIX), so an interrupted export
-//! leaves complete files only ([`write_atomically`]).
+//! leaves complete files only (`atomic.rs`, [`write_atomically`]).
 
+mod atomic;
 mod exr_file;
 mod frames;
 mod png_file;
 mod writer;
 
+pub use atomic::{OutputError, write_atomically};
 pub use exr_file::{read_exr_rgba_f32, write_exr_rgba_f32};
 pub use frames::{FrameDefect, FrameFormat, check_frame};
-pub use png_file::{OutputError, write_atomically, write_png_rgb8, write_png_rgba16};
+pub use png_file::{write_png_rgb8, write_png_rgba16};
 pub use writer::{FinishError, FrameWriter, OutputTimings, WriterStopped};
 
-/// The sRGB encodings, where the output writers have always offered them.
+/// The sRGB encodings the frame writers expect, offered beside them.
 pub use crate::color::{linear_to_srgb8, linear_to_srgb16};

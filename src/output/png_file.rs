@@ -1,43 +1,13 @@
-//! Atomic PNG writing (8-bit sRGB RGB, and 16-bit sRGB RGBA with straight alpha) and the
-//! linear -> sRGB transfer function.
+//! PNG frames, written atomically (`atomic.rs`): 8-bit sRGB RGB, and 16-bit sRGB RGBA with
+//! straight alpha, both tagged sRGB. The samples come already encoded (`crate::color`).
+//!
+//! Both use the png crate's `Fast` deflate: an order of magnitude faster than its default for
+//! files 20–30% larger, so encoding does not compete with rendering for the cores (the
+//! measurements are with each writer).
 
-use std::fs::File;
+use super::atomic::{OutputError, write_atomically};
 use std::io::{BufWriter, Write};
-use std::path::{Path, PathBuf};
-
-/// Why an image could not be written.
-#[derive(Debug, thiserror::Error)]
-pub enum OutputError {
-    /// The message carries the cause; it is not also a `source()`, so `{:#}` chains (anyhow)
-    /// do not print it twice.
-    #[error("{}: {error}", path.display())]
-    Io {
-        path: PathBuf,
-        error: std::io::Error,
-    },
-    #[error("{}: PNG encoding failed: {message}", path.display())]
-    Encode { path: PathBuf, message: String },
-    #[error("{}: image buffer has {got} samples, expected {expected} for {width}x{height} {channels}", path.display())]
-    Size {
-        path: PathBuf,
-        got: usize,
-        expected: usize,
-        width: u32,
-        height: u32,
-        /// The channels each pixel has ("RGB", "RGBA").
-        channels: &'static str,
-    },
-    #[error(
-        "{path}: image has {rgb} colours and {alpha} coverage values, expected {width}x{height} of each"
-    )]
-    PixelCount {
-        path: PathBuf,
-        rgb: usize,
-        alpha: usize,
-        width: u32,
-        height: u32,
-    },
-}
+use std::path::Path;
 
 /// Writes an 8-bit RGB image (`rgb.len() == 3 * width * height`, rows top to bottom) to
 /// `path`, through a temporary file in the same directory renamed into place on success.
@@ -90,8 +60,8 @@ pub fn write_png_rgb8(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Resul
 ///
 /// Compressed with the png crate's `Fast` setting (fdeflate): on an 800×800 frame of the dance
 /// 9 ms and 1.01 MB, against 161 ms and 0.79 MB with the default `Balanced` and 390 ms and
-/// 0.78 MB with `High` (`examples/output_formats.rs`, docs/notes/output-formats.md). 16-bit frames are
-/// intermediates for compositing, and the encoder would otherwise cost as much as rendering.
+/// 0.78 MB with `High` (`examples/output_formats.rs`). 16-bit frames are intermediates for
+/// compositing, and the encoder would otherwise cost as much as rendering.
 pub fn write_png_rgba16(
     path: &Path,
     width: u32,
@@ -141,32 +111,6 @@ pub fn write_png_rgba16(
             error: e.into_error(),
         })
     })
-}
-
-/// Writes a file through `<path>.tmp` in the same directory: `write` fills the temporary file
-/// and hands it back, which is then synced and renamed over `path` (atomic within a directory
-/// on POSIX). On any failure the temporary file is removed and `path` is left as it was.
-pub fn write_atomically(
-    path: &Path,
-    write: impl FnOnce(File) -> Result<File, OutputError>,
-) -> Result<(), OutputError> {
-    let mut tmp_name = path.as_os_str().to_owned();
-    tmp_name.push(".tmp");
-    let tmp = PathBuf::from(tmp_name);
-    let io_err = |p: &Path| {
-        let p = p.to_path_buf();
-        move |error| OutputError::Io { path: p, error }
-    };
-    let result = (|| {
-        let file = File::create(&tmp).map_err(io_err(&tmp))?;
-        let file = write(file)?;
-        file.sync_all().map_err(io_err(&tmp))?;
-        std::fs::rename(&tmp, path).map_err(io_err(path))
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
 }
 
 #[cfg(test)]

@@ -1,14 +1,14 @@
 //! Bending toward the rest shape: the per-step pull and damping constants, the transported
 //! frame's minimal rotation, and the bending damping pass.
 //!
-//! What: `step.rs` pulls each link toward its rest bend relative to its parent link, expressed
-//! in a frame parallel-transported down the strand with [`rotation_arc`], then damps the
-//! links' relative rotation with [`damp_bending`]. This file holds those pieces and the map
+//! What: `guide_step.rs` pulls each link toward its rest bend relative to its parent link,
+//! expressed in a frame parallel-transported down the strand with [`rotation_arc`], then damps
+//! the links' relative rotation with [`damp_bending`]. This file holds those pieces and the map
 //! from the JSON parameters to per-step factors.
 //!
 //! # The bending of one link is a damped oscillator, the same at any step
 //! Seen from its parent, a link's deviation `e` from its rest bend follows, per step of `dt`
-//! (pull by `k` in `step.rs`, then damping of the relative velocity by `κ` here):
+//! (pull by `k` in `guide_step.rs`, then damping of the relative velocity by `κ` here):
 //!
 //! `e' = (1 − k)(e + u)`,  `u' = (1 − κ)(e' − e)`   (`u` = relative velocity × dt)
 //!
@@ -25,18 +25,17 @@
 //! `1 − κ = e^{−ωdt} / (2 − e^{−ωdt})`; for small `ω dt`, `k → (ω dt)²` (a spring of
 //! angular frequency ω) and `κ → 2ζω dt` (a damping rate 2ζω).
 //!
-//! The stiffness in the JSON, `s ∈ [0, 1]`, keeps its old meaning at the reference step
-//! 1/240 s, where the pull was `k = s` per step: ω is chosen so that the critically damped
-//! oscillator's pull over 1/240 s is `s`, `ω = −ln(1 − √s) / (1/240 s)` (s = 0.25: 166 rad/s;
-//! 0.6: 357 rad/s; 0 limp, 1 rigid). At 1/240 s the factors are therefore what they were, and
-//! other steps now give the same oscillator instead of a stiffer one at smaller steps (the old
-//! `k = 1 − (1 − s)^(dt/(1/240 s))` made ω grow as 1/√dt: the hair was twice as stiff at
-//! 1/960 s as at 1/240 s, which was the largest step dependence measured, see
-//! `docs/notes/sim-quality.md`).
+//! The stiffness in the JSON, `s ∈ [0, 1]`, is the pull per step `k = s` at the reference
+//! step 1/240 s: ω is chosen so that the critically damped oscillator's pull over 1/240 s is
+//! `s`, `ω = −ln(1 − √s) / (1/240 s)` (s = 0.25: 166 rad/s; 0.6: 357 rad/s; 0 limp, 1 rigid),
+//! and every other step gives the same oscillator. Why not keep `s` per step and scale it,
+//! `k = 1 − (1 − s)^(dt/(1/240 s))`: that makes ω grow as 1/√dt, so the hair is twice as stiff
+//! at 1/960 s as at 1/240 s, the largest step dependence measured (ACCURACY.md §4 runs the
+//! steps).
 //!
 //! Why the bending needs damping at all: the pull acts on the child only, so link i is an
 //! oscillator driven by link i−1 with no reaction back; with only air damping its resonance
-//! gain is ω/c ≈ 100 per link, cascading over 13 links (measured before: tips whirled at
+//! gain is ω/c ≈ 100 per link, cascading over 13 links (measured without it: tips whirl at
 //! 17 m/s under a still head). Damping the relative rotation bounds the gain near 1 and leaves
 //! a rigid swing of the whole strand (equal angular velocities) untouched.
 
@@ -144,12 +143,12 @@ pub(crate) fn damping_weights(kappa: f32, max_len: usize) -> Vec<f32> {
 /// turning rigidly is untouched (all Ωᵢ equal, weights summing to 1) and only bending motion
 /// loses energy.
 ///
-/// Why exact rather than one damping factor per link, root to tip (the first version,
-/// `Ω'ᵢ = Ωᵢ − κ (Ωᵢ − Ω'ᵢ₋₁)`): that sweep hands each link its parent's already damped
+/// Why exact rather than one damping factor per link applied root to tip,
+/// `Ω'ᵢ = Ωᵢ − κ (Ωᵢ − Ω'ᵢ₋₁)`: that sweep hands each link its parent's already damped
 /// rotation within the same step, weights `(1 − κ) κᵐ` instead of `Pₘ`, so a rotation travels
-/// down the chain at a speed set by the step, not by c. Measured on the dance: it made the
+/// down the chain at a speed set by the step, not by c. Measured on the dance: it makes the
 /// coarse-step hair lag the converged motion by about 6 steps, half of the error at 1/240 s
-/// (tip error 19.5 → 10.0 mm RMS with the exact weights).
+/// (tip error 19.5 mm RMS with it, 10.0 mm with the exact weights).
 pub(crate) fn damp_bending(pos: &[Vec3], vel: &mut [Vec3], weights: &[f32]) {
     let n = pos.len().min(vel.len());
     if n < 3 {

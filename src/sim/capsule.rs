@@ -2,12 +2,12 @@
 //!
 //! A capsule is the set of points within `radius_m` of a segment. Seen from one particle it is
 //! the sphere of that radius centred on the segment point nearest the particle, so the
-//! sphere's exact link-preserving exit (`collide::circle_exit`) serves it unchanged: the
-//! particle, at one link length from its predecessor (outside every collider), moves to the
-//! nearest point at that distance on the sphere's inflated surface. Where that point is still
-//! inside the capsule (a long capsule seen at a slant), the collision rounds of
-//! `CollisionScene::resolve` repeat with the new nearest segment point. That exit is
-//! `CapsuleCollider::push_out`, next to the sphere's in `collide.rs`.
+//! sphere's exact link-preserving exit (`circle_exit`) serves it unchanged: the particle, at
+//! one link length from its predecessor (outside every collider), moves to the nearest point
+//! at that distance on the sphere's inflated surface. Where that point is still inside the
+//! capsule (a long capsule seen at a slant), the collision rounds of `CollisionScene::resolve`
+//! repeat with the new nearest segment point. That exit is `CapsuleCollider::push_out`, next
+//! to the sphere's in `collide/exit.rs`.
 
 use glam::{Vec3, Vec3A};
 

@@ -1,7 +1,7 @@
 //! An analytic dance: a head transform and body spheres as closed-form functions of time.
 //!
 //! What: a stand-in motion source for tests, benchmarks and demos that needs no file, so the
-//! simulator can be exercised before (and independently of) the glTF motion loader. Anything
+//! simulator can be exercised independently of the glTF motion loader. Anything
 //! that can fill a [`Colliders`] at time t plugs into [`super::Simulator::advance`] the same way.
 //!
 //! How (τ = `speed` · t, seconds): the head centre bobs 0.1 m at 2 Hz and sways

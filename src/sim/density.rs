@@ -32,13 +32,13 @@
 //!    same at any step). A strand alone (φ ≪ φ₀) is not slowed, a wisp moving as a whole
 //!    keeps its motion (v = v̄), and strands pressed together stop sliding against each other.
 //!
-//! Why its own grid instead of the light map of the previous frame (the first version, and
-//! what Bertails did because the map was already there): the map's cell-constant volume
-//! fraction pushed particles away from cell centres with a force that jumped at every cell
-//! face and lagged a whole frame (8 steps) behind the positions, so hair at rest never settled
-//! (measured: 4.6% of the pixels changing between every two frames of a still head). The grid
-//! here is built from the guides inside the step, does not depend on the light direction or on
-//! the render strands, and is cheap: about 6,400 particles × 27 nodes.
+//! Why its own grid rather than the light map (what Bertails does, the map being there
+//! already): the map's cell-constant volume fraction pushes particles away from cell centres
+//! with a force that jumps at every cell face and lags a whole frame (8 steps) behind the
+//! positions, so hair at rest never settles (measured: 4.6% of the pixels changing between
+//! every two frames of a still head). The grid here is built from the guides inside the step,
+//! does not depend on the light direction or on the render strands, and is cheap: about 6,400
+//! particles × 27 nodes.
 //!
 //! Why the head frame: hair at rest on a moving head is at rest on the lattice, so the
 //! lattice-dependence of the B-spline density (one particle's density seen at its own position
@@ -49,14 +49,13 @@
 //! one order; the per-particle queries only read and run in parallel with the guides.
 //! Measured with callgrind (smooth, 1/240 s, one thread): the splat is 2.6 M instructions per
 //! step, a fifth of the step; self-collision as a whole adds 1.5× to the rest of the step (a
-//! 1/30 s frame: 97 M instructions against 40 M without). A parallel splat by slabs of z
-//! layers (each node summed in one fixed order) cost 6% more instructions and its gain could
-//! not be measured on the shared 2-core machine, so it was not kept; measured again with the
-//! weights computed in a parallel first pass (stop 51, BENCHMARKS.md): the simulation 5%
-//! faster on 2 threads and 6% slower on 1, the frame unchanged, not kept. Memory: the lattice
-//! covers the hair's bounding box in the head frame (about 5,000 nodes for the presets), at
-//! most [`MAX_NODES`] (the spacing guarantees the reachable cube fits; a box over it skips
-//! self-collision for the step and is counted in `StepStats`).
+//! 1/30 s frame: 97 M instructions against 40 M without). The splat stays serial: by slabs of
+//! z layers (each node summed in one fixed order) it costs 6% more instructions for no gain
+//! measurable on 2 cores, and with the weights computed in a parallel first pass the
+//! simulation is 5% faster on 2 threads but 6% slower on 1, the frame unchanged. Memory: the
+//! lattice covers the hair's bounding box in the head frame (about 5,000 nodes for the
+//! presets), at most [`MAX_NODES`] (the spacing guarantees the reachable cube fits; a box over
+//! it skips self-collision for the step and is counted in `StepStats`).
 
 use glam::{Affine3A, IVec3, Mat3A, Vec3, Vec3A, Vec4};
 
@@ -177,6 +176,21 @@ impl DensityGrid {
         }
         self.rotation = head.matrix3;
         self.to_grid = Affine3A::from_scale(Vec3::splat(1.0 / self.cell_m)) * head.inverse();
+        if !self.fit_box(positions) {
+            return false;
+        }
+        self.splat(positions, velocities, ppg, volume_m3);
+        self.excess.clear();
+        self.excess
+            .extend(self.nodes.iter().map(|n| (n.x - threshold).max(0.0)));
+        self.active = true;
+        true
+    }
+
+    /// Sets the box to the nodes the finite `positions` reach (their B-spline supports) and
+    /// zeroes it. False when there is no finite position, one lies absurdly far (10⁶ cells),
+    /// or the box would exceed [`MAX_NODES`].
+    fn fit_box(&mut self, positions: &[Vec3]) -> bool {
         let (mut lo, mut hi) = (Vec3A::splat(f32::MAX), Vec3A::splat(f32::MIN));
         for p in positions {
             let g = self.to_grid.transform_point3a(Vec3A::from(*p));
@@ -199,8 +213,14 @@ impl DensityGrid {
         self.dims = dims;
         self.nodes.clear();
         self.nodes.resize(count, Vec4::ZERO);
+        true
+    }
+
+    /// Adds every finite particle's (φ, φ v) to its 27 nodes, in particle order (module doc,
+    /// step 1): already divided by h³, node = Σ N (V/h³)(1, v).
+    fn splat(&mut self, positions: &[Vec3], velocities: &[Vec3], ppg: usize, volume_m3: &[f32]) {
+        let dims = self.dims;
         let (row_y, row_z) = (dims.x as usize, dims.x as usize * dims.y as usize);
-        // Splatted already divided by h³: node = Σ N (V/h³)(1, v) = (φ, φ v).
         let inv_cell_volume = 1.0 / (self.cell_m * self.cell_m * self.cell_m);
         for (guide, (ps, vs)) in positions
             .chunks(ppg)
@@ -235,11 +255,6 @@ impl DensityGrid {
                 }
             }
         }
-        self.excess.clear();
-        self.excess
-            .extend(self.nodes.iter().map(|n| (n.x - threshold).max(0.0)));
-        self.active = true;
-        true
     }
 
     /// The hair around world point `x` (see [`HairAround`]). All zero outside the box or when

@@ -12,14 +12,16 @@
 //! physics coarser, the TressFX failure mode where hair lags and clips when simulation is capped
 //! at 60 Hz). Each step is position based: predict with forces, sweep root to tip placing each
 //! particle at exactly one link length from its predecessor (follow the leader), resolve
-//! collisions, then derive velocities with Müller's correction. See `step.rs` for the
-//! equations, `bend.rs` for the bending constants and damping, `collide.rs` for collisions and
-//! their order, `density.rs` for self-collision (§4.1).
+//! collisions, then derive velocities with Müller's correction. See `step.rs` for the step
+//! loop, `guide_step.rs` for one guide's stages and their equations, `shape.rs` for the rest
+//! shape and the hair each particle stands for, `bend.rs` for the bending constants and
+//! damping, `collide.rs` for collisions and their order, `density.rs` for self-collision
+//! (§4.1).
 //!
 //! Every parameter is a rate or a frequency per unit time, converted to per-step factors with
 //! exact solutions over the step (`bend.rs`, `density.rs`), so the model is the same at any
-//! step and a smaller step only reduces the discretisation error (measured: first order, see
-//! `docs/notes/sim-quality.md` and `examples/sim_steps.rs`).
+//! step and a smaller step only reduces the discretisation error (ACCURACY.md §4, measured
+//! with `examples/sim_steps.rs`).
 //!
 //! Why: rigid links by construction (no iteration count to tune, lengths exact to rounding),
 //! unconditionally stable position projections, and guides independent within a step, so they
@@ -35,6 +37,8 @@ pub mod capsule;
 pub mod collide;
 pub mod dance;
 pub mod density;
+mod guide_step;
+mod shape;
 pub mod state;
 pub mod step;
 
@@ -49,7 +53,7 @@ pub use crate::hairstyle::dynamics::SimParams;
 
 /// The step at which the per-step parameters `bending_stiffness` and `ftl_correction` are
 /// defined, seconds (1/240 s, the step they were tuned at). Other steps convert them to the
-/// same behaviour per unit time (`bend.rs`, `step.rs`).
+/// same behaviour per unit time (`bend.rs`, `guide_step.rs`).
 pub const REFERENCE_STEP_S: f32 = 1.0 / 240.0;
 
 /// How long a guide must stay within `rest_tolerance_m` before it is held still, seconds.

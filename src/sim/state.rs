@@ -33,7 +33,7 @@ pub struct SimState {
     pub(crate) steps: u64,
     /// Duration of the last step in seconds (0 before the first step).
     pub(crate) last_step_s: f32,
-    /// Where each particle was when its guide's current rest window began (`step.rs`, rest).
+    /// Where each particle was when its guide's current rest window began (`guide_step.rs`, rest).
     pub(crate) anchor: Vec<Vec3>,
     /// Per guide: consecutive steps its roots stayed bitwise put and its particles within the
     /// rest tolerance of `anchor`.

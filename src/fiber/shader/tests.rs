@@ -1,3 +1,4 @@
+use super::arriving::arriving_spread;
 use super::*;
 use crate::fiber::{Fiber, FiberModel, FiberParams, ShadingMode};
 

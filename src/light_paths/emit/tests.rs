@@ -2,6 +2,7 @@
 //! lie where paths are sent.
 
 use super::*;
+use crate::light_paths::StrandPoints;
 use crate::rng::SplitMix64;
 
 /// A tilted sheet of 3,000 pieces, thin along one axis so the grid's box is mostly empty, in
@@ -17,7 +18,13 @@ fn sheet(rng: &mut SplitMix64) -> (Cells, Vec<usize>) {
     let tangents: Vec<Vec3> = (0..n)
         .map(|_| Vec3::new(rng.unit() - 0.5, rng.unit() - 0.5, rng.unit() - 0.5))
         .collect();
-    let cells = Cells::build(&positions, &tangents, &vec![0.003; n], 1.0, 0.004).expect("cells");
+    let points = StrandPoints {
+        positions: &positions,
+        tangents: &tangents,
+        lengths_m: &vec![0.003; n],
+        fibers_per_strand: 1.0,
+    };
+    let cells = Cells::build(&points, 0.004).expect("cells");
     let filled = cells.filled().collect();
     (cells, filled)
 }

@@ -1,4 +1,5 @@
 use super::*;
+use std::fs::File;
 
 #[test]
 fn rgba16_round_trips_big_endian_samples() {
