@@ -1,6 +1,6 @@
-//! Output: the export's pass ([`FrameWriter`]) and its files: 8-bit sRGB PNG, 16-bit sRGB RGBA PNG and linear RGBA OpenEXR frames, written so
-//! that nothing half-written ever carries a file's name, and checked whole before a resumed
-//! export keeps them ([`check_frame`]).
+//! Output: the export's pass ([`FrameWriter`]) and its files: 8-bit sRGB PNG, 16-bit sRGB
+//! RGBA PNG and linear RGBA OpenEXR frames, written so that nothing half-written ever carries a
+//! file's name, and checked whole before a resumed export keeps them ([`check_frame`]).
 //!
 //! A file is encoded to `<name>.tmp` in the same directory, flushed and synced, then renamed
 //! over `<name>` (rename is atomic within a directory on POSIX), so an interrupted export
