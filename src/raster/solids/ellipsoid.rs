@@ -29,8 +29,8 @@
 use glam::{Affine3A, DMat3, DVec3, Mat3, Vec3};
 use rayon::prelude::*;
 
-use super::camera::{Camera, View};
-use super::framebuffer::Framebuffer;
+use crate::raster::camera::{Camera, View};
+use crate::raster::framebuffer::Framebuffer;
 
 /// Pixels of margin around the exact bounding box (anti-aliased edge plus float error).
 const BOX_MARGIN_PX: f64 = 2.0;

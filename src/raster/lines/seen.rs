@@ -30,16 +30,16 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::camera::Camera;
 use super::fragment::Band;
-use super::framebuffer::Framebuffer;
-use super::lines::{
+use super::polyline::{LineStyle, Polylines};
+use super::segment::{SegColors, setup_segment};
+use super::{
     BAND_ROWS, BandSource, KEEP_PER_PIXEL, KeptFor, LineScratch, MAX_SEGMENTS, SETUP_CHUNK,
     bin_segments, build_far_bands, draw_polylines, equalise_capacities, lock_thread_scratch,
     prepare, prepare_threads,
 };
-use super::polyline::{LineStyle, Polylines};
-use super::segment::{SegColors, setup_segment};
+use crate::raster::camera::Camera;
+use crate::raster::framebuffer::Framebuffer;
 
 /// Marks in `seen` (one flag per point of `lines`, resized to match) the points of every
 /// segment [`super::draw_polylines`] would keep a fragment of in `fb` as it is now (module

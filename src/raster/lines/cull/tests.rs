@@ -2,11 +2,11 @@ use glam::{Vec2, Vec3};
 use proptest::prelude::*;
 
 use super::*;
-use crate::raster::bundle::{Bundle, Profiles};
 use crate::raster::camera::Camera;
-use crate::raster::fragment::{Band, Emitted, Rows, emit_fragments};
-use crate::raster::polyline::{LineWidth, Polylines};
-use crate::raster::segment::{Fibers, Params, setup_segment};
+use crate::raster::lines::bundle::{Bundle, Profiles};
+use crate::raster::lines::fragment::{Band, Emitted, Rows, emit_fragments};
+use crate::raster::lines::polyline::{LineWidth, Polylines};
+use crate::raster::lines::segment::{Fibers, Params, setup_segment};
 
 const W: usize = 96;
 const H: usize = 64;

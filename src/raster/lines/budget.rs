@@ -1,17 +1,18 @@
 //! What the raster buffers hold, for the run's memory budget (`crate::budget`), computed
 //! before they exist, from the sizes and constants `framebuffer.rs` and `lines.rs` use.
 
+use super::LineScratch;
 use super::fragment::Frag;
 use super::segment::{Fibers, Seg, SegColors};
-use super::{Framebuffer, LineScratch};
+use crate::raster::Framebuffer;
 use glam::Vec3;
 
 /// Rows of a band, as `lines.rs` draws them.
-const BAND_ROWS: u64 = super::lines::BAND_ROWS as u64;
+const BAND_ROWS: u64 = super::BAND_ROWS as u64;
 /// Fragments a band keeps per pixel at most, as `seen.rs` keeps them.
-const KEEP_PER_PIXEL: u64 = super::lines::KEEP_PER_PIXEL as u64;
+const KEEP_PER_PIXEL: u64 = super::KEEP_PER_PIXEL as u64;
 /// Segments per set-up chunk, as `lines.rs` bins them.
-const SETUP_CHUNK: u64 = super::lines::SETUP_CHUNK as u64;
+const SETUP_CHUNK: u64 = super::SETUP_CHUNK as u64;
 /// Bytes of one fragment (pixel, 1/depth bits, α, sub-sample mask, segment and place on it).
 const FRAG_BYTES: u64 = size_of::<Frag>() as u64;
 /// The densest band's fragments over the mean band's (see [`LineScratch::estimated_bytes`]).

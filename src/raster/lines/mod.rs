@@ -97,17 +97,29 @@ use std::sync::atomic::AtomicBool;
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::bundle::Profiles;
-use super::camera::Camera;
-use super::cull::FarDepth;
-use super::fragment::{
+mod budget;
+mod bundle;
+mod cull;
+mod fragment;
+mod hiding;
+mod polyline;
+mod samples;
+mod seen;
+mod segment;
+
+pub use polyline::{Bundle, LineStyle, LineWidth, MAX_WIDTH_PX, Polylines};
+pub use seen::{draw_seen_polylines, seen_points};
+
+use crate::keysort::sort_keys;
+use crate::raster::camera::Camera;
+use crate::raster::framebuffer::Framebuffer;
+use bundle::Profiles;
+use cull::FarDepth;
+use fragment::{
     Band, Emitted, Frag, Layer, Rows, band_colors, composite, emit_fragments, sort_by_pixel,
 };
-use super::framebuffer::Framebuffer;
-use super::hiding::Hiding;
-use super::polyline::{LineStyle, LineWidth, Polylines};
-use super::segment::{Fibers, Params, Seg, SegColors, setup_segment};
-use crate::keysort::sort_keys;
+use hiding::Hiding;
+use segment::{Fibers, Params, Seg, SegColors, setup_segment};
 
 /// Image rows per band (the unit of parallel work and of binning).
 pub(super) const BAND_ROWS: usize = 16;

@@ -41,8 +41,8 @@
 use glam::{Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
-use super::camera::{Camera, View};
-use super::framebuffer::Framebuffer;
+use crate::raster::camera::{Camera, View};
+use crate::raster::framebuffer::Framebuffer;
 use crate::tri_span;
 
 /// Image rows per band.

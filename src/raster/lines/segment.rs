@@ -16,9 +16,9 @@
 use glam::Vec3;
 
 use super::bundle::Profiles;
-use super::camera::View;
 use super::polyline::{LineWidth, MAX_WIDTH_PX, Polylines};
 use super::samples::{SAMPLE_REACH, sample_reach};
+use crate::raster::camera::View;
 
 /// A segment ready to rasterise, in pixel coordinates.
 #[derive(Clone, Copy, Debug)]

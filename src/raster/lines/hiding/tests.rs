@@ -3,12 +3,12 @@ use proptest::prelude::*;
 
 use super::*;
 use crate::raster::camera::Camera;
-use crate::raster::fragment::{
+use crate::raster::lines::fragment::{
     Band, Emitted, Rows, band_colors, composite, emit_fragments, sort_by_pixel,
 };
+use crate::raster::lines::polyline::{LineWidth, Polylines};
+use crate::raster::lines::segment::{Fibers, Params, setup_segment};
 use crate::raster::lines::{BAND_ROWS, band_key};
-use crate::raster::polyline::{LineWidth, Polylines};
-use crate::raster::segment::{Fibers, Params, setup_segment};
 
 const W: usize = 64;
 const H: usize = 32;
