@@ -124,6 +124,12 @@ impl Framebuffer {
         }
     }
 
+    /// Bytes of a `width` × `height` framebuffer: linear RGB (`Vec3`), depth and coverage
+    /// (`f32` each) per pixel; for the run's memory budget (`crate::budget`).
+    pub fn estimated_bytes(width: u32, height: u32) -> u64 {
+        width as u64 * height as u64 * (size_of::<Vec3>() + 2 * size_of::<f32>()) as u64
+    }
+
     /// Number of pixels, `width * height`.
     pub fn pixel_count(&self) -> usize {
         self.width as usize * self.height as usize

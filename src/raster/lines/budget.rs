@@ -1,35 +1,28 @@
-//! What the raster buffers hold, for the run's memory budget (`crate::budget`), computed
-//! before they exist, from the sizes and constants `framebuffer.rs` and `lines.rs` use.
+//! What the line raster's buffers hold, for the run's memory budget (`crate::budget`),
+//! computed before they exist from the sizes and constants the raster uses.
 
-use super::LineScratch;
+use super::bins;
+use super::fibers::Fibers;
 use super::fragment::Frag;
-use super::segment::{Fibers, Seg, SegColors};
-use crate::raster::Framebuffer;
-use glam::Vec3;
+use super::scratch::LineScratch;
+use super::seen;
+use super::segment::{Seg, SegColors};
 
-/// Rows of a band, as `lines.rs` draws them.
-const BAND_ROWS: u64 = super::BAND_ROWS as u64;
+/// Rows of a band, as `bins.rs` bins them.
+const BAND_ROWS: u64 = bins::BAND_ROWS as u64;
 /// Fragments a band keeps per pixel at most, as `seen.rs` keeps them.
-const KEEP_PER_PIXEL: u64 = super::KEEP_PER_PIXEL as u64;
-/// Segments per set-up chunk, as `lines.rs` bins them.
-const SETUP_CHUNK: u64 = super::SETUP_CHUNK as u64;
+const KEEP_PER_PIXEL: u64 = seen::KEEP_PER_PIXEL as u64;
+/// Segments per set-up chunk, as `bins.rs` bins them.
+const SETUP_CHUNK: u64 = bins::SETUP_CHUNK as u64;
 /// Bytes of one fragment (pixel, 1/depth bits, α, sub-sample mask, segment and place on it).
 const FRAG_BYTES: u64 = size_of::<Frag>() as u64;
 /// The densest band's fragments over the mean band's (see [`LineScratch::estimated_bytes`]).
 const DENSEST_BAND: f64 = 5.0;
 
-impl Framebuffer {
-    /// Bytes of a `width` × `height` framebuffer: linear RGB (`Vec3`), depth and coverage
-    /// (`f32` each) per pixel.
-    pub fn estimated_bytes(width: u32, height: u32) -> u64 {
-        width as u64 * height as u64 * (size_of::<Vec3>() + 2 * size_of::<f32>()) as u64
-    }
-}
-
 impl LineScratch {
-    /// Bytes the line raster keeps ([`draw_polylines`](super::draw_polylines), or
-    /// [`seen_points`](super::seen_points) then
-    /// [`draw_seen_polylines`](super::draw_seen_polylines)) for `segments` segments on an
+    /// Bytes the line raster keeps ([`draw_polylines`](super::draw::draw_polylines), or
+    /// [`seen_points`](super::seen::seen_points) then
+    /// [`draw_seen_polylines`](super::seen::draw_seen_polylines)) for `segments` segments on an
     /// image `width` × `height`, when a segment covers `rows_per_segment` rows on average:
     /// each segment is binned once per band it touches (`Seg` in its chunk's list, then
     /// gathered into a band's list) with two `u64` sort keys and, if it keeps fragments there,
@@ -38,9 +31,8 @@ impl LineScratch {
     /// composited (`Frag` is 24 bytes; all it emits, and at most [`KEEP_PER_PIXEL`] a pixel
     /// plus one segment's, a band's row span, per band); and per worker thread, the fragments
     /// of the densest band twice (emitted, then grouped by pixel) and its segments' colours
-    /// (the band's colour table). A segment covers about 3
-    /// pixels per row it
-    /// crosses at the 0.5 px minimum width; the densest band is taken as 5 times the mean
+    /// (the band's colour table). A segment covers about 3 pixels per row it crosses at the
+    /// 0.5 px minimum width; the densest band is taken as 5 times the mean
     /// band, at most the whole frame (the hair's screen rows hold it all in a fraction of the
     /// bands; measured over the bands of a frame, the densest holds 3.5 times the mean for
     /// smooth, 2.9 for curly and 3.7 for dense, at 1280×720 and 800×800 alike).

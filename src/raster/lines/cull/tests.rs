@@ -4,9 +4,12 @@ use proptest::prelude::*;
 use super::*;
 use crate::raster::camera::Camera;
 use crate::raster::lines::bundle::{Bundle, Profiles};
-use crate::raster::lines::fragment::{Band, Emitted, Rows, emit_fragments};
+use crate::raster::lines::composite::Band;
+use crate::raster::lines::fibers::Fibers;
+use crate::raster::lines::fragment::{BandSegs, Emitted, Rows, emit_fragments};
+use crate::raster::lines::params::Params;
 use crate::raster::lines::polyline::{LineWidth, Polylines};
-use crate::raster::lines::segment::{Fibers, Params, setup_segment};
+use crate::raster::lines::segment::setup_segment;
 
 const W: usize = 96;
 const H: usize = 64;
@@ -89,9 +92,11 @@ fn check(points: &[Vec3], width_m: f32, bundle: bool, depth: &[f32]) -> (usize, 
             out.clear();
             emit_fragments(
                 &params,
-                &[seg],
-                &fibers,
-                &[0],
+                BandSegs {
+                    segs: &[seg],
+                    keys: &[0],
+                    fibers: &fibers,
+                },
                 Rows {
                     row0: b * 16,
                     depth: band.depth,

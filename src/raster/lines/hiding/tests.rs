@@ -3,12 +3,14 @@ use proptest::prelude::*;
 
 use super::*;
 use crate::raster::camera::Camera;
-use crate::raster::lines::fragment::{
-    Band, Emitted, Rows, band_colors, composite, emit_fragments, sort_by_pixel,
-};
+use crate::raster::lines::bins::{BAND_ROWS, band_key};
+use crate::raster::lines::composite::{Band, composite};
+use crate::raster::lines::fibers::Fibers;
+use crate::raster::lines::fragment::{BandSegs, Emitted, Rows, emit_fragments};
+use crate::raster::lines::params::Params;
+use crate::raster::lines::pixel_runs::{band_colors, sort_by_pixel};
 use crate::raster::lines::polyline::{LineWidth, Polylines};
-use crate::raster::lines::segment::{Fibers, Params, setup_segment};
-use crate::raster::lines::{BAND_ROWS, band_key};
+use crate::raster::lines::segment::setup_segment;
 
 const W: usize = 64;
 const H: usize = 32;
@@ -112,9 +114,11 @@ fn draw(points: &[Vec3], per_line: usize, width_m: f32, opacity: f32, depth_m: f
             if cull {
                 emit_fragments(
                     &params,
-                    &segs,
-                    &fibers,
-                    &keys,
+                    BandSegs {
+                        segs: &segs,
+                        keys: &keys,
+                        fibers: &fibers,
+                    },
                     band_rows,
                     &mut hiding,
                     &mut out,
@@ -128,9 +132,11 @@ fn draw(points: &[Vec3], per_line: usize, width_m: f32, opacity: f32, depth_m: f
                 for &k in keys.iter().rev() {
                     emit_fragments(
                         &params,
-                        &segs,
-                        &fibers,
-                        &[k],
+                        BandSegs {
+                            segs: &segs,
+                            keys: &[k],
+                            fibers: &fibers,
+                        },
                         band_rows,
                         &mut hiding,
                         &mut out,

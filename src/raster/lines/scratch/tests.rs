@@ -1,7 +1,12 @@
 //! Tests of the line raster's working buffers.
 
-use super::*;
 use glam::Vec3;
+
+use super::*;
+use crate::raster::camera::Camera;
+use crate::raster::lines::draw::draw_polylines;
+use crate::raster::lines::polyline::LineStyle;
+use crate::raster::lines::seen::{draw_seen_polylines, seen_points};
 
 /// After a warm-up frame (a whole draw, the seen points, the draw of the kept fragments),
 /// drawing the same scene again allocates nothing, whichever thread draws which band.
@@ -35,8 +40,8 @@ fn warmed_up_scratch_does_not_grow() {
         let mut seen = Vec::new();
         let mut frame = |scratch: &mut LineScratch| {
             draw_polylines(&mut fb, &cam, &lines, &style, scratch);
-            super::super::seen_points(&fb, &cam, &lines, &style, scratch, &mut seen);
-            super::super::draw_seen_polylines(&mut fb, &cam, &lines, &style, scratch);
+            seen_points(&fb, &cam, &lines, &style, scratch, &mut seen);
+            draw_seen_polylines(&mut fb, &cam, &lines, &style, scratch);
         };
         frame(&mut scratch);
         let warm = scratch.capacity_bytes();
