@@ -16,9 +16,9 @@
 //! summed width 2Fr, the same as the band's, so the coverage of the hair is unchanged; only
 //! where within the bundle it lies differs (a pixel's coverage is capped at 1: fibres that
 //! overlap on screen cover their union). Where the bundle is under 3 px in radius the fibres
-//! would average back to the band, so the band is drawn (`segment.rs` blends the two from 3
+//! would average back to the band, so the band is drawn (`fibers.rs` blends the two from 3
 //! to 6 px, mitres the joints of the fibres' segments, and narrows the bundle toward a
-//! tapered tip).
+//! tapered tip; `cover.rs` reads the profile per pixel).
 //!
 //! How: in units of R the profile depends only on the offsets and on ρ = r/R, both fixed for a
 //! draw call, so the cumulative width A(u) = Σₖ clamp(u − xₖ + ρ, 0, 2ρ) is tabulated once per

@@ -1,11 +1,11 @@
 //! Occlusion culling of hair segments behind the opaque solids, per band of rows.
 //!
-//! What: before a band's segments are sorted and walked (`lines.rs`), [`FarDepth`] keeps the
+//! What: before a band's segments are sorted and walked (`bins.rs`), [`FarDepth`] keeps the
 //! farthest opaque depth in each tile of [`TILE_COLS`] columns of the band, and
 //! [`FarDepth::hides`] drops a segment that is behind the solids at every pixel it could
 //! touch. Where the character faces the camera, the hair behind the head and body is such a
-//! segment: on the default dance at 1280×720 (t = 2 s) about 40% of the fragments the pixel
-//! loop computed were then rejected by the depth test one by one.
+//! segment: without the cull, about 40% of the fragments the pixel loop computes on the
+//! default dance at 1280×720 (t = 2 s) are rejected by the depth test one by one.
 //!
 //! Why it changes no byte: a pixel takes a fragment only where `iz·z > 1` (`fragment.rs`: 1/depth
 //! of the hair, interpolated between the segment's ends, times the opaque depth). A segment is

@@ -4,8 +4,8 @@
 //! Why: the compositing walks each pixel's fragments front to back and stops where every
 //! sub-sample's transmittance is under `HIDDEN`. Most fragments lie behind that point:
 //! smooth at 1280 × 720 emits about 40 fragments a pixel and composites 3.5 of them (8.5%);
-//! dense one-fibre hair emits about 480 and composites 175 (37%). They were emitted, grouped by
-//! pixel and depth-sorted all the same.
+//! dense one-fibre hair emits about 480 and composites 175 (37%). Without this, every one of
+//! them would be stored, grouped by pixel and depth-sorted all the same.
 //!
 //! How: a band's segments are emitted near to far (by mid-point depth). Per pixel this keeps
 //! the product of (1 − α) over each sub-sample the fragments kept so far cover, and the
@@ -22,7 +22,7 @@
 //! multiply the same factors ≤ 1 in another order; rounding moves them by a few ulps, far less
 //! than the factor 2). The compositing therefore stops at or before f*, never reaching a
 //! dropped fragment. Ties are never dropped (the test is strict), so equal depths keep their
-//! order. The tests below composite every fragment against the dropped set, bit for bit
+//! order. Its tests composite every fragment against the dropped set, bit for bit
 //! (random lines, widths and opacities over a solid); BENCHMARKS.md lists the frames compared
 //! with `cmp`.
 //!

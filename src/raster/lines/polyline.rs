@@ -1,6 +1,6 @@
 //! What the raster draws as hair: polylines with per-vertex colours and widths ([`Polylines`]),
-//! and how wide and opaque they are drawn ([`LineStyle`], [`LineWidth`]). Read by the segment
-//! set-up (`segment.rs`) and the line raster (`lines.rs`).
+//! and how wide and opaque they are drawn ([`LineStyle`], [`LineWidth`]): the line raster's
+//! input.
 
 use glam::Vec3;
 
@@ -75,8 +75,7 @@ pub struct LineStyle {
 }
 
 impl LineStyle {
-    /// Every line `width_px` wide at `opacity` (the engine's style before physical coverage
-    /// was 1 px at 0.85).
+    /// Every line `width_px` wide on screen at `opacity`.
     pub const fn pixels(width_px: f32, opacity: f32) -> LineStyle {
         LineStyle {
             width: LineWidth::Pixels(width_px),

@@ -1,5 +1,9 @@
-//! A pixel's sub-samples, shared by the segment set-up (how far they reach), the fragments
-//! (which a line covers, how they composite) and the hiding (when a pixel is hidden).
+//! A pixel's 16 sub-samples, shared by the segment set-up (how far they reach), the coverage
+//! (which a line covers), the compositing and the hiding (when a pixel is hidden).
+//!
+//! One sub-sample per cell of a 4 × 4 grid and one per sixteenth in x and in y (n-rooks), so
+//! thin lines of any direction cross them evenly; a fragment names those it covers as the
+//! bits of a `u16`, tested and composited four lanes at a time.
 
 use glam::Vec4;
 
