@@ -359,20 +359,15 @@ fn covered_rows(p: &Params, s: &ScreenEnds, r: f32) -> Option<(u32, u32)> {
 /// mitres and its screen extent `e` (last end − first end).
 #[inline]
 fn fibers_of(fib: Option<Blend>, band_hw: f32, m: Mitres, e: (f32, f32)) -> Fibers {
-    let f = fib.unwrap_or(Blend {
-        half_w: band_hw,
-        opacity: 0.0,
-        inv_r: 0.0,
-        cov_scale: 0.0,
-        pattern: 0,
-        band_scale: 1.0,
+    let (inv_r, cov_scale, pattern, band_scale) = fib.map_or((0.0, 0.0, 0, 1.0), |f| {
+        (f.inv_r, f.cov_scale, f.pattern, f.band_scale)
     });
     Fibers {
-        inv_r: f.inv_r,
-        cov_scale: f.cov_scale,
-        pattern: f.pattern,
+        inv_r,
+        cov_scale,
+        pattern,
         band_hw,
-        band_scale: f.band_scale,
+        band_scale,
         b0: m.b0,
         b1: m.b1,
         e,
