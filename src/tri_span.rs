@@ -1,5 +1,5 @@
 //! Which centres of a row of pixels or texels a triangle can cover: the span both of wisp's
-//! triangle rasters (the character's mesh on screen, `raster::mesh`; the solids across the
+//! triangle rasters (the character's mesh on screen, `raster::solids::mesh`; the solids across the
 //! light, `map::occluders`) visit instead of the triangle's whole box.
 //!
 //! Both rasters test a centre with edge functions, so a span must hold every centre that

@@ -1,99 +1,31 @@
-//! The render target: linear-RGB colour plus view depth per pixel.
+//! The render target: linear-RGB colour, view depth and coverage per pixel, shared by the
+//! solids' raster and the hair's.
 //!
 //! What: row-major `Vec<Vec3>` colour (top row first), `Vec<f32>` depth in metres along the
 //! view direction (`+inf` = nothing opaque there yet) and `Vec<f32>` coverage (alpha). Only
-//! opaque solids (the head, body spheres) write depth; hair is blended into colour and tested
-//! against depth. Everything drawn composites its coverage α into the coverage channel with
-//! "over" (`a += (1 − a)·α`), the same operator as the colour, so after a frame
+//! opaque solids (the head, body spheres, meshes) write depth; hair is blended into colour and
+//! tested against depth. Everything drawn composites its coverage α into the coverage channel
+//! with "over" (`a += (1 − a)·α`), the same operator as the colour, so after a frame
 //! `colour = premultiplied + (1 − coverage)·background` holds exactly: with a black
 //! background the colour is premultiplied by the coverage (what an RGBA EXR stores).
 //!
-//! How: [`Framebuffer::clear`] reuses the allocation between frames. The 8-bit conversions give
-//! exactly what [`crate::color::linear_to_srgb8`] gives (NaN to 0, clamped, so a stray NaN
-//! never reaches a PNG or a window as garbage), through a table built once from that function:
-//! [0, 1] is cut into 4096 equal buckets, and since the sRGB curve never climbs more than 0.81
-//! of an 8-bit level per bucket (its steepest slope is 12.92·255 per unit), each bucket holds
-//! at most one level change, stored as a threshold found by bisection on the f32 bit patterns.
-//! Rejected: calling `linear_to_srgb8` (one `powf` per channel) per pixel, 19 ms per
-//! 1280x720 frame in `benches/raster.rs`, as long as drawing the hair.
-//!
-//! For compositing elsewhere, [`Framebuffer::premultiplied_into`] takes the background's share
-//! back out of the colour with that identity (linear, premultiplied: what OpenEXR stores), and
-//! [`Framebuffer::to_srgb16_rgba_into`] divides by the coverage (sRGB, straight alpha: what
-//! PNG stores).
+//! How: [`Framebuffer::clear`] reuses the allocation between frames. The conversions at the
+//! edge (`convert`) take the background's share back out of the colour with that identity:
+//! [`Framebuffer::premultiplied_into`] (linear, premultiplied: what OpenEXR stores) and
+//! [`Framebuffer::to_srgb16_rgba_into`] (sRGB, straight alpha: what PNG stores); the 8-bit
+//! ones give exactly what [`crate::color::linear_to_srgb8`] gives (NaN to 0, clamped), through
+//! a table (`srgb8`).
 //!
 //! Why `f32` linear colour: hair is many layers of low-coverage blends; doing them in 8-bit
 //! sRGB would band and darken. The conversion to sRGB happens once, at the edge. The drawing
-//! functions check that `color` and `depth` hold `width * height` entries (the fields are
-//! public) and draw nothing otherwise, rather than index out of bounds.
+//! functions check that `color`, `depth` and `coverage` hold `width * height` entries (the
+//! fields are public) and draw nothing otherwise, rather than index out of bounds.
 
-use std::sync::OnceLock;
+mod convert;
+mod srgb8;
 
 use glam::Vec3;
 use rayon::prelude::*;
-
-use crate::color::{linear_to_srgb8, linear_to_srgb16};
-
-/// Pixels per parallel task of the 8-bit conversions.
-const CONVERT_CHUNK: usize = 16 * 1024;
-
-/// Buckets of the linear -> sRGB8 table over [0, 1].
-const BUCKETS: usize = 4096;
-
-/// `linear_to_srgb8` in table form: in bucket `b` (`v·BUCKETS` truncated), the result is
-/// `base[b]`, plus one where `v ≥ threshold[b]`. Entry `BUCKETS` holds `v = 1` exactly.
-struct Srgb8Table {
-    base: [u8; BUCKETS + 1],
-    threshold: [f32; BUCKETS + 1],
-}
-
-impl Srgb8Table {
-    fn get() -> &'static Srgb8Table {
-        static TABLE: OnceLock<Box<Srgb8Table>> = OnceLock::new();
-        TABLE.get_or_init(|| {
-            let mut t = Box::new(Srgb8Table {
-                base: [0; BUCKETS + 1],
-                threshold: [f32::INFINITY; BUCKETS + 1],
-            });
-            for b in 0..=BUCKETS {
-                let lo = b as f32 / BUCKETS as f32;
-                let base = linear_to_srgb8(lo);
-                t.base[b] = base;
-                if b == BUCKETS {
-                    break;
-                }
-                // Largest f32 below the next bucket; positive floats order like their bits.
-                let last = f32::from_bits(((b + 1) as f32 / BUCKETS as f32).to_bits() - 1);
-                if linear_to_srgb8(last) > base {
-                    let (mut a, mut z) = (lo.to_bits(), last.to_bits());
-                    while z - a > 1 {
-                        let m = a + (z - a) / 2;
-                        if linear_to_srgb8(f32::from_bits(m)) > base {
-                            z = m;
-                        } else {
-                            a = m;
-                        }
-                    }
-                    t.threshold[b] = f32::from_bits(z);
-                }
-            }
-            t
-        })
-    }
-
-    /// Same value as `linear_to_srgb8(v)` for every `v` (tested).
-    #[inline]
-    fn srgb8(&self, v: f32) -> u8 {
-        // NaN fails `>=` and maps to 0, like `linear_to_srgb8`.
-        let v = if v >= 0.0 { v.min(1.0) } else { 0.0 };
-        // Exact: scaling by a power of two, truncation of a value in [0, BUCKETS].
-        let b = (v * BUCKETS as f32) as i32 as usize;
-        match (self.base.get(b), self.threshold.get(b)) {
-            (Some(&base), Some(&t)) => base + u8::from(v >= t),
-            _ => linear_to_srgb8(v),
-        }
-    }
-}
 
 /// A linear-RGB colour buffer with depth and coverage buffers.
 #[derive(Clone, Debug, PartialEq)]
@@ -122,6 +54,12 @@ impl Framebuffer {
             depth: vec![f32::INFINITY; n],
             coverage: vec![0.0; n],
         }
+    }
+
+    /// Bytes of a `width` × `height` framebuffer: linear RGB (`Vec3`), depth and coverage
+    /// (`f32` each) per pixel; for the run's memory budget (`crate::budget`).
+    pub fn estimated_bytes(width: u32, height: u32) -> u64 {
+        width as u64 * height as u64 * (size_of::<Vec3>() + 2 * size_of::<f32>()) as u64
     }
 
     /// Number of pixels, `width * height`.
@@ -174,16 +112,7 @@ impl Framebuffer {
 
     /// As [`Framebuffer::to_srgb8`], into a reused buffer.
     pub fn to_srgb8_into(&self, out: &mut Vec<u8>) {
-        let t = Srgb8Table::get();
-        out.clear();
-        out.resize(3 * self.color.len(), 0);
-        out.par_chunks_mut(3 * CONVERT_CHUNK)
-            .zip(self.color.par_chunks(CONVERT_CHUNK))
-            .for_each(|(out, color)| {
-                for (o, c) in out.chunks_exact_mut(3).zip(color) {
-                    o.copy_from_slice(&[t.srgb8(c.x), t.srgb8(c.y), t.srgb8(c.z)]);
-                }
-            });
+        convert::srgb8_into(&self.color, out);
     }
 
     /// Linear colour premultiplied by coverage, and the coverage: `rgb = colour − (1 −
@@ -193,21 +122,7 @@ impl Framebuffer {
     /// NaN becomes 0; values are clamped to [0, f32::MAX] (rounding may leave −1e-9) and the
     /// coverage to [0, 1].
     pub fn premultiplied_into(&self, background: Vec3, rgb: &mut Vec<Vec3>, alpha: &mut Vec<f32>) {
-        rgb.clear();
-        rgb.resize(self.color.len(), Vec3::ZERO);
-        alpha.clear();
-        alpha.resize(self.color.len(), 0.0);
-        rgb.par_chunks_mut(CONVERT_CHUNK)
-            .zip(alpha.par_chunks_mut(CONVERT_CHUNK))
-            .zip(self.color.par_chunks(CONVERT_CHUNK))
-            .zip(self.coverage.par_chunks(CONVERT_CHUNK))
-            .for_each(|(((rgb, alpha), color), coverage)| {
-                for (((o, oa), c), a) in rgb.iter_mut().zip(alpha).zip(color).zip(coverage) {
-                    let a = unit(*a);
-                    *o = premultiplied(*c, a, background);
-                    *oa = a;
-                }
-            });
+        convert::premultiplied_into(&self.color, &self.coverage, background, rgb, alpha);
     }
 
     /// 16-bit RGBA, 4 samples per pixel, rows top to bottom (what `write_png_rgba16` takes):
@@ -218,55 +133,13 @@ impl Framebuffer {
     /// above 1 (a bright highlight on a partly covered pixel) is clamped like the 8-bit
     /// conversion's: such a pixel composites darker than the frame shows.
     pub fn to_srgb16_rgba_into(&self, background: Vec3, out: &mut Vec<u16>) {
-        out.clear();
-        out.resize(4 * self.color.len(), 0);
-        out.par_chunks_mut(4 * CONVERT_CHUNK)
-            .zip(self.color.par_chunks(CONVERT_CHUNK))
-            .zip(self.coverage.par_chunks(CONVERT_CHUNK))
-            .for_each(|((out, color), coverage)| {
-                for ((o, c), a) in out.chunks_exact_mut(4).zip(color).zip(coverage) {
-                    let a = unit(*a);
-                    let a16 = (a * 65535.0 + 0.5) as u16;
-                    if a16 == 0 {
-                        o.copy_from_slice(&[0; 4]);
-                        continue;
-                    }
-                    let s = premultiplied(*c, a, background) / a;
-                    let e = linear_to_srgb16;
-                    o.copy_from_slice(&[e(s.x), e(s.y), e(s.z), a16]);
-                }
-            });
+        convert::srgb16_rgba_into(&self.color, &self.coverage, background, out);
     }
 
     /// `0x00RRGGBB` sRGB per pixel (the layout a minifb window takes), into a reused buffer.
     pub fn to_argb_u32_into(&self, out: &mut Vec<u32>) {
-        let t = Srgb8Table::get();
-        out.clear();
-        out.resize(self.color.len(), 0);
-        out.par_chunks_mut(CONVERT_CHUNK)
-            .zip(self.color.par_chunks(CONVERT_CHUNK))
-            .for_each(|(out, color)| {
-                for (o, c) in out.iter_mut().zip(color) {
-                    let (r, g, b) = (t.srgb8(c.x), t.srgb8(c.y), t.srgb8(c.z));
-                    *o = (u32::from(r) << 16) | (u32::from(g) << 8) | u32::from(b);
-                }
-            });
+        convert::argb_u32_into(&self.color, out);
     }
-}
-
-/// A coverage in [0, 1] (NaN to 0).
-#[inline]
-fn unit(a: f32) -> f32 {
-    if a >= 0.0 { a.min(1.0) } else { 0.0 }
-}
-
-/// What was drawn at a pixel of colour `c` and coverage `a`, premultiplied: `c − (1 −
-/// a)·background`, NaN to 0, within [0, f32::MAX].
-#[inline]
-fn premultiplied(c: Vec3, a: f32, background: Vec3) -> Vec3 {
-    let p = c - (1.0 - a) * background;
-    // glam's `max` is `if x > y { x } else { y }`: NaN gives 0.
-    p.max(Vec3::ZERO).min(Vec3::splat(f32::MAX))
 }
 
 #[cfg(test)]

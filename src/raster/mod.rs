@@ -1,25 +1,19 @@
-//! Rasterisation: 3D polylines with per-vertex colours and opaque ellipsoids into a linear-RGB
-//! framebuffer with depth. Knows nothing of hair.
+//! Rasterisation into a linear-RGB framebuffer with depth and coverage: the opaque solids,
+//! then the hair's anti-aliased lines over them. Knows nothing of hair physics or light.
 //!
-//! - [`camera`]: pinhole camera; pixel centres at +0.5, x right, y down, depth in metres along
-//!   the view direction.
-//! - [`framebuffer`]: linear-RGB colour + depth, conversion to 8-bit sRGB at the edge.
-//! - [`solid`]: opaque ellipsoids by per-pixel ray casting (exact screen box, anti-aliased
-//!   silhouette); draw these first, they fill the depth buffer.
-//! - [`mesh`]: opaque triangle meshes (a character), depth-tested with four visibility samples
-//!   per pixel and shaded once per pixel; drawn with the solids, before the lines.
-//! - [`lines`]: anti-aliased polylines, depth-tested against the opaque depth, composited back
-//!   to front per band of rows, in parallel and bit-identical for any thread count;
-//!   `segment` clips and projects each segment (near plane in view space, then a screen guard
-//!   rectangle in float, before anything becomes an index), `fragment` turns a band's
-//!   segments into per-pixel fragments (on the sub-samples of `samples`) and composites them,
-//!   `hiding` drops the fragments nearer hair hides before they are stored, and `bundle`
-//!   draws a line that stands for a bundle of fibres as its fibres where they are wide enough
-//!   to see.
-//! - `seen`: the lines in two passes around shading: [`seen_points`] emits without colour,
-//!   keeps the fragments and marks the points whose segments keep one, so a caller shades
-//!   only those; [`draw_seen_polylines`] composites the kept fragments with the shaded
-//!   colours (the picture of [`draw_polylines`]).
+//! - [`camera`]: pinhole camera; pixel centres at +0.5, x right, y down, depth in metres
+//!   along the view direction. Shared by both rasters.
+//! - [`framebuffer`]: linear-RGB colour, depth and coverage, converted to 8- or 16-bit sRGB or
+//!   premultiplied linear at the edge. Shared by both rasters.
+//! - [`solids`]: opaque ellipsoids (ray cast) and triangle meshes (multisampled); drawn
+//!   first, they fill the depth buffer.
+//! - [`lines`]: the hair, anti-aliased polylines depth-tested against the solids' depth and
+//!   composited per pixel in depth order and per sub-sample, in parallel and bit-identical
+//!   for any thread count; in one pass ([`draw_polylines`]) or two around shading
+//!   ([`seen_points`], then [`draw_seen_polylines`]), so only the points the picture can
+//!   show are shaded.
+//!
+//! `lines` and `solids` share only the camera and the framebuffer: neither imports the other.
 //!
 //! A frame: [`Framebuffer::clear`], [`draw_ellipsoid`] for each solid and [`draw_mesh`] for a
 //! mesh, then [`draw_polylines`] (or [`seen_points`], shading, [`draw_seen_polylines`]) with a
@@ -29,25 +23,15 @@
 // test rejects both out-of-range and NaN values.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-mod budget;
-mod bundle;
 pub mod camera;
-mod cull;
-mod fragment;
 pub mod framebuffer;
-mod hiding;
 pub mod lines;
-pub mod mesh;
-pub mod polyline;
-mod samples;
-mod seen;
-mod segment;
-pub mod solid;
+pub mod solids;
 
 pub use camera::{Camera, DEFAULT_NEAR_M, View};
 pub use framebuffer::Framebuffer;
-pub use lines::{LineScratch, MAX_SEGMENTS, draw_polylines};
-pub use mesh::{Mesh, MeshScratch, Surface, Texture, draw_mesh};
-pub use polyline::{Bundle, LineStyle, LineWidth, MAX_WIDTH_PX, Polylines};
-pub use seen::{draw_seen_polylines, seen_points};
-pub use solid::draw_ellipsoid;
+pub use lines::{
+    Bundle, LineScratch, LineStyle, LineWidth, MAX_SEGMENTS, MAX_WIDTH_PX, Polylines,
+    draw_polylines, draw_seen_polylines, seen_points,
+};
+pub use solids::{Mesh, MeshScratch, Surface, Texture, draw_ellipsoid, draw_mesh};
