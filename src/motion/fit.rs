@@ -139,76 +139,17 @@ pub(crate) fn estimate_without_mesh(skel: &Skeleton, head: usize) -> (Fit, FitMe
 /// Rest-pose world positions of the head's vertices (see the module doc); `in_head` marks
 /// the head joint's subtree.
 fn head_vertices(loaded: &Loaded, skel: &Skeleton, in_head: &[bool]) -> Vec<Vec3> {
-    /// What a skin contributes, worked out once per skin (a file may point a million nodes at
-    /// one skin of a million joints).
-    struct SkinUse {
-        /// Per joint of the skin: in the head's subtree.
-        in_head: Vec<bool>,
-        /// Per joint: rest world matrix × inverse bind matrix.
-        mats: Vec<Affine3A>,
-    }
+    // Each skin's use, worked out on first use; `Some(None)` for a skin without head joints.
     let mut skins: Vec<Option<Option<SkinUse>>> =
         (0..loaded.doc.skins().len()).map(|_| None).collect();
     let mut out = Vec::new();
     for node in loaded.doc.nodes() {
         let Some(mesh) = node.mesh() else { continue };
         if let Some(skin) = node.skin() {
-            let entry = skins[skin.index()].get_or_insert_with(|| {
-                let joints: Vec<usize> = skin.joints().map(|j| j.index()).collect();
-                let in_head: Vec<bool> = joints.iter().map(|&j| in_head[j]).collect();
-                if !in_head.contains(&true) {
-                    return None;
-                }
-                let ibm: Vec<Affine3A> = skin
-                    .inverse_bind_matrices()
-                    .and_then(|a| read_accessor(&a, loaded).ok())
-                    .filter(|(v, c)| *c == 16 && v.len() == 16 * joints.len())
-                    .map(|(v, _)| {
-                        v.chunks_exact(16)
-                            .map(|m| Affine3A::from_mat4(Mat4::from_cols_slice(m)))
-                            .collect()
-                    })
-                    .unwrap_or_else(|| vec![Affine3A::IDENTITY; joints.len()]);
-                let mats = joints
-                    .iter()
-                    .zip(&ibm)
-                    .map(|(&j, b)| skel.rest_world(j) * *b)
-                    .collect();
-                Some(SkinUse { in_head, mats })
-            });
-            let Some(SkinUse { in_head, mats }) = entry.as_ref() else {
-                continue;
-            };
-            for prim in mesh.primitives() {
-                let read = |s: Semantic| prim.get(&s).and_then(|a| read_accessor(&a, loaded).ok());
-                let (Some((pos, 3)), Some((jnt, 4)), Some((wgt, 4))) = (
-                    read(Semantic::Positions),
-                    read(Semantic::Joints(0)),
-                    read(Semantic::Weights(0)),
-                ) else {
-                    continue;
-                };
-                for ((p, j), w) in pos
-                    .chunks_exact(3)
-                    .zip(jnt.chunks_exact(4))
-                    .zip(wgt.chunks_exact(4))
-                {
-                    let v = Vec3::new(p[0], p[1], p[2]);
-                    let dominant = (0..4).max_by(|&a, &b| w[a].total_cmp(&w[b])).unwrap_or(0);
-                    if !in_head.get(j[dominant] as usize).copied().unwrap_or(false) {
-                        continue;
-                    }
-                    let (mut acc, mut total) = (Vec3::ZERO, 0.0);
-                    for k in 0..4 {
-                        if let Some(m) = mats.get(j[k] as usize).filter(|_| w[k] > 0.0) {
-                            acc += w[k] * m.transform_point3(v);
-                            total += w[k];
-                        }
-                    }
-                    if total > 0.0 && acc.is_finite() {
-                        out.push(acc / total);
-                    }
-                }
+            let entry = skins[skin.index()]
+                .get_or_insert_with(|| SkinUse::new(&skin, loaded, skel, in_head));
+            if let Some(skin_use) = entry.as_ref() {
+                skinned_head_vertices(&mesh, skin_use, loaded, &mut out);
             }
         } else if in_head[node.index()] {
             let m = skel.rest_world(node.index());
@@ -227,6 +168,81 @@ fn head_vertices(loaded: &Loaded, skel: &Skeleton, in_head: &[bool]) -> Vec<Vec3
         }
     }
     out
+}
+
+/// What a skin contributes, worked out once per skin (a file may point a million nodes at
+/// one skin of a million joints).
+struct SkinUse {
+    /// Per joint of the skin: in the head's subtree.
+    in_head: Vec<bool>,
+    /// Per joint: rest world matrix × inverse bind matrix.
+    mats: Vec<Affine3A>,
+}
+
+impl SkinUse {
+    /// The skin's joints' rest skinning matrices, `None` when no joint is in the head (its
+    /// meshes have no head vertex). Unreadable inverse bind matrices count as identity.
+    fn new(skin: &gltf::Skin, loaded: &Loaded, skel: &Skeleton, in_head: &[bool]) -> Option<Self> {
+        let joints: Vec<usize> = skin.joints().map(|j| j.index()).collect();
+        let in_head: Vec<bool> = joints.iter().map(|&j| in_head[j]).collect();
+        if !in_head.contains(&true) {
+            return None;
+        }
+        let ibm: Vec<Affine3A> = skin
+            .inverse_bind_matrices()
+            .and_then(|a| read_accessor(&a, loaded).ok())
+            .filter(|(v, c)| *c == 16 && v.len() == 16 * joints.len())
+            .map(|(v, _)| {
+                v.chunks_exact(16)
+                    .map(|m| Affine3A::from_mat4(Mat4::from_cols_slice(m)))
+                    .collect()
+            })
+            .unwrap_or_else(|| vec![Affine3A::IDENTITY; joints.len()]);
+        let mats = joints
+            .iter()
+            .zip(&ibm)
+            .map(|(&j, b)| skel.rest_world(j) * *b)
+            .collect();
+        Some(SkinUse { in_head, mats })
+    }
+}
+
+/// Appends to `out` the rest positions of `mesh`'s skinned vertices whose largest weight is on
+/// a head joint of `skin` (`Σ wᵢ·Mᵢ·v / Σ wᵢ`); primitives without positions, joints and
+/// weights are skipped.
+fn skinned_head_vertices(mesh: &gltf::Mesh, skin: &SkinUse, loaded: &Loaded, out: &mut Vec<Vec3>) {
+    let SkinUse { in_head, mats } = skin;
+    for prim in mesh.primitives() {
+        let read = |s: Semantic| prim.get(&s).and_then(|a| read_accessor(&a, loaded).ok());
+        let (Some((pos, 3)), Some((jnt, 4)), Some((wgt, 4))) = (
+            read(Semantic::Positions),
+            read(Semantic::Joints(0)),
+            read(Semantic::Weights(0)),
+        ) else {
+            continue;
+        };
+        for ((p, j), w) in pos
+            .chunks_exact(3)
+            .zip(jnt.chunks_exact(4))
+            .zip(wgt.chunks_exact(4))
+        {
+            let v = Vec3::new(p[0], p[1], p[2]);
+            let dominant = (0..4).max_by(|&a, &b| w[a].total_cmp(&w[b])).unwrap_or(0);
+            if !in_head.get(j[dominant] as usize).copied().unwrap_or(false) {
+                continue;
+            }
+            let (mut acc, mut total) = (Vec3::ZERO, 0.0);
+            for k in 0..4 {
+                if let Some(m) = mats.get(j[k] as usize).filter(|_| w[k] > 0.0) {
+                    acc += w[k] * m.transform_point3(v);
+                    total += w[k];
+                }
+            }
+            if total > 0.0 && acc.is_finite() {
+                out.push(acc / total);
+            }
+        }
+    }
 }
 
 /// Default colliders `(joint, offset in pose metres, radius in pose metres)`: the nearest

@@ -1,4 +1,4 @@
-//! Whether a groom's roots lie on the character's drawn head (issue 13, item 5).
+//! Whether a groom's roots lie on the character's drawn head.
 //!
 //! A [`super::Fit`] places the hairstyle's head frame on the head joint: scale and offset from
 //! the head mesh's box ([`super::fit`]), or given (`--head-scale`, `--head-offset`). Roots
