@@ -1,5 +1,4 @@
-//! Automatic fit of a 0.09 m hairstyle head onto the model's head joint, and the default body
-//! colliders.
+//! Automatic fit of a 0.09 m hairstyle head onto the model's head joint.
 //!
 //! # The head-size estimate (in order of preference)
 //! 1. **Mesh bounds** ([`FitMethod::MeshBounds`]): at the rest pose, gather the vertices that
@@ -17,14 +16,6 @@
 //!    (adult: head joint ~0.10 m above the neck joint, head radius ~0.09 m), centre that far
 //!    above the joint.
 //! 4. Otherwise identity ([`FitMethod::Default`]).
-//!
-//! # Default body colliders
-//! When [`super::MotionOptions::body_spheres`] is `None`: spheres centred on the nearest
-//! ancestors of the head named like "neck" ([`NECK_RADIUS_M`]) and "chest" / "torso" / "spine"
-//! ([`CHEST_RADIUS_M`]), and on the topmost joints named like "shoulder" / "clavicle", at most
-//! two ([`SHOULDER_RADIUS_M`]). Each radius is shrunk so that, at rest, the sphere stays outside
-//! the fitted 0.09 m head sphere; below [`MIN_SPHERE_RADIUS_M`] it is dropped (on cartoon
-//! proportions, such as RobotExpressive's, the chest sphere is dropped this way).
 //!
 //! Meshes that cannot be read (sparse accessors, missing attributes) are skipped: the fit is a
 //! best effort and must not make an otherwise playable clip fail.
@@ -53,17 +44,6 @@ pub enum FitMethod {
     /// Nothing to measure: identity.
     Default,
 }
-
-/// Default radii of the body colliders, in pose metres (adult proportions: neck ~0.10–0.12 m
-/// across, upper chest ~0.25 m deep, deltoid ~0.12 m).
-pub const NECK_RADIUS_M: f32 = 0.05;
-/// See [`NECK_RADIUS_M`].
-pub const CHEST_RADIUS_M: f32 = 0.12;
-/// See [`NECK_RADIUS_M`].
-pub const SHOULDER_RADIUS_M: f32 = 0.06;
-/// A default collider is shrunk so that, at rest, it stays outside the fitted 0.09 m head
-/// sphere; below this radius (metres) it is dropped.
-pub const MIN_SPHERE_RADIUS_M: f32 = 0.01;
 
 /// Estimates the fit (see the module doc).
 pub(crate) fn estimate(loaded: &Loaded, skel: &Skeleton, head: usize) -> (Fit, FitMethod) {
@@ -243,47 +223,4 @@ fn skinned_head_vertices(mesh: &gltf::Mesh, skin: &SkinUse, loaded: &Loaded, out
             }
         }
     }
-}
-
-/// Default colliders `(joint, offset in pose metres, radius in pose metres)`: the nearest
-/// ancestors of the head named like "neck" and like "chest" / "torso" / "spine", and the
-/// topmost joints named like "shoulder" / "clavicle" (at most two), centred on the joints. Each
-/// radius is shrunk to stay outside the fitted head sphere at rest (see
-/// [`MIN_SPHERE_RADIUS_M`]).
-pub(crate) fn default_spheres(skel: &Skeleton, head: usize, fit: &Fit) -> Vec<(usize, Vec3, f32)> {
-    let lower: Vec<String> = skel.names.iter().map(|n| n.to_lowercase()).collect();
-    let in_head = skel.subtree(head);
-    let ancestors: Vec<usize> = skel.chain(head).into_iter().rev().skip(1).collect();
-    let is_shoulder = |i: usize| lower[i].contains("shoulder") || lower[i].contains("clavicle");
-    let neck = ancestors
-        .iter()
-        .copied()
-        .find(|&i| lower[i].contains("neck"));
-    let chest = ancestors.iter().copied().find(|&i| {
-        Some(i) != neck
-            && ["chest", "torso", "spine"]
-                .iter()
-                .any(|k| lower[i].contains(k))
-    });
-    let shoulders = (0..skel.names.len())
-        .filter(|&i| skel.is_joint[i] && is_shoulder(i) && !in_head[i])
-        .filter(|&i| !skel.parents[i].is_some_and(is_shoulder))
-        .take(2);
-
-    let head_center = (Vec3::from(skel.rest_world(head).translation) + fit.offset_m) / fit.scale;
-    let mut out = Vec::new();
-    let wanted = neck
-        .map(|j| (j, NECK_RADIUS_M))
-        .into_iter()
-        .chain(chest.map(|j| (j, CHEST_RADIUS_M)))
-        .chain(shoulders.map(|j| (j, SHOULDER_RADIUS_M)));
-    for (joint, radius_m) in wanted {
-        let center = Vec3::from(skel.rest_world(joint).translation) / fit.scale;
-        let room_m = center.distance(head_center) - HAIRSTYLE_HEAD_RADIUS_M;
-        let r = radius_m.min(room_m);
-        if r >= MIN_SPHERE_RADIUS_M {
-            out.push((joint, Vec3::ZERO, r));
-        }
-    }
-    out
 }

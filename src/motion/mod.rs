@@ -40,14 +40,14 @@
 //! Loading (`load.rs` sequences it): the container, buffers and accessors (`gltf_io/`), the
 //! hierarchy at rest (`skeleton.rs`), the clip (`clip.rs`), the head and collider joints
 //! (`joints.rs`), the character's meshes ([`skin`], [`texture`]), the fit ([`fit`]), the
-//! colliders (`colliders.rs`, `capsules.rs`), the evaluated nodes (`chain.rs`) and the reach
+//! colliders ([`colliders`], `capsules.rs`), the evaluated nodes (`chain.rs`) and the reach
 //! check (`reach.rs`). Sampling: `pose.rs` over the [`sampler`] tracks. Options and errors:
 //! `options.rs`, `error.rs`.
 
 mod capsules;
 mod chain;
 mod clip;
-mod colliders;
+pub mod colliders;
 pub mod dance;
 mod error;
 pub mod fit;

@@ -57,8 +57,8 @@ pub struct MotionOptions {
     /// Hairstyle-to-joint fit. Default (`None`): automatic, see [`fit`](super::fit).
     pub fit: Option<Fit>,
     /// Body colliders. `None` = a default set on joints named like neck, chest/torso/spine and
-    /// shoulders when found (radii and rules in [`fit`](super::fit)), but only for a file without meshes
-    /// (a character's capsules replace them); `Some(vec![])` = none.
+    /// shoulders when found (radii and rules in [`colliders`](super::colliders)), but only for
+    /// a file without meshes (a character's capsules replace them); `Some(vec![])` = none.
     pub body_spheres: Option<Vec<SphereSpec>>,
     /// Fit a collision capsule to each bone of the character's mesh (default true; see
     /// `capsules.rs`). Without a mesh there are none.

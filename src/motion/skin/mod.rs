@@ -18,8 +18,8 @@
 //! the pose world (model metres divided by the fit's scale, as every other pose quantity).
 //!
 //! # Reading
-//! [`load`] reads the file's meshes into a [`Character`] (bones, materials, shared vertex
-//! sets), [`primitive`] one triangle primitive's vertices and triangles, each refusing a
+//! `load.rs` reads the file's meshes into a [`Character`] (bones, materials, shared vertex
+//! sets), `primitive.rs` one triangle primitive's vertices and triangles, each refusing a
 //! broken file with the mesh, primitive and rule.
 //!
 //! # Why this design
