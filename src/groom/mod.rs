@@ -158,7 +158,8 @@ pub fn build_groom(
     let want = opts
         .wisps
         .unwrap_or_else(|| count.div_ceil(STRANDS_PER_WISP).min(MAX_AUTO_WISPS));
-    let (guides, layout, cluster_s) = wisps(&resampled, want, radii, base.strands.tip_taper);
+    let (guides, layout, cluster_s) =
+        cluster_into_wisps(&resampled, want, radii, base.strands.tip_taper);
     let overflow = |v: &Vec3| !v.is_finite();
     let bad_link = |l: &f32| !(l.is_finite() && *l > 0.0);
     if guides.rest.iter().any(overflow)
@@ -225,7 +226,7 @@ fn longest_placed_m(
 /// The strands clustered into about `want` wisps (on their guide resampling, see [`cluster`])
 /// and the hair model built on them, with the seconds spent clustering. Guide roots get the
 /// normal of the head ellipsoid of semi-axes `radii`.
-fn wisps(
+fn cluster_into_wisps(
     s: &build::Resampled,
     want: usize,
     radii: Vec3,
