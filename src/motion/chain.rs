@@ -8,7 +8,7 @@
 //! humanoid rig's head and colliders, against hundreds of nodes in the file, so sampling needs
 //! neither a hash map nor a pass over the whole hierarchy.
 
-use glam::{Affine3A, Quat, Vec3};
+use glam::{Affine3A, Mat3A, Quat, Vec3, Vec3A};
 
 use super::clip::NodeTracks;
 use super::sampler::Track;
@@ -115,7 +115,7 @@ impl<'a> ChainSet<'a> {
         }
         JointChain {
             chain: idx,
-            rest_align: super::pose::rigid_rotation(&self.skel.rest_world(joint)).inverse(),
+            rest_align: rigid_rotation(&self.skel.rest_world(joint)).inverse(),
         }
     }
 
@@ -152,4 +152,15 @@ impl<'a> ChainSet<'a> {
             scale: s,
         }
     }
+}
+
+/// Rotation part of an affine map with its scale (and any shear) removed: the columns are
+/// normalised and re-orthogonalised (Gram–Schmidt, X then Y; Z = X × Y keeps det = +1 even
+/// when a node mirrors the model).
+pub(crate) fn rigid_rotation(m: &Affine3A) -> Quat {
+    let x = m.matrix3.x_axis.normalize_or(Vec3A::X);
+    let y0 = m.matrix3.y_axis - x * x.dot(m.matrix3.y_axis);
+    let y = y0.normalize_or(x.any_orthonormal_vector());
+    let z = x.cross(y);
+    Quat::from_mat3a(&Mat3A::from_cols(x, y, z)).normalize()
 }

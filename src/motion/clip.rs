@@ -10,7 +10,7 @@
 use glam::Vec4;
 use gltf::animation::{Interpolation as GltfInterpolation, Property};
 
-use super::MotionError;
+use super::error::MotionError;
 use super::gltf_io::{Loaded, read_accessor};
 use super::sampler::{Interpolation, Track};
 

@@ -20,11 +20,14 @@
 
 use glam::{Affine3A, Quat, Vec3};
 
+use super::capsules;
 use super::chain::{CapsuleSpec, ChainSet};
+use super::error::MotionError;
+use super::fit::HAIRSTYLE_HEAD_RADIUS_M;
 use super::joints::resolve_joint;
+use super::options::{Fit, MotionOptions};
 use super::skeleton::Skeleton;
 use super::skin::{Character, dominant};
-use super::{Fit, HAIRSTYLE_HEAD_RADIUS_M, MotionError, MotionOptions, capsules};
 
 /// Default radii of the body colliders, in pose metres (adult proportions: neck ~0.10–0.12 m
 /// across, upper chest ~0.25 m deep, deltoid ~0.12 m).

@@ -1,7 +1,9 @@
 //! Why a motion could not be loaded ([`MotionError`]). Every message names the file, and each
 //! variant the part of the file or the option at fault, so a user can find what to fix.
 
-use super::gltf_io;
+/// Most items listed in one message (a broken file can have thousands of problems, a rig
+/// hundreds of joints).
+const MAX_LISTED: usize = 8;
 
 /// Why a motion could not be loaded. Every message names the file.
 #[derive(Debug, thiserror::Error)]
@@ -56,7 +58,7 @@ pub enum MotionError {
         file: String,
     },
     /// The requested clip does not exist.
-    #[error("{file}: no clip named {requested:?}; clips: {}", gltf_io::short_list(available.iter().cloned(), ", "))]
+    #[error("{file}: no clip named {requested:?}; clips: {}", short_list(available.iter().cloned(), ", "))]
     UnknownClip {
         /// File name.
         file: String,
@@ -95,4 +97,24 @@ pub enum MotionError {
         /// What is wrong.
         reason: String,
     },
+}
+
+/// A file that breaks the glTF specification or uses something unsupported: `reason` says
+/// which part and rule.
+pub(crate) fn invalid(file: &str, reason: impl Into<String>) -> MotionError {
+    MotionError::Invalid {
+        file: file.to_string(),
+        reason: reason.into(),
+    }
+}
+
+/// "a; b; c (and 12 more)": the first few items of a long list.
+pub(crate) fn short_list(items: impl ExactSizeIterator<Item = String>, sep: &str) -> String {
+    let total = items.len();
+    let shown: Vec<String> = items.take(MAX_LISTED).collect();
+    let mut s = shown.join(sep);
+    if total > shown.len() {
+        s.push_str(&format!(" (and {} more)", total - shown.len()));
+    }
+    s
 }

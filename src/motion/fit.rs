@@ -24,8 +24,12 @@ use glam::{Affine3A, Mat4, Vec3};
 use gltf::Semantic;
 
 use super::gltf_io::{Loaded, read_accessor};
+use super::options::Fit;
 use super::skeleton::Skeleton;
-use super::{Fit, HAIRSTYLE_HEAD_RADIUS_M};
+
+/// Head radius in metres that hairstyles are made for (the fit maps a head of this size onto
+/// the model's head).
+pub const HAIRSTYLE_HEAD_RADIUS_M: f32 = 0.09;
 
 /// Where a [`Fit`] came from.
 #[derive(Clone, Copy, Debug, PartialEq)]

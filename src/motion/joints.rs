@@ -7,8 +7,9 @@
 //! "top": rigs add leaf bones such as `Head_end` or `HeadTop_End` above the skull, which are
 //! not where the head turns.
 
+use super::error::MotionError;
+use super::options::JointRef;
 use super::skeleton::Skeleton;
-use super::{JointRef, MotionError};
 
 /// Resolves a [`JointRef`]: exact name, then case-insensitive; joints before other nodes.
 pub(super) fn resolve_joint(

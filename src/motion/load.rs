@@ -15,14 +15,43 @@ use std::path::Path;
 use glam::Vec3;
 
 use super::chain::ChainSet;
+use super::chain::JointChain;
 use super::clip::{choose_clip, read_clip};
 use super::colliders::{character_capsules, sphere_specs};
+use super::error::MotionError;
 use super::fit::{self, FitMethod};
-use super::gltf_io::{Loaded, parse};
+use super::gltf_io::{Loaded, MAX_FILE_BYTES, parse};
 use super::joints::{default_head, resolve_joint};
+use super::options::{Fit, MotionOptions};
+use super::playback::Motion;
 use super::skeleton::{Skeleton, build_skeleton};
 use super::skin::{Character, load_character};
-use super::{Fit, JointChain, Motion, MotionError, MotionOptions};
+
+impl Motion {
+    /// Loads a glTF 2.0 motion from a `.glb` or `.gltf` file (recognised by content). Relative
+    /// buffer URIs are resolved next to the file; `data:` base64 URIs are decoded.
+    pub fn load(path: &Path, opts: &MotionOptions) -> Result<Motion, MotionError> {
+        let name = path.display().to_string();
+        let bytes =
+            crate::input::read_capped(path, MAX_FILE_BYTES, "a glTF file").map_err(|error| {
+                MotionError::Io {
+                    file: name.clone(),
+                    error,
+                }
+            })?;
+        from_bytes(&bytes, &name, path.parent(), opts)
+    }
+
+    /// Loads a motion from the bytes of a `.glb` (or a self-contained `.gltf` whose buffers
+    /// are `data:` URIs). `name_for_errors` is the file name used in error messages.
+    pub fn from_glb_bytes(
+        bytes: &[u8],
+        name_for_errors: &str,
+        opts: &MotionOptions,
+    ) -> Result<Motion, MotionError> {
+        from_bytes(bytes, name_for_errors, None, opts)
+    }
+}
 
 /// The head mesh's bounding box at rest (model metres, rest world axes) and its vertex count.
 type HeadBox = (Vec3, Vec3, usize);

@@ -4,7 +4,7 @@
 //! Wall time `t_s` plays clip time `start + (t_s · speed) mod duration` (`rem_euclid`, so the
 //! clip loops seamlessly and a negative speed plays it backwards). A joint's frame is its world
 //! matrix `W` (the product of its chain's local transforms, see [`super::chain`]) made rigid
-//! (scale and shear removed, [`rigid_rotation`]) and turned by the joint's rest alignment, so
+//! (scale and shear removed, `chain::rigid_rotation`) and turned by the joint's rest alignment, so
 //! its axes are the model's world axes at rest. The head frame is then
 //! `x_pose = (R · (fit.scale · x_hair + fit.offset_m) + W.translation) / fit.scale`, rigid in
 //! the pose world; every collider is carried into the same world (model units / `fit.scale`).
@@ -12,8 +12,9 @@
 
 use glam::{Affine3A, Mat3A, Quat, Vec3, Vec3A};
 
-use super::chain::JointChain;
-use super::{CharacterPose, Motion};
+use super::chain::{JointChain, rigid_rotation};
+use super::playback::Motion;
+use super::skin::CharacterPose;
 
 /// A body collision sphere in the pose world.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -156,15 +157,4 @@ impl Motion {
         let m = self.world(joint, clip_t);
         (rigid_rotation(&m) * joint.rest_align, m.translation)
     }
-}
-
-/// Rotation part of an affine map with its scale (and any shear) removed: the columns are
-/// normalised and re-orthogonalised (Gram–Schmidt, X then Y; Z = X × Y keeps det = +1 even
-/// when a node mirrors the model).
-pub(crate) fn rigid_rotation(m: &Affine3A) -> Quat {
-    let x = m.matrix3.x_axis.normalize_or(Vec3A::X);
-    let y0 = m.matrix3.y_axis - x * x.dot(m.matrix3.y_axis);
-    let y = y0.normalize_or(x.any_orthonormal_vector());
-    let z = x.cross(y);
-    Quat::from_mat3a(&Mat3A::from_cols(x, y, z)).normalize()
 }

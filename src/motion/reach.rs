@@ -8,7 +8,13 @@
 
 use glam::Vec3;
 
-use super::{MAX_POSE_DISTANCE_M, Motion, Pose};
+use super::playback::Motion;
+use super::pose::Pose;
+
+/// Farthest a head or body collider may be from the world origin, pose metres. Positions are
+/// f32: at 10 km their spacing is 1 mm, the collision margin, and beyond it the hair simulation
+/// and the camera lose the hair (keyframes of 1e30 give blank frames).
+pub const MAX_POSE_DISTANCE_M: f32 = 10_000.0;
 
 /// Most clip times [`Motion`] loading samples to check [`MAX_POSE_DISTANCE_M`].
 pub(super) const REACH_SAMPLES: usize = 10_000;

@@ -23,7 +23,8 @@
 
 use glam::Vec3;
 
-use super::{CharacterPose, Motion};
+use super::playback::Motion;
+use super::skin::CharacterPose;
 
 /// A root is near the head within this fraction of the head's mean radius (module doc).
 pub const ROOT_TOLERANCE: f32 = 0.5;

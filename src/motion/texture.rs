@@ -10,8 +10,8 @@
 
 use glam::Vec3;
 
-use super::MotionError;
-use super::gltf_io::{Loaded, invalid, read_uri};
+use super::error::{MotionError, invalid};
+use super::gltf_io::{Loaded, read_uri};
 
 /// Longest texture side in pixels.
 pub const MAX_TEXTURE_SIDE: u32 = 8192;

@@ -10,7 +10,7 @@ use std::path::Path;
 
 use super::MAX_BUFFER_BYTES;
 use crate::input::{ReadError, read_capped};
-use crate::motion::MotionError;
+use crate::motion::error::MotionError;
 
 /// Every buffer of `doc`, each at least its `byteLength` long. `bin` is the GLB binary chunk;
 /// relative URIs are resolved in `base_dir`.

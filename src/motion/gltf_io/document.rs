@@ -11,8 +11,8 @@
 
 use gltf::json::validation::Checked;
 
-use super::{MAX_JSON_CONTAINERS, invalid, short_list};
-use crate::motion::MotionError;
+use super::MAX_JSON_CONTAINERS;
+use crate::motion::error::{MotionError, invalid, short_list};
 
 /// The validated document of the JSON text `json`.
 pub(super) fn document(json: &[u8], file: &str) -> Result<gltf::Document, MotionError> {

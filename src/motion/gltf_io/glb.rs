@@ -3,8 +3,7 @@
 //! Every length is checked against the bytes there are, so a truncated or corrupt container
 //! is an error naming what is missing, never a slice out of range.
 
-use super::invalid;
-use crate::motion::MotionError;
+use crate::motion::error::{MotionError, invalid};
 
 /// The JSON text and the GLB binary chunk (if any) of a file's bytes: a GLB is split into its
 /// chunks, JSON (after any whitespace) is taken whole, anything else is refused.

@@ -24,7 +24,7 @@ pub(crate) use buffers::read_uri;
 
 use std::path::Path;
 
-use super::MotionError;
+use super::error::MotionError;
 
 /// Largest glTF file (`.glb` or `.gltf`) read, in bytes.
 pub const MAX_FILE_BYTES: u64 = 256 << 20;
@@ -36,8 +36,6 @@ pub const MAX_JSON_CONTAINERS: usize = 1_000_000;
 /// Most accessor values (numbers) decoded during one load, over all accessors: 64 M values,
 /// 256 MB as f32.
 pub const MAX_DECODED_VALUES: usize = 64 << 20;
-/// Most problems listed in one message (a broken file can have thousands).
-const MAX_LISTED: usize = 8;
 
 /// Buffer contents and the parsed document.
 pub(crate) struct Loaded {
@@ -47,24 +45,6 @@ pub(crate) struct Loaded {
     pub(crate) buffers: Vec<Vec<u8>>,
     /// Accessor values that may still be decoded in this load (see [`MAX_DECODED_VALUES`]).
     pub(crate) decoded_left: std::cell::Cell<usize>,
-}
-
-pub(crate) fn invalid(file: &str, reason: impl Into<String>) -> MotionError {
-    MotionError::Invalid {
-        file: file.to_string(),
-        reason: reason.into(),
-    }
-}
-
-/// "a; b; c (and 12 more)": the first few items of a long list.
-pub(crate) fn short_list(items: impl ExactSizeIterator<Item = String>, sep: &str) -> String {
-    let total = items.len();
-    let shown: Vec<String> = items.take(MAX_LISTED).collect();
-    let mut s = shown.join(sep);
-    if total > shown.len() {
-        s.push_str(&format!(" (and {} more)", total - shown.len()));
-    }
-    s
 }
 
 /// Parses the container and resolves the buffers.

@@ -26,8 +26,8 @@ use gltf::Semantic;
 
 use super::primitive::{PrimitiveInput, read_primitive};
 use super::{Bone, Character, Material, blend};
-use crate::motion::MotionError;
-use crate::motion::gltf_io::{Loaded, invalid, read_accessor};
+use crate::motion::error::{MotionError, invalid};
+use crate::motion::gltf_io::{Loaded, read_accessor};
 use crate::motion::skeleton::Skeleton;
 use crate::motion::texture;
 

@@ -11,8 +11,8 @@ use glam::{Vec2, Vec3};
 use gltf::Semantic;
 
 use super::{Character, MAX_TRIANGLES, MAX_VERTICES};
-use crate::motion::MotionError;
-use crate::motion::gltf_io::{Loaded, invalid, read_accessor};
+use crate::motion::error::{MotionError, invalid};
+use crate::motion::gltf_io::{Loaded, read_accessor};
 
 /// A triangle primitive to append, with what its vertices follow.
 pub(super) struct PrimitiveInput<'a> {
