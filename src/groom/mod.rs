@@ -26,21 +26,25 @@
 
 mod build;
 pub mod cluster;
+mod error;
 pub mod fit;
 mod place;
+mod polyline;
 mod rest_distance;
 mod strands;
 mod style;
 mod synthetic;
 
-pub use build::{arc_length, resample_by_arc_length};
+pub use error::GroomError;
 pub use fit::Placement;
+pub use place::{ROOT_TOLERANCE_M, ROOTS_OFF_HEAD_SHARE};
+pub use polyline::{arc_length, resample_by_arc_length};
 pub use rest_distance::rest_distance_m;
 pub use synthetic::synthetic_strands;
 
 use crate::hairstyle::{GuideSet, Hairstyle, StrandLayout};
 use crate::input::strand_file::load_strand_file;
-use crate::input::strands::{StrandFile, StrandFileError};
+use crate::input::strands::StrandFile;
 use glam::Vec3;
 use std::path::Path;
 
@@ -48,13 +52,6 @@ use std::path::Path;
 pub const STRANDS_PER_WISP: usize = 25;
 /// Most wisps chosen automatically (3× the `smooth` preset's 134, rounded).
 pub const MAX_AUTO_WISPS: usize = 400;
-/// Largest distance of a root from the head surface after the fit, metres. Real scalps are not
-/// ellipsoids (about ±1 cm) and a ponytail's tie sits off the scalp; a groom made for another
-/// head shape or in another orientation is off by many centimetres.
-pub const ROOT_TOLERANCE_M: f32 = 0.03;
-/// Share of roots allowed beyond [`ROOT_TOLERANCE_M`] (ties, hair growing off a bun).
-pub const ROOTS_OFF_HEAD_SHARE: f32 = 0.1;
-
 /// How a groom is imported.
 #[derive(Clone, Debug, Default)]
 pub struct GroomOptions {
@@ -92,27 +89,6 @@ pub struct Groom {
     pub guides: GuideSet,
     pub layout: StrandLayout,
     pub report: GroomReport,
-}
-
-/// Why a groom could not be imported.
-#[derive(Debug, thiserror::Error)]
-pub enum GroomError {
-    #[error(transparent)]
-    File(#[from] StrandFileError),
-    #[error("{files}: {rule}")]
-    Invalid { files: String, rule: String },
-    #[error(
-        "{file}: strand {strand}: its root is {distance_mm:.0} mm from the head surface after fitting the groom to the head (scale {scale:.4}, turn {yaw_deg:.0}°), and {share:.0}% of all roots are over {tolerance_mm:.0} mm: the groom's roots do not lie on a head (is it Y-up?)"
-    )]
-    RootsOffHead {
-        file: String,
-        strand: usize,
-        distance_mm: f32,
-        tolerance_mm: f32,
-        share: f32,
-        scale: f32,
-        yaw_deg: f32,
-    },
 }
 
 /// Loads the strand files at `paths` as one groom on `base`'s head.

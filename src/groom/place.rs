@@ -10,9 +10,17 @@
 
 use glam::Vec3;
 
+use super::error::GroomError;
+use super::fit::{self, Placement};
 use super::strands::Kept;
-use super::{GroomError, Placement, ROOT_TOLERANCE_M, ROOTS_OFF_HEAD_SHARE, fit};
 use crate::input::strands::StrandFile;
+
+/// Largest distance of a root from the head surface after the fit, metres. Real scalps are not
+/// ellipsoids (about ±1 cm) and a ponytail's tie sits off the scalp; a groom made for another
+/// head shape or in another orientation is off by many centimetres.
+pub const ROOT_TOLERANCE_M: f32 = 0.03;
+/// Share of roots allowed beyond [`ROOT_TOLERANCE_M`] (ties, hair growing off a bun).
+pub const ROOTS_OFF_HEAD_SHARE: f32 = 0.1;
 
 /// The groom's placement and how far its roots are from the head surface.
 pub(super) struct OnHead {

@@ -5,7 +5,8 @@
 
 use glam::Vec3;
 
-use super::{GroomError, arc_length};
+use super::error::GroomError;
+use super::polyline::arc_length;
 use crate::hairstyle::MAX_STRANDS;
 use crate::input::strands::StrandFile;
 
