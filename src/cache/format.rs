@@ -28,9 +28,12 @@
 //!   .   4   CRC-32 of the record index (u64) followed by the record's bytes before it
 //! ```
 
-use super::{CacheError, MAX_FRAMES, digest::Digest};
+use super::digest::Digest;
+use super::error::CacheError;
 use glam::Vec3;
 
+/// Largest number of frames a cache holds (as `wisp render --frames`).
+pub const MAX_FRAMES: u32 = 100_000;
 /// First bytes of every cache.
 pub const MAGIC: [u8; 8] = *b"WISPSIM\0";
 /// The version this build writes and reads.
