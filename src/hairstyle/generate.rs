@@ -14,7 +14,8 @@
 //! Render strands: barycentric weights drawn uniformly inside the triangle of the wisp's 3 guide
 //! roots (Bertails 2005 §4.1: strands interpolated from the guides of their wisp).
 
-use super::{GuideSet, Hairstyle, StrandLayout};
+use super::model::{GuideSet, StrandLayout};
+use super::spec::Hairstyle;
 pub use crate::rng::SplitMix64;
 use glam::Vec3;
 

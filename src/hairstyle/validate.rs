@@ -7,10 +7,27 @@
 //! The rules run in the order of the file's sections (head, scalp, wisps, guides, strands,
 //! curl, fiber, dynamics), so the first broken field is reported.
 
-use super::{
-    Hairstyle, MAX_GUIDE_LINKS, MAX_RENDER_POINTS, MAX_STRANDS, MAX_WISPS, MIN_HEAD_RADIUS_M,
-    MIN_PERIOD_M, MIN_SCALP_POLAR_DEG,
-};
+use super::spec::Hairstyle;
+
+/// Upper bounds of single fields. They are absolute limits; what a whole run may allocate is
+/// checked against the memory budget (`wisp::budget`), which the product of these can exceed.
+pub const MAX_WISPS: u32 = 100_000;
+pub const MAX_STRANDS: u64 = 2_000_000;
+pub const MAX_RENDER_POINTS: u64 = 40_000_000;
+pub const MAX_GUIDE_LINKS: u32 = 256;
+/// Smallest scalp polar angle in degrees. Roots come from a Fibonacci lattice grown until the
+/// scalp cap holds enough points; a cap of 5° is 0.19% of the sphere (100,000 wisps need a
+/// lattice of about 50 M points, a few seconds), while a cap of 1e-30° never holds one and
+/// the lattice would grow without end.
+pub const MIN_SCALP_POLAR_DEG: f32 = 5.0;
+/// Shortest wave or curl period in metres. Phases are 2π·s / period: a denormal period makes
+/// them infinite and the strands NaN (blank frames); real curls are 5 mm and longer.
+pub const MIN_PERIOD_M: f32 = 0.001;
+/// Smallest head semi-axis in metres. The hair model works at millimetres: roots sit on wisp
+/// layers 2–8 mm above the scalp and collisions keep a 1 mm margin, so a head smaller than
+/// 1 cm would be a point inside its own hair (at 1e-30 m the scalp area is 0, the strand
+/// spacing 0 and the map 1024³).
+pub const MIN_HEAD_RADIUS_M: f32 = 0.01;
 
 /// A rule's outcome: `Err((field path, rule))` when broken.
 type Rule = Result<(), (String, String)>;
