@@ -5,8 +5,8 @@
 //! all, enough for the 4 unknowns and linear in the groom). The turn about +Y is given, or
 //! guessed so that most hair hangs behind the head ([`fit::guess_yaw_rad`]). Each root's
 //! distance to the head surface is then measured; when more than [`ROOTS_OFF_HEAD_SHARE`]
-//! of them are over [`ROOT_TOLERANCE_M`] the groom was made for another head, another
-//! orientation or is not Y-up, and is refused naming its worst strand.
+//! of them are over [`ROOT_TOLERANCE_M`], the groom is refused, naming its worst strand: it
+//! belongs to another head shape or orientation, or is not Y-up.
 
 use glam::Vec3;
 
