@@ -33,7 +33,7 @@
 //! `GuideSet::rest`) and a CRC-32 of the record index and the record. Fixed-size records let a
 //! shard seek straight to its frames; the file's size must equal what the header's counts
 //! imply, which is checked before anything is allocated from those counts. See
-//! [`format`] for the byte layout.
+//! [`format`](mod@format) for the byte layout.
 //!
 //! # Checks on reading
 //! Everything a hostile or damaged file can say is checked, and refused with the file name,

@@ -4,7 +4,7 @@
 //! glTF stores base colour textures sRGB-encoded (§3.9.2); they are decoded to linear values
 //! here, so the renderer multiplies linear albedos. Only PNG is decoded (the `png` crate is
 //! already a dependency for the output); a JPEG or other image leaves the material with its
-//! colour factor, counted in [`Cache::unsupported`], rather than pulling in a JPEG decoder.
+//! colour factor, counted in `Cache::unsupported`, rather than pulling in a JPEG decoder.
 //! Images are bounded: at most [`MAX_TEXTURE_SIDE`] pixels a side and [`MAX_TEXTURE_BYTES`]
 //! decoded bytes per file (the PNG decoder's own allocation limit).
 

@@ -2,7 +2,7 @@
 //! and the scene file, each validated into the types the engine takes.
 //!
 //! - [`camera`]: a fixed camera ([`CameraSpec`]) or the engine's head-following framing.
-//! - [`file`]: the scene file (camera, lights, ambient, background, exposure, image size) and
+//! - [`file`](mod@file): the scene file (camera, lights, ambient, background, exposure, image size) and
 //!   its validation into a [`file::Scene`].
 
 pub mod camera;
