@@ -28,9 +28,12 @@
 //!   .   4   CRC-32 of the record index (u64) followed by the record's bytes before it
 //! ```
 
-use super::{CacheError, MAX_FRAMES, digest::Digest};
+use super::digest::Digest;
+use super::error::CacheError;
 use glam::Vec3;
 
+/// Largest number of frames a cache holds (as `wisp render --frames`).
+pub const MAX_FRAMES: u32 = 100_000;
 /// First bytes of every cache.
 pub const MAGIC: [u8; 8] = *b"WISPSIM\0";
 /// The version this build writes and reads.
@@ -168,6 +171,8 @@ impl CacheHeader {
 
     /// Reads and checks a header from `bytes`, the first bytes of a file: at least the whole
     /// header (its length is known from [`parse_fixed`]), or the whole file when it is shorter.
+    /// The checks run in the order of the layout: the fixed part, the checksum, each field's
+    /// range, the flags and reserved byte, the names.
     pub fn decode(bytes: &[u8], file: &str) -> Result<CacheHeader, CacheError> {
         let bad = |reason: String| CacheError::Invalid {
             file: file.to_string(),
@@ -180,104 +185,125 @@ impl CacheHeader {
                 bytes.len()
             )));
         }
-        let body = &bytes[..header_bytes - CHECKSUM_BYTES];
-        let stored = u32_at(bytes, header_bytes - CHECKSUM_BYTES);
-        let actual = crc32fast::hash(body);
-        if stored != actual {
-            return Err(bad(format!(
-                "header checksum is {stored:#010x}, the header's bytes give {actual:#010x}: the file is damaged"
-            )));
-        }
+        check_checksum(&bytes[..header_bytes]).map_err(bad)?;
+        let mut header = Self::read_fields(bytes);
+        header.check_ranges().map_err(bad)?;
+        check_flags(bytes).map_err(bad)?;
+        (header.hairstyle_name, header.motion_label) = read_names(bytes).map_err(bad)?;
+        Ok(header)
+    }
+
+    /// The header's fields as stored (names left empty), from bytes that hold the fixed part.
+    fn read_fields(bytes: &[u8]) -> CacheHeader {
         let f32_at = |at: usize| f32::from_le_bytes(bytes[at..at + 4].try_into().unwrap_or([0; 4]));
         let f64_at = |at: usize| f64::from_le_bytes(bytes[at..at + 8].try_into().unwrap_or([0; 8]));
         let digest_at = |at: usize| Digest(bytes[at..at + 32].try_into().unwrap_or([0; 32]));
-        let frames = u32_at(bytes, offset::FRAMES);
-        let particles = u32_at(bytes, offset::PARTICLES);
-        let points_per_guide = u32_at(bytes, offset::POINTS_PER_GUIDE);
-        let fps = f32_at(offset::FPS);
-        let start_s = f64_at(offset::START_S);
-        let settle_s = f64_at(offset::SETTLE_S);
-        let light_dir = Vec3::new(
-            f32_at(offset::LIGHT_DIR),
-            f32_at(offset::LIGHT_DIR + 4),
-            f32_at(offset::LIGHT_DIR + 8),
-        );
-        let map_res = u32_at(bytes, offset::MAP_RES);
         let flags = bytes[offset::FLAGS];
+        CacheHeader {
+            frames: u32_at(bytes, offset::FRAMES),
+            particles: u32_at(bytes, offset::PARTICLES),
+            points_per_guide: u32_at(bytes, offset::POINTS_PER_GUIDE),
+            fps: f32_at(offset::FPS),
+            start_s: f64_at(offset::START_S),
+            settle_s: f64_at(offset::SETTLE_S),
+            hairstyle_digest: digest_at(offset::HAIRSTYLE_DIGEST),
+            motion_digest: digest_at(offset::MOTION_DIGEST),
+            light_dir: Vec3::new(
+                f32_at(offset::LIGHT_DIR),
+                f32_at(offset::LIGHT_DIR + 4),
+                f32_at(offset::LIGHT_DIR + 8),
+            ),
+            map_res: u32_at(bytes, offset::MAP_RES),
+            simulated: flags & FLAG_SIMULATED != 0,
+            self_collision: flags & FLAG_SELF_COLLISION != 0,
+            draw_solids: flags & FLAG_SOLIDS != 0,
+            hairstyle_name: String::new(),
+            motion_label: String::new(),
+        }
+    }
+
+    /// Every numeric field in its range (the layout's table); the error names the field.
+    fn check_ranges(&self) -> Result<(), String> {
+        let (frames, particles, points_per_guide) =
+            (self.frames, self.particles, self.points_per_guide);
+        let (fps, light_dir, map_res) = (self.fps, self.light_dir, self.map_res);
         if !(1..=MAX_FRAMES).contains(&frames) {
-            return Err(bad(format!("frames is {frames}, outside 1..={MAX_FRAMES}")));
+            return Err(format!("frames is {frames}, outside 1..={MAX_FRAMES}"));
         }
         if !(2..=MAX_POINTS_PER_GUIDE).contains(&points_per_guide) {
-            return Err(bad(format!(
+            return Err(format!(
                 "particles per guide is {points_per_guide}, outside 2..={MAX_POINTS_PER_GUIDE}"
-            )));
+            ));
         }
         if particles == 0
             || particles as u64 > MAX_PARTICLES
             || !particles.is_multiple_of(points_per_guide)
         {
-            return Err(bad(format!(
+            return Err(format!(
                 "particles is {particles}: it must be a whole number of guides of {points_per_guide} particles, at most {MAX_PARTICLES}"
-            )));
+            ));
         }
         if !(fps.is_finite() && fps > 0.0 && fps <= 1000.0) {
-            return Err(bad(format!("fps is {fps}, outside (0, 1000]")));
+            return Err(format!("fps is {fps}, outside (0, 1000]"));
         }
-        for (name, v) in [("start time", start_s), ("settle time", settle_s)] {
+        for (name, v) in [("start time", self.start_s), ("settle time", self.settle_s)] {
             if !(v.is_finite() && (0.0..=1e9).contains(&v)) {
-                return Err(bad(format!("{name} is {v} s, outside [0, 1e9]")));
+                return Err(format!("{name} is {v} s, outside [0, 1e9]"));
             }
         }
         if !(light_dir.is_finite() && (light_dir.length() - 1.0).abs() < 1e-3) {
-            return Err(bad(format!(
-                "light direction is {light_dir}, not a unit vector"
-            )));
+            return Err(format!("light direction is {light_dir}, not a unit vector"));
         }
         if !(4..=1024).contains(&map_res) {
-            return Err(bad(format!(
-                "map resolution is {map_res}, outside 4..=1024"
-            )));
+            return Err(format!("map resolution is {map_res}, outside 4..=1024"));
         }
-        if flags & !(FLAG_SIMULATED | FLAG_SELF_COLLISION | FLAG_SOLIDS) != 0 {
-            return Err(bad(format!(
-                "flags byte is {flags:#04x}, with unknown bits set"
-            )));
-        }
-        if bytes[offset::RESERVED] != 0 {
-            return Err(bad(format!(
-                "reserved byte {} is {}, not 0",
-                offset::RESERVED,
-                bytes[offset::RESERVED]
-            )));
-        }
-        let (name_len, label_len) = (
-            bytes[offset::NAME_LEN] as usize,
-            bytes[offset::LABEL_LEN] as usize,
-        );
-        let text = |at: usize, len: usize, what: &str| {
-            String::from_utf8(bytes[at..at + len].to_vec())
-                .map_err(|_| bad(format!("the {what} is not UTF-8")))
-        };
-        let hairstyle_name = text(FIXED_HEADER_BYTES, name_len, "hairstyle name")?;
-        let motion_label = text(FIXED_HEADER_BYTES + name_len, label_len, "motion label")?;
-        Ok(CacheHeader {
-            frames,
-            particles,
-            points_per_guide,
-            fps,
-            start_s,
-            settle_s,
-            hairstyle_digest: digest_at(offset::HAIRSTYLE_DIGEST),
-            motion_digest: digest_at(offset::MOTION_DIGEST),
-            light_dir,
-            map_res,
-            simulated: flags & FLAG_SIMULATED != 0,
-            self_collision: flags & FLAG_SELF_COLLISION != 0,
-            draw_solids: flags & FLAG_SOLIDS != 0,
-            hairstyle_name,
-            motion_label,
-        })
+        Ok(())
     }
+}
+
+/// Refuses a header (`header`, checksum last) whose stored CRC-32 differs from its bytes'.
+fn check_checksum(header: &[u8]) -> Result<(), String> {
+    let body = &header[..header.len() - CHECKSUM_BYTES];
+    let stored = u32_at(header, header.len() - CHECKSUM_BYTES);
+    let actual = crc32fast::hash(body);
+    if stored != actual {
+        return Err(format!(
+            "header checksum is {stored:#010x}, the header's bytes give {actual:#010x}: the file is damaged"
+        ));
+    }
+    Ok(())
+}
+
+/// Refuses unknown flag bits and a reserved byte that is not 0.
+fn check_flags(bytes: &[u8]) -> Result<(), String> {
+    let flags = bytes[offset::FLAGS];
+    if flags & !(FLAG_SIMULATED | FLAG_SELF_COLLISION | FLAG_SOLIDS) != 0 {
+        return Err(format!("flags byte is {flags:#04x}, with unknown bits set"));
+    }
+    if bytes[offset::RESERVED] != 0 {
+        return Err(format!(
+            "reserved byte {} is {}, not 0",
+            offset::RESERVED,
+            bytes[offset::RESERVED]
+        ));
+    }
+    Ok(())
+}
+
+/// The hairstyle name and motion label, each UTF-8, after the fixed part.
+fn read_names(bytes: &[u8]) -> Result<(String, String), String> {
+    let (name_len, label_len) = (
+        bytes[offset::NAME_LEN] as usize,
+        bytes[offset::LABEL_LEN] as usize,
+    );
+    let text = |at: usize, len: usize, what: &str| {
+        String::from_utf8(bytes[at..at + len].to_vec())
+            .map_err(|_| format!("the {what} is not UTF-8"))
+    };
+    Ok((
+        text(FIXED_HEADER_BYTES, name_len, "hairstyle name")?,
+        text(FIXED_HEADER_BYTES + name_len, label_len, "motion label")?,
+    ))
 }
 
 /// Checks the fixed part of a header (magic, version, length) in `bytes`, the start of a file

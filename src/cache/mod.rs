@@ -33,7 +33,7 @@
 //! `GuideSet::rest`) and a CRC-32 of the record index and the record. Fixed-size records let a
 //! shard seek straight to its frames; the file's size must equal what the header's counts
 //! imply, which is checked before anything is allocated from those counts. See
-//! [`format`] for the byte layout.
+//! [`format`](mod@format) for the byte layout.
 //!
 //! # Checks on reading
 //! Everything a hostile or damaged file can say is checked, and refused with the file name,
@@ -44,70 +44,14 @@
 //! frame ([`CacheReader::read_frame`]).
 
 pub mod digest;
+mod error;
 pub mod format;
 mod read;
 mod state;
 mod write;
 
 pub use digest::{Digest, hairstyle_digest, motion_digest};
-pub use format::CacheHeader;
+pub use error::CacheError;
+pub use format::{CacheHeader, MAX_FRAMES};
 pub use read::{CacheReader, Expected};
 pub use write::CacheWriter;
-
-use crate::input::ReadError;
-
-/// Largest number of frames a cache holds (as `wisp render --frames`).
-pub const MAX_FRAMES: u32 = 100_000;
-
-/// Why a cache could not be read or written. Every message names the file.
-#[derive(Debug, thiserror::Error)]
-pub enum CacheError {
-    /// The file could not be opened or read (missing, a directory, a device, an I/O error).
-    #[error("{file}: {error}")]
-    Read {
-        /// File name.
-        file: String,
-        /// What went wrong.
-        error: ReadError,
-    },
-    /// The file breaks the format: the field and the rule.
-    #[error("{file}: {reason}")]
-    Invalid {
-        /// File name.
-        file: String,
-        /// What is wrong, naming the field.
-        reason: String,
-    },
-    /// A valid cache made for another hairstyle, motion or hair model.
-    #[error("{file}: {reason}")]
-    Mismatch {
-        /// File name.
-        file: String,
-        /// What differs, and what to do.
-        reason: String,
-    },
-    /// The output path cannot hold a cache (a directory, a device, a missing folder).
-    #[error("{file}: {reason}")]
-    BadOutput {
-        /// File name.
-        file: String,
-        /// Why.
-        reason: String,
-    },
-    /// Writing failed (disk full, permissions).
-    #[error("{file}: cannot write: {error}")]
-    Write {
-        /// File name.
-        file: String,
-        /// The cause.
-        error: std::io::Error,
-    },
-}
-
-impl CacheError {
-    /// True when the error is the input's fault (exit code 2 on the command line): anything
-    /// but a failed write.
-    pub fn is_bad_input(&self) -> bool {
-        !matches!(self, CacheError::Write { .. })
-    }
-}

@@ -2,8 +2,8 @@
 //! wants to render it before any record is read; records are then read one at a time, by
 //! seeking (fixed-size records), each checked before its positions are handed out.
 
-use super::CacheError;
 use super::digest::{Digest, hairstyle_digest, motion_digest};
+use super::error::CacheError;
 use super::format::{self, CHECKSUM_BYTES, CacheHeader, FIXED_HEADER_BYTES};
 use super::state::{self, RecordError};
 use crate::hairstyle::Hairstyle;

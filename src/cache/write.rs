@@ -2,8 +2,9 @@
 //! into `NAME.tmp` beside the cache, renamed to `NAME` once every record is written and
 //! synced. An interrupted run leaves the temporary file only, never a cache that looks whole.
 
+use super::error::CacheError;
 use super::format::CacheHeader;
-use super::{CacheError, state};
+use super::state;
 use crate::sim::SimState;
 use glam::Vec3;
 use std::fs::File;

@@ -1,48 +1,22 @@
 //! From placed, clustered strands to the engine's hair model: guides (3 strands per wisp,
 //! resampled to equal links), barycentric weights, length fractions and rest offsets.
+//!
+//! Every strand is resampled at points evenly spaced in arc length, once with the guides'
+//! `links + 1` points and once with the render strands' points, so a guide's links are equal
+//! (the simulation's rigid links) and each render strand is its own file polyline. A render
+//! strand is then the Catmull-Rom curve of its wisp's guides blended by its barycentric weights
+//! (`c(s) = Σ wᵢ gᵢ(s)`, cut to its length fraction) plus its rest offsets, which carry that
+//! curve onto its resampled points: at rest, interpolation reproduces the strands exactly,
+//! whatever the number of wisps.
 
 use super::cluster::{FEATURE_DIM, Feature, SHAPE_WEIGHT};
+use super::fit::Placement;
+use super::polyline::{arc_length, resample_by_arc_length};
+use super::strands::Kept;
 use crate::hairstyle::{GuideSet, StrandLayout};
 use crate::interp::{catmull_rom_resample_to, rest_offsets_of};
 use glam::Vec3;
 use rayon::prelude::*;
-
-/// Polyline length.
-pub fn arc_length(p: &[Vec3]) -> f32 {
-    p.windows(2).map(|w| (w[1] - w[0]).length()).sum()
-}
-
-/// Resamples the polyline `p` (>= 2 points, length > 0) at `out.len()` points evenly spaced
-/// in arc length, first and last on its ends.
-pub fn resample_by_arc_length(p: &[Vec3], out: &mut [Vec3]) {
-    let n = out.len();
-    let total = arc_length(p);
-    if n == 0 {
-        return;
-    }
-    if n == 1 || p.len() < 2 || total.is_nan() || total <= 0.0 {
-        out.fill(p.first().copied().unwrap_or(Vec3::ZERO));
-        return;
-    }
-    let mut seg = 0usize;
-    let mut seg_start = 0.0f32;
-    let mut seg_len = (p[1] - p[0]).length();
-    for (k, o) in out.iter_mut().enumerate() {
-        let s = total * k as f32 / (n - 1) as f32;
-        while seg + 2 < p.len() && s > seg_start + seg_len {
-            seg_start += seg_len;
-            seg += 1;
-            seg_len = (p[seg + 1] - p[seg]).length();
-        }
-        let t = if seg_len > 0.0 {
-            ((s - seg_start) / seg_len).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        *o = p[seg].lerp(p[seg + 1], t);
-    }
-    out[n - 1] = p[p.len() - 1];
-}
 
 /// The clustering feature of a strand resampled to `pts` (root, middle, tip).
 pub fn feature_of(pts: &[Vec3]) -> Feature {
@@ -115,21 +89,74 @@ pub fn barycentric_clamped(p: Vec3, t: [Vec3; 3]) -> [f32; 3] {
     b
 }
 
-/// Guides and layout from strands resampled for guides (`guide_pts`, `ppg` per strand) and for
-/// render strands (`render_pts`, `n` per strand), wisp of each strand in `wisp_of` (0..wisps).
-pub fn build_model(
-    guide_pts: &[Vec3],
+/// Every kept strand placed on the head and resampled twice, strand after strand: for guides
+/// (`ppg` points each, links + 1) and for render strands (`n` points each).
+pub(super) struct Resampled {
+    pub(super) guide: Vec<Vec3>,
+    pub(super) ppg: usize,
+    pub(super) render: Vec<Vec3>,
+    pub(super) n: usize,
+}
+
+/// Places each of `kept` with `placement` and resamples it by arc length for guides and for
+/// render strands (in parallel, one strand per task).
+pub(super) fn resample_placed(
+    kept: &[Kept],
+    placement: &Placement,
     ppg: usize,
-    render_pts: &[Vec3],
     n: usize,
+) -> Resampled {
+    let count = kept.len();
+    let mut guide = vec![Vec3::ZERO; count * ppg];
+    let mut render = vec![Vec3::ZERO; count * n];
+    guide
+        .par_chunks_mut(ppg)
+        .zip(render.par_chunks_mut(n))
+        .zip(kept.par_iter())
+        .for_each(|((g, r), k)| {
+            let placed: Vec<Vec3> = k.points.iter().map(|p| placement.apply(*p)).collect();
+            resample_by_arc_length(&placed, g);
+            resample_by_arc_length(&placed, r);
+        });
+    Resampled {
+        guide,
+        ppg,
+        render,
+        n,
+    }
+}
+
+/// Guides and layout from the resampled strands `s`, the wisp of each strand in `wisp_of`
+/// (0..wisps): each wisp's 3 guides ([`pick_guides`]), then each strand's weights over them,
+/// its length fraction and its rest offsets.
+pub(super) fn build_model(
+    s: &Resampled,
     wisp_of: &[u32],
     root_normal_of: impl Fn(Vec3) -> Vec3,
     tip_taper: f32,
 ) -> (GuideSet, StrandLayout) {
     let strands = wisp_of.len();
+    let roots: Vec<Vec3> = (0..strands).map(|i| s.render[i * s.n]).collect();
+    let (start, members) = members_by_wisp(wisp_of);
+    let (guides, wisp_guides) = wisp_guides(s, &start, &members, &roots, root_normal_of);
+    let fits = strand_fits(s, wisp_of, &wisp_guides, &guides, &roots);
+    let layout = StrandLayout {
+        wisp_guides,
+        strand_wisp: wisp_of.to_vec(),
+        strand_weights: fits.weights,
+        strand_phase: vec![0.0; strands],
+        strand_length: fits.length,
+        tip_taper,
+        points_per_strand: s.n,
+        rest_offset: fits.rest_offset,
+    };
+    (guides, layout)
+}
+
+/// The strands of each wisp in strand order, by counting sort (no per-wisp allocation): wisp
+/// w's members are `members[start[w]..start[w + 1]]`.
+fn members_by_wisp(wisp_of: &[u32]) -> (Vec<usize>, Vec<u32>) {
     let wisps = wisp_of.iter().map(|w| *w as usize + 1).max().unwrap_or(0);
-    let roots: Vec<Vec3> = (0..strands).map(|s| render_pts[s * n]).collect();
-    // Members of each wisp in strand order (counting sort, no per-wisp allocation).
     let mut start = vec![0usize; wisps + 1];
     for &w in wisp_of {
         start[w as usize + 1] += 1;
@@ -138,20 +165,33 @@ pub fn build_model(
         start[w + 1] += start[w];
     }
     let mut fill = start.clone();
-    let mut members = vec![0u32; strands];
+    let mut members = vec![0u32; wisp_of.len()];
     for (s, &w) in wisp_of.iter().enumerate() {
         members[fill[w as usize]] = s as u32;
         fill[w as usize] += 1;
     }
+    (start, members)
+}
+
+/// The guides of every wisp (3 of its strands, resampled for guides, with equal links and
+/// their roots' scalp normals) and each wisp's guide indices.
+fn wisp_guides(
+    s: &Resampled,
+    start: &[usize],
+    members: &[u32],
+    roots: &[Vec3],
+    root_normal_of: impl Fn(Vec3) -> Vec3,
+) -> (GuideSet, Vec<[u32; 3]>) {
+    let (wisps, ppg) = (start.len() - 1, s.ppg);
     let mut rest = Vec::with_capacity(wisps * 3 * ppg);
     let mut link_length_m = Vec::with_capacity(wisps * 3);
     let mut root_normal = Vec::with_capacity(wisps * 3);
     let mut wisp_guides = Vec::with_capacity(wisps);
     for w in 0..wisps {
-        let picked = pick_guides(&members[start[w]..start[w + 1]], &roots);
+        let picked = pick_guides(&members[start[w]..start[w + 1]], roots);
         let g0 = link_length_m.len() as u32;
-        for s in picked {
-            let pts = &guide_pts[s as usize * ppg..(s as usize + 1) * ppg];
+        for strand in picked {
+            let pts = &s.guide[strand as usize * ppg..(strand as usize + 1) * ppg];
             rest.extend_from_slice(pts);
             link_length_m.push(arc_length(pts) / (ppg - 1) as f32);
             root_normal.push(root_normal_of(pts[0]));
@@ -164,7 +204,30 @@ pub fn build_model(
         link_length_m,
         root_normal,
     };
-    // Per strand: weights, length fraction and offsets, independent of each other.
+    (guides, wisp_guides)
+}
+
+/// Each render strand's place among its wisp's guides.
+struct StrandFits {
+    /// Barycentric weights over the wisp's 3 guides.
+    weights: Vec<[f32; 3]>,
+    /// Length as a fraction of the blended guide's, in (0, 1].
+    length: Vec<f32>,
+    /// `n` rest offsets per strand (see `crate::interp::rest_offsets_of`).
+    rest_offset: Vec<Vec3>,
+}
+
+/// Per strand, independently and in parallel: weights from its root's position in its guides'
+/// root triangle ([`barycentric_clamped`]), the length fraction of its resampled points
+/// against the blended guides, and the offsets that carry the smoothed blend onto its points.
+fn strand_fits(
+    s: &Resampled,
+    wisp_of: &[u32],
+    wisp_guides: &[[u32; 3]],
+    guides: &GuideSet,
+    roots: &[Vec3],
+) -> StrandFits {
+    let (strands, ppg, n) = (wisp_of.len(), s.ppg, s.n);
     let mut strand_weights = vec![[0.0f32; 3]; strands];
     let mut strand_length = vec![1.0f32; strands];
     let mut rest_offset = vec![Vec3::ZERO; strands * n];
@@ -173,14 +236,14 @@ pub fn build_model(
         .zip(strand_length.par_iter_mut())
         .zip(rest_offset.par_chunks_mut(n))
         .enumerate()
-        .for_each(|(s, ((weights, length), offsets))| {
-            let gi = wisp_guides[wisp_of[s] as usize];
+        .for_each(|(i, ((weights, length), offsets))| {
+            let gi = wisp_guides[wisp_of[i] as usize];
             let g = gi.map(|g| guides.guide(g as usize));
-            let w = barycentric_clamped(roots[s], [g[0][0], g[1][0], g[2][0]]);
+            let w = barycentric_clamped(roots[i], [g[0][0], g[1][0], g[2][0]]);
             let ctrl: Vec<Vec3> = (0..ppg)
-                .map(|i| g[0][i] * w[0] + g[1][i] * w[1] + g[2][i] * w[2])
+                .map(|k| g[0][k] * w[0] + g[1][k] * w[1] + g[2][k] * w[2])
                 .collect();
-            let target = &render_pts[s * n..(s + 1) * n];
+            let target = &s.render[i * n..(i + 1) * n];
             let fraction = (arc_length(target) / arc_length(&ctrl)).min(1.0);
             let fraction = if fraction.is_finite() && fraction > 0.0 {
                 fraction
@@ -193,15 +256,9 @@ pub fn build_model(
             *weights = w;
             *length = fraction;
         });
-    let layout = StrandLayout {
-        wisp_guides,
-        strand_wisp: wisp_of.to_vec(),
-        strand_weights,
-        strand_phase: vec![0.0; strands],
-        strand_length,
-        tip_taper,
-        points_per_strand: n,
+    StrandFits {
+        weights: strand_weights,
+        length: strand_length,
         rest_offset,
-    };
-    (guides, layout)
+    }
 }

@@ -55,11 +55,12 @@ impl Grid {
         }
         c
     }
-    fn new(lo: [f32; 3], cell: f32, dims: [i64; 3], centroids: &[Feature], live: &[bool]) -> Self {
+    /// The live centroids of `centroids` in the cells of `frame`.
+    fn new(frame: &GridFrame, centroids: &[Feature], live: &[bool]) -> Self {
         let mut g = Grid {
-            lo,
-            cell,
-            dims,
+            lo: frame.lo,
+            cell: frame.cell,
+            dims: frame.dims,
             entries: Vec::with_capacity(centroids.len()),
         };
         for (i, c) in centroids.iter().enumerate() {
@@ -85,8 +86,8 @@ impl Grid {
 
     /// The nearest live centroid found by the shell search (see the module doc). A shell with
     /// more cells than there are centroids costs more than comparing with all of them (a strand
-    /// far from every wisp, in a grid stretched by an outlier: 257³ cells were searched for
-    /// each strand, minutes for 60 strands), so the search then scans the centroids instead.
+    /// far from every wisp, in a grid stretched by an outlier, would search 257³ cells: minutes
+    /// for 60 strands), so the search then scans the centroids instead.
     fn nearest(&self, f: &Feature, centroids: &[Feature]) -> u32 {
         let c = self.cell_of(f);
         let max_ring = self.dims.iter().copied().max().unwrap_or(1);
@@ -164,28 +165,75 @@ pub fn cluster(features: &[Feature], k: usize) -> Vec<u32> {
         return Vec::new();
     }
     let k = k.clamp(1, (n / MIN_WISP_STRANDS).max(1));
-    let mut lo = [f32::INFINITY; 3];
-    let mut hi = [f32::NEG_INFINITY; 3];
-    for f in features {
-        for a in 0..3 {
-            lo[a] = lo[a].min(f[a]);
-            hi[a] = hi[a].max(f[a]);
+    let frame = GridFrame::new(features, k);
+    let mut centroids = initial_centroids(features, &frame, k);
+    let mut live = vec![true; k];
+    let mut assign = lloyd(features, &frame, &mut centroids, &live);
+    // Wisps too small for 3 guides give their strands to the nearest wisp large enough.
+    let mut size = vec![0usize; k];
+    for &a in &assign {
+        size[a as usize] += 1;
+    }
+    for c in 0..k {
+        live[c] = size[c] >= MIN_WISP_STRANDS;
+    }
+    if live.iter().any(|l| *l) {
+        let grid = Grid::new(&frame, &centroids, &live);
+        for (i, a) in assign.iter_mut().enumerate() {
+            if !live[*a as usize] {
+                *a = grid.nearest(&features[i], &centroids);
+            }
         }
     }
-    let ext = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
-    let max_ext = ext.iter().copied().fold(0.0, f32::max);
-    // About one wisp's spacing: the roots cover roughly half the bounding box's surface.
-    let area = ext[0] * ext[1] + ext[1] * ext[2] + ext[0] * ext[2];
-    let mut cell = (area / k as f32).sqrt();
-    if cell.is_nan() || cell <= max_ext / 256.0 {
-        cell = max_ext / 256.0;
-    }
-    if !(cell > 0.0 && cell.is_finite()) {
-        cell = 1.0;
-    }
-    let dims = ext.map(|e| ((e / cell).floor() as i64 + 1).clamp(1, 1 << 20));
+    renumber(&assign, k)
+}
 
-    // Initial centroids at evenly spaced ranks of the roots' Morton order.
+/// The grid's placement over the strands' roots: lower corner, cell side and cells per axis.
+struct GridFrame {
+    lo: [f32; 3],
+    /// Extent of the roots along each axis.
+    ext: [f32; 3],
+    cell: f32,
+    dims: [i64; 3],
+}
+
+impl GridFrame {
+    /// Cells about one wisp apart over the roots' bounding box: the roots cover roughly half
+    /// its surface, so a cell of `sqrt(area / k)` holds about one wisp's roots; at least 1/256
+    /// of the box's longest side, and at most 2²⁰ cells per axis.
+    fn new(features: &[Feature], k: usize) -> Self {
+        let mut lo = [f32::INFINITY; 3];
+        let mut hi = [f32::NEG_INFINITY; 3];
+        for f in features {
+            for a in 0..3 {
+                lo[a] = lo[a].min(f[a]);
+                hi[a] = hi[a].max(f[a]);
+            }
+        }
+        let ext = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+        let max_ext = ext.iter().copied().fold(0.0, f32::max);
+        let area = ext[0] * ext[1] + ext[1] * ext[2] + ext[0] * ext[2];
+        let mut cell = (area / k as f32).sqrt();
+        if cell.is_nan() || cell <= max_ext / 256.0 {
+            cell = max_ext / 256.0;
+        }
+        if !(cell > 0.0 && cell.is_finite()) {
+            cell = 1.0;
+        }
+        let dims = ext.map(|e| ((e / cell).floor() as i64 + 1).clamp(1, 1 << 20));
+        Self {
+            lo,
+            ext,
+            cell,
+            dims,
+        }
+    }
+}
+
+/// `k` initial centroids: the strands at evenly spaced ranks of their roots' Morton order
+/// (10 bits per axis over the roots' box).
+fn initial_centroids(features: &[Feature], frame: &GridFrame, k: usize) -> Vec<Feature> {
+    let (lo, ext, n) = (frame.lo, frame.ext, features.len());
     let q = |v: f32, a: usize| {
         if ext[a] > 0.0 {
             ((v - lo[a]) / ext[a] * 1023.0) as u32
@@ -199,45 +247,44 @@ pub fn cluster(features: &[Feature], k: usize) -> Vec<u32> {
         .map(|(i, f)| (morton(q(f[0], 0), q(f[1], 1), q(f[2], 2)), i as u32))
         .collect();
     order.sort_unstable();
-    let mut centroids: Vec<Feature> = (0..k)
+    (0..k)
         .map(|c| features[order[(2 * c + 1) * n / (2 * k)].1 as usize])
-        .collect();
-    let mut live = vec![true; k];
+        .collect()
+}
+
+/// Lloyd's iterations from `centroids` (at most [`MAX_ITERATIONS`], until no strand changes
+/// wisp): each strand to its nearest live centroid, each centroid to its strands' mean.
+/// Returns each strand's centroid.
+fn lloyd(
+    features: &[Feature],
+    frame: &GridFrame,
+    centroids: &mut [Feature],
+    live: &[bool],
+) -> Vec<u32> {
+    let n = features.len();
     let mut assign = vec![u32::MAX; n];
     let mut next = vec![0u32; n];
     for _ in 0..MAX_ITERATIONS {
-        let grid = Grid::new(lo, cell, dims, &centroids, &live);
+        let grid = Grid::new(frame, centroids, live);
         features
             .par_iter()
-            .map(|f| grid.nearest(f, &centroids))
+            .map(|f| grid.nearest(f, centroids))
             .collect_into_vec(&mut next);
         let changed = next != assign;
         std::mem::swap(&mut assign, &mut next);
-        update_centroids(features, &assign, &mut centroids, &live);
+        update_centroids(features, &assign, centroids, live);
         if !changed {
             break;
         }
     }
-    // Wisps too small for 3 guides give their strands to the nearest wisp large enough.
-    let mut size = vec![0usize; k];
-    for &a in &assign {
-        size[a as usize] += 1;
-    }
-    for c in 0..k {
-        live[c] = size[c] >= MIN_WISP_STRANDS;
-    }
-    if live.iter().any(|l| *l) {
-        let grid = Grid::new(lo, cell, dims, &centroids, &live);
-        for (i, a) in assign.iter_mut().enumerate() {
-            if !live[*a as usize] {
-                *a = grid.nearest(&features[i], &centroids);
-            }
-        }
-    }
-    // Renumber without gaps, in centroid order.
+    assign
+}
+
+/// The wisps of `assign` (centroids 0..k) numbered without gaps, in centroid order.
+fn renumber(assign: &[u32], k: usize) -> Vec<u32> {
     let mut id = vec![u32::MAX; k];
     let mut used = vec![false; k];
-    for &a in &assign {
+    for &a in assign {
         used[a as usize] = true;
     }
     let mut next_id = 0u32;
@@ -250,6 +297,7 @@ pub fn cluster(features: &[Feature], k: usize) -> Vec<u32> {
     assign.iter().map(|&a| id[a as usize]).collect()
 }
 
+/// Moves each live centroid with strands to their mean (summed in f64).
 fn update_centroids(
     features: &[Feature],
     assign: &[u32],

@@ -4,7 +4,7 @@
 //! picture will suffer and which field fixes it. Each advisory cites the measurement it rests
 //! on, so its threshold is not a matter of taste.
 
-use super::Hairstyle;
+use super::spec::Hairstyle;
 
 /// Largest turn of a curl's helix per render-strand segment, degrees, that the light between
 /// the points is right for. Measured against a path tracer (ACCURACY.md §2, "Curls need their

@@ -14,7 +14,8 @@
 //! Render strands: barycentric weights drawn uniformly inside the triangle of the wisp's 3 guide
 //! roots (Bertails 2005 §4.1: strands interpolated from the guides of their wisp).
 
-use super::{GuideSet, Hairstyle, StrandLayout};
+use super::model::{GuideSet, StrandLayout};
+use super::spec::Hairstyle;
 pub use crate::rng::SplitMix64;
 use glam::Vec3;
 
@@ -78,19 +79,31 @@ fn root_directions(style: &Hairstyle) -> Vec<Vec3> {
 
 /// Builds guides in their rest pose (head frame) and the render-strand layout.
 pub fn generate(style: &Hairstyle) -> (GuideSet, StrandLayout) {
+    let mut rng = SplitMix64::new(style.seed);
+    let dirs = root_directions(style);
+    let (guides, wisp_guides) = rest_guides(style, &dirs, &mut rng);
+    let layout = strand_layout(style, wisp_guides, &mut rng);
+    (guides, layout)
+}
+
+/// The 3 guides of each wisp, centred on the scalp at the directions `dirs`: roots spread on
+/// the wisp's disc (radius `wisps.radius_m`, a random turn), a random length within the
+/// jitter, a random layer and wave phase per wisp, each guide draped by [`push_guide`].
+/// Returns the guides and each wisp's guide indices.
+fn rest_guides(
+    style: &Hairstyle,
+    dirs: &[Vec3],
+    rng: &mut SplitMix64,
+) -> (GuideSet, Vec<[u32; 3]>) {
     let radii = Vec3::from(style.head.radii_m);
     let links = style.guides.links as usize;
     let ppg = links + 1;
-    let mut rng = SplitMix64::new(style.seed);
-    let dirs = root_directions(style);
     let wisps = dirs.len();
-
     let mut rest = Vec::with_capacity(wisps * 3 * ppg);
     let mut link_length_m = Vec::with_capacity(wisps * 3);
     let mut root_normal = Vec::with_capacity(wisps * 3);
     let mut wisp_guides = Vec::with_capacity(wisps);
-
-    for (w, &d) in dirs.iter().enumerate() {
+    for &d in dirs {
         let (centre, normal) = ellipsoid_point(radii, d);
         // Tangent frame at the wisp centre.
         let side = Vec3::Y.cross(normal).try_normalize().unwrap_or(Vec3::X);
@@ -106,14 +119,38 @@ pub fn generate(style: &Hairstyle) -> (GuideSet, StrandLayout) {
             let offset = style.wisps.radius_m * (a.cos() * side + a.sin() * fwd);
             let (root, n) = ellipsoid_point(radii, (centre + offset).normalize());
             let l = length / links as f32;
-            push_guide(style, radii, root, n, side, l, layer, wave_phase, &mut rest);
+            let start = GuideStart {
+                root,
+                normal: n,
+                side_dir: side,
+                link_m: l,
+                layer_m: layer,
+                wave_phase,
+            };
+            push_guide(style, radii, &start, &mut rest);
             link_length_m.push(l);
             root_normal.push(n);
         }
         wisp_guides.push([g0, g0 + 1, g0 + 2]);
-        let _ = w;
     }
+    let guides = GuideSet {
+        points_per_guide: ppg,
+        rest,
+        link_length_m,
+        root_normal,
+    };
+    (guides, wisp_guides)
+}
 
+/// The render strands of every wisp: `strands_per_wisp` each, with barycentric weights drawn
+/// uniformly in the guides' triangle, a random curl phase and a length fraction in
+/// `[1 − length_variation, 1]`.
+fn strand_layout(
+    style: &Hairstyle,
+    wisp_guides: Vec<[u32; 3]>,
+    rng: &mut SplitMix64,
+) -> StrandLayout {
+    let wisps = wisp_guides.len();
     let spw = style.wisps.strands_per_wisp as usize;
     let mut strand_wisp = Vec::with_capacity(wisps * spw);
     let mut strand_weights = Vec::with_capacity(wisps * spw);
@@ -133,40 +170,41 @@ pub fn generate(style: &Hairstyle) -> (GuideSet, StrandLayout) {
             strand_length.push(1.0 - style.strands.length_variation * lengths.unit());
         }
     }
-
-    (
-        GuideSet {
-            points_per_guide: ppg,
-            rest,
-            link_length_m,
-            root_normal,
-        },
-        StrandLayout {
-            wisp_guides,
-            strand_wisp,
-            strand_weights,
-            strand_phase,
-            strand_length,
-            tip_taper: style.strands.tip_taper,
-            points_per_strand: style.strands.points as usize,
-            rest_offset: Vec::new(),
-        },
-    )
+    StrandLayout {
+        wisp_guides,
+        strand_wisp,
+        strand_weights,
+        strand_phase,
+        strand_length,
+        tip_taper: style.strands.tip_taper,
+        points_per_strand: style.strands.points as usize,
+        rest_offset: Vec::new(),
+    }
 }
 
-/// Appends the particles of one guide, root first, each link of length `l` metres.
-#[allow(clippy::too_many_arguments)]
-fn push_guide(
-    style: &Hairstyle,
-    radii: Vec3,
+/// Where a guide starts and how it lies: its root on the scalp and the unit scalp normal
+/// there, the wisp's side direction (the wave's plane), its link length, the layer above the
+/// scalp its particles keep (metres) and its wave's phase (radians).
+struct GuideStart {
     root: Vec3,
     normal: Vec3,
     side_dir: Vec3,
-    l: f32,
-    layer: f32,
+    link_m: f32,
+    layer_m: f32,
     wave_phase: f32,
-    out: &mut Vec<Vec3>,
-) {
+}
+
+/// Appends the particles of one guide, root first, each link of length `start.link_m`
+/// metres.
+fn push_guide(style: &Hairstyle, radii: Vec3, start: &GuideStart, out: &mut Vec<Vec3>) {
+    let GuideStart {
+        root,
+        normal,
+        side_dir,
+        link_m: l,
+        layer_m: layer,
+        wave_phase,
+    } = *start;
     let links = style.guides.links as usize;
     let inflated = radii + Vec3::splat(layer);
     let mut p = root;

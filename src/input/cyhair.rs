@@ -41,125 +41,39 @@ pub fn info_of(bytes: &[u8]) -> String {
 /// Parses a `.hair` file's bytes; `file` names it in errors.
 pub fn parse_cyhair(bytes: &[u8], file: &str) -> Result<StrandFile, StrandFileError> {
     let r = Bytes { bytes, file };
-    if bytes.len() < HEADER_BYTES {
-        return Err(r.malformed(
-            bytes.len() as u64,
-            format!(
-                "the file ends after {} bytes, inside the {HEADER_BYTES}-byte cyHair header",
-                bytes.len()
-            ),
-        ));
-    }
-    if &bytes[..4] != b"HAIR" {
-        return Err(r.malformed(0, "a cyHair file starts with the signature \"HAIR\""));
-    }
-    let hairs = r.u32_at(4, "hair_count")?;
-    let pts = r.u32_at(8, "point_count")?;
-    let arrays = r.u32_at(12, "arrays")?;
-    let d_segments = r.u32_at(16, "d_segments")?;
-    let d_thickness = r.f32_at(20, "d_thickness")?;
-    let d_color = Vec3::new(
-        r.f32_at(28, "d_color")?,
-        r.f32_at(32, "d_color")?,
-        r.f32_at(36, "d_color")?,
-    );
-    if arrays & HAS_POINTS == 0 {
-        return Err(r.malformed(
-            12,
-            format!("arrays = {arrays:#x} has no points array (bit 2): the file holds no strands"),
-        ));
-    }
-    if hairs == 0 {
-        return Err(r.malformed(4, "hair_count must be at least 1 (got 0)"));
-    }
-    if pts > MAX_POINTS {
-        return Err(r.malformed(
-            8,
-            format!("point_count {pts} is over the limit of {MAX_POINTS} points"),
-        ));
-    }
-    let (h, n) = (hairs as u64, pts as u64);
-    let mut need = HEADER_BYTES as u64 + 12 * n;
-    for (bit, size) in [
-        (HAS_SEGMENTS, 2 * h),
-        (HAS_THICKNESS, 4 * n),
-        (HAS_TRANSPARENCY, 4 * n),
-        (HAS_COLORS, 12 * n),
-    ] {
-        if arrays & bit != 0 {
-            need += size;
-        }
-    }
-    if (bytes.len() as u64) < need {
-        return Err(r.malformed(
-            bytes.len() as u64,
-            format!(
-                "the file has {} bytes, but the header announces {need} ({hairs} strands, {pts} points, arrays {arrays:#x})",
-                bytes.len()
-            ),
-        ));
-    }
+    let h = Header::read(&r)?;
+    h.check_file_size(&r)?;
     // From here every array lies inside the file.
+    let pts = h.points as usize;
     let mut at = HEADER_BYTES;
-    let strand_points: Vec<u32> = if arrays & HAS_SEGMENTS != 0 {
-        let s = bytes[at..at + 2 * hairs as usize]
-            .chunks_exact(2)
-            .map(|b| u32::from(u16::from_le_bytes([b[0], b[1]])) + 1)
-            .collect();
-        at += 2 * hairs as usize;
-        s
-    } else {
-        if d_segments > u32::from(u16::MAX) {
-            return Err(r.malformed(
-                16,
-                format!("d_segments {d_segments} is over 65535 (segments are u16)"),
-            ));
-        }
-        vec![d_segments + 1; hairs as usize]
-    };
-    let total: u64 = strand_points.iter().map(|&p| p as u64).sum();
-    if total != n {
-        return Err(r.malformed(
-            if arrays & HAS_SEGMENTS != 0 { HEADER_BYTES as u64 } else { 16 },
-            format!("the strands' segments + 1 add up to {total} points, the header says point_count {pts}"),
-        ));
-    }
-    let points = r.points(at, pts as usize, 12, "point")?;
-    at += 12 * pts as usize;
-    let finite = |vals: &[f32], start: usize, what: &str| -> Result<(), StrandFileError> {
-        match vals.iter().position(|v| !v.is_finite() || *v < 0.0) {
-            Some(i) => Err(r.malformed(
-                (start + 4 * i) as u64,
-                format!(
-                    "{what} of point {i} must be a finite number >= 0 (got {})",
-                    vals[i]
-                ),
-            )),
-            None => Ok(()),
-        }
-    };
-    let thickness = if arrays & HAS_THICKNESS != 0 {
-        let t = r.floats(at, pts as usize);
-        finite(&t, at, "thickness")?;
-        at += 4 * pts as usize;
+    let strand_points = h.strand_points(&r, &mut at)?;
+    let points = r.points(at, pts, 12, "point")?;
+    at += 12 * pts;
+    let thickness = if h.arrays & HAS_THICKNESS != 0 {
+        let t = r.floats(at, pts);
+        check_non_negative(&r, &t, at, "thickness")?;
+        at += 4 * pts;
         t
     } else {
-        if !(d_thickness.is_finite() && d_thickness >= 0.0) {
+        if !(h.d_thickness.is_finite() && h.d_thickness >= 0.0) {
             return Err(r.malformed(
                 20,
-                format!("d_thickness must be a finite number >= 0 (got {d_thickness})"),
+                format!(
+                    "d_thickness must be a finite number >= 0 (got {})",
+                    h.d_thickness
+                ),
             ));
         }
-        vec![d_thickness; pts as usize]
+        vec![h.d_thickness; pts]
     };
-    if arrays & HAS_TRANSPARENCY != 0 {
-        finite(&r.floats(at, pts as usize), at, "transparency")?;
-        at += 4 * pts as usize;
+    if h.arrays & HAS_TRANSPARENCY != 0 {
+        check_non_negative(&r, &r.floats(at, pts), at, "transparency")?;
+        at += 4 * pts;
     }
-    let colors = if arrays & HAS_COLORS != 0 {
-        Some(r.points(at, pts as usize, 12, "colour")?)
-    } else if d_color.is_finite() {
-        Some(vec![d_color; pts as usize])
+    let colors = if h.arrays & HAS_COLORS != 0 {
+        Some(r.points(at, pts, 12, "colour")?)
+    } else if h.d_color.is_finite() {
+        Some(vec![h.d_color; pts])
     } else {
         None
     };
@@ -169,4 +83,155 @@ pub fn parse_cyhair(bytes: &[u8], file: &str) -> Result<StrandFile, StrandFileEr
         thickness: Some(thickness),
         colors,
     })
+}
+
+/// The header fields the reader uses.
+struct Header {
+    hairs: u32,
+    points: u32,
+    arrays: u32,
+    d_segments: u32,
+    d_thickness: f32,
+    d_color: Vec3,
+}
+
+impl Header {
+    /// Reads the header and checks its counts: the signature, a points array, at least one
+    /// strand and at most [`MAX_POINTS`] points.
+    fn read(r: &Bytes) -> Result<Self, StrandFileError> {
+        let bytes = r.bytes;
+        if bytes.len() < HEADER_BYTES {
+            return Err(r.malformed(
+                bytes.len() as u64,
+                format!(
+                    "the file ends after {} bytes, inside the {HEADER_BYTES}-byte cyHair header",
+                    bytes.len()
+                ),
+            ));
+        }
+        if &bytes[..4] != b"HAIR" {
+            return Err(r.malformed(0, "a cyHair file starts with the signature \"HAIR\""));
+        }
+        let h = Header {
+            hairs: r.u32_at(4, "hair_count")?,
+            points: r.u32_at(8, "point_count")?,
+            arrays: r.u32_at(12, "arrays")?,
+            d_segments: r.u32_at(16, "d_segments")?,
+            d_thickness: r.f32_at(20, "d_thickness")?,
+            d_color: Vec3::new(
+                r.f32_at(28, "d_color")?,
+                r.f32_at(32, "d_color")?,
+                r.f32_at(36, "d_color")?,
+            ),
+        };
+        if h.arrays & HAS_POINTS == 0 {
+            return Err(r.malformed(
+                12,
+                format!(
+                    "arrays = {:#x} has no points array (bit 2): the file holds no strands",
+                    h.arrays
+                ),
+            ));
+        }
+        if h.hairs == 0 {
+            return Err(r.malformed(4, "hair_count must be at least 1 (got 0)"));
+        }
+        if h.points > MAX_POINTS {
+            return Err(r.malformed(
+                8,
+                format!(
+                    "point_count {} is over the limit of {MAX_POINTS} points",
+                    h.points
+                ),
+            ));
+        }
+        Ok(h)
+    }
+
+    /// Refuses a file shorter than the header and the arrays it announces (sizes added in
+    /// u64, so no count can overflow).
+    fn check_file_size(&self, r: &Bytes) -> Result<(), StrandFileError> {
+        let (h, n) = (self.hairs as u64, self.points as u64);
+        let mut need = HEADER_BYTES as u64 + 12 * n;
+        for (bit, size) in [
+            (HAS_SEGMENTS, 2 * h),
+            (HAS_THICKNESS, 4 * n),
+            (HAS_TRANSPARENCY, 4 * n),
+            (HAS_COLORS, 12 * n),
+        ] {
+            if self.arrays & bit != 0 {
+                need += size;
+            }
+        }
+        if (r.bytes.len() as u64) < need {
+            return Err(r.malformed(
+                r.bytes.len() as u64,
+                format!(
+                    "the file has {} bytes, but the header announces {need} ({} strands, {} points, arrays {:#x})",
+                    r.bytes.len(),
+                    self.hairs,
+                    self.points,
+                    self.arrays
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Points per strand: `segments + 1` from the segments array at `*at` (moved past it), or
+    /// `d_segments + 1` for every strand; they must add up to `point_count`.
+    fn strand_points(&self, r: &Bytes, at: &mut usize) -> Result<Vec<u32>, StrandFileError> {
+        let hairs = self.hairs as usize;
+        let has_segments = self.arrays & HAS_SEGMENTS != 0;
+        let strand_points: Vec<u32> = if has_segments {
+            let s = r.bytes[*at..*at + 2 * hairs]
+                .chunks_exact(2)
+                .map(|b| u32::from(u16::from_le_bytes([b[0], b[1]])) + 1)
+                .collect();
+            *at += 2 * hairs;
+            s
+        } else {
+            if self.d_segments > u32::from(u16::MAX) {
+                return Err(r.malformed(
+                    16,
+                    format!(
+                        "d_segments {} is over 65535 (segments are u16)",
+                        self.d_segments
+                    ),
+                ));
+            }
+            vec![self.d_segments + 1; hairs]
+        };
+        let total: u64 = strand_points.iter().map(|&p| p as u64).sum();
+        if total != self.points as u64 {
+            return Err(r.malformed(
+                if has_segments { HEADER_BYTES as u64 } else { 16 },
+                format!(
+                    "the strands' segments + 1 add up to {total} points, the header says point_count {}",
+                    self.points
+                ),
+            ));
+        }
+        Ok(strand_points)
+    }
+}
+
+/// Refuses a value of the per-point array `vals` (at byte `start`, named `what`) that is not
+/// a finite number >= 0.
+fn check_non_negative(
+    r: &Bytes,
+    vals: &[f32],
+    start: usize,
+    what: &str,
+) -> Result<(), StrandFileError> {
+    match vals.iter().position(|v| !v.is_finite() || *v < 0.0) {
+        Some(i) => Err(r.malformed(
+            (start + 4 * i) as u64,
+            format!(
+                "{what} of point {i} must be a finite number >= 0 (got {})",
+                vals[i]
+            ),
+        )),
+        None => Ok(()),
+    }
 }

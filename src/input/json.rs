@@ -1,8 +1,8 @@
-//! Strict JSON for wisp's JSON formats (hairstyles today; groom descriptions later).
+//! Strict JSON for wisp's JSON formats (hairstyles and scene files).
 //!
 //! serde_json and derived structs accept more than a format says:
 //! - an array where an object is expected fills the fields in declaration order, so
-//!   `"guides": [1, 2]` silently became 1 link of 2 m;
+//!   `"guides": [1, 2]` silently becomes 1 link of 2 m;
 //! - a number beyond the range of `f32` becomes infinity, which validation then reports as
 //!   "got inf" although the file says 1e308;
 //! - a byte-order mark gives "expected value at line 1 column 1".

@@ -1,5 +1,5 @@
-//! Reading input files defensively, for every loader (hairstyles, motions, and the formats to
-//! come: grooms, caches).
+//! Reading input files defensively, for every loader (hairstyles, scene files, motions, strand
+//! files, simulation caches).
 //!
 //! A file is examined before it is opened: directories, devices (`/dev/zero`), named pipes
 //! and sockets are refused with a message saying what they are (opening a FIFO would block,

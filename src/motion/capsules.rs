@@ -71,6 +71,27 @@ pub(crate) fn fit(
     depth: f32,
     min_radius: f32,
 ) -> Vec<FittedCapsule> {
+    let groups = group_by_bone(points, bone_of_point, skip, head, depth);
+    let mut out = Vec::new();
+    for (bone, pts) in groups.iter().enumerate() {
+        if pts.len() < MIN_VERTICES {
+            continue;
+        }
+        let dir = bone_dir.get(bone).copied().unwrap_or(Vec3::ZERO);
+        bone_capsules(bone, pts, dir, min_radius, &mut out);
+    }
+    out
+}
+
+/// The points of each of the `skip.len()` bones, less those of skipped bones and those deeper
+/// than `depth` inside the head ellipsoid `head` (see [`fit`]).
+fn group_by_bone(
+    points: &[Vec3],
+    bone_of_point: &[usize],
+    skip: &[bool],
+    head: Affine3A,
+    depth: f32,
+) -> Vec<Vec<Vec3>> {
     let bones = skip.len();
     let to_head = head.inverse();
     let shortest = head
@@ -91,67 +112,76 @@ pub(crate) fn fit(
             groups[b].push(*p);
         }
     }
-    let mut out = Vec::new();
-    for (bone, pts) in groups.iter().enumerate() {
-        if pts.len() < MIN_VERTICES {
+    groups
+}
+
+/// Appends to `out` the capsules of one bone's points `pts`: along the principal axis nearest
+/// the bone's direction `d`, side by side in slabs across the wider other axis (module doc).
+fn bone_capsules(
+    bone: usize,
+    pts: &[Vec3],
+    d: Vec3,
+    min_radius: f32,
+    out: &mut Vec<FittedCapsule>,
+) {
+    let Some(axes) = principal_axes(pts) else {
+        return;
+    };
+    // Direction: the principal axis nearest the bone's own.
+    let along = if d.length_squared() > 0.0 {
+        (0..3)
+            .max_by(|&i, &j| axes[i].0.dot(d).abs().total_cmp(&axes[j].0.dot(d).abs()))
+            .unwrap_or(0)
+    } else {
+        0
+    };
+    let (axis, _) = axes[along];
+    let mut others = [0usize, 1, 2].into_iter().filter(|&i| i != along);
+    let (i, j) = (others.next().unwrap_or(1), others.next().unwrap_or(2));
+    let ((wide, e_wide), (_, e_thin)) = if axes[i].1 >= axes[j].1 {
+        (axes[i], axes[j])
+    } else {
+        (axes[j], axes[i])
+    };
+    let aspect = if e_thin > 0.0 { e_wide / e_thin } else { 0.0 };
+    let n = if aspect >= ROUND_ASPECT {
+        ((2.0 * aspect).round() as usize).clamp(1, MAX_PER_BONE)
+    } else {
+        1
+    };
+    for slab in &slabs(pts, wide, n) {
+        if slab.len() < MIN_VERTICES.min(pts.len()) {
             continue;
         }
-        let Some(axes) = principal_axes(pts) else {
-            continue;
-        };
-        // Direction: the principal axis nearest the bone's own.
-        let d = bone_dir.get(bone).copied().unwrap_or(Vec3::ZERO);
-        let along = if d.length_squared() > 0.0 {
-            (0..3)
-                .max_by(|&i, &j| axes[i].0.dot(d).abs().total_cmp(&axes[j].0.dot(d).abs()))
-                .unwrap_or(0)
+        if let Some(mut c) = capsule_along(slab, axis)
+            && c.radius >= min_radius
+            && c.a.is_finite()
+            && c.b.is_finite()
+        {
+            c.bone = bone;
+            out.push(c);
+        }
+    }
+}
+
+/// `pts` cut into `n` slabs of equal width along the unit direction `wide`.
+fn slabs(pts: &[Vec3], wide: Vec3, n: usize) -> Vec<Vec<Vec3>> {
+    let (lo, hi) = pts
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.dot(wide)), hi.max(p.dot(wide)))
+        });
+    let width = (hi - lo) / n as f32;
+    let mut slabs: Vec<Vec<Vec3>> = vec![Vec::new(); n];
+    for p in pts {
+        let k = if width > 0.0 {
+            (((p.dot(wide) - lo) / width) as usize).min(n - 1)
         } else {
             0
         };
-        let (axis, _) = axes[along];
-        let mut others = [0usize, 1, 2].into_iter().filter(|&i| i != along);
-        let (i, j) = (others.next().unwrap_or(1), others.next().unwrap_or(2));
-        let ((wide, e_wide), (_, e_thin)) = if axes[i].1 >= axes[j].1 {
-            (axes[i], axes[j])
-        } else {
-            (axes[j], axes[i])
-        };
-        let aspect = if e_thin > 0.0 { e_wide / e_thin } else { 0.0 };
-        let n = if aspect >= ROUND_ASPECT {
-            ((2.0 * aspect).round() as usize).clamp(1, MAX_PER_BONE)
-        } else {
-            1
-        };
-        let (lo, hi) = pts
-            .iter()
-            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), p| {
-                (lo.min(p.dot(wide)), hi.max(p.dot(wide)))
-            });
-        let width = (hi - lo) / n as f32;
-        let mut slabs: Vec<Vec<Vec3>> = vec![Vec::new(); n];
-        for p in pts {
-            let k = if width > 0.0 {
-                (((p.dot(wide) - lo) / width) as usize).min(n - 1)
-            } else {
-                0
-            };
-            slabs[k].push(*p);
-        }
-        for slab in &slabs {
-            if slab.len() < MIN_VERTICES.min(pts.len()) {
-                continue;
-            }
-            if let Some(mut c) = capsule_along(slab, axis)
-                && c.radius >= min_radius
-                && c.a.is_finite()
-                && c.b.is_finite()
-            {
-                c.bone = bone;
-                out.push(c);
-            }
-        }
+        slabs[k].push(*p);
     }
-    out
+    slabs
 }
 
 /// The principal axes of a point set (unit directions) with the points' extents along them,

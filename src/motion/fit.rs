@@ -1,5 +1,4 @@
-//! Automatic fit of a 0.09 m hairstyle head onto the model's head joint, and the default body
-//! colliders.
+//! Automatic fit of a 0.09 m hairstyle head onto the model's head joint.
 //!
 //! # The head-size estimate (in order of preference)
 //! 1. **Mesh bounds** ([`FitMethod::MeshBounds`]): at the rest pose, gather the vertices that
@@ -18,14 +17,6 @@
 //!    above the joint.
 //! 4. Otherwise identity ([`FitMethod::Default`]).
 //!
-//! # Default body colliders
-//! When [`super::MotionOptions::body_spheres`] is `None`: spheres centred on the nearest
-//! ancestors of the head named like "neck" ([`NECK_RADIUS_M`]) and "chest" / "torso" / "spine"
-//! ([`CHEST_RADIUS_M`]), and on the topmost joints named like "shoulder" / "clavicle", at most
-//! two ([`SHOULDER_RADIUS_M`]). Each radius is shrunk so that, at rest, the sphere stays outside
-//! the fitted 0.09 m head sphere; below [`MIN_SPHERE_RADIUS_M`] it is dropped (on cartoon
-//! proportions, such as RobotExpressive's, the chest sphere is dropped this way).
-//!
 //! Meshes that cannot be read (sparse accessors, missing attributes) are skipped: the fit is a
 //! best effort and must not make an otherwise playable clip fail.
 
@@ -33,8 +24,12 @@ use glam::{Affine3A, Mat4, Vec3};
 use gltf::Semantic;
 
 use super::gltf_io::{Loaded, read_accessor};
+use super::options::Fit;
 use super::skeleton::Skeleton;
-use super::{Fit, HAIRSTYLE_HEAD_RADIUS_M};
+
+/// Head radius in metres that hairstyles are made for (the fit maps a head of this size onto
+/// the model's head).
+pub const HAIRSTYLE_HEAD_RADIUS_M: f32 = 0.09;
 
 /// Where a [`Fit`] came from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -53,17 +48,6 @@ pub enum FitMethod {
     /// Nothing to measure: identity.
     Default,
 }
-
-/// Default radii of the body colliders, in pose metres (adult proportions: neck ~0.10–0.12 m
-/// across, upper chest ~0.25 m deep, deltoid ~0.12 m).
-pub const NECK_RADIUS_M: f32 = 0.05;
-/// See [`NECK_RADIUS_M`].
-pub const CHEST_RADIUS_M: f32 = 0.12;
-/// See [`NECK_RADIUS_M`].
-pub const SHOULDER_RADIUS_M: f32 = 0.06;
-/// A default collider is shrunk so that, at rest, it stays outside the fitted 0.09 m head
-/// sphere; below this radius (metres) it is dropped.
-pub const MIN_SPHERE_RADIUS_M: f32 = 0.01;
 
 /// Estimates the fit (see the module doc).
 pub(crate) fn estimate(loaded: &Loaded, skel: &Skeleton, head: usize) -> (Fit, FitMethod) {
@@ -139,76 +123,17 @@ pub(crate) fn estimate_without_mesh(skel: &Skeleton, head: usize) -> (Fit, FitMe
 /// Rest-pose world positions of the head's vertices (see the module doc); `in_head` marks
 /// the head joint's subtree.
 fn head_vertices(loaded: &Loaded, skel: &Skeleton, in_head: &[bool]) -> Vec<Vec3> {
-    /// What a skin contributes, worked out once per skin (a file may point a million nodes at
-    /// one skin of a million joints).
-    struct SkinUse {
-        /// Per joint of the skin: in the head's subtree.
-        in_head: Vec<bool>,
-        /// Per joint: rest world matrix × inverse bind matrix.
-        mats: Vec<Affine3A>,
-    }
+    // Each skin's use, worked out on first use; `Some(None)` for a skin without head joints.
     let mut skins: Vec<Option<Option<SkinUse>>> =
         (0..loaded.doc.skins().len()).map(|_| None).collect();
     let mut out = Vec::new();
     for node in loaded.doc.nodes() {
         let Some(mesh) = node.mesh() else { continue };
         if let Some(skin) = node.skin() {
-            let entry = skins[skin.index()].get_or_insert_with(|| {
-                let joints: Vec<usize> = skin.joints().map(|j| j.index()).collect();
-                let in_head: Vec<bool> = joints.iter().map(|&j| in_head[j]).collect();
-                if !in_head.contains(&true) {
-                    return None;
-                }
-                let ibm: Vec<Affine3A> = skin
-                    .inverse_bind_matrices()
-                    .and_then(|a| read_accessor(&a, loaded).ok())
-                    .filter(|(v, c)| *c == 16 && v.len() == 16 * joints.len())
-                    .map(|(v, _)| {
-                        v.chunks_exact(16)
-                            .map(|m| Affine3A::from_mat4(Mat4::from_cols_slice(m)))
-                            .collect()
-                    })
-                    .unwrap_or_else(|| vec![Affine3A::IDENTITY; joints.len()]);
-                let mats = joints
-                    .iter()
-                    .zip(&ibm)
-                    .map(|(&j, b)| skel.rest_world(j) * *b)
-                    .collect();
-                Some(SkinUse { in_head, mats })
-            });
-            let Some(SkinUse { in_head, mats }) = entry.as_ref() else {
-                continue;
-            };
-            for prim in mesh.primitives() {
-                let read = |s: Semantic| prim.get(&s).and_then(|a| read_accessor(&a, loaded).ok());
-                let (Some((pos, 3)), Some((jnt, 4)), Some((wgt, 4))) = (
-                    read(Semantic::Positions),
-                    read(Semantic::Joints(0)),
-                    read(Semantic::Weights(0)),
-                ) else {
-                    continue;
-                };
-                for ((p, j), w) in pos
-                    .chunks_exact(3)
-                    .zip(jnt.chunks_exact(4))
-                    .zip(wgt.chunks_exact(4))
-                {
-                    let v = Vec3::new(p[0], p[1], p[2]);
-                    let dominant = (0..4).max_by(|&a, &b| w[a].total_cmp(&w[b])).unwrap_or(0);
-                    if !in_head.get(j[dominant] as usize).copied().unwrap_or(false) {
-                        continue;
-                    }
-                    let (mut acc, mut total) = (Vec3::ZERO, 0.0);
-                    for k in 0..4 {
-                        if let Some(m) = mats.get(j[k] as usize).filter(|_| w[k] > 0.0) {
-                            acc += w[k] * m.transform_point3(v);
-                            total += w[k];
-                        }
-                    }
-                    if total > 0.0 && acc.is_finite() {
-                        out.push(acc / total);
-                    }
-                }
+            let entry = skins[skin.index()]
+                .get_or_insert_with(|| SkinUse::new(&skin, loaded, skel, in_head));
+            if let Some(skin_use) = entry.as_ref() {
+                skinned_head_vertices(&mesh, skin_use, loaded, &mut out);
             }
         } else if in_head[node.index()] {
             let m = skel.rest_world(node.index());
@@ -229,45 +154,77 @@ fn head_vertices(loaded: &Loaded, skel: &Skeleton, in_head: &[bool]) -> Vec<Vec3
     out
 }
 
-/// Default colliders `(joint, offset in pose metres, radius in pose metres)`: the nearest
-/// ancestors of the head named like "neck" and like "chest" / "torso" / "spine", and the
-/// topmost joints named like "shoulder" / "clavicle" (at most two), centred on the joints. Each
-/// radius is shrunk to stay outside the fitted head sphere at rest (see
-/// [`MIN_SPHERE_RADIUS_M`]).
-pub(crate) fn default_spheres(skel: &Skeleton, head: usize, fit: &Fit) -> Vec<(usize, Vec3, f32)> {
-    let lower: Vec<String> = skel.names.iter().map(|n| n.to_lowercase()).collect();
-    let in_head = skel.subtree(head);
-    let ancestors: Vec<usize> = skel.chain(head).into_iter().rev().skip(1).collect();
-    let is_shoulder = |i: usize| lower[i].contains("shoulder") || lower[i].contains("clavicle");
-    let neck = ancestors
-        .iter()
-        .copied()
-        .find(|&i| lower[i].contains("neck"));
-    let chest = ancestors.iter().copied().find(|&i| {
-        Some(i) != neck
-            && ["chest", "torso", "spine"]
-                .iter()
-                .any(|k| lower[i].contains(k))
-    });
-    let shoulders = (0..skel.names.len())
-        .filter(|&i| skel.is_joint[i] && is_shoulder(i) && !in_head[i])
-        .filter(|&i| !skel.parents[i].is_some_and(is_shoulder))
-        .take(2);
+/// What a skin contributes, worked out once per skin (a file may point a million nodes at
+/// one skin of a million joints).
+struct SkinUse {
+    /// Per joint of the skin: in the head's subtree.
+    in_head: Vec<bool>,
+    /// Per joint: rest world matrix × inverse bind matrix.
+    mats: Vec<Affine3A>,
+}
 
-    let head_center = (Vec3::from(skel.rest_world(head).translation) + fit.offset_m) / fit.scale;
-    let mut out = Vec::new();
-    let wanted = neck
-        .map(|j| (j, NECK_RADIUS_M))
-        .into_iter()
-        .chain(chest.map(|j| (j, CHEST_RADIUS_M)))
-        .chain(shoulders.map(|j| (j, SHOULDER_RADIUS_M)));
-    for (joint, radius_m) in wanted {
-        let center = Vec3::from(skel.rest_world(joint).translation) / fit.scale;
-        let room_m = center.distance(head_center) - HAIRSTYLE_HEAD_RADIUS_M;
-        let r = radius_m.min(room_m);
-        if r >= MIN_SPHERE_RADIUS_M {
-            out.push((joint, Vec3::ZERO, r));
+impl SkinUse {
+    /// The skin's joints' rest skinning matrices, `None` when no joint is in the head (its
+    /// meshes have no head vertex). Unreadable inverse bind matrices count as identity.
+    fn new(skin: &gltf::Skin, loaded: &Loaded, skel: &Skeleton, in_head: &[bool]) -> Option<Self> {
+        let joints: Vec<usize> = skin.joints().map(|j| j.index()).collect();
+        let in_head: Vec<bool> = joints.iter().map(|&j| in_head[j]).collect();
+        if !in_head.contains(&true) {
+            return None;
+        }
+        let ibm: Vec<Affine3A> = skin
+            .inverse_bind_matrices()
+            .and_then(|a| read_accessor(&a, loaded).ok())
+            .filter(|(v, c)| *c == 16 && v.len() == 16 * joints.len())
+            .map(|(v, _)| {
+                v.chunks_exact(16)
+                    .map(|m| Affine3A::from_mat4(Mat4::from_cols_slice(m)))
+                    .collect()
+            })
+            .unwrap_or_else(|| vec![Affine3A::IDENTITY; joints.len()]);
+        let mats = joints
+            .iter()
+            .zip(&ibm)
+            .map(|(&j, b)| skel.rest_world(j) * *b)
+            .collect();
+        Some(SkinUse { in_head, mats })
+    }
+}
+
+/// Appends to `out` the rest positions of `mesh`'s skinned vertices whose largest weight is on
+/// a head joint of `skin` (`Σ wᵢ·Mᵢ·v / Σ wᵢ`); primitives without positions, joints and
+/// weights are skipped.
+fn skinned_head_vertices(mesh: &gltf::Mesh, skin: &SkinUse, loaded: &Loaded, out: &mut Vec<Vec3>) {
+    let SkinUse { in_head, mats } = skin;
+    for prim in mesh.primitives() {
+        let read = |s: Semantic| prim.get(&s).and_then(|a| read_accessor(&a, loaded).ok());
+        let (Some((pos, 3)), Some((jnt, 4)), Some((wgt, 4))) = (
+            read(Semantic::Positions),
+            read(Semantic::Joints(0)),
+            read(Semantic::Weights(0)),
+        ) else {
+            continue;
+        };
+        for ((p, j), w) in pos
+            .chunks_exact(3)
+            .zip(jnt.chunks_exact(4))
+            .zip(wgt.chunks_exact(4))
+        {
+            let v = Vec3::new(p[0], p[1], p[2]);
+            let dominant = (0..4).max_by(|&a, &b| w[a].total_cmp(&w[b])).unwrap_or(0);
+            if !in_head.get(j[dominant] as usize).copied().unwrap_or(false) {
+                continue;
+            }
+            let (mut acc, mut total) = (Vec3::ZERO, 0.0);
+            for k in 0..4 {
+                if let Some(m) = mats.get(j[k] as usize).filter(|_| w[k] > 0.0) {
+                    acc += w[k] * m.transform_point3(v);
+                    total += w[k];
+                }
+            }
+            if total > 0.0 && acc.is_finite() {
+                out.push(acc / total);
+            }
         }
     }
-    out
 }

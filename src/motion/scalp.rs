@@ -1,4 +1,4 @@
-//! Whether a groom's roots lie on the character's drawn head (issue 13, item 5).
+//! Whether a groom's roots lie on the character's drawn head.
 //!
 //! A [`super::Fit`] places the hairstyle's head frame on the head joint: scale and offset from
 //! the head mesh's box ([`super::fit`]), or given (`--head-scale`, `--head-offset`). Roots
@@ -23,7 +23,8 @@
 
 use glam::Vec3;
 
-use super::{CharacterPose, Motion};
+use super::playback::Motion;
+use super::skin::CharacterPose;
 
 /// A root is near the head within this fraction of the head's mean radius (module doc).
 pub const ROOT_TOLERANCE: f32 = 0.5;

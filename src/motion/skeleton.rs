@@ -4,8 +4,7 @@
 
 use glam::{Affine3A, Mat4, Quat, Vec3};
 
-use super::MotionError;
-use super::gltf_io::{invalid, short_list};
+use super::error::{MotionError, invalid, short_list};
 
 /// Node hierarchy of the file at rest (node default transforms). Acyclic (checked when built),
 /// and every per-node quantity is computed once in O(nodes): a file may have a million nodes

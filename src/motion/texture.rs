@@ -4,14 +4,14 @@
 //! glTF stores base colour textures sRGB-encoded (§3.9.2); they are decoded to linear values
 //! here, so the renderer multiplies linear albedos. Only PNG is decoded (the `png` crate is
 //! already a dependency for the output); a JPEG or other image leaves the material with its
-//! colour factor, counted in [`Cache::unsupported`], rather than pulling in a JPEG decoder.
+//! colour factor, counted in `Cache::unsupported`, rather than pulling in a JPEG decoder.
 //! Images are bounded: at most [`MAX_TEXTURE_SIDE`] pixels a side and [`MAX_TEXTURE_BYTES`]
 //! decoded bytes per file (the PNG decoder's own allocation limit).
 
 use glam::Vec3;
 
-use super::MotionError;
-use super::gltf_io::{Loaded, invalid, read_uri};
+use super::error::{MotionError, invalid};
+use super::gltf_io::{Loaded, read_uri};
 
 /// Longest texture side in pixels.
 pub const MAX_TEXTURE_SIDE: u32 = 8192;
@@ -88,43 +88,7 @@ impl Cache {
                 format!("textures[{slot}].source: {at} does not exist"),
             ));
         };
-        // Checked here: the crate's `Image::source` unwraps a missing mimeType or uri.
-        let bytes: Vec<u8> = match (&image.buffer_view, &image.uri) {
-            (Some(view), _) => {
-                if image.mime_type.is_none() {
-                    return Err(invalid(
-                        file,
-                        format!("{at}: a bufferView image needs a mimeType"),
-                    ));
-                }
-                let view = loaded
-                    .doc
-                    .views()
-                    .nth(view.value())
-                    .ok_or_else(|| invalid(file, format!("{at}: bufferView out of range")))?;
-                let buf = loaded
-                    .buffers
-                    .get(view.buffer().index())
-                    .ok_or_else(|| invalid(file, format!("{at}: missing buffer")))?;
-                view.offset()
-                    .checked_add(view.length())
-                    .and_then(|end| buf.get(view.offset()..end))
-                    .ok_or_else(|| {
-                        invalid(file, format!("{at}: its bufferView runs past its buffer"))
-                    })?
-                    .to_vec()
-            }
-            (None, Some(uri)) => {
-                read_uri(uri, loaded.base_dir.as_deref(), MAX_TEXTURE_BYTES as u64)
-                    .map_err(|e| invalid(file, format!("{at}: {e}")))?
-            }
-            (None, None) => {
-                return Err(invalid(
-                    file,
-                    format!("{at}: neither a uri nor a bufferView"),
-                ));
-            }
-        };
+        let bytes = image_bytes(image, loaded, file, &at)?;
         let decoded = if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
             Some(
                 self.decode_png(&bytes)
@@ -145,6 +109,8 @@ impl Cache {
         Ok(out)
     }
 
+    /// Decodes a PNG into linear RGB texels, charging its decoded bytes (and the texels') to the
+    /// file's texture budget.
     fn decode_png(&mut self, bytes: &[u8]) -> Result<Texture, String> {
         let mut decoder = png::Decoder::new_with_limits(
             std::io::Cursor::new(bytes),
@@ -195,6 +161,49 @@ impl Cache {
             texels,
         })
     }
+}
+
+/// The encoded bytes of glTF image `image` (named `at` in messages): its buffer view's bytes,
+/// or those of its URI (`data:` or a file next to the `.gltf`). Checked here: the crate's
+/// `Image::source` unwraps a missing mimeType or uri.
+fn image_bytes(
+    image: &gltf::json::Image,
+    loaded: &Loaded,
+    file: &str,
+    at: &str,
+) -> Result<Vec<u8>, MotionError> {
+    Ok(match (&image.buffer_view, &image.uri) {
+        (Some(view), _) => {
+            if image.mime_type.is_none() {
+                return Err(invalid(
+                    file,
+                    format!("{at}: a bufferView image needs a mimeType"),
+                ));
+            }
+            let view = loaded
+                .doc
+                .views()
+                .nth(view.value())
+                .ok_or_else(|| invalid(file, format!("{at}: bufferView out of range")))?;
+            let buf = loaded
+                .buffers
+                .get(view.buffer().index())
+                .ok_or_else(|| invalid(file, format!("{at}: missing buffer")))?;
+            view.offset()
+                .checked_add(view.length())
+                .and_then(|end| buf.get(view.offset()..end))
+                .ok_or_else(|| invalid(file, format!("{at}: its bufferView runs past its buffer")))?
+                .to_vec()
+        }
+        (None, Some(uri)) => read_uri(uri, loaded.base_dir.as_deref(), MAX_TEXTURE_BYTES as u64)
+            .map_err(|e| invalid(file, format!("{at}: {e}")))?,
+        (None, None) => {
+            return Err(invalid(
+                file,
+                format!("{at}: neither a uri nor a bufferView"),
+            ));
+        }
+    })
 }
 
 /// 8-bit sRGB to linear (IEC 61966-2-1).

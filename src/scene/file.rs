@@ -255,7 +255,34 @@ impl SceneFile {
         })
     }
 
+    /// Every rule, in the file's order (image, camera, exposure, lights, ambient, background);
+    /// the error is (field, rule).
     fn check(&self) -> Result<Scene, (String, String)> {
+        self.check_image()?;
+        let camera = self.camera_setup()?;
+        if !(self.exposure_stops.is_finite() && self.exposure_stops.abs() <= 20.0) {
+            return Err((
+                "exposure_stops".into(),
+                format!("must be in [-20, 20] (got {})", self.exposure_stops),
+            ));
+        }
+        let gain = self.exposure_stops.exp2();
+        let lights = self.lights_with_gain(gain)?;
+        let ambient = color("ambient".into(), self.ambient)? * gain;
+        let background = color("background".into(), self.background)? * gain;
+        Ok(Scene {
+            width: self.image.width,
+            height: self.image.height,
+            camera,
+            lights,
+            ambient,
+            background,
+            draw_solids: self.draw_solids,
+        })
+    }
+
+    /// Each image side in [`MIN_IMAGE_SIDE`]..=[`MAX_IMAGE_SIDE`] pixels.
+    fn check_image(&self) -> Result<(), (String, String)> {
         for (field, side) in [
             ("image.width", self.image.width),
             ("image.height", self.image.height),
@@ -267,7 +294,13 @@ impl SceneFile {
                 ));
             }
         }
-        let camera = match self.camera {
+        Ok(())
+    }
+
+    /// The camera: head-following, or a fixed one checked by [`CameraSpec::new`] (its error
+    /// is reported at the field it names).
+    fn camera_setup(&self) -> Result<CameraSetup, (String, String)> {
+        Ok(match self.camera {
             CameraJson::FollowHead => CameraSetup::HeadFollowing,
             CameraJson::Fixed {
                 position_m,
@@ -297,14 +330,11 @@ impl SceneFile {
                 })?;
                 CameraSetup::Fixed(spec)
             }
-        };
-        if !(self.exposure_stops.is_finite() && self.exposure_stops.abs() <= 20.0) {
-            return Err((
-                "exposure_stops".into(),
-                format!("must be in [-20, 20] (got {})", self.exposure_stops),
-            ));
-        }
-        let gain = self.exposure_stops.exp2();
+        })
+    }
+
+    /// The lights (one to [`MAX_LIGHTS`]), each checked and scaled by the exposure `gain`.
+    fn lights_with_gain(&self, gain: f32) -> Result<Vec<Light>, (String, String)> {
         if self.lights.is_empty() {
             return Err((
                 "lights".into(),
@@ -320,51 +350,46 @@ impl SceneFile {
                 ),
             ));
         }
-        let mut lights = Vec::with_capacity(self.lights.len());
-        for (i, l) in self.lights.iter().enumerate() {
-            let field = |name: &str| format!("lights[{i}].{name}");
-            let light = match *l {
-                LightJson::Directional {
-                    direction,
-                    irradiance,
-                } => {
-                    let e = color(field("irradiance"), irradiance)?;
-                    Light::directional(Vec3::from(direction), e * gain).map_err(|err| {
-                        let name = match err {
-                            LightError::Direction(_) => "direction",
-                            _ => "irradiance",
-                        };
-                        (field(name), err.to_string())
-                    })?
-                }
-                LightJson::Point {
-                    position_m,
-                    intensity,
-                } => {
-                    let i_rgb = color(field("intensity"), intensity)?;
-                    Light::point(Vec3::from(position_m), i_rgb * gain).map_err(|err| {
-                        let name = match err {
-                            LightError::Position(_) => "position_m",
-                            _ => "intensity",
-                        };
-                        (field(name), err.to_string())
-                    })?
-                }
-            };
-            lights.push(light);
-        }
-        let ambient = color("ambient".into(), self.ambient)? * gain;
-        let background = color("background".into(), self.background)? * gain;
-        Ok(Scene {
-            width: self.image.width,
-            height: self.image.height,
-            camera,
-            lights,
-            ambient,
-            background,
-            draw_solids: self.draw_solids,
-        })
+        self.lights
+            .iter()
+            .enumerate()
+            .map(|(i, l)| light_of(i, l, gain))
+            .collect()
     }
+}
+
+/// Light `i` of the file, checked ([`Light::directional`], [`Light::point`]; an error names
+/// `lights[i]`'s field) and scaled by `gain`.
+fn light_of(i: usize, l: &LightJson, gain: f32) -> Result<Light, (String, String)> {
+    let field = |name: &str| format!("lights[{i}].{name}");
+    Ok(match *l {
+        LightJson::Directional {
+            direction,
+            irradiance,
+        } => {
+            let e = color(field("irradiance"), irradiance)?;
+            Light::directional(Vec3::from(direction), e * gain).map_err(|err| {
+                let name = match err {
+                    LightError::Direction(_) => "direction",
+                    _ => "irradiance",
+                };
+                (field(name), err.to_string())
+            })?
+        }
+        LightJson::Point {
+            position_m,
+            intensity,
+        } => {
+            let i_rgb = color(field("intensity"), intensity)?;
+            Light::point(Vec3::from(position_m), i_rgb * gain).map_err(|err| {
+                let name = match err {
+                    LightError::Position(_) => "position_m",
+                    _ => "intensity",
+                };
+                (field(name), err.to_string())
+            })?
+        }
+    })
 }
 
 /// Refuses a point light inside the hair: within `reach_m` (the hair's reach: its longest

@@ -1,8 +1,8 @@
-//! What a frame is looked at with: the scene description that is not hair, motion or light,
-//! as validated types that a scene file can later be built on.
+//! What a frame is looked at with and lit by, apart from the hair and the motion: the camera
+//! and the scene file, each validated into the types the engine takes.
 //!
 //! - [`camera`]: a fixed camera ([`CameraSpec`]) or the engine's head-following framing.
-//! - [`file`]: the scene file (camera, lights, ambient, background, exposure, image size) and
+//! - [`file`](mod@file): the scene file (camera, lights, ambient, background, exposure, image size) and
 //!   its validation into a [`file::Scene`].
 
 pub mod camera;

@@ -1,0 +1,93 @@
+//! Placing the kept strands on the head and refusing a groom whose roots are not on it.
+//!
+//! The placement is fitted by [`fit::fit_to_head`] on the roots and on samples along the
+//! strands (every vertex past the root's link, a strided subset of at most about 50,000 in
+//! all, enough for the 4 unknowns and linear in the groom). The turn about +Y is given, or
+//! guessed so that most hair hangs behind the head ([`fit::guess_yaw_rad`]). Each root's
+//! distance to the head surface is then measured; when more than [`ROOTS_OFF_HEAD_SHARE`]
+//! of them are over [`ROOT_TOLERANCE_M`], the groom is refused, naming its worst strand: it
+//! belongs to another head shape or orientation, or is not Y-up.
+
+use glam::Vec3;
+
+use super::error::GroomError;
+use super::fit::{self, Placement};
+use super::strands::Kept;
+use crate::input::strands::StrandFile;
+
+/// Largest distance of a root from the head surface after the fit, metres. Real scalps are not
+/// ellipsoids (about ±1 cm) and a ponytail's tie sits off the scalp; a groom made for another
+/// head shape or in another orientation is off by many centimetres.
+pub const ROOT_TOLERANCE_M: f32 = 0.03;
+/// Share of roots allowed beyond [`ROOT_TOLERANCE_M`] (ties, hair growing off a bun).
+pub const ROOTS_OFF_HEAD_SHARE: f32 = 0.1;
+
+/// The groom's placement and how far its roots are from the head surface.
+pub(super) struct OnHead {
+    pub(super) placement: Placement,
+    /// Distance of each kept strand's root from the head surface, metres.
+    pub(super) root_distance_m: Vec<f32>,
+    /// The largest of them.
+    pub(super) worst_m: f32,
+}
+
+/// Places the `kept` strands of `files` on the head ellipsoid of semi-axes `radii`, turned by
+/// `yaw_rad` (guessed when `None`); see the module doc. `names` names all files in messages.
+pub(super) fn place_on_head(
+    kept: &[Kept],
+    files: &[(String, StrandFile)],
+    radii: Vec3,
+    yaw_rad: Option<f32>,
+    names: &str,
+) -> Result<OnHead, GroomError> {
+    let count = kept.len();
+    let roots: Vec<Vec3> = kept.iter().map(|k| k.points[0]).collect();
+    let yaw = yaw_rad.unwrap_or_else(|| {
+        let (sum, n) = kept.iter().fold((Vec3::ZERO, 0usize), |(s, n), k| {
+            (
+                s + k.points.iter().copied().sum::<Vec3>(),
+                n + k.points.len(),
+            )
+        });
+        fit::guess_yaw_rad(&roots, sum / n as f32)
+    });
+    // Samples along the strands for the fit's "hair outside the head" term.
+    let stride = (kept.iter().map(|k| k.points.len()).sum::<usize>() / 50_000).max(1);
+    let hair: Vec<Vec3> = kept
+        .iter()
+        .step_by(stride)
+        .flat_map(|k| k.points.iter().skip(2).copied())
+        .collect();
+    let placement =
+        fit::fit_to_head(&roots, &hair, yaw, radii).ok_or_else(|| GroomError::Invalid {
+            files: names.to_string(),
+            rule: "the roots cannot be fitted onto the head (all roots in one point?)".into(),
+        })?;
+    let dist: Vec<f32> = roots
+        .iter()
+        .map(|r| fit::surface_distance_m(placement.apply(*r), radii))
+        .collect();
+    let off = dist.iter().filter(|d| **d > ROOT_TOLERANCE_M).count();
+    let share = off as f32 / count as f32;
+    let (worst, worst_d) = dist
+        .iter()
+        .enumerate()
+        .fold((0, 0.0f32), |b, (i, d)| if *d > b.1 { (i, *d) } else { b });
+    if share > ROOTS_OFF_HEAD_SHARE {
+        let k = kept[worst];
+        return Err(GroomError::RootsOffHead {
+            file: files[k.file].0.clone(),
+            strand: k.strand,
+            distance_mm: worst_d * 1000.0,
+            tolerance_mm: ROOT_TOLERANCE_M * 1000.0,
+            share: share * 100.0,
+            scale: placement.scale,
+            yaw_deg: placement.yaw_rad.to_degrees(),
+        });
+    }
+    Ok(OnHead {
+        placement,
+        root_distance_m: dist,
+        worst_m: worst_d,
+    })
+}
