@@ -11,61 +11,52 @@ use super::{AppError, SceneArgs};
 use wisp::accuracy::exact::Footprint;
 use wisp::accuracy::skin::measure_skin;
 use wisp::accuracy::{
-    bias_per_bin, markdown, measure_map, placement_floor, single_fiber_variant, sweep_geometries,
+    MapMeasurement, bias_per_bin, markdown, measure_map, placement_floor, single_fiber_variant,
+    sweep_geometries,
 };
 use wisp::engine::{ContactShadowing, DEFAULT_CONTACT_WINDOW_M};
 use wisp::output::write_png_rgb8;
 
 #[derive(clap::Args, Debug)]
+#[command(mut_arg("contact_mm", |a| {
+    a.help("Contact shadows of one-fibre strands, mm (0: off) [default: 120]")
+}))]
 pub struct AccuracyArgs {
-    #[command(flatten)]
-    pub scene: SceneArgs,
-    /// Map resolutions (cells per axis) to compare, comma separated; the scene's own choice is
-    /// always added.
-    #[arg(long, default_value = "32,64,96,128,192,256", value_delimiter = ',', value_parser = clap::value_parser!(u32).range(4..=1024))]
+    /// Map resolutions to compare
+    #[arg(long, value_name = "N,…", default_value = "32,64,96,128,192,256", value_delimiter = ',', value_parser = clap::value_parser!(u32).range(4..=1024))]
     pub map_res_list: Vec<u32>,
-    /// Time in the dance of the hair state, seconds.
-    #[arg(long, default_value_t = 4.0, value_parser = super::parse_finite_f32)]
+    /// Time in the dance of the hair state, seconds
+    #[arg(long, value_name = "SECONDS", default_value_t = 4.0, value_parser = super::parse_finite_f32)]
     pub at_s: f32,
-    /// Vertices at which the map is compared with the reference.
-    #[arg(long, default_value_t = 3000, value_parser = clap::value_parser!(u32).range(10..=1_000_000))]
+    /// Vertices compared with the reference, 10–1000000
+    #[arg(long, value_name = "N", default_value_t = 3000, value_parser = clap::value_parser!(u32).range(10..=1_000_000))]
     pub vertices: u32,
-    /// Rays per vertex in the reference.
-    #[arg(long, default_value_t = 128, value_parser = clap::value_parser!(u32).range(1..=65_536))]
+    /// Reference rays per vertex or pixel, 1–65536
+    #[arg(long, value_name = "N", default_value_t = 128, value_parser = clap::value_parser!(u32).range(1..=65_536))]
     pub rays: u32,
-    /// Where the reference's rays start: `fibres` (the fibres the vertex is drawn for, along its
-    /// piece of strand), `fibres-lit` (the same, on each fibre's lit side, where contact
-    /// shadows read), `ball:R` (all hair within R millimetres) or `disc:R` (a disc of R
-    /// millimetres across the light at the vertex's depth).
-    #[arg(long, default_value = "fibres")]
+    /// Rays from fibres, fibres-lit, ball:MM or disc:MM
+    #[arg(long, value_name = "WHERE", default_value = "fibres")]
     pub footprint: String,
-    /// Replace every render strand of F fibres by K render strands of one fibre each (the
-    /// exact-geometry variant: with one fibre per strand the reference needs no placement).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=64))]
+    /// Replace each render strand by K strands of one fibre each, 1–64
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=64))]
     pub single_fiber_strands: Option<u32>,
-    /// Measure the hair's shadow on the skin and clothes instead: every pixel of the solids
-    /// facing the light, the map's T_f against `--rays` exact rays from half a pixel's width
-    /// (shot per pixel: 800 × 800 with 64 rays takes about 2 s for the smooth preset).
+    /// Measure the hair's shadow on the skin and clothes instead
     #[arg(long)]
     pub skin: bool,
-    /// With `--skin`: write the map's T_f, the reference's and their difference side by side
-    /// to this PNG file.
-    #[arg(long, requires = "skin")]
+    /// With --skin: write map, reference and their difference to this PNG
+    #[arg(long, value_name = "FILE.png", requires = "skin")]
     pub skin_image: Option<std::path::PathBuf>,
-    /// Placements of each bundle's fibres the reference averages (`accuracy::ensemble_light`):
-    /// 1 is the documented placement alone; more average the same bundles turned by other
-    /// angles, the light a render strand receives when where its fibres lie is not known (as
-    /// the map does not know it). Each costs one reference; ignored with one fibre per strand.
-    #[arg(long, default_value_t = wisp::accuracy::DEFAULT_PLACEMENTS, value_parser = clap::value_parser!(u32).range(1..=64))]
+    /// Fibre placements the reference averages, 1–64
+    #[arg(long, value_name = "N", default_value_t = wisp::accuracy::DEFAULT_PLACEMENTS, value_parser = clap::value_parser!(u32).range(1..=64))]
     pub placements: u32,
-    /// Also measure the reference's own floor: the exact reference with each bundle's fibres
-    /// placed otherwise (2 placements outside the reference's; `accuracy::placement_floor`)
-    /// against the reference, in the table's terms. Costs two more references.
+    /// Also measure the reference against two other fibre placements
     #[arg(long)]
     pub placement_floor: bool,
-    /// Timed repetitions per map resolution.
-    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    /// Timed repetitions per map resolution, 1–1000
+    #[arg(long, value_name = "N", default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub repeats: u32,
+    #[command(flatten)]
+    pub scene: SceneArgs,
 }
 
 /// Parses `--footprint`.
@@ -98,9 +89,9 @@ fn parse_footprint(s: &str, rays: u32) -> Result<Footprint, AppError> {
 
 pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
     let (mut style, hair, motion, mut config) = args.scene.resolve()?;
-    // Contact shadows are measured (40 mm unless `--contact-mm` says otherwise); the frame that
-    // settles the hair does not need them.
-    let contact = match args.scene.contact_mm {
+    // Contact shadows are measured (120 mm unless `--contact-mm` says otherwise); the frame
+    // that settles the hair does not need them.
+    let contact = match args.scene.hair_map.contact_mm {
         Some(mm) => ContactShadowing::from_mm(mm),
         None => ContactShadowing::WindowM(DEFAULT_CONTACT_WINDOW_M),
     };
@@ -157,41 +148,48 @@ pub fn run(args: AccuracyArgs) -> Result<(), AppError> {
     println!();
     print!("{}", markdown(&measured.rows));
     if args.placement_floor {
-        let first = measured.placements as u64;
-        let seeds = [first, first + 1];
-        let floors = placement_floor(&engine, &measured, &seeds);
-        println!(
-            "\nPlacement floor (the exact reference with each bundle's fibres turned by other \
-             angles, against the reference; no estimate from the render strands can know which \
-             placement is the hair's):\n"
-        );
-        println!(
-            "| placement seed | T_f MAE | overall bias | bias, true T_f 0.0–0.2 / 0.2–0.5 / \
-             0.5–0.8 / 0.8–1.0 | MAE in the same bins |"
-        );
-        println!("|---|---|---|---|---|");
-        let default_map = measured
-            .rows
-            .iter()
-            .find(|r| r.is_default)
-            .map(|r| &r.comparison);
-        let labelled = seeds
-            .iter()
-            .map(|s| s.to_string())
-            .zip(&floors)
-            .chain(default_map.map(|c| ("(the map, default)".to_string(), c)));
-        for (seed, c) in labelled {
-            let maes: Vec<String> = c.by_truth.iter().map(|b| format!("{:.3}", b.mae)).collect();
-            println!(
-                "| {seed} | {:.4} | {:+.4} | {} | {} |",
-                c.mae,
-                c.overall_bias,
-                bias_per_bin(&c.by_truth),
-                maes.join(" / ")
-            );
-        }
+        print_placement_floor(&engine, &measured);
     }
     Ok(())
+}
+
+/// `--placement-floor`: the exact reference with each bundle's fibres placed otherwise (two
+/// placements outside the reference's; `accuracy::placement_floor`) against the reference, in
+/// the table's terms, beside the default map's row.
+fn print_placement_floor(engine: &wisp::engine::Engine, measured: &MapMeasurement) {
+    let first = measured.placements as u64;
+    let seeds = [first, first + 1];
+    let floors = placement_floor(engine, measured, &seeds);
+    println!(
+        "\nPlacement floor (the exact reference with each bundle's fibres turned by other \
+         angles, against the reference; no estimate from the render strands can know which \
+         placement is the hair's):\n"
+    );
+    println!(
+        "| placement seed | T_f MAE | overall bias | bias, true T_f 0.0–0.2 / 0.2–0.5 / \
+         0.5–0.8 / 0.8–1.0 | MAE in the same bins |"
+    );
+    println!("|---|---|---|---|---|");
+    let default_map = measured
+        .rows
+        .iter()
+        .find(|r| r.is_default)
+        .map(|r| &r.comparison);
+    let labelled = seeds
+        .iter()
+        .map(|s| s.to_string())
+        .zip(&floors)
+        .chain(default_map.map(|c| ("(the map, default)".to_string(), c)));
+    for (seed, c) in labelled {
+        let maes: Vec<String> = c.by_truth.iter().map(|b| format!("{:.3}", b.mae)).collect();
+        println!(
+            "| {seed} | {:.4} | {:+.4} | {} | {} |",
+            c.mae,
+            c.overall_bias,
+            bias_per_bin(&c.by_truth),
+            maes.join(" / ")
+        );
+    }
 }
 
 /// `--skin`: the hair's shadow on the solids against exact rays.

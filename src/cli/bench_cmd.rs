@@ -2,55 +2,60 @@
 //!
 //! 1. **Scaling**: the whole pipeline (animation, simulation, interpolation, map, shading,
 //!    raster) over `--frames` frames of the dance, once per thread count, in rayon pools built
-//!    in this process; per-stage medians and the speed-up over one thread.
-//! 2. **Speed against error**: one hair state (the dance at `--at-s`), the map built at each
-//!    `--map-res` and compared with the exact reference (`map::exact`: ray shooting through the
-//!    placed fibres) at 2,000 vertices: T_f error and bias, and the error of the shaded vertex
-//!    luminance; time is map build + a lookup at every vertex, median of `--repeats` runs
-//!    (`wisp accuracy` gives the same table with more control).
-//!
-//! 3. **Self-collision**: peak cell volume fraction, hair volume (filled cells) and simulation
+//!    in this process; per-stage medians and the speed-up over the first count.
+//! 2. **Self-collision**: peak cell volume fraction, hair volume (filled cells) and simulation
 //!    time with and without the density repulsion of Bertails §4.1, and its share of a frame.
+//! 3. **Speed against error**: one hair state (the dance at `--at-s`), the map built at each
+//!    `--map-res-list` resolution and compared with the exact reference
+//!    (`wisp::accuracy::exact`: ray shooting through the placed fibres) at 2,000 vertices: T_f
+//!    error and bias, and the error of the shaded vertex luminance; time is map build + a
+//!    lookup at every vertex, median of `--repeats` runs (`wisp accuracy` gives the same table
+//!    with more control).
 //!
-//! Results go to stdout as a table and, with `--json FILE`, as JSON.
+//! `--parts` chooses among them. Results go to stdout as tables and, with `--json FILE`, as
+//! JSON.
 
 use super::{AppError, SceneArgs};
 use std::path::PathBuf;
 use wisp::accuracy::exact::Footprint;
-use wisp::engine::{MapPartTimings, StageTimings};
+use wisp::engine::{Engine, EngineConfig, MapPartTimings, StageTimings};
+use wisp::hairstyle::Hairstyle;
+use wisp::motion::Motion;
 
 #[derive(clap::Args, Debug)]
 pub struct BenchArgs {
-    #[command(flatten)]
-    pub scene: SceneArgs,
-    /// Frames of the dance timed per thread count.
-    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..=10_000))]
+    /// Frames of the dance timed per thread count, 1–10000
+    #[arg(long, value_name = "N", default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..=10_000))]
     pub frames: u32,
-    /// Thread counts to compare, comma separated.
-    #[arg(long, default_value = "1,2", value_delimiter = ',', value_parser = clap::value_parser!(u32).range(1..=256))]
+    /// Thread counts to compare, comma separated, each 1–256
+    #[arg(long, value_name = "N,…", default_value = "1,2", value_delimiter = ',', value_parser = clap::value_parser!(u32).range(1..=256))]
     pub threads_list: Vec<u32>,
-    /// Map resolutions (cells per axis) for speed against error, comma separated.
-    #[arg(long, default_value = "32,64,96,128,192,256", value_delimiter = ',', value_parser = clap::value_parser!(u32).range(4..=1024))]
+    /// Map resolutions for speed against error
+    #[arg(long, value_name = "N,…", default_value = "32,64,96,128,192,256", value_delimiter = ',', value_parser = clap::value_parser!(u32).range(4..=1024))]
     pub map_res_list: Vec<u32>,
-    /// Time in the dance of the hair state used for speed against error, seconds.
-    #[arg(long, default_value_t = 4.0, value_parser = super::parse_finite_f32)]
+    /// Time of the hair state for speed against error, seconds
+    #[arg(long, value_name = "SECONDS", default_value_t = 4.0, value_parser = super::parse_finite_f32)]
     pub at_s: f32,
-    /// Timed repetitions per map resolution.
-    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    /// Timed repetitions per map resolution, 1–1000
+    #[arg(long, value_name = "N", default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub repeats: u32,
-    /// Parts to run, comma separated: `scaling` (per-stage timings over thread counts),
-    /// `self-collision`, `accuracy` (speed against error).
+    /// Parts to run, comma separated
     #[arg(
         long,
+        value_name = "PART,…",
         default_value = "scaling,self-collision,accuracy",
-        value_delimiter = ','
+        value_delimiter = ',',
+        hide_possible_values = true
     )]
     pub parts: Vec<BenchPart>,
-    /// Also write the results as JSON to this file.
-    #[arg(long)]
+    /// Also write the results as JSON to this file
+    #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
+    #[command(flatten)]
+    pub scene: SceneArgs,
 }
 
+/// A part of the benchmark (`--parts`).
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BenchPart {
     Scaling,
@@ -82,26 +87,8 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
     // The clip loops: a time beyond one loop is wrapped into it (as `render --start-s`).
     let at_s =
         super::render_cmd::wrapped_start_s(args.at_s as f64, motion.duration_s(), motion.speed()).0;
-    // Every map of the speed-against-error sweep, and the scene's own (an automatic
-    // resolution is lowered to fit, with a warning).
-    let plan = wisp::budget::RunPlan {
-        frame_interval_s: 1.0 / 30.0,
-        warm_up_s: at_s,
-        export_png: false,
-        cache: wisp::budget::CacheUse::None,
-    };
-    for &n in &args.map_res_list {
-        let mut sweep = {
-            let mut config = config.clone();
-            config.hair_map.map_res = Some(n);
-            config
-        };
-        args.scene
-            .check_budget(&style, &motion, &mut sweep, &plan)?;
-    }
     let mut config = config;
-    args.scene
-        .check_budget(&style, &motion, &mut config, &plan)?;
+    check_budget(&args, &style, &motion, &mut config, at_s)?;
     let mut json = serde_json::Map::new();
     println!(
         "wisp bench: {} ({} strands, {} segments), {}x{} px, {} frames of \"{}\"",
@@ -122,7 +109,6 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         motion,
         config,
     };
-    // 1. Scaling over threads.
     if args.parts.contains(&BenchPart::Scaling) {
         scaling_part(&args, &scene, &mut json)?;
     }
@@ -142,23 +128,50 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
     Ok(())
 }
 
+/// Refuses the benchmark when one of its runs is over the budget: every map of the speed
+/// against error sweep, and the scene's own (an automatic resolution is lowered to fit, with
+/// a warning). `at_s` is the time of the sweep's hair state.
+fn check_budget(
+    args: &BenchArgs,
+    style: &Hairstyle,
+    motion: &Motion,
+    config: &mut EngineConfig,
+    at_s: f64,
+) -> Result<(), AppError> {
+    let plan = wisp::budget::RunPlan {
+        frame_interval_s: 1.0 / 30.0,
+        warm_up_s: at_s,
+        export_png: false,
+        cache: wisp::budget::CacheUse::None,
+    };
+    for &n in &args.map_res_list {
+        let mut sweep = {
+            let mut config = config.clone();
+            config.hair_map.map_res = Some(n);
+            config
+        };
+        args.scene.budget.check(style, motion, &mut sweep, &plan)?;
+    }
+    args.scene.budget.check(style, motion, config, &plan)
+}
+
 type Json = serde_json::Map<String, serde_json::Value>;
 
 /// What every part of the benchmark runs: the resolved hairstyle, hair, motion and engine
 /// configuration.
 struct BenchScene {
-    style: wisp::hairstyle::Hairstyle,
+    style: Hairstyle,
     hair: super::ImportedHair,
-    motion: wisp::motion::Motion,
-    config: wisp::engine::EngineConfig,
+    motion: Motion,
+    config: EngineConfig,
 }
 
 impl BenchScene {
-    fn engine(&self) -> wisp::engine::Engine {
+    fn engine(&self) -> Engine {
         self.engine_with(self.config.clone())
     }
 
-    fn engine_with(&self, config: wisp::engine::EngineConfig) -> wisp::engine::Engine {
+    fn engine_with(&self, config: EngineConfig) -> Engine {
         super::engine(
             self.style.clone(),
             self.hair.clone(),
@@ -168,6 +181,8 @@ impl BenchScene {
     }
 }
 
+/// Scaling over threads: the whole pipeline over `--frames` frames once per thread count,
+/// per-stage medians and the speed-up over the first count; then the map stage by part.
 fn scaling_part(args: &BenchArgs, scene: &BenchScene, json: &mut Json) -> Result<(), AppError> {
     println!("\nper-stage median ms per frame:");
     println!(
@@ -178,33 +193,8 @@ fn scaling_part(args: &BenchArgs, scene: &BenchScene, json: &mut Json) -> Result
     let mut scaling = Vec::new();
     let mut map_parts = Vec::new();
     for &threads in &args.threads_list {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads as usize)
-            .build()
-            .map_err(AppError::other)?;
-        let per_frame: Vec<(StageTimings, MapPartTimings)> = pool.install(|| {
-            let mut engine = scene.engine();
-            (0..args.frames)
-                .map(|i| {
-                    engine.frame(i as f64 / 30.0);
-                    (engine.timings, engine.map_parts)
-                })
-                .collect()
-        });
-        let (per_frame, parts): (Vec<StageTimings>, Vec<MapPartTimings>) =
-            per_frame.into_iter().unzip();
-        let parts_ms = [0, 1, 2].map(|k| {
-            let mut v: Vec<f64> = parts.iter().map(|p| p.as_array()[k]).collect();
-            median(&mut v) * 1e3
-        });
+        let (med, parts_ms) = time_stages(args, scene, threads)?;
         map_parts.push((threads, parts_ms));
-        let mut med = [0.0f64; 7];
-        for (s, m) in med.iter_mut().enumerate().take(6) {
-            let mut v: Vec<f64> = per_frame.iter().map(|t| t.as_array()[s]).collect();
-            *m = median(&mut v) * 1e3;
-        }
-        let mut totals: Vec<f64> = per_frame.iter().map(|t| t.total_s() * 1e3).collect();
-        med[6] = median(&mut totals);
         let base = *base_total.get_or_insert(med[6]);
         println!(
             "{threads:>7}  {:>10.2} {:>10.2} {:>10.2} {:>10.2} {:>10.2} {:>10.2} {:>10.2}  {:.2}x",
@@ -217,22 +207,72 @@ fn scaling_part(args: &BenchArgs, scene: &BenchScene, json: &mut Json) -> Result
             med[6],
             base / med[6]
         );
-        let mut row = serde_json::Map::new();
-        row.insert("threads".into(), threads.into());
-        for (name, v) in StageTimings::NAMES.iter().zip(&med[..6]) {
-            row.insert(format!("{name}_ms"), (*v).into());
-        }
-        row.insert("total_ms".into(), med[6].into());
-        row.insert("speedup".into(), (base / med[6]).into());
-        for (key, v) in ["map_hair_ms", "map_occluders_ms", "map_skin_texture_ms"]
-            .iter()
-            .zip(parts_ms)
-        {
-            row.insert((*key).into(), v.into());
-        }
-        scaling.push(serde_json::Value::Object(row));
+        scaling.push(scaling_row(threads, &med, base, parts_ms));
     }
-    // The map stage by part (medians of each part, so they need not add up to the map's).
+    print_map_parts(&map_parts);
+    json.insert("scaling".into(), scaling.into());
+    Ok(())
+}
+
+/// The frames of the dance on a pool of `threads`: the median milliseconds of each stage
+/// (`StageTimings::NAMES`) and of the total, and of each part of the map stage
+/// (`MapPartTimings::NAMES`).
+fn time_stages(
+    args: &BenchArgs,
+    scene: &BenchScene,
+    threads: u32,
+) -> Result<([f64; 7], [f64; 3]), AppError> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads as usize)
+        .build()
+        .map_err(AppError::other)?;
+    let per_frame: Vec<(StageTimings, MapPartTimings)> = pool.install(|| {
+        let mut engine = scene.engine();
+        (0..args.frames)
+            .map(|i| {
+                engine.frame(i as f64 / 30.0);
+                (engine.timings, engine.map_parts)
+            })
+            .collect()
+    });
+    let (per_frame, parts): (Vec<StageTimings>, Vec<MapPartTimings>) =
+        per_frame.into_iter().unzip();
+    let parts_ms = [0, 1, 2].map(|k| {
+        let mut v: Vec<f64> = parts.iter().map(|p| p.as_array()[k]).collect();
+        median(&mut v) * 1e3
+    });
+    let mut med = [0.0f64; 7];
+    for (s, m) in med.iter_mut().enumerate().take(6) {
+        let mut v: Vec<f64> = per_frame.iter().map(|t| t.as_array()[s]).collect();
+        *m = median(&mut v) * 1e3;
+    }
+    let mut totals: Vec<f64> = per_frame.iter().map(|t| t.total_s() * 1e3).collect();
+    med[6] = median(&mut totals);
+    Ok((med, parts_ms))
+}
+
+/// One thread count's row of the JSON: stage medians `med`, the speed-up over `base`, the
+/// map stage's parts.
+fn scaling_row(threads: u32, med: &[f64; 7], base: f64, parts_ms: [f64; 3]) -> serde_json::Value {
+    let mut row = serde_json::Map::new();
+    row.insert("threads".into(), threads.into());
+    for (name, v) in StageTimings::NAMES.iter().zip(&med[..6]) {
+        row.insert(format!("{name}_ms"), (*v).into());
+    }
+    row.insert("total_ms".into(), med[6].into());
+    row.insert("speedup".into(), (base / med[6]).into());
+    for (key, v) in ["map_hair_ms", "map_occluders_ms", "map_skin_texture_ms"]
+        .iter()
+        .zip(parts_ms)
+    {
+        row.insert((*key).into(), v.into());
+    }
+    serde_json::Value::Object(row)
+}
+
+/// The map stage by part, per thread count (medians of each part, so they need not add up
+/// to the map's).
+fn print_map_parts(map_parts: &[(u32, [f64; 3])]) {
     println!("\nmap stage by part, median ms per frame (0 where the maps were reused):");
     println!(
         "threads  {:>12} {:>12} {:>12}",
@@ -246,8 +286,6 @@ fn scaling_part(args: &BenchArgs, scene: &BenchScene, json: &mut Json) -> Result
             ms[0], ms[1], ms[2]
         );
     }
-    json.insert("scaling".into(), scaling.into());
-    Ok(())
 }
 
 /// Self-collision (Bertails §4.1): the same dance with and without density repulsion.

@@ -10,38 +10,38 @@
 //! as soon as it exists.
 
 use super::render_cmd::{
-    FrameOutput, MAX_FRAMES, RenderArgs, Tidy, export_frames, plan_frames, prepare_output_dir,
+    FrameOutput, MAX_FRAMES, RenderArgs, Tidy, default_frame_count, export_frames, wrapped_start_s,
 };
 use super::shard::Shard;
 use super::{AppError, SceneArgs, printable};
-use std::path::PathBuf;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 use wisp::budget::{CacheUse, RunPlan};
 use wisp::cache::{CacheError, CacheHeader, CacheReader, CacheWriter, Expected};
-use wisp::engine::Engine;
+use wisp::engine::{Engine, EngineConfig};
+use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
 
 #[derive(clap::Args, Debug)]
 pub struct SimulateArgs {
-    #[command(flatten)]
-    pub scene: SceneArgs,
-    /// Cache file to write (written as `FILE.tmp`, renamed when complete).
+    /// Cache file to write (as FILE.tmp, renamed when complete)
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
-    /// Number of frames (default: one loop of the clip at --fps; 1 with --still), at most
-    /// 100,000.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_FRAMES as i64))]
+    /// Frames, at most 100000 [default: one loop of the clip; 1 with --still]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=MAX_FRAMES as i64))]
     pub frames: Option<u32>,
-    /// Frame rate in frames per second, in (0, 1000].
+    /// Frames per second of the motion, in (0, 1000]
     #[arg(long, default_value_t = 30.0, value_parser = super::parse_fps, allow_hyphen_values = true)]
     pub fps: f32,
-    /// Time of the first frame in seconds of the motion (wrapped into one loop of the clip,
-    /// as for `render`).
-    #[arg(long, default_value_t = 0.0, value_parser = super::parse_finite_f64, allow_hyphen_values = true)]
+    /// First frame's time, seconds, wrapped into the clip's loop
+    #[arg(long, value_name = "SECONDS", default_value_t = 0.0, value_parser = super::parse_finite_f64, allow_hyphen_values = true)]
     pub start_s: f64,
-    /// Print only errors.
+    /// Print only errors
     #[arg(long)]
     pub quiet: bool,
+    #[command(flatten)]
+    pub scene: SceneArgs,
 }
 
 /// A cache error with its exit code (2 for a bad or mismatched file, 1 for a failed write).
@@ -53,25 +53,9 @@ fn cache_error(e: CacheError) -> AppError {
     }
 }
 
-/// What the motion flags chose, for the cache's header and messages.
-fn motion_label(scene: &SceneArgs, motion: &Motion) -> String {
-    if scene.still {
-        return "--still (no motion)".to_string();
-    }
-    let file = scene.animation.as_ref().map_or_else(
-        || "the embedded dance".to_string(),
-        |p| p.display().to_string(),
-    );
-    format!(
-        "clip \"{}\" of {file}, head joint \"{}\", speed {}",
-        motion.clip_name(),
-        motion.head_joint().1,
-        motion.speed()
-    )
-}
-
 /// The simulation cache is keyed by a generated hairstyle (its guides are regenerated when the
-/// cache is read); an imported groom's guides come from its files, so it is not cached yet.
+/// cache is read); an imported groom's guides come from its files, which a cache does not
+/// hold, so a groom is refused (exit code 2).
 fn refuse_imported(hair: &super::ImportedHair) -> Result<(), AppError> {
     match hair {
         Some(_) => Err(AppError::input(anyhow::anyhow!(
@@ -81,19 +65,14 @@ fn refuse_imported(hair: &super::ImportedHair) -> Result<(), AppError> {
     }
 }
 
+/// `wisp simulate`: the settled state and every frame's guide state, written to the cache.
 pub fn simulate(args: SimulateArgs) -> Result<(), AppError> {
     let (style, hair, motion, mut config) = args.scene.resolve()?;
     refuse_imported(&hair)?;
-    let frames = args.frames.unwrap_or_else(|| {
-        if args.scene.still {
-            1
-        } else {
-            let n = (motion.duration_s() as f64 * args.fps as f64).round();
-            n.clamp(1.0, MAX_FRAMES as f64) as u32
-        }
-    });
-    let (start_s, wrapped) =
-        super::render_cmd::wrapped_start_s(args.start_s, motion.duration_s(), motion.speed());
+    let frames = args
+        .frames
+        .unwrap_or_else(|| default_frame_count(args.scene.motion.still, &motion, args.fps));
+    let (start_s, wrapped) = wrapped_start_s(args.start_s, motion.duration_s(), motion.speed());
     if wrapped && !args.quiet {
         eprintln!(
             "wisp: --start-s {} is wrapped to {start_s:.3} s (one loop of the clip, or 0 for a still motion)",
@@ -107,10 +86,55 @@ pub fn simulate(args: SimulateArgs) -> Result<(), AppError> {
         cache: CacheUse::Write,
     };
     args.scene
-        .check_budget(&style, &motion, &mut config, &plan)?;
-    let label = motion_label(&args.scene, &motion);
-    let expected = Expected::new(&style, &motion, &label);
-    let header = CacheHeader {
+        .budget
+        .check(&style, &motion, &mut config, &plan)?;
+    let header = cache_header(&args, &style, &motion, &config, frames, start_s);
+    // Created before the work starts, so a bad --out is refused at once.
+    let mut writer = CacheWriter::create(&args.out, header.clone()).map_err(cache_error)?;
+    let started = Instant::now();
+    let name = style.name.clone();
+    let mut engine = Engine::new(style, motion, config);
+    if engine.simulation.state.positions.len() != header.particles as usize {
+        return Err(AppError::other(anyhow::anyhow!(
+            "the engine has {} guide particles, the hairstyle implies {}",
+            engine.simulation.state.positions.len(),
+            header.particles
+        )));
+    }
+    writer
+        .write_sim_state(0.0, &engine.simulation.state)
+        .map_err(cache_error)?;
+    engine.run_up_to(start_s);
+    if !args.quiet {
+        eprintln!(
+            "wisp: simulating {} ({} guide particles), clip \"{}\", {frames} frames at {} fps from {start_s:.3} s into {}",
+            printable(&name),
+            header.particles,
+            printable(engine.motion().clip_name()),
+            args.fps,
+            args.out.display()
+        );
+    }
+    let (sim_s, write_s) = simulate_frames(&mut engine, writer, &header, args.quiet)?;
+    if !args.quiet {
+        report_cache(&args.out, &header, sim_s, write_s, started);
+    }
+    Ok(())
+}
+
+/// The header of the cache `args` asks for, of the run of `style`, `motion` and `config`:
+/// what it holds, and what it was simulated from (checked when it is read).
+fn cache_header(
+    args: &SimulateArgs,
+    style: &Hairstyle,
+    motion: &Motion,
+    config: &EngineConfig,
+    frames: u32,
+    start_s: f64,
+) -> CacheHeader {
+    let label = args.scene.motion.label(motion);
+    let expected = Expected::new(style, motion, &label);
+    CacheHeader {
         frames,
         particles: expected.particles,
         points_per_guide: expected.points_per_guide,
@@ -125,40 +149,24 @@ pub fn simulate(args: SimulateArgs) -> Result<(), AppError> {
             .first()
             .and_then(|l| l.travel())
             .unwrap_or(glam::Vec3::NEG_Y),
-        map_res: wisp::engine::map_geometry(&style, &config.hair_map).n,
+        map_res: wisp::engine::map_geometry(style, &config.hair_map).n,
         simulated: config.simulation.simulate,
         self_collision: config.simulation.self_collision,
         draw_solids: config.scene.draw_solids,
         hairstyle_name: style.name.clone(),
         motion_label: label,
-    };
-    // Created before the work starts, so a bad --out is refused at once.
-    let mut writer = CacheWriter::create(&args.out, header.clone()).map_err(cache_error)?;
-    let started = Instant::now();
-    let name = style.name.clone();
-    let mut engine = Engine::new(style, motion, config);
-    let write_err = cache_error;
-    if engine.simulation.state.positions.len() != header.particles as usize {
-        return Err(AppError::other(anyhow::anyhow!(
-            "the engine has {} guide particles, the hairstyle implies {}",
-            engine.simulation.state.positions.len(),
-            header.particles
-        )));
     }
-    writer
-        .write_sim_state(0.0, &engine.simulation.state)
-        .map_err(write_err)?;
-    engine.run_up_to(start_s);
-    if !args.quiet {
-        eprintln!(
-            "wisp: simulating {} ({} guide particles), clip \"{}\", {frames} frames at {} fps from {start_s:.3} s into {}",
-            printable(&name),
-            header.particles,
-            printable(engine.motion().clip_name()),
-            args.fps,
-            args.out.display()
-        );
-    }
+}
+
+/// Advances the engine through the header's frames, writing each guide state as soon as it
+/// exists, and finishes the file; returns the seconds spent simulating and writing.
+fn simulate_frames(
+    engine: &mut Engine,
+    mut writer: CacheWriter,
+    header: &CacheHeader,
+    quiet: bool,
+) -> Result<(f64, f64), AppError> {
+    let frames = header.frames;
     let mut sim_s = 0.0;
     let mut write_s = 0.0;
     for i in 0..frames {
@@ -168,32 +176,34 @@ pub fn simulate(args: SimulateArgs) -> Result<(), AppError> {
         let t1 = Instant::now();
         writer
             .write_sim_state(t, &engine.simulation.state)
-            .map_err(write_err)?;
+            .map_err(cache_error)?;
         write_s += t1.elapsed().as_secs_f64();
         sim_s += (t1 - t0).as_secs_f64();
-        if !args.quiet && (i + 1) % 30 == 0 {
+        if !quiet && (i + 1) % 30 == 0 {
             eprintln!("wisp: frame {}/{frames} (t = {t:.2} s)", i + 1);
         }
     }
     let t0 = Instant::now();
-    writer.finish().map_err(write_err)?;
+    writer.finish().map_err(cache_error)?;
     write_s += t0.elapsed().as_secs_f64();
-    if !args.quiet {
-        let bytes = header.file_bytes();
-        eprintln!(
-            "wisp: per frame: simulation {:.1} ms, writing {:.2} ms ({:.1} KB a frame); wall {:.1} s",
-            sim_s * 1e3 / frames as f64,
-            write_s * 1e3 / frames as f64,
-            header.record_bytes() as f64 / 1e3,
-            started.elapsed().as_secs_f64()
-        );
-        eprintln!(
-            "wisp: wrote {} ({}, {frames} frames and the settled state)",
-            args.out.display(),
-            wisp::input::human_bytes(bytes)
-        );
-    }
-    Ok(())
+    Ok((sim_s, write_s))
+}
+
+/// The cache's summary on stderr: time per frame and what was written where.
+fn report_cache(out: &Path, header: &CacheHeader, sim_s: f64, write_s: f64, started: Instant) {
+    let frames = header.frames;
+    eprintln!(
+        "wisp: per frame: simulation {:.1} ms, writing {:.2} ms ({:.1} KB a frame); wall {:.1} s",
+        sim_s * 1e3 / frames as f64,
+        write_s * 1e3 / frames as f64,
+        header.record_bytes() as f64 / 1e3,
+        started.elapsed().as_secs_f64()
+    );
+    eprintln!(
+        "wisp: wrote {} ({}, {frames} frames and the settled state)",
+        out.display(),
+        wisp::input::human_bytes(header.file_bytes())
+    );
 }
 
 /// `wisp render --cache FILE [--first-frame F] [--frames N] [--shard I/N]`.
@@ -203,10 +213,69 @@ pub fn render_from_cache(args: RenderArgs) -> Result<(), AppError> {
     };
     let (style, hair, motion, mut config) = args.scene.resolve()?;
     refuse_imported(&hair)?;
-    let label = motion_label(&args.scene, &motion);
+    let label = args.scene.motion.label(&motion);
     let expected = Expected::new(&style, &motion, &label);
     let mut reader = CacheReader::open(&path, &expected).map_err(cache_error)?;
     let header = reader.header().clone();
+    let Some(part) = frames_of_cache(&args, &path, &header)? else {
+        return Ok(());
+    };
+    let plan = RunPlan {
+        frame_interval_s: 1.0 / header.fps as f64,
+        warm_up_s: 0.0,
+        export_png: true,
+        cache: CacheUse::Read,
+    };
+    args.scene
+        .budget
+        .check(&style, &motion, &mut config, &plan)?;
+    let output = FrameOutput::of(&args);
+    let tidy = tidy_for_cache(&args, &header, &part);
+    let Some(todo) = output.prepare(&tidy, part.clone(), &config.scene)? else {
+        return Ok(());
+    };
+    let started = Instant::now();
+    let settled = reader.read_settled(&motion).map_err(cache_error)?.to_vec();
+    let mut engine = Engine::from_settled(style, motion, config, &settled);
+    if engine.simulation.state.positions.len() != settled.len() {
+        return Err(AppError::input(anyhow::anyhow!(
+            "{}: holds {} guide particles, this hairstyle makes {}",
+            path.display(),
+            settled.len(),
+            engine.simulation.state.positions.len()
+        )));
+    }
+    if !args.quiet {
+        let shard = args.shard.map_or(String::new(), |s| {
+            format!(", shard {}/{}", s.index, s.count)
+        });
+        eprintln!(
+            "wisp: rendering frames {} to {} of {}{shard} ({}x{} px, map {}^3), set-up {:.2} s",
+            part.start,
+            part.end - 1,
+            path.display(),
+            engine.scene.width,
+            engine.scene.height,
+            engine.map_geometry().n,
+            started.elapsed().as_secs_f64()
+        );
+    }
+    export_frames(&mut engine, &todo, &output, started, |engine, i| {
+        let t = header.frame_time_s(i);
+        let positions = reader.read_frame(i, engine.motion()).map_err(cache_error)?;
+        engine.set_guide_state(t, positions);
+        Ok(t)
+    })
+}
+
+/// The cache frames this run renders: `--frames` from `--first-frame` (all from it by
+/// default), checked against what the cache at `path` holds, and of those the `--shard`'s
+/// block. `None` (with a message) when the shard has no frames.
+fn frames_of_cache(
+    args: &RenderArgs,
+    path: &Path,
+    header: &CacheHeader,
+) -> Result<Option<Range<u32>>, AppError> {
     let first = args.first_frame.unwrap_or(0);
     if first >= header.frames {
         return Err(AppError::input(anyhow::anyhow!(
@@ -240,20 +309,17 @@ pub fn render_from_cache(args: RenderArgs) -> Result<(), AppError> {
                 range.len()
             );
         }
-        return Ok(());
+        return Ok(None);
     }
-    let plan = RunPlan {
-        frame_interval_s: 1.0 / header.fps as f64,
-        warm_up_s: 0.0,
-        export_png: true,
-        cache: CacheUse::Read,
-    };
-    args.scene
-        .check_budget(&style, &motion, &mut config, &plan)?;
-    // Shards share the folder: each removes only its own frames' temporary files, and frames
-    // beyond the cache when it renders a block of the whole cache.
+    Ok(Some(part))
+}
+
+/// What a render of the cache frames `part` may tidy in its output directory. Shards share the
+/// folder: each removes only its own frames' temporary files, and frames beyond the cache when
+/// it renders a block of the whole cache.
+fn tidy_for_cache(args: &RenderArgs, header: &CacheHeader, part: &Range<u32>) -> Tidy {
     let whole = args.first_frame.is_none() && args.frames.is_none();
-    let tidy = match (args.shard, whole) {
+    match (args.shard, whole) {
         (None, true) => Tidy::whole_run(header.frames),
         (Some(_), true) => Tidy {
             own: part.clone(),
@@ -265,48 +331,5 @@ pub fn render_from_cache(args: RenderArgs) -> Result<(), AppError> {
             all_temporaries: false,
             stale_from: None,
         },
-    };
-    let output = FrameOutput::of(&args);
-    prepare_output_dir(&args.out, &tidy, output.format, args.quiet)?;
-    let todo = plan_frames(
-        &output,
-        part.clone(),
-        config.scene.width,
-        config.scene.height,
-    );
-    if todo.nothing_to_render() {
-        return Ok(());
     }
-    let started = Instant::now();
-    let settled = reader.read_settled(&motion).map_err(cache_error)?.to_vec();
-    let mut engine = Engine::from_settled(style, motion, config, &settled);
-    if engine.simulation.state.positions.len() != settled.len() {
-        return Err(AppError::input(anyhow::anyhow!(
-            "{}: holds {} guide particles, this hairstyle makes {}",
-            path.display(),
-            settled.len(),
-            engine.simulation.state.positions.len()
-        )));
-    }
-    if !args.quiet {
-        let shard = args.shard.map_or(String::new(), |s| {
-            format!(", shard {}/{}", s.index, s.count)
-        });
-        eprintln!(
-            "wisp: rendering frames {} to {} of {}{shard} ({}x{} px, map {}^3), set-up {:.2} s",
-            part.start,
-            part.end - 1,
-            path.display(),
-            engine.scene.width,
-            engine.scene.height,
-            engine.map_geometry().n,
-            started.elapsed().as_secs_f64()
-        );
-    }
-    export_frames(&mut engine, &todo, &output, started, |engine, i| {
-        let t = header.frame_time_s(i);
-        let positions = reader.read_frame(i, engine.motion()).map_err(cache_error)?;
-        engine.set_guide_state(t, positions);
-        Ok(t)
-    })
 }

@@ -11,17 +11,17 @@ use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
 pub struct ExportArgs {
-    #[command(flatten)]
-    pub scene: SceneArgs,
-    /// Output directory (created if missing): hair.hair, scene.json, wisp.exr, wisp.png.
-    #[arg(long)]
+    /// Output directory (created if missing): hair.hair, scene.json, wisp.exr/png
+    #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
-    /// Time of the frame in seconds of the motion (the simulation runs up to it).
-    #[arg(long, default_value_t = 0.0, value_parser = super::parse_finite_f32)]
+    /// Time of the frame in the motion, seconds
+    #[arg(long, value_name = "SECONDS", default_value_t = 0.0, value_parser = super::parse_finite_f32)]
     pub time_s: f32,
-    /// Print only errors.
+    /// Print only errors
     #[arg(long)]
     pub quiet: bool,
+    #[command(flatten)]
+    pub scene: SceneArgs,
 }
 
 pub fn run(args: ExportArgs) -> Result<(), AppError> {

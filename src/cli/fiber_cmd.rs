@@ -31,39 +31,39 @@ pub enum FiberCommand {
 /// Fibre selection shared by the subcommands: a hairstyle's fibre, then flag overrides.
 #[derive(Args, Debug, Clone, Default)]
 pub struct FiberFlags {
-    /// Hairstyle JSON whose `fiber` parameters are used (default: built-in defaults).
-    #[arg(long)]
+    /// Hairstyle JSON whose `fiber` is used [default: the built-in fibre]
+    #[arg(long, value_name = "FILE")]
     pub hairstyle: Option<PathBuf>,
-    /// Index of refraction η, in (1, 4).
-    #[arg(long, allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
+    /// Index of refraction η, in (1, 4)
+    #[arg(long, value_name = "ETA", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
     pub eta: Option<f32>,
-    /// Absorption per unit radius, "R,G,B".
-    #[arg(long = "sigma-a", allow_hyphen_values = true)]
+    /// Absorption per unit radius, R,G,B
+    #[arg(long = "sigma-a", value_name = "R,G,B", allow_hyphen_values = true)]
     pub sigma_a: Option<String>,
-    /// R lobe shift α_R in degrees.
-    #[arg(long = "alpha-r-deg", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
+    /// R lobe shift α_R, degrees
+    #[arg(long = "alpha-r-deg", value_name = "DEG", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
     pub alpha_r_deg: Option<f32>,
-    /// R lobe width β_R in degrees.
-    #[arg(long = "beta-r-deg", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
+    /// R lobe width β_R, degrees
+    #[arg(long = "beta-r-deg", value_name = "DEG", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
     pub beta_r_deg: Option<f32>,
-    /// Cross-section eccentricity a/b.
-    #[arg(long, allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
+    /// Cross-section eccentricity a/b
+    #[arg(long, value_name = "A/B", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
     pub eccentricity: Option<f32>,
 }
 
 #[derive(Args, Debug)]
 pub struct EvalArgs {
-    /// Light inclination θi from the normal plane, degrees in [−90, 90].
-    #[arg(long = "theta-i-deg", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
+    /// Light inclination θi from the normal plane, degrees in [−90, 90]
+    #[arg(long = "theta-i-deg", value_name = "DEG", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
     pub theta_i_deg: f32,
-    /// Light azimuth φi, degrees.
-    #[arg(long = "phi-i-deg", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
+    /// Light azimuth φi, degrees
+    #[arg(long = "phi-i-deg", value_name = "DEG", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
     pub phi_i_deg: f32,
-    /// View inclination θo, degrees in [−90, 90].
-    #[arg(long = "theta-o-deg", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
+    /// View inclination θo, degrees in [−90, 90]
+    #[arg(long = "theta-o-deg", value_name = "DEG", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
     pub theta_o_deg: f32,
-    /// View azimuth φo, degrees.
-    #[arg(long = "phi-o-deg", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
+    /// View azimuth φo, degrees
+    #[arg(long = "phi-o-deg", value_name = "DEG", allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
     pub phi_o_deg: f32,
     #[command(flatten)]
     pub fiber: FiberFlags,
@@ -71,8 +71,8 @@ pub struct EvalArgs {
 
 #[derive(Args, Debug)]
 pub struct TablesArgs {
-    /// Step of the θ column in degrees, in [0.1, 90] (default 5).
-    #[arg(long = "theta-step-deg", default_value_t = 5.0, allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
+    /// Step of the θ column, degrees in [0.1, 90]
+    #[arg(long = "theta-step-deg", value_name = "DEG", default_value_t = 5.0, allow_hyphen_values = true, value_parser = super::parse_f32_as_written)]
     pub theta_step_deg: f32,
     #[command(flatten)]
     pub fiber: FiberFlags,
@@ -80,8 +80,8 @@ pub struct TablesArgs {
 
 #[derive(Args, Debug)]
 pub struct PlotArgs {
-    /// Output directory (created if missing).
-    #[arg(long)]
+    /// Output directory, created if missing
+    #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
     #[command(flatten)]
     pub fiber: FiberFlags,

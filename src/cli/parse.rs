@@ -121,3 +121,24 @@ pub fn parse_direction(s: &str) -> Result<Vec3, String> {
     // normalised to zero.
     Ok((v / v.abs().max_element()).normalize())
 }
+
+/// `V` or `R,G,B`: finite numbers >= 0 (one number is grey).
+pub fn parse_rgb(s: &str) -> Result<Vec3, String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    let values = parts
+        .iter()
+        .map(|p| parse_finite_f32(p))
+        .collect::<Result<Vec<f32>, String>>()?;
+    let v = match values[..] {
+        [g] => Vec3::splat(g),
+        [r, g, b] => Vec3::new(r, g, b),
+        _ => return Err(format!("expected one number or three R,G,B (got `{s}`)")),
+    };
+    if v.min_element() < 0.0 {
+        return Err(format!("must be >= 0 (got `{s}`)"));
+    }
+    Ok(v)
+}
+
+#[cfg(test)]
+mod tests;

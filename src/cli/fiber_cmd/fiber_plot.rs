@@ -6,7 +6,7 @@ use super::AppError;
 use std::fmt::Write as _;
 use std::path::Path;
 use wisp::fiber::marschner::n_lobe;
-use wisp::fiber::{Fiber, FiberParams, Lobe};
+use wisp::fiber::{Fiber, FiberParams, Lobe, LobeConstants};
 
 const W: usize = 720;
 const H: usize = 420;
@@ -114,7 +114,7 @@ fn nice_step(range: f64) -> f64 {
         .unwrap_or(mag * 10.0)
 }
 
-/// Writes the plots into `out` (created if missing).
+/// Writes the plots into `out` (created if missing), and `plots.txt`, their legend.
 pub fn plot(out: &Path, params: &FiberParams) -> Result<(), AppError> {
     std::fs::create_dir_all(out).map_err(|e| {
         AppError::input(anyhow::anyhow!(
@@ -123,14 +123,23 @@ pub fn plot(out: &Path, params: &FiberParams) -> Result<(), AppError> {
         ))
     })?;
     let fiber = Fiber::new(params);
-    let c = fiber.lobe_constants();
     let mut notes = String::new();
     let _ = writeln!(
         notes,
         "wisp fiber plot: {}\nNo text in the PNGs; this file is the legend.\n",
         serde_json::to_string(params).unwrap_or_default()
     );
-    // N_p(φ) at a few θd, channel mean, exact evaluation at cos 2φh = 0 (mean eccentricity).
+    plot_n_p(out, fiber.lobe_constants(), &mut notes)?;
+    plot_trt_smoothing(out, fiber.lobe_constants(), &mut notes)?;
+    plot_albedos(out, &fiber, params, &mut notes)?;
+    std::fs::write(out.join("plots.txt"), notes)
+        .map_err(|e| AppError::other(anyhow::anyhow!("{}: {e}", out.display())))?;
+    Ok(())
+}
+
+/// N_p(φ) of each lobe at a few θd, channel mean, exact evaluation at cos 2φh = 0 (mean
+/// eccentricity): `n_p_theta_d_*.png`.
+fn plot_n_p(out: &Path, c: &LobeConstants, notes: &mut String) -> Result<(), AppError> {
     for theta_deg in [0.0f64, 30.0, 60.0] {
         let sin_td = theta_deg.to_radians().sin();
         let n = 721;
@@ -161,33 +170,46 @@ pub fn plot(out: &Path, params: &FiberParams) -> Result<(), AppError> {
             nice_step(y_max)
         );
     }
-    // TRT raw (Eq. 8) against smoothed (§5.2.2) at θd = 0, channel mean.
-    {
-        let n = 1441;
-        let az = wisp::fiber::marschner::azimuth_for(c, Lobe::TRT, 0.0, 0.0);
-        let mut raw = Vec::with_capacity(n);
-        let mut smooth = Vec::with_capacity(n);
-        for k in 0..n {
-            let phi_deg = -90.0 + 180.0 * k as f64 / (n - 1) as f64;
-            let r = az.n_raw(2, phi_deg.to_radians());
-            let s = az.n_trt_smoothed(c, phi_deg.to_radians());
-            raw.push((phi_deg, (r[0] + r[1] + r[2]) / 3.0));
-            smooth.push((phi_deg, (s[0] + s[1] + s[2]) / 3.0));
-        }
-        let y_max = smooth.iter().map(|p| p.1).fold(1e-6, f64::max) * 3.0;
-        let mut p = Plot::new(-90.0, 90.0, 0.0, y_max, 15.0, nice_step(y_max));
-        p.polyline(&raw, [150, 150, 150], false);
-        p.polyline(&smooth, LOBE_COLOURS[2], false);
-        p.save(&out.join("n_trt_raw_vs_smoothed.png"))?;
-        let _ = writeln!(
-            notes,
-            "n_trt_raw_vs_smoothed.png: N_TRT(phi) at theta_d = 0, mean of R,G,B. x: phi from -90 \
-             to 90 deg, grid every 15 deg. y: 0 to {y_max:.4} (raw caustic spikes clipped), grid \
-             every {:.4}. grey = raw Eq. 8 (infinite at the caustics), green = smoothed.",
-            nice_step(y_max)
-        );
+    Ok(())
+}
+
+/// TRT raw (Eq. 8) against smoothed (§5.2.2) at θd = 0, channel mean:
+/// `n_trt_raw_vs_smoothed.png`.
+fn plot_trt_smoothing(out: &Path, c: &LobeConstants, notes: &mut String) -> Result<(), AppError> {
+    let n = 1441;
+    let az = wisp::fiber::marschner::azimuth_for(c, Lobe::TRT, 0.0, 0.0);
+    let mut raw = Vec::with_capacity(n);
+    let mut smooth = Vec::with_capacity(n);
+    for k in 0..n {
+        let phi_deg = -90.0 + 180.0 * k as f64 / (n - 1) as f64;
+        let r = az.n_raw(2, phi_deg.to_radians());
+        let s = az.n_trt_smoothed(c, phi_deg.to_radians());
+        raw.push((phi_deg, (r[0] + r[1] + r[2]) / 3.0));
+        smooth.push((phi_deg, (s[0] + s[1] + s[2]) / 3.0));
     }
-    // ā_f and ā_b against θ, per channel; and ā_f of a lighter fibre (σa / 4).
+    let y_max = smooth.iter().map(|p| p.1).fold(1e-6, f64::max) * 3.0;
+    let mut p = Plot::new(-90.0, 90.0, 0.0, y_max, 15.0, nice_step(y_max));
+    p.polyline(&raw, [150, 150, 150], false);
+    p.polyline(&smooth, LOBE_COLOURS[2], false);
+    p.save(&out.join("n_trt_raw_vs_smoothed.png"))?;
+    let _ = writeln!(
+        notes,
+        "n_trt_raw_vs_smoothed.png: N_TRT(phi) at theta_d = 0, mean of R,G,B. x: phi from -90 \
+         to 90 deg, grid every 15 deg. y: 0 to {y_max:.4} (raw caustic spikes clipped), grid \
+         every {:.4}. grey = raw Eq. 8 (infinite at the caustics), green = smoothed.",
+        nice_step(y_max)
+    );
+    Ok(())
+}
+
+/// ā_f and ā_b against θ per channel (`a_f_a_b.png`), and ā_f of this fibre against a
+/// lighter one, σa / 4 (`a_f_lighter.png`).
+fn plot_albedos(
+    out: &Path,
+    fiber: &Fiber,
+    params: &FiberParams,
+    notes: &mut String,
+) -> Result<(), AppError> {
     let lighter = Fiber::new(&FiberParams {
         sigma_a: params.sigma_a.map(|s| s / 4.0),
         ..params.clone()
@@ -205,8 +227,8 @@ pub fn plot(out: &Path, params: &FiberParams) -> Result<(), AppError> {
     };
     let mut p = Plot::new(-90.0, 90.0, 0.0, 1.0, 15.0, 0.1);
     for (ch, color) in CHANNEL_COLOURS.iter().enumerate() {
-        p.polyline(&series(&fiber, 0, ch), *color, false);
-        p.polyline(&series(&fiber, 1, ch), *color, true);
+        p.polyline(&series(fiber, 0, ch), *color, false);
+        p.polyline(&series(fiber, 1, ch), *color, true);
     }
     p.save(&out.join("a_f_a_b.png"))?;
     let _ = writeln!(
@@ -216,7 +238,7 @@ pub fn plot(out: &Path, params: &FiberParams) -> Result<(), AppError> {
     );
     let mut p = Plot::new(-90.0, 90.0, 0.0, 1.0, 15.0, 0.1);
     for (ch, color) in CHANNEL_COLOURS.iter().enumerate() {
-        p.polyline(&series(&fiber, 0, ch), *color, false);
+        p.polyline(&series(fiber, 0, ch), *color, false);
         p.polyline(&series(&lighter, 0, ch), *color, true);
     }
     p.save(&out.join("a_f_lighter.png"))?;
@@ -225,7 +247,5 @@ pub fn plot(out: &Path, params: &FiberParams) -> Result<(), AppError> {
         "a_f_lighter.png: a_f against theta (axes as a_f_a_b.png); solid = this fibre, dashed = \
          the same fibre with sigma_a / 4 (lighter hair); red/green/blue = channel."
     );
-    std::fs::write(out.join("plots.txt"), notes)
-        .map_err(|e| AppError::other(anyhow::anyhow!("{}: {e}", out.display())))?;
     Ok(())
 }

@@ -15,7 +15,7 @@
 //! down tilts its top toward the viewer (the eye goes up), and a pan keeps the point under the
 //! mouse, at the target's depth, under the mouse.
 //!
-//! Pure: no window and no engine, so the invariants are unit-tested here; `play_cmd` turns mouse
+//! Pure: no window and no engine, so the invariants are unit-tested here; `view.rs` turns mouse
 //! deltas into these calls and the result into the engine's fixed camera.
 
 use glam::Vec3;

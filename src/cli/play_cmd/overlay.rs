@@ -1,6 +1,7 @@
 //! The window's on-screen readout: lines of text on a dark translucent box, drawn into the 0RGB
 //! buffer that goes to the window (after the engine's image was converted, so a screenshot of
-//! the engine's framebuffer never contains it).
+//! the engine's framebuffer never contains it). Its figures ([`Readout`]) are means over the
+//! frames of the last half second ([`ReadoutMeter`]), so they can be read while they change.
 //!
 //! Glyphs come from `font8x8` (the public-domain 8×8 VGA-style font, ASCII part), drawn at an
 //! integer scale. Every write is clipped to the buffer: a window of any size, down to 1×1 or a
@@ -8,8 +9,12 @@
 
 use font8x8::legacy::BASIC_LEGACY;
 use std::fmt::Write;
-use wisp::engine::StageTimings;
+use std::time::Instant;
+use wisp::engine::{Engine, StageTimings};
 use wisp::fiber::ShadingMode;
+
+/// How often the readout's figures are renewed (means over the frames since), seconds.
+const READOUT_INTERVAL_S: f64 = 0.5;
 
 /// Glyph cell size in font pixels (the font is 8×8; lines are 2 pixels apart).
 const GLYPH_PX: usize = 8;
@@ -81,6 +86,67 @@ impl Readout {
             },
             if self.self_collision { "on" } else { "off" },
         );
+    }
+}
+
+/// The readout's figures ([`Readout`]): means over the frames since they were last renewed,
+/// renewed every [`READOUT_INTERVAL_S`]; the switches as of the last frame.
+pub struct ReadoutMeter {
+    readout: Option<Readout>,
+    /// The readout's text, reused from frame to frame.
+    text: String,
+    /// When the figures were last renewed, and the sums since: stage timings, window
+    /// seconds, frames.
+    since: Instant,
+    stages: StageTimings,
+    window_s: f64,
+    frames: u32,
+}
+
+impl ReadoutMeter {
+    pub fn new() -> Self {
+        Self {
+            readout: None,
+            text: String::new(),
+            since: Instant::now(),
+            stages: StageTimings::default(),
+            window_s: 0.0,
+            frames: 0,
+        }
+    }
+
+    /// Counts a frame shown: the engine's stage timings and `window_s` of the window's own
+    /// work; renews the figures when they are due (at once the first time), and takes the
+    /// shader, self-collision and `paused` as they are now.
+    pub fn record(&mut self, engine: &Engine, window_s: f64, paused: bool) {
+        self.stages.add(&engine.timings);
+        self.window_s += window_s;
+        self.frames += 1;
+        let since_s = self.since.elapsed().as_secs_f64();
+        if self.readout.is_none() || since_s >= READOUT_INTERVAL_S {
+            let n = self.frames as f64;
+            self.readout = Some(Readout {
+                fps: n / since_s.max(1e-9),
+                stages: self.stages.scaled(1.0 / n),
+                window_s: self.window_s / n,
+                ..Readout::default()
+            });
+            (self.stages, self.window_s, self.frames) = (StageTimings::default(), 0.0, 0);
+            self.since = Instant::now();
+        }
+        if let Some(r) = &mut self.readout {
+            r.mode = engine.shading.config.mode;
+            r.self_collision = engine.simulation.config.self_collision;
+            r.paused = paused;
+        }
+    }
+
+    /// Draws the readout, once there is one, over the `w` × `h` image `argb`.
+    pub fn draw(&mut self, argb: &mut [u32], w: usize, h: usize) {
+        if let Some(r) = &self.readout {
+            r.write_into(&mut self.text);
+            draw_panel(argb, w, h, &self.text, scale_for(w));
+        }
     }
 }
 

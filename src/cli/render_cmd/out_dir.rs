@@ -48,71 +48,16 @@ pub fn prepare_output_dir(
     quiet: bool,
 ) -> Result<(), AppError> {
     let shown = dir.display();
-    if dir.exists() && !dir.is_dir() {
-        return Err(AppError::input(anyhow::anyhow!(
-            "--out {shown}: exists and is not a directory"
-        )));
-    }
-    std::fs::create_dir_all(dir)
-        .with_context(|| format!("--out {shown}: cannot create the output directory"))
-        .map_err(AppError::input)?;
-    let probe = dir.join(format!(
-        ".wisp-write-test-{}-{}",
-        std::process::id(),
-        tidy.own.start
-    ));
-    std::fs::write(&probe, b"")
-        .with_context(|| format!("--out {shown}: cannot write files into the directory"))
-        .map_err(AppError::input)?;
-    let _ = std::fs::remove_file(&probe);
+    make_writable_dir(dir, tidy.own.start)?;
     let entries = std::fs::read_dir(dir)
         .with_context(|| format!("--out {shown}: cannot list the directory"))
         .map_err(AppError::input)?;
     let (mut temporaries, mut stale) = (0usize, 0usize);
     for entry in entries.flatten() {
-        let name = entry.file_name();
-        let Some(name) = name.to_str() else { continue };
-        let Some(FrameName {
-            index,
-            extension,
-            temporary,
-        }) = frame_name(name)
-        else {
-            continue;
-        };
-        let is_file = entry.file_type().is_ok_and(|t| t.is_file());
-        let own = tidy.own.contains(&index);
-        let this_format = extension == format.extension();
-        if !temporary && own && this_format {
-            if !is_file && !entry.path().is_file() {
-                return Err(AppError::input(anyhow::anyhow!(
-                    "--out {shown}: {name} is in the way (not a file, so this run cannot replace it)"
-                )));
-            }
-            continue;
-        }
-        let remove = if temporary {
-            (own && this_format) || tidy.all_temporaries
-        } else {
-            this_format && tidy.stale_from.is_some_and(|from| index >= from)
-        };
-        if !is_file || !remove {
-            continue;
-        }
-        match std::fs::remove_file(entry.path()) {
-            Ok(()) => {}
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => continue,
-            Err(e) => {
-                return Err(AppError::input(anyhow::anyhow!(
-                    "{}: cannot remove it: {e}",
-                    entry.path().display()
-                )));
-            }
-        }
-        if temporary {
-            temporaries += 1;
-        } else {
-            stale += 1;
+        match tidy_entry(&entry, tidy, format, dir)? {
+            Some(Removed::Temporary) => temporaries += 1,
+            Some(Removed::Stale) => stale += 1,
+            None => {}
         }
     }
     if !quiet && temporaries + stale > 0 {
@@ -124,6 +69,93 @@ pub fn prepare_output_dir(
         );
     }
     Ok(())
+}
+
+/// Creates `dir` if missing and checks that a file can be written into it (a probe file
+/// named by the process and `tag`, so shards starting at once do not share one, removed at
+/// once).
+fn make_writable_dir(dir: &Path, tag: u32) -> Result<(), AppError> {
+    let shown = dir.display();
+    if dir.exists() && !dir.is_dir() {
+        return Err(AppError::input(anyhow::anyhow!(
+            "--out {shown}: exists and is not a directory"
+        )));
+    }
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("--out {shown}: cannot create the output directory"))
+        .map_err(AppError::input)?;
+    let probe = dir.join(format!(".wisp-write-test-{}-{tag}", std::process::id()));
+    std::fs::write(&probe, b"")
+        .with_context(|| format!("--out {shown}: cannot write files into the directory"))
+        .map_err(AppError::input)?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
+}
+
+/// What [`tidy_entry`] removed.
+enum Removed {
+    /// A frame's temporary file.
+    Temporary,
+    /// A frame beyond the sequence.
+    Stale,
+}
+
+/// Removes the directory entry if `tidy` allows it (a frame's temporary file, or a frame of
+/// `format` beyond the sequence) and says what it removed. A non-file in the place of one of
+/// this run's frames is an error; a file another process removed first is not.
+fn tidy_entry(
+    entry: &std::fs::DirEntry,
+    tidy: &Tidy,
+    format: FrameFormat,
+    dir: &Path,
+) -> Result<Option<Removed>, AppError> {
+    let name = entry.file_name();
+    let Some(name) = name.to_str() else {
+        return Ok(None);
+    };
+    let Some(FrameName {
+        index,
+        extension,
+        temporary,
+    }) = frame_name(name)
+    else {
+        return Ok(None);
+    };
+    let is_file = entry.file_type().is_ok_and(|t| t.is_file());
+    let own = tidy.own.contains(&index);
+    let this_format = extension == format.extension();
+    if !temporary && own && this_format {
+        if !is_file && !entry.path().is_file() {
+            return Err(AppError::input(anyhow::anyhow!(
+                "--out {}: {name} is in the way (not a file, so this run cannot replace it)",
+                dir.display()
+            )));
+        }
+        return Ok(None);
+    }
+    let remove = if temporary {
+        (own && this_format) || tidy.all_temporaries
+    } else {
+        this_format && tidy.stale_from.is_some_and(|from| index >= from)
+    };
+    if !is_file || !remove {
+        return Ok(None);
+    }
+    match std::fs::remove_file(entry.path()) {
+        Ok(()) => {}
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => {
+            return Err(AppError::input(anyhow::anyhow!(
+                "{}: cannot remove it: {e}",
+                entry.path().display()
+            )));
+        }
+    }
+    Ok(Some(if temporary {
+        Removed::Temporary
+    } else {
+        Removed::Stale
+    }))
 }
 
 /// A file name of wisp's frames, taken apart.

@@ -14,12 +14,6 @@ fn huge_directions_normalise_without_overflow() {
 }
 
 #[test]
-fn names_from_files_print_without_control_characters() {
-    assert_eq!(printable("a\u{1b}[2Jb\n"), "a?[2Jb?");
-    assert_eq!(printable("Tête"), "Tête");
-}
-
-#[test]
 fn numbers_beyond_f32_are_reported_as_written() {
     assert!(
         parse_finite_f32("1e308")

@@ -1,0 +1,25 @@
+//! The hair map pass's flags ([`HairMapConfig`]): the map's resolution and contact shadows.
+
+use crate::cli::parse_contact_mm;
+use wisp::engine::{ContactShadowing, HairMapConfig};
+
+#[derive(clap::Args, Debug, Clone)]
+#[command(next_help_heading = "Light and shading")]
+pub struct HairMapArgs {
+    /// Light map cells per axis, 4–1024 [default: from the strand spacing]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(4..=1024))]
+    pub map_res: Option<u32>,
+    /// Contact shadows of one-fibre strands, mm to the light [default: off]
+    #[arg(long, value_name = "MM", value_parser = parse_contact_mm, allow_hyphen_values = true)]
+    pub contact_mm: Option<f32>,
+}
+
+impl HairMapArgs {
+    /// Writes the flags into the hair map's config.
+    pub fn apply(&self, config: &mut HairMapConfig) {
+        config.map_res = self.map_res;
+        if let Some(mm) = self.contact_mm {
+            config.contact = ContactShadowing::from_mm(mm);
+        }
+    }
+}

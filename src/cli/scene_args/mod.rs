@@ -1,0 +1,104 @@
+//! The flags of a run, taken by every command that builds an engine (`render`, `simulate`,
+//! `play`, `bench`, `accuracy`, `export`), and how they become its hairstyle, motion and
+//! [`EngineConfig`].
+//!
+//! The flags are grouped by what they set, one struct per file beside the one function that
+//! writes them into their part of the run:
+//!
+//! ```text
+//! hair           --hairstyle, --groom-*          -> Hairstyle, an imported groom's hair
+//! motion         --animation, --clip, --head-*   -> Motion
+//! scene          --scene and its shortcuts       -> Scene (image, camera, lights, solids)
+//! simulation     --no-sim, --no-self-collision   -> SimulationConfig
+//! interpolation  --segment-pieces                -> InterpolationConfig
+//! hair_map       --map-res, --contact-mm         -> HairMapConfig
+//! shading        --shading, --volume-*           -> ShadingConfig
+//! raster         --min-line-width-px             -> RasterConfig
+//! budget         --max-memory-gb, --max-work-*   -> Budget (checked before the engine is built)
+//! ```
+//!
+//! A new option of a pass is a field of its pass's config (library), its use in the pass, and
+//! a field and a line in that pass's file here. The help's headings group the flags for the
+//! user (hair, motion, scene, light and shading, image, budget), across these structs.
+
+mod budget;
+mod hair;
+mod hair_map;
+mod interpolation;
+mod motion;
+mod raster;
+mod scene;
+mod shading;
+mod simulation;
+
+pub use hair::ImportedHair;
+
+use super::AppError;
+use wisp::engine::{Engine, EngineConfig};
+use wisp::hairstyle::Hairstyle;
+use wisp::motion::Motion;
+use wisp::scene::Scene;
+
+/// What is rendered: hair, motion, scene, each pass's options and the budget.
+#[derive(clap::Args, Debug, Clone)]
+pub struct SceneArgs {
+    #[command(flatten)]
+    pub hair: hair::HairArgs,
+    #[command(flatten)]
+    pub motion: motion::MotionArgs,
+    #[command(flatten)]
+    pub simulation: simulation::SimulationArgs,
+    #[command(flatten)]
+    pub scene_file: scene::SceneFileArgs,
+    #[command(flatten)]
+    pub shading: shading::ShadingArgs,
+    #[command(flatten)]
+    pub hair_map: hair_map::HairMapArgs,
+    #[command(flatten)]
+    pub interpolation: interpolation::InterpolationArgs,
+    #[command(flatten)]
+    pub raster: raster::RasterArgs,
+    #[command(flatten)]
+    pub budget: budget::BudgetArgs,
+}
+
+impl SceneArgs {
+    /// Loads the motion and the hairstyle (and an imported groom's hair), and builds the scene
+    /// and the engine configuration; refuses a groom whose roots miss the character's head.
+    pub fn resolve(&self) -> Result<(Hairstyle, ImportedHair, Motion, EngineConfig), AppError> {
+        let motion = self.motion.load()?;
+        let (style, hair) = self.hair.load()?;
+        let scene = self.scene_file.scene(&style, &motion)?;
+        let config = self.config(scene);
+        self.hair
+            .check_roots_on_head(&style, &hair, &motion, &self.motion.source())?;
+        Ok((style, hair, motion, config))
+    }
+
+    /// The engine configuration: `scene`, and each pass's config from its flags.
+    fn config(&self, scene: Scene) -> EngineConfig {
+        let mut config = EngineConfig {
+            scene,
+            ..EngineConfig::default()
+        };
+        self.simulation.apply(&mut config.simulation);
+        self.interpolation.apply(&mut config.interpolation);
+        self.hair_map.apply(&mut config.hair_map);
+        self.shading.apply(&mut config.shading);
+        self.raster.apply(&mut config.raster);
+        config
+    }
+}
+
+/// The engine for a resolved scene: generated hair, or the imported groom's.
+pub fn engine(
+    style: Hairstyle,
+    hair: ImportedHair,
+    motion: Motion,
+    config: EngineConfig,
+) -> Engine {
+    match hair {
+        Some((guides, layout)) => Engine::with_hair(style, guides, layout, motion, config),
+        None => Engine::new(style, motion, config),
+    }
+}

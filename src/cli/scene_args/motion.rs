@@ -1,0 +1,108 @@
+//! The motion's flags: which clip of which glTF file the head and body follow, how the
+//! hairstyle's head is fitted to the character's, and how fast it plays (`wisp::motion`).
+
+use crate::cli::{AppError, parse_point, parse_positive_f32, parse_speed};
+use glam::Vec3;
+use std::path::PathBuf;
+use wisp::motion::{Fit, JointRef, Motion, MotionError, MotionOptions};
+
+#[derive(clap::Args, Debug, Clone)]
+#[command(next_help_heading = "Motion")]
+pub struct MotionArgs {
+    /// Motion: a glTF 2.0 file, .glb or .gltf [default: the embedded dance]
+    #[arg(long, value_name = "FILE")]
+    pub animation: Option<PathBuf>,
+    /// Animation clip [default: "Dance" if present, else the first]
+    #[arg(long, value_name = "NAME")]
+    pub clip: Option<String>,
+    /// Head joint, node name or index [default: one with "head" in its name]
+    #[arg(long, value_name = "JOINT")]
+    pub head_joint: Option<String>,
+    /// Head fit: size over the hairstyle's 0.09 m head; with --head-offset
+    #[arg(long, value_name = "S", value_parser = parse_positive_f32, requires = "head_offset")]
+    pub head_scale: Option<f32>,
+    /// Head fit: centre in the joint's frame, model metres; with --head-scale
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_hyphen_values = true, requires = "head_scale")]
+    pub head_offset: Option<Vec3>,
+    /// Playback speed, 1 = real time, in (0, 1000]
+    #[arg(long, value_name = "X", default_value_t = 1.0, value_parser = parse_speed, allow_hyphen_values = true)]
+    pub speed: f32,
+    /// Hold the head still in its rest pose (no motion)
+    #[arg(long)]
+    pub still: bool,
+}
+
+impl MotionArgs {
+    /// The motion: still, the clip of the `--animation` file, or the embedded dance.
+    pub fn load(&self) -> Result<Motion, AppError> {
+        if self.still {
+            return Ok(Motion::still(glam::Affine3A::IDENTITY));
+        }
+        let opts = MotionOptions {
+            clip: self.clip.clone(),
+            head_joint: self
+                .head_joint
+                .as_deref()
+                .map(|s| match s.parse::<usize>() {
+                    Ok(i) => JointRef::Index(i),
+                    Err(_) => JointRef::Name(s.to_string()),
+                }),
+            speed: self.speed,
+            fit: self
+                .head_scale
+                .zip(self.head_offset)
+                .map(|(scale, offset_m)| Fit { scale, offset_m }),
+            ..MotionOptions::default()
+        };
+        match &self.animation {
+            Some(path) => Motion::load(path, &opts).map_err(|e| self.motion_error(e)),
+            None => {
+                if self.clip.is_some() || self.head_joint.is_some() {
+                    return Err(AppError::input(anyhow::anyhow!(
+                        "--clip and --head-joint need --animation FILE (the embedded dance has one clip)"
+                    )));
+                }
+                wisp::motion::dance::try_dance(&opts).map_err(AppError::other)
+            }
+        }
+    }
+
+    /// A motion error, with the flag that fixes it when there is one.
+    fn motion_error(&self, e: MotionError) -> AppError {
+        let hint = match &e {
+            MotionError::UnknownJoint { role, .. } if role == "head joint" => {
+                if self.head_joint.is_none() {
+                    "; choose the head with --head-joint NAME|INDEX"
+                } else {
+                    "; give one of these to --head-joint"
+                }
+            }
+            MotionError::UnknownClip { .. } => "; give one of these to --clip",
+            _ => "",
+        };
+        AppError::input(anyhow::anyhow!("{e}{hint}"))
+    }
+
+    /// The file the motion comes from, for messages: its path, or "the embedded dance".
+    pub fn source(&self) -> String {
+        self.animation
+            .as_ref()
+            .map_or("the embedded dance".to_string(), |p| {
+                p.display().to_string()
+            })
+    }
+
+    /// What the motion flags chose, for a simulation cache's header and messages.
+    pub fn label(&self, motion: &Motion) -> String {
+        if self.still {
+            return "--still (no motion)".to_string();
+        }
+        format!(
+            "clip \"{}\" of {}, head joint \"{}\", speed {}",
+            motion.clip_name(),
+            self.source(),
+            motion.head_joint().1,
+            motion.speed()
+        )
+    }
+}

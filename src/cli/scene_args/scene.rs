@@ -1,0 +1,133 @@
+//! The scene's flags: a scene file (`--scene`, `wisp::scene::file`) and shortcuts for its
+//! fields written over it (image size, camera, first light, ambient, exposure, solids). The
+//! result is what `--print-scene` prints, validated into the run's [`Scene`]. Degrees stop
+//! here.
+
+use crate::cli::{
+    AppError, parse_direction, parse_finite_f32, parse_point, parse_positive_f32, parse_rgb,
+};
+use glam::Vec3;
+use std::path::PathBuf;
+use wisp::hairstyle::Hairstyle;
+use wisp::motion::Motion;
+use wisp::scene::file::{CameraJson, LightJson};
+use wisp::scene::{Scene, SceneFile};
+
+#[derive(clap::Args, Debug, Clone)]
+#[command(next_help_heading = "Scene")]
+pub struct SceneFileArgs {
+    /// Scene file (camera, lights, image, …); the flags override its fields
+    #[arg(long, value_name = "FILE.json")]
+    pub scene: Option<PathBuf>,
+    /// Fixed camera's eye, world metres [default: follow the head]
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_hyphen_values = true, requires = "camera_target")]
+    pub camera_eye: Option<Vec3>,
+    /// Fixed camera's target, world metres; needs --camera-eye
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_hyphen_values = true, requires = "camera_eye")]
+    pub camera_target: Option<Vec3>,
+    /// Fixed camera's up hint; needs --camera-eye [default: 0,1,0]
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_hyphen_values = true, requires = "camera_eye")]
+    pub camera_up: Option<Vec3>,
+    /// Fixed camera's vertical field of view, deg, in (0, 180) [default: 30]
+    #[arg(long, value_name = "DEG", value_parser = parse_positive_f32, requires = "camera_eye")]
+    pub fov_deg: Option<f32>,
+    /// Draw the hair only: no head, no body
+    #[arg(long)]
+    pub no_solids: bool,
+    /// Direction the first (directional) light travels, world, Y up
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_direction, allow_hyphen_values = true, help_heading = "Light and shading")]
+    pub light_dir: Option<Vec3>,
+    /// First light's irradiance, linear, >= 0 [default: 6]
+    #[arg(long, value_name = "E|R,G,B", value_parser = parse_rgb, help_heading = "Light and shading")]
+    pub irradiance: Option<Vec3>,
+    /// Ambient sky radiance, linear, >= 0 [default: 0.035,0.04,0.05]
+    #[arg(long, value_name = "L|R,G,B", value_parser = parse_rgb, help_heading = "Light and shading")]
+    pub ambient: Option<Vec3>,
+    /// Image width, pixels, 16–8192 [default: 800]
+    #[arg(long, value_name = "PX", value_parser = clap::value_parser!(u32).range(16..=8192), help_heading = "Image")]
+    pub width: Option<u32>,
+    /// Image height, pixels, 16–8192 [default: 800]
+    #[arg(long, value_name = "PX", value_parser = clap::value_parser!(u32).range(16..=8192), help_heading = "Image")]
+    pub height: Option<u32>,
+    /// Exposure: radiance times 2^stops, in [−20, 20] [default: 0]
+    #[arg(long, value_name = "STOPS", value_parser = parse_finite_f32, allow_hyphen_values = true, help_heading = "Image")]
+    pub exposure_stops: Option<f32>,
+}
+
+impl SceneFileArgs {
+    /// The effective scene: the scene file (or the default scene) with the flags written over
+    /// it (`--print-scene` prints it), and the name errors give it. Errors name the file, the
+    /// field and the rule.
+    pub fn effective(&self) -> Result<(String, SceneFile), AppError> {
+        let (name, mut file) = match &self.scene {
+            Some(path) => {
+                let name = path.display().to_string();
+                let (file, _) = SceneFile::load(path).map_err(AppError::input)?;
+                (name, file)
+            }
+            None => ("scene flags".to_string(), SceneFile::default()),
+        };
+        if let Some(w) = self.width {
+            file.image.width = w;
+        }
+        if let Some(h) = self.height {
+            file.image.height = h;
+        }
+        if let Some(l) = self.light_dir {
+            match file.lights.first_mut() {
+                Some(LightJson::Directional { direction, .. }) => *direction = l.to_array(),
+                _ => {
+                    return Err(AppError::input(anyhow::anyhow!(
+                        "--light-dir sets the first light's direction, and the first light of {name} is not a directional light"
+                    )));
+                }
+            }
+        }
+        self.write_view(&mut file)?;
+        Ok((name, file))
+    }
+
+    /// Writes the camera, solids, irradiance, ambient and exposure flags into `scene`.
+    fn write_view(&self, scene: &mut SceneFile) -> Result<(), AppError> {
+        if let (Some(eye), Some(target)) = (self.camera_eye, self.camera_target) {
+            scene.camera = CameraJson::Fixed {
+                position_m: eye.to_array(),
+                target_m: target.to_array(),
+                up: self.camera_up.unwrap_or(Vec3::Y).to_array(),
+                fov_y_deg: self.fov_deg.unwrap_or(30.0),
+            };
+        }
+        if self.no_solids {
+            scene.draw_solids = false;
+        }
+        if let Some(e) = self.irradiance {
+            match scene.lights.first_mut() {
+                Some(LightJson::Directional { irradiance, .. }) => *irradiance = e.to_array(),
+                _ => {
+                    return Err(AppError::input(anyhow::anyhow!(
+                        "--irradiance sets the first light's irradiance, and the scene's first light is not a directional light"
+                    )));
+                }
+            }
+        }
+        if let Some(a) = self.ambient {
+            scene.ambient = a.to_array();
+        }
+        if let Some(x) = self.exposure_stops {
+            scene.exposure_stops = x;
+        }
+        Ok(())
+    }
+
+    /// The run's scene: [`Self::effective`], validated, with its point lights checked to lie
+    /// beyond the reach of the hair of `style` on the head at the motion's first pose.
+    pub fn scene(&self, style: &Hairstyle, motion: &Motion) -> Result<Scene, AppError> {
+        let (name, file) = self.effective()?;
+        let scene = file.validate(&name).map_err(AppError::input)?;
+        let head = Vec3::from(motion.sample(0.0).head.translation);
+        let reach = style.max_length_m() + style.head.radii_m.iter().copied().fold(0.0, f32::max);
+        wisp::scene::file::check_point_lights_outside(&scene.lights, head, reach)
+            .map_err(|(field, rule)| AppError::input(anyhow::anyhow!("{name}: {field}: {rule}")))?;
+        Ok(scene)
+    }
+}
