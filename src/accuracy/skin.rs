@@ -54,7 +54,10 @@ pub fn measure_skin(engine: &mut Engine, rays: u32) -> SkinReport {
     let mask = engine.solids_image(|p, n, _| Vec3::splat(f32::from(u8::from(facing(p, n)))));
     let measured: Vec<bool> = mask.color.iter().map(|c| c.x >= 0.999).collect();
     // The key light's shadows, copied: the engine is drawn into while they are read.
-    let key_shadow = engine.shadows().light(0).expect("an engine has a map per light");
+    let key_shadow = engine
+        .shadows()
+        .light(0)
+        .expect("an engine has a map per light");
     let (hair, solids, skin) = (
         key_shadow.hair.clone(),
         key_shadow.solids.clone(),
