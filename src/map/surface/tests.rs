@@ -1,6 +1,8 @@
 //! Tests of the surface texture: ribbons, their sums and deposits, their row spans, and the
 //! tiles that drop ribbons behind the solids.
 
+use super::limits::LimitTiles;
+use super::ribbon::deposit;
 use super::*;
 
 /// Ribbons of several lengths, widths, angles and sub-texel offsets, in a texture of
