@@ -275,7 +275,7 @@ fn sampled_vertices(engine: &Engine, vertices: usize) -> Vec<usize> {
         .collect()
 }
 
-/// The resolutions a sweep compares: `ns` cubic cells per axis (the "N"), then the
+/// The resolutions a sweep compares: `ns` cubic cells per axis (N), then the
 /// engine's own geometry (its N with finer columns across the light) when it is not among them.
 pub fn sweep_geometries(engine: &Engine, ns: &[u32]) -> Vec<MapGeometry> {
     let style = &engine.style;

@@ -1,5 +1,18 @@
-//! Reading the map: the trilinear filter of Bertails 2005 §3.3 and the cell density used by
-//! self-collision (§4.1).
+//! Reading the map: the light reaching a point (Bertails 2005 §3.3, read exactly along the
+//! light instead of filtered) and the cell density used by self-collision (§4.1).
+//!
+//! Along the light, a column gives the sums a ray has crossed up to the point's depth: those
+//! entering the point's cell plus the share of the cell's own crossings in front of the point,
+//!
+//!   S(x) = S_in + (S_out − S_in)·share(λ),  λ = x/ds − ⌊x/ds⌋ (`Cell::share_before`),
+//!
+//! turned into the direct fraction exp(−n) and T_f = exp(−loss) per column. Across the light,
+//! the four columns nearest to the point are blended bilinearly between their centres, the
+//! weights of the fill's splat. Only the hair's own extent is read, so the modulo indexing
+//! never aliases distant hair into a lookup. A seen point averages the sums over shifts
+//! toward the light (the opposition effect, [`LightMap::light_at_seen`]), and with contact
+//! shadows takes the fibres of a window in front of it exactly
+//! ([`LightMap::light_at_vertex_seen`]).
 
 use super::occluders::NO_SOLIDS;
 use super::{Cell, LightMap, OccluderGrid, on_map};

@@ -72,6 +72,14 @@
 //! [`crate::accuracy::exact`] shoots rays through explicit fibre cylinders (no grid, no
 //! statistics), and [`crate::accuracy`] compares the map with it; `wisp accuracy` prints the
 //! tables of ACCURACY.md.
+//!
+//! ## Where things are
+//! [`MapGeometry`] (`geometry.rs`) sizes the map; [`Projection`] (`projection.rs`) takes world
+//! points into the light frame; [`LightMap::build`] (`build/`, one file per phase) fills and
+//! sweeps the cells (`cell.rs`) and indexes the columns (`column_index.rs`); `lookup.rs` reads
+//! them. The solids' grid (`occluders/`), the skin's texture (`surface/`) and the contact
+//! shadows (`contact/`) are built in the same light frame, and [`Shadow`] (`shadows.rs`) reads
+//! a light's three together.
 
 mod budget;
 mod build;

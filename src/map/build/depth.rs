@@ -29,7 +29,7 @@ pub(super) fn spread_depth(hist: &mut [f32; DEPTH_BINS], depth: [u16; 2], n: f32
     // The bins b0..=b1, four to a vector: each lane rounds its min, max, product and quotient
     // as the scalar `n * overlap / width` does (IEEE), and a lane outside b0..=b1 adds exactly
     // nothing, so this is the per-bin loop to the bit (also for a non-finite n) without its
-    // scalar divisions, which were about a third of the merge.
+    // scalar divisions, which cost about a third of the merge.
     const _: () = assert!(DEPTH_BINS == 8);
     let (lo4, hi4, n4, width4) = (
         Vec4::splat(lo),

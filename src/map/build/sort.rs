@@ -75,7 +75,7 @@ pub(super) fn sort_pieces(scratch: &mut Scratch, running: &mut [u32], first: i64
 /// column keeps each column in piece order, so a stable sort by slice alone gives that order:
 /// short columns by insertion, longer ones by counting slices into a per-thread buffer,
 /// O(length + span) and allocation-free once the buffers have grown. (Measured: the general
-/// unstable sort on the pair key was a quarter of the build.)
+/// unstable sort on the pair key takes a quarter of the build.)
 pub(super) fn sort_column(col: &mut [Placed]) {
     debug_assert!(col.windows(2).all(|w| w[0].id < w[1].id));
     if col.len() <= 16 {

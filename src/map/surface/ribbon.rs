@@ -188,8 +188,8 @@ impl Piece {
 /// with `qx·per_qx + qy·k` in (`from`, `to`), qx and qy the centre's offset from the ribbon's
 /// start.
 ///
-/// Why reciprocals: the spans were four divisions a row and their slack two more, 21% of
-/// curly's texture. A product by `1/k` is within an ulp or two of the quotient, and the slack
+/// Why reciprocals: four divisions a row for the spans and two more for their slack cost 21%
+/// of curly's texture. A product by `1/k` is within an ulp or two of the quotient, and the slack
 /// (a hundredth of a texel, plus 1e-5 of the magnitudes over |k|) is 80 times that.
 pub(super) struct Strip {
     per_qx: f32,
