@@ -77,7 +77,7 @@
 //! [`MapGeometry`] (`geometry.rs`) sizes the map; [`Projection`] (`projection.rs`) takes world
 //! points into the light frame; [`LightMap::build`] (`build/`, one file per phase) fills and
 //! sweeps the cells (`cell.rs`) and indexes the columns (`column_index.rs`); `lookup.rs` reads
-//! them. The solids' grid (`occluders/`), the skin's texture (`surface/`) and the contact
+//! them, and `seen.rs` for a point the camera sees. The solids' grid (`occluders/`), the skin's texture (`surface/`) and the contact
 //! shadows (`contact/`) are built in the same light frame, and [`Shadow`] (`shadows.rs`) reads
 //! a light's three together.
 
@@ -92,6 +92,7 @@ pub(crate) mod lateral_bins;
 mod lookup;
 pub(crate) mod occluders;
 mod projection;
+mod seen;
 mod shadows;
 pub mod surface;
 
