@@ -58,7 +58,7 @@ pub enum Projection {
     /// of constant (Y, Z), and the whole map (fill, sweep, lookup) works unchanged. A strand
     /// piece keeps its crossing count: its length across the rays and its fibres' width both
     /// shrink by that scale while a column stands for a cone whose cross-section grows with
-    /// depth² (see `LightMap::build`).
+    /// depth² (`build/fill.rs`).
     Central {
         frame: LightFrame,
         origin: Vec3,

@@ -59,29 +59,7 @@ impl ColumnSort<'_> {
                     count[e.col as usize] += 1;
                 }
             });
-        // Per-chunk counts become write cursors, in passes that walk the counters in memory
-        // order (a column-major walk strides over the chunks' rows): column totals, their
-        // exclusive prefix, then each chunk's cursor after the earlier chunks' pieces.
-        starts.clear();
-        starts.resize(cols + 1, 0);
-        for row in counts.chunks_exact(cols) {
-            for (total, n) in starts.iter_mut().zip(row) {
-                *total += n;
-            }
-        }
-        let mut acc = 0u32;
-        for start in starts.iter_mut() {
-            (*start, acc) = (acc, acc + *start);
-        }
-        running.copy_from_slice(&starts[..cols]);
-        for row in counts.chunks_exact_mut(cols) {
-            for (next, count) in running.iter_mut().zip(row) {
-                let n_k = *count;
-                *count = *next; // becomes this chunk's write cursor in the column
-                *next += n_k;
-            }
-        }
-        let total = acc as usize;
+        let total = cursors(counts, starts, running) as usize;
         out.reserve_exact(total.saturating_sub(out.len()));
         out.resize(total, Placed::default());
         let at_out = SharedSlice(out.as_mut_ptr());
@@ -104,6 +82,36 @@ impl ColumnSort<'_> {
                 }
             });
     }
+}
+
+/// Turns per-chunk `counts` (one row of `running.len()` columns per chunk) into write cursors,
+/// in passes that walk the counters in memory order (a column-major walk strides over the
+/// chunks' rows): the column totals and their exclusive prefix into `starts` (one more entry
+/// than the columns), then each chunk's cursor in a column after the column's start and the
+/// earlier chunks' counts there. Returns the total. No sum wraps while the counts add up to
+/// less than 2^32.
+fn cursors(counts: &mut [u32], starts: &mut Vec<u32>, running: &mut [u32]) -> u32 {
+    let cols = running.len();
+    starts.clear();
+    starts.resize(cols + 1, 0);
+    for row in counts.chunks_exact(cols) {
+        for (total, n) in starts.iter_mut().zip(row) {
+            *total += n;
+        }
+    }
+    let mut acc = 0u32;
+    for start in starts.iter_mut() {
+        (*start, acc) = (acc, acc + *start);
+    }
+    running.copy_from_slice(&starts[..cols]);
+    for row in counts.chunks_exact_mut(cols) {
+        for (next, count) in running.iter_mut().zip(row) {
+            let n_k = *count;
+            *count = *next; // becomes this chunk's write cursor in the column
+            *next += n_k;
+        }
+    }
+    acc
 }
 
 /// A buffer as a raw pointer that parallel chunks write through, each to its own places (see
