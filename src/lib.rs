@@ -26,6 +26,11 @@
 //!   from the normal plane (sin θ = ω·u); ωi points to the light, ωo to the camera.
 //! - A directional light travels along `L`; the map's X axis is `L`.
 //! - Colours are linear RGB until the PNG encoder converts to 8-bit sRGB.
+//!
+//! `unsafe` is denied throughout; one file allows it: the map build's counting sort
+//! (`map/build/scatter.rs`), whose parallel chunks write interleaved places of one buffer.
+
+#![deny(unsafe_code)]
 
 pub mod accuracy;
 pub mod budget;

@@ -98,6 +98,24 @@ pub fn measure_skin(engine: &mut Engine, rays: u32) -> SkinReport {
     });
     let reference_tf = tf_image(ref_img, &measured);
     let reference_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let (all, shadowed) = compare_pixels(&reference_tf, &map_tf);
+    SkinReport {
+        pixels: all.vertices,
+        shadowed_pixels: shadowed.vertices,
+        comparison: all,
+        shadowed,
+        map_tf,
+        reference_tf,
+        width,
+        height,
+        reference_ms,
+    }
+}
+
+/// The map's T_f image against the reference's over the measured pixels (those where the
+/// reference is not negative): all of them, and those the hair shadows noticeably (reference
+/// T_f < 0.98).
+fn compare_pixels(reference_tf: &[f32], map_tf: &[f32]) -> (Comparison, Comparison) {
     let as_light = |tf: f32| LightAtPoint {
         tf: Vec3::splat(tf),
         direct_fraction: tf,
@@ -105,7 +123,7 @@ pub fn measure_skin(engine: &mut Engine, rays: u32) -> SkinReport {
     };
     let (mut truth, mut estimate, mut shadow_truth, mut shadow_estimate) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    for (&t, &e) in reference_tf.iter().zip(&map_tf) {
+    for (&t, &e) in reference_tf.iter().zip(map_tf) {
         if t < 0.0 {
             continue;
         }
@@ -116,17 +134,10 @@ pub fn measure_skin(engine: &mut Engine, rays: u32) -> SkinReport {
             shadow_estimate.push(as_light(e));
         }
     }
-    SkinReport {
-        pixels: truth.len(),
-        shadowed_pixels: shadow_truth.len(),
-        comparison: Comparison::new(&truth, &estimate),
-        shadowed: Comparison::new(&shadow_truth, &shadow_estimate),
-        map_tf,
-        reference_tf,
-        width,
-        height,
-        reference_ms,
-    }
+    (
+        Comparison::new(&truth, &estimate),
+        Comparison::new(&shadow_truth, &shadow_estimate),
+    )
 }
 
 /// The mean of R, G, B of each measured pixel; −1 elsewhere.

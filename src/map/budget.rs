@@ -1,16 +1,14 @@
 //! What a [`LightMap`](super::LightMap) holds, for the run's memory budget (`crate::budget`):
 //! an upper bound from the map's geometry and the number of samples, computed before the map
-//! exists. Keep it in step with `build.rs` (the vectors listed below) when the map changes;
+//! exists. Keep it in step with `build/` (the vectors listed below) when the map changes;
 //! `tests/hostile_budget.rs` measures a real build against it.
 
-use super::Cell;
-use super::MapGeometry;
-use super::build::{MAX_PIECES, SLOT_SPAN_PER_CELL};
-use super::column::{Piece, PieceStats, Placed, SPLAT};
+use super::build::{MAX_PIECES, Piece, PieceStats, Placed, SLOT_SPAN_PER_CELL, SPLAT};
+use super::{Cell, ColumnIndex, MapGeometry};
 
 impl MapGeometry {
     /// Pieces each sample is split into when the longest sample is `sample_len_m` long
-    /// (`build.rs`: ⌈ℓ / ds⌉, clamped to [1, 8]).
+    /// (`build/fill.rs`: ⌈ℓ / ds⌉, clamped to [1, 8]).
     pub fn pieces_for(&self, sample_len_m: f32) -> u64 {
         let pieces = (sample_len_m / self.ds_m).ceil();
         let max = MAX_PIECES as u64;
@@ -39,8 +37,7 @@ impl MapGeometry {
         let cells = pieces.saturating_mul(SPLAT as u64);
         let piece_bytes = (size_of::<Piece>() + size_of::<Placed>()) as u64 + u32_bytes;
         let cell_bytes = size_of::<Cell>() as u64;
-        let offsets =
-            (3 * columns + 2) * u32_bytes + columns * size_of::<super::ColumnIndex>() as u64;
+        let offsets = (3 * columns + 2) * u32_bytes + columns * size_of::<ColumnIndex>() as u64;
         // Per sample: its pieces' statistics and the forward attenuation kept for the skin.
         let stats =
             samples.saturating_mul((size_of::<PieceStats>() + size_of::<glam::Vec3>()) as u64);

@@ -12,7 +12,7 @@
 //! compressed-row layout: a counting sort of the sample pieces by column (N² counters, the
 //! only per-frame cost that depends on N) followed, per column and in parallel, by a sort of
 //! its pieces along X (relative to the first slice, wrapping modulo N as in Bertails Figure
-//! 3), a merge of pieces falling in the same cell, and the sweep of Eq. 3 (`build.rs`). An
+//! 3), a merge of pieces falling in the same cell, and the sweep of Eq. 3 (`build/`). An
 //! empty cell has the value of the last filled cell before it in its column (Bertails §3.2:
 //! "otherwise cell (i,j,k) is given the transmittance prevTrans"); a lookup finds it through
 //! a per-column slot table. A dense N³ grid at N = 128 would clear and sweep 2M cells (56 MB
@@ -43,7 +43,7 @@
 //! crosses a column boundary, which shows the grid as cell-sized blotches on front-lit hair
 //! lying side by side; the splat removes them (measured on smooth at N = 129 against the exact
 //! reference: T_f MAE 0.025 → 0.021, ACCURACY.md), at four shares per piece, taken as the
-//! columns are merged (`build.rs`).
+//! columns are merged (`build/merge.rs`).
 //!
 //! ## Along the light: where a cell's hair lies, and what a point receives
 //! A cell stores the running sums of the sweep up to its *far face* (the face away from the
@@ -51,10 +51,10 @@
 //! light its crossings lie: 8 sub-slices, as a cumulative share (`Cell::depth_cdf`;
 //! each piece spreads its crossings evenly over the depth it spans). A point inside a cell
 //! receives the sums entering the cell plus only the share of the cell's crossings in front of
-//! it, turned into exp(−n) and exp(−loss) per column: the front-most fibres of a cell are no
-//! longer shadowed by hair lying beside or behind them (Bertails §6 names this family, adaptive
+//! it, turned into exp(−n) and exp(−loss) per column, so the front-most fibres of a cell are
+//! not shadowed by hair lying beside or behind them (Bertails §6 names this family, adaptive
 //! slicing along the light). Reading through a cell with a uniform spread (the filter of
-//! Bertails §3.3) made lit hair 0.16–0.23 too dark against the exact reference. A slab of hair
+//! Bertails §3.3) reads lit hair 0.16–0.23 too dark against the exact reference. A slab of hair
 //! perpendicular to L still reads exactly 1 in front of it and exactly the analytic attenuation
 //! at every face behind it (`tests/map_slab.rs`).
 //!
@@ -69,108 +69,42 @@
 //! real fibres inside the window what gets through it.
 //!
 //! ## Measuring it
-//! [`exact`] shoots rays through explicit fibre cylinders (no grid, no statistics), and
-//! [`accuracy`] compares the map with it; `wisp accuracy` prints the tables of ACCURACY.md.
+//! [`crate::accuracy::exact`] shoots rays through explicit fibre cylinders (no grid, no
+//! statistics), and [`crate::accuracy`] compares the map with it; `wisp accuracy` prints the
+//! tables of ACCURACY.md.
+//!
+//! ## Where things are
+//! [`MapGeometry`] (`geometry.rs`) sizes the map; [`Projection`] (`projection.rs`) takes world
+//! points into the light frame; [`LightMap::build`] (`build/`, one file per phase) fills and
+//! sweeps the cells (`cell.rs`) and indexes the columns (`column_index.rs`); `lookup.rs` reads
+//! them, and `seen.rs` for a point the camera sees. The solids' grid (`occluders/`), the skin's texture (`surface/`) and the contact
+//! shadows (`contact/`) are built in the same light frame, and [`Shadow`] (`shadows.rs`) reads
+//! a light's three together.
 
 mod budget;
 mod build;
-mod column;
+mod cell;
+mod column_index;
 pub mod contact;
 mod entry_depths;
+mod geometry;
 pub(crate) mod lateral_bins;
 mod lookup;
 pub(crate) mod occluders;
+mod projection;
+mod seen;
 mod shadows;
 pub mod surface;
 
-pub use build::{CountModel, MapBuildInput, MapLight, MapStats};
+pub use build::{CountModel, MapBuildInput, MapStats};
+pub(crate) use cell::{Cell, DEPTH_BINS};
+pub(crate) use column_index::ColumnIndex;
+pub use geometry::{MAX_LATERAL_COLUMNS, MapGeometry};
 pub use occluders::{OccluderGrid, OccluderMesh, Solid};
+pub use projection::{CENTRAL_MIN_DEPTH_M, LightFrame, MapLight, Projection};
 pub use shadows::{Shadow, Shadows};
 
 use glam::{Vec2, Vec3};
-
-/// Size of the map: N slices of `ds_m` along the light, and `lateral` × N columns across it
-/// per axis (each `ds_m / lateral` wide).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MapGeometry {
-    /// Cells per axis along the light (slices).
-    pub n: u32,
-    /// Cell size along the light in metres.
-    pub ds_m: f32,
-    /// Columns per cell width across the light (1: cubic cells). Along the light each cell
-    /// already knows where its hair lies (8 sub-slices); across it, what a column averages is
-    /// all it knows, so finer columns than slices resolve slanted hair surfaces at no cost in
-    /// pieces (a piece is no longer than a slice).
-    pub lateral: u32,
-}
-
-impl MapGeometry {
-    /// A map that spans `span_m` with `n` cubic cells per axis.
-    pub fn with_resolution(span_m: f32, n: u32) -> Self {
-        let n = n.max(1);
-        Self {
-            n,
-            ds_m: span_m / n as f32,
-            lateral: 1,
-        }
-    }
-
-    /// Columns per lateral axis (N × `lateral`).
-    pub fn columns_per_axis(&self) -> u32 {
-        self.n.saturating_mul(self.lateral.max(1))
-    }
-
-    /// Column width across the light, metres.
-    pub fn column_m(&self) -> f32 {
-        self.ds_m / self.lateral.max(1) as f32
-    }
-
-    /// A map sized from the scene (Bertails §2.2): span 2·lmax + hmax, and a cell of
-    /// 1.5 × the spacing between render strands at the scalp, widened by √(30/F) when each
-    /// render strand holds fewer than F = 30 fibres. Chosen from the measurements of
-    /// ACCURACY.md against the exact reference:
-    /// - the error falls as cells shrink towards the strand spacing (smooth, 30 fibres per strand:
-    ///   T_f MAE 0.020 at 2 spacings, 0.016 at 1.5, 0.014 at 1), and the cost grows with the
-    ///   filled cells; 1.5 spacings (N = 172 for the presets) meets MAE ≤ 0.02 with margin;
-    /// - across the light, columns about ¾ of a strand spacing wide (at most
-    ///   [`MAX_LATERAL_COLUMNS`] per cell width; 2 for the presets): the pictures of a path
-    ///   tracer (tools/reference, ACCURACY.md) show the hair the camera sees, which lies at the
-    ///   hair's surface, where a column averages hair beside the point at other depths. One
-    ///   fibre per strand, single scattering against Mitsuba: back-lit 1.25 → 1.00 and
-    ///   front-lit 0.79 → 0.91 with 4 columns per cell, curly back-lit 1.88 → 1.19 with 3;
-    ///   narrower columns than ¾ spacing resolve single strands and the per-vertex error rises
-    ///   (smooth: MAE 0.0132 at 2.5 mm columns, 0.0154 at 1.8, 0.0207 at 1.2). The pieces do
-    ///   not change (a piece is no longer than a slice); the filled cells grow;
-    /// - with one fibre per render strand, a cell a few strands wide no longer averages enough
-    ///   fibres, and finer cells stop paying: against the hair within 3.7 mm, smooth with 12
-    ///   one-fibre strands per preset strand has MAE 0.031 at 8.8 mm cells, 0.026 at 7.4,
-    ///   0.025 at 5, 0.026 at 3.7 and 0.030 at 2.1 mm (where 2 strand spacings put it), while
-    ///   its calibration turns bright below 5 mm. The cell therefore spans as many fibres as a
-    ///   preset's (about 68 across a cell at the scalp), not as many render strands: 87,500
-    ///   one-fibre strands get N ≈ 160, not 657.
-    pub fn for_scene(
-        max_length_m: f32,
-        head_size_m: f32,
-        strand_spacing_m: f32,
-        fibers_per_strand: f32,
-    ) -> Self {
-        let span = Self::span_m(max_length_m, head_size_m);
-        let widen = (30.0 / fibers_per_strand.max(1e-3)).sqrt().max(1.0);
-        let cell = 1.5 * strand_spacing_m.max(1e-6) * widen;
-        let n = (span / cell).ceil().clamp(8.0, 1024.0) as u32;
-        let geom = Self::with_resolution(span, n);
-        let lateral = (geom.ds_m / (0.75 * strand_spacing_m.max(1e-6)))
-            .round()
-            .clamp(1.0, MAX_LATERAL_COLUMNS as f32) as u32;
-        Self { lateral, ..geom }
-    }
-
-    /// The smallest span that always holds the hair: 2·lmax + hmax (Bertails §2.2), plus 2%
-    /// so that a strand pulled exactly straight does not land on the wrap boundary.
-    pub fn span_m(max_length_m: f32, head_size_m: f32) -> f32 {
-        1.02 * (2.0 * max_length_m + head_size_m)
-    }
-}
 
 /// Coordinates beyond this many cells are treated as invalid (keeps `as i64` well defined).
 const MAX_CELL_COORD: f32 = 1.0e12;
@@ -181,9 +115,6 @@ fn on_map(c: Vec3) -> bool {
     c.is_finite() && c.abs().max_element() < MAX_CELL_COORD
 }
 
-/// Most columns per cell width across the light that [`MapGeometry::for_scene`] chooses.
-pub const MAX_LATERAL_COLUMNS: u32 = 4;
-
 /// Occluder texel size in cells.
 const OCCLUDER_TEXEL_CELLS: f32 = 0.25;
 
@@ -192,247 +123,6 @@ const OCCLUDER_TEXEL_CELLS: f32 = 0.25;
 /// smooth × 4 strands of one fibre (shading, 2 threads) 1 column 7.6 s, ½ 6.5 s, ¼ 6.9 s; but
 /// the memory grows as 1/bin (the dense preset's 1.1 M segments make 13 M parts at a column).
 pub const CONTACT_BIN_COLUMNS: f32 = 1.0;
-
-/// Orthonormal light frame: `x` is the direction the light travels.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LightFrame {
-    pub x: Vec3,
-    pub y: Vec3,
-    pub z: Vec3,
-}
-
-impl LightFrame {
-    /// The frame for light travelling along `l` (normalised here; a zero vector falls back to
-    /// light travelling down, −Y).
-    pub fn new(l: Vec3) -> Self {
-        let x = l.normalize_or(Vec3::NEG_Y);
-        let (y, z) = x.any_orthonormal_pair();
-        Self { x, y, z }
-    }
-
-    /// World point -> map coordinates in metres.
-    #[inline]
-    pub fn to_map(&self, p: Vec3) -> Vec3 {
-        Vec3::new(self.x.dot(p), self.y.dot(p), self.z.dot(p))
-    }
-
-    /// Map coordinates in metres -> world point.
-    #[inline]
-    pub fn to_world(&self, m: Vec3) -> Vec3 {
-        self.x * m.x + self.y * m.y + self.z * m.z
-    }
-}
-
-/// Closest depth along a point light's axis at which the map places anything, metres: nearer
-/// points (and those behind the light) are not in the map (skipped when filling, unshadowed
-/// when read).
-pub const CENTRAL_MIN_DEPTH_M: f32 = 1e-4;
-
-/// How world points become map coordinates (metres): X along the light's rays, Y and Z across
-/// them, so that every ray of the light is a line of constant (Y, Z).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Projection {
-    /// A directional light: parallel rays along `frame.x`; map coordinates are the frame's.
-    Parallel { frame: LightFrame },
-    /// A point light at `origin` (Bertails 2005 §6: a light-oriented map for a point source
-    /// is angular). Depth is the distance along the axis `frame.x` (from the light toward the
-    /// hair); across the axis a point's offset is scaled by `ref_depth_m / depth`, its
-    /// central projection onto the plane at `ref_depth_m`. Rays from the light are then lines
-    /// of constant (Y, Z), and the whole map (fill, sweep, lookup) works unchanged. A strand
-    /// piece keeps its crossing count: its length across the rays and its fibres' width both
-    /// shrink by that scale while a column stands for a cone whose cross-section grows with
-    /// depth² (see `LightMap::build`).
-    Central {
-        frame: LightFrame,
-        origin: Vec3,
-        ref_depth_m: f32,
-    },
-}
-
-impl Projection {
-    /// The light frame (its X is the light's direction, or a point light's axis).
-    #[inline]
-    pub fn frame(&self) -> LightFrame {
-        match *self {
-            Projection::Parallel { frame } | Projection::Central { frame, .. } => frame,
-        }
-    }
-
-    /// Map coordinates of world point `p`, metres (non-finite for a point not in front of a
-    /// point light).
-    #[inline]
-    pub fn point(&self, p: Vec3) -> Vec3 {
-        match *self {
-            Projection::Parallel { frame } => frame.to_map(p),
-            Projection::Central { .. } => match self.central(p) {
-                Some((q, s)) => Vec3::new(q.x, q.y * s, q.z * s),
-                None => Vec3::NAN,
-            },
-        }
-    }
-
-    /// For a point light: `p` in the light's frame relative to the light, and the lateral
-    /// scale ref/depth there; `None` for parallel light or a point not in front of the light.
-    #[inline]
-    fn central(&self, p: Vec3) -> Option<(Vec3, f32)> {
-        match *self {
-            Projection::Parallel { .. } => None,
-            Projection::Central {
-                frame,
-                origin,
-                ref_depth_m,
-            } => {
-                let q = frame.to_map(p - origin);
-                (q.x > CENTRAL_MIN_DEPTH_M).then(|| (q, ref_depth_m / q.x))
-            }
-        }
-    }
-
-    /// World point of map coordinates `m` (the inverse of [`Projection::point`]).
-    pub fn to_world(&self, m: Vec3) -> Vec3 {
-        match *self {
-            Projection::Parallel { frame } => frame.to_world(m),
-            Projection::Central {
-                frame,
-                origin,
-                ref_depth_m,
-            } => {
-                let s = m.x / ref_depth_m;
-                origin + frame.to_world(Vec3::new(m.x, m.y * s, m.z * s))
-            }
-        }
-    }
-
-    /// Unit direction from world point `p` toward the light.
-    #[inline]
-    pub fn toward_light(&self, p: Vec3) -> Vec3 {
-        match *self {
-            Projection::Parallel { frame } => -frame.x,
-            Projection::Central { frame, origin, .. } => (origin - p).normalize_or(-frame.x),
-        }
-    }
-
-    /// A point light's reference depth (lateral lengths at depth x are scaled by ref/x), or
-    /// `None` for parallel light.
-    #[inline]
-    pub fn central_ref_depth_m(&self) -> Option<f32> {
-        match *self {
-            Projection::Parallel { .. } => None,
-            Projection::Central { ref_depth_m, .. } => Some(ref_depth_m),
-        }
-    }
-
-    /// The point of a fibre's surface nearest the light, in map coordinates: map point `m`
-    /// on the fibre's axis moved by the fibre's radius `radius_m` along the part of the
-    /// direction toward the light that is across the fibre, whose tangent is the chord from
-    /// map point `prev_m` to `next_m`. The path tracer lights a fibre's surface, not its
-    /// axis: a ray from the axis also meets the fibres touching the lit side, which the lit
-    /// side sees past (ACCURACY.md §2, "Converged strands"). For a point light taken in world
-    /// space, so its direction and lateral scale are exact; for parallel light in the
-    /// (orthonormal) map frame. Light along the fibre has no lit side, and a point the
-    /// projection cannot take stays at `m`.
-    pub fn lit_side(&self, m: Vec3, prev_m: Vec3, next_m: Vec3, radius_m: f32) -> Vec3 {
-        if let Projection::Parallel { .. } = self {
-            // The frame is orthonormal: the same geometry in map coordinates, the light
-            // toward −X, without the trip through world space.
-            let t = (next_m - prev_m).normalize_or_zero();
-            let across = (Vec3::NEG_X + t * t.x).normalize_or_zero();
-            let q = m + across * radius_m;
-            return if q.is_finite() { q } else { m };
-        }
-        let p = self.to_world(m);
-        let t = (self.to_world(next_m) - self.to_world(prev_m)).normalize_or_zero();
-        let l = self.toward_light(p);
-        let across = (l - t * t.dot(l)).normalize_or_zero();
-        if across == Vec3::ZERO {
-            return m;
-        }
-        let q = self.point(p + across * radius_m);
-        if q.is_finite() { q } else { m }
-    }
-
-    /// A strand of unit tangent `u` at world point `p`, in map coordinates: the image of `u`
-    /// (the map displacement per metre along the strand), the share of a metre of strand that
-    /// crosses the light's rays (sin ψ for parallel light; the lateral length of the image
-    /// times the width scale for a point light: its fibres' width shrinks with the lateral
-    /// scale too), and the factor of its fibre volume per map volume (1, or the lateral
-    /// scale²).
-    #[inline]
-    pub fn strand(&self, p: Vec3, u: Vec3) -> (Vec3, f32, f32) {
-        match *self {
-            Projection::Parallel { frame } => {
-                let cos_psi = u.dot(frame.x).clamp(-1.0, 1.0);
-                let sin_psi = (1.0 - cos_psi * cos_psi).max(0.0).sqrt();
-                (frame.to_map(u), sin_psi, 1.0)
-            }
-            Projection::Central { frame, .. } => {
-                let Some((q, s)) = self.central(p) else {
-                    return (Vec3::NAN, 0.0, 0.0);
-                };
-                let v = frame.to_map(u);
-                // d(s·y)/dt = s·(v.y − (y/x)·v.x): the derivative of the central projection.
-                let img = Vec3::new(
-                    v.x,
-                    s * (v.y - q.y / q.x * v.x),
-                    s * (v.z - q.z / q.x * v.x),
-                );
-                let lateral = (img.y * img.y + img.z * img.z).sqrt();
-                (img, lateral * s, s * s)
-            }
-        }
-    }
-}
-
-/// Sub-slices along the light in which a cell records where its hair lies (see
-/// [`Cell::depth_cdf`]).
-pub(crate) const DEPTH_BINS: usize = 8;
-
-/// One filled cell after the sweep: the light leaving its far face, where its hair lies along
-/// the light, and its hair content.
-///
-/// The light is stored as the running sums of the sweep (expected crossings, losses, variance),
-/// not as their exponentials, so that a lookup can take any fraction of a cell's own
-/// crossings exactly (exp of an interpolated sum) before converting to transmittance.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(crate) struct Cell {
-    /// Slice index relative to the first slice (0..N).
-    pub slice: u32,
-    /// Expected crossings inside this cell (while merging), then Σ n up to the far face
-    /// (after the sweep): the direct fraction leaving the cell is exp(−n_sum).
-    pub n_sum: f32,
-    /// Σ n·(1 − ā_f) (or Σ n·(−ln ā_f)) inside the cell, then up to the far face, RGB: T_f
-    /// leaving the cell is exp(−loss).
-    pub loss: [f32; 3],
-    /// Σ n·β̄_f² inside the cell, then σ̄f² leaving the cell (rad²), RGB.
-    pub sigma2: [f32; 3],
-    /// Hair volume fraction of the cell (fibre volume / cell volume).
-    pub volume_fraction: f32,
-    /// After merging: the share of the cell's crossings that lie before each inner sub-slice
-    /// boundary k/DEPTH_BINS (k = 1..DEPTH_BINS−1), in 1/255. Between boundaries the share
-    /// grows linearly. A point inside the cell receives the light entering it minus only the
-    /// crossings in front of it (a uniform spread through the cell would shadow the front-most
-    /// fibres with hair lying beside and behind them).
-    pub depth_cdf: [u8; DEPTH_BINS - 1],
-}
-
-impl Cell {
-    /// Share of the cell's crossings before depth `lambda` ∈ [0, 1] (cell units from the
-    /// light-side face): piecewise linear through the stored sub-slice boundaries.
-    #[inline]
-    pub fn share_before(&self, lambda: f32) -> f32 {
-        let t = (lambda * DEPTH_BINS as f32).clamp(0.0, DEPTH_BINS as f32);
-        let k = (t as usize).min(DEPTH_BINS - 1);
-        let at = |b: usize| -> f32 {
-            match b {
-                0 => 0.0,
-                DEPTH_BINS => 1.0,
-                _ => self.depth_cdf[b - 1] as f32 * (1.0 / 255.0),
-            }
-        };
-        let (a, b) = (at(k), at(k + 1));
-        a + (b - a) * (t - k as f32)
-    }
-}
 
 /// The map: geometry, light frame, and the filled cells of the last build.
 #[derive(Clone, Debug)]
@@ -573,66 +263,6 @@ impl LightMap {
         }
         self.column((c.y - 0.5).floor() as i64, (c.z - 0.5).floor() as i64) as u32
     }
-
-    /// Column index of unwrapped (j, k).
-    #[inline]
-    fn column(&self, j: i64, k: i64) -> usize {
-        let n = self.geom.columns_per_axis() as i64;
-        (j.rem_euclid(n) * n + k.rem_euclid(n)) as usize
-    }
-
-    /// The filled cells of column `c`, sorted by slice.
-    #[inline]
-    #[cfg(test)]
-    fn column_cells(&self, c: usize) -> &[Cell] {
-        &self.cells[self.col_start[c] as usize..self.col_start[c + 1] as usize]
-    }
-
-    /// Index in `cells` of the last filled cell of column `c` at or before relative slice
-    /// `rel`, or `None` when the column has no cell that early.
-    #[inline]
-    fn last_at_or_before(&self, c: usize, rel: u32) -> Option<usize> {
-        let col = &self.index[c];
-        if col.len == 0 || rel < col.base {
-            return None;
-        }
-        let a = col.start as usize;
-        if col.slot_len == 0 {
-            // A sparse column without a slot table: binary search.
-            let k = self.cells[a..a + col.len as usize].partition_point(|x| x.slice <= rel);
-            return Some(a + k - 1);
-        }
-        let off = ((rel - col.base) as usize).min(col.slot_len as usize - 1);
-        Some(self.slots[col.slot_start as usize + off] as usize)
-    }
-}
-
-/// One column's entry in the lookup index: where its cells and slot table are, its first
-/// slice, and the crossings of a ray through all of it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[repr(C, align(32))]
-pub(crate) struct ColumnIndex {
-    /// First cell in `cells`, and how many.
-    pub start: u32,
-    pub len: u32,
-    /// First slot in `slots`, and how many (0: no slot table, read by binary search).
-    pub slot_start: u32,
-    pub slot_len: u32,
-    /// Relative slice of the column's first cell.
-    pub base: u32,
-    /// Σ n of the whole column (the running sum of its last cell), 0 when empty.
-    pub total_n: f32,
-}
-
-impl ColumnIndex {
-    pub(crate) const EMPTY: ColumnIndex = ColumnIndex {
-        start: 0,
-        len: 0,
-        slot_start: 0,
-        slot_len: 0,
-        base: 0,
-        total_n: 0.0,
-    };
 }
 
 #[cfg(test)]

@@ -208,11 +208,11 @@ fn a_point_inside_a_cell_receives_only_the_crossings_in_front_of_it() {
     );
 }
 
-/// A tapered tip (issue 7): a sample with a share s of its strand's fibres stands for its whole
-/// piece of strand with s times the crossings, so it shadows the same cells as a full sample,
-/// each with s times the optical depth. The fill used to place `lengths_m` (= piece × s) as
-/// the piece's extent, packing a tip's crossings into s of its length: behind the piece's
-/// ends it cast no shadow, and the cells at its middle were 1/s too dark.
+/// A tapered tip: a sample with a share s of its strand's fibres stands for its whole piece of
+/// strand with s times the crossings, so it shadows the same cells as a full sample, each with
+/// s times the optical depth. A fill that took `lengths_m` (= piece × s) as the piece's extent
+/// would pack a tip's crossings into s of its length: behind the piece's ends it would cast no
+/// shadow, and the cells at its middle would be 1/s too dark.
 #[test]
 fn a_tapered_sample_spreads_its_crossings_along_its_whole_piece() {
     let ds = 0.01;

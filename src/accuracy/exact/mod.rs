@@ -56,10 +56,11 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
 mod placement;
-
 mod rays;
+mod segments;
 
 use placement::place_fibers;
+use segments::{BinGrid, fiber_segments};
 
 /// What the exact reference is built from.
 #[derive(Clone, Copy)]
@@ -199,91 +200,15 @@ impl<'a> ExactReference<'a> {
                 place_fibers(&input.positions[s * ppl..(s + 1) * ppl], s, input, &proj)
             })
             .collect();
-        let segments: Vec<Segment> = (0..strands * f_count)
-            .into_par_iter()
-            .flat_map_iter(|fi| {
-                let pts = &fiber_points[fi * ppl..(fi + 1) * ppl];
-                let finite = pts.iter().all(|p| p.is_finite());
-                let (strand, f) = (fi / f_count, fi % f_count);
-                let threshold = (f as f32 + 0.5) / f_count as f32;
-                let share = input.fiber_share;
-                // Segment k holds the fibres whose threshold is under the mean share of its two
-                // ends: the expected count is then F × that mean, as the map fills (each point
-                // carries its share over half of each adjacent segment).
-                let present = move |k: usize| {
-                    let at = |i: usize| share.get(strand * ppl + i).copied().unwrap_or(1.0);
-                    0.5 * (at(k) + at(k + 1)) >= threshold
-                };
-                pts.windows(2)
-                    .enumerate()
-                    .filter(move |(k, _)| finite && present(*k))
-                    .filter_map(move |(k, w)| {
-                        let (a, b) = (w[0], w[1]);
-                        let d = Vec2::new(b.y - a.y, b.z - a.z);
-                        let len2 = d.length_squared();
-                        // θ from the fibre's real direction and the real ray toward the light.
-                        let (u, to_light) = match proj {
-                            Projection::Parallel { frame } => {
-                                (frame.to_world(b - a).normalize_or_zero(), -frame.x)
-                            }
-                            Projection::Central { .. } => {
-                                let (wa, wb) = (proj.to_world(a), proj.to_world(b));
-                                (
-                                    (wb - wa).normalize_or_zero(),
-                                    proj.toward_light(0.5 * (wa + wb)),
-                                )
-                            }
-                        };
-                        (len2 > 1e-18).then(|| Segment {
-                            a: Vec2::new(a.y, a.z),
-                            d,
-                            inv_len2: 1.0 / len2,
-                            x_a: a.x,
-                            dx: b.x - a.x,
-                            sin_theta: u.dot(to_light).clamp(-1.0, 1.0),
-                            strand: (fi / f_count) as u32,
-                            fiber: (fi % f_count) as u32,
-                            seg: k as u32,
-                        })
-                    })
-            })
-            .collect();
-
-        // Bin grid over the segments' widened projections. A hostile extent would make the
-        // grid huge: the reference is a measuring tool, so it caps its grid at 4096 bins a side
-        // (larger scenes get coarser bins).
-        const MAX_BINS: f32 = 4096.0;
-        let (mut lo, mut hi) = (Vec2::splat(f32::MAX), Vec2::splat(f32::MIN));
-        for s in &segments {
-            lo = lo.min(s.a.min(s.a + s.d));
-            hi = hi.max(s.a.max(s.a + s.d));
-        }
-        let (origin, inv_bin, dims) = if segments.is_empty() {
-            (Vec2::ZERO, 1.0, [1usize, 1usize])
-        } else {
-            let pad = Vec2::splat(r + bin_m.max(1e-6));
-            let origin = lo - pad;
-            let extent = hi + pad - origin;
-            let bin = bin_m.max(1e-6).max(extent.max_element() / MAX_BINS);
-            let dims = (extent / bin).ceil().max(Vec2::ONE);
-            (origin, 1.0 / bin, [dims.x as usize, dims.y as usize])
-        };
-        let bin_range = |s: &Segment| {
-            let (a, b) = (s.a, s.a + s.d);
-            let l = ((a.min(b) - Vec2::splat(r) - origin) * inv_bin).floor();
-            let h = ((a.max(b) + Vec2::splat(r) - origin) * inv_bin).floor();
-            (
-                (l.x.max(0.0) as usize, (h.x as usize).min(dims[0] - 1)),
-                (l.y.max(0.0) as usize, (h.y as usize).min(dims[1] - 1)),
-            )
-        };
+        let segments = fiber_segments(input, &proj, &fiber_points, strands * f_count);
+        let grid = BinGrid::over(&segments, r, bin_m);
         // Each bin sorted by the segments' nearest depth to the light, so a ray stops at the
         // first segment that lies wholly behind its start.
         let (bin_start, bin_items) = list_by_depth(
-            dims,
+            grid.dims,
             segments.len(),
             |i| {
-                let ((x0, x1), (y0, y1)) = bin_range(&segments[i]);
+                let ((x0, x1), (y0, y1)) = grid.bins_of(&segments[i], r);
                 Some(([x0, y0], [x1, y1]))
             },
             |i| {
@@ -300,9 +225,9 @@ impl<'a> ExactReference<'a> {
             fiber_points,
             fiber_share: input.fiber_share.to_vec(),
             segments,
-            origin,
-            inv_bin,
-            dims,
+            origin: grid.origin,
+            inv_bin: grid.inv_bin,
+            dims: grid.dims,
             bin_start,
             bin_items,
         }

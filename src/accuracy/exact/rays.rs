@@ -69,58 +69,8 @@ impl ExactReference<'_> {
     /// Rays from points spread evenly by length over the fibre pieces inside the ball of
     /// `radius` around light-frame point `centre`.
     fn trace_ball(&self, centre: Vec3, radius: f32, rays: u32, acc: &mut RayAverage) {
-        // Candidate segments: those binned within the ball's lateral square (bins are at least
-        // as wide as r, so a segment crossing the ball is in one of them), deduplicated by
-        // keeping a segment only in the first bin of the square it was listed in.
-        let lo = ((Vec2::new(centre.y, centre.z) - Vec2::splat(radius) - self.origin)
-            * self.inv_bin)
-            .floor()
-            .max(Vec2::ZERO);
-        let hi = ((Vec2::new(centre.y, centre.z) + Vec2::splat(radius) - self.origin)
-            * self.inv_bin)
-            .floor();
-        if !(lo.is_finite() && hi.is_finite()) || hi.x < 0.0 || hi.y < 0.0 {
-            return;
-        }
-        let (x0, y0) = (lo.x as usize, lo.y as usize);
-        let (x1, y1) = (
-            (hi.x as usize).min(self.dims[0] - 1),
-            (hi.y as usize).min(self.dims[1] - 1),
-        );
-        let mut candidates: Vec<u32> = Vec::new();
-        for bx in x0..=x1 {
-            for by in y0..=y1 {
-                let c = bx * self.dims[1] + by;
-                candidates.extend_from_slice(
-                    &self.bin_items[self.bin_start[c] as usize..self.bin_start[c + 1] as usize],
-                );
-            }
-        }
-        candidates.sort_unstable();
-        candidates.dedup();
-        let mut pieces: Vec<(usize, f32, f32)> = Vec::new(); // (segment, t0, t1) inside the ball
-        {
-            {
-                for &idx in &candidates {
-                    let s = &self.segments[idx as usize];
-                    let a = Vec3::new(s.x_a, s.a.x, s.a.y);
-                    let d = Vec3::new(s.dx, s.d.x, s.d.y);
-                    // |a + t d − c|² = R²: t = (−b ± √(b² − |d|²(|a − c|² − R²)))/|d|².
-                    let ac = a - centre;
-                    let dd = d.length_squared();
-                    let b = ac.dot(d);
-                    let disc = b * b - dd * (ac.length_squared() - radius * radius);
-                    if disc <= 0.0 || dd <= 0.0 {
-                        continue;
-                    }
-                    let sq = disc.sqrt();
-                    let (t0, t1) = (((-b - sq) / dd).max(0.0), ((-b + sq) / dd).min(1.0));
-                    if t1 > t0 {
-                        pieces.push((idx as usize, t0, t1));
-                    }
-                }
-            }
-        }
+        let candidates = self.ball_candidates(centre, radius);
+        let pieces = self.pieces_in_ball(&candidates, centre, radius);
         let lengths: Vec<f32> = pieces
             .iter()
             .map(|&(i, t0, t1)| {
@@ -151,6 +101,67 @@ impl ExactReference<'_> {
             };
             acc.add(self.trace(o, Some(own)));
         }
+    }
+
+    /// The segments that may cross the ball of `radius` around `centre`: those binned within
+    /// the ball's lateral square (bins are at least as wide as r, so a segment crossing the
+    /// ball is in one of them), each once, in index order.
+    fn ball_candidates(&self, centre: Vec3, radius: f32) -> Vec<u32> {
+        let yz = Vec2::new(centre.y, centre.z);
+        let lo = ((yz - Vec2::splat(radius) - self.origin) * self.inv_bin)
+            .floor()
+            .max(Vec2::ZERO);
+        let hi = ((yz + Vec2::splat(radius) - self.origin) * self.inv_bin).floor();
+        if !(lo.is_finite() && hi.is_finite()) || hi.x < 0.0 || hi.y < 0.0 {
+            return Vec::new();
+        }
+        let (x0, y0) = (lo.x as usize, lo.y as usize);
+        let (x1, y1) = (
+            (hi.x as usize).min(self.dims[0] - 1),
+            (hi.y as usize).min(self.dims[1] - 1),
+        );
+        let mut candidates: Vec<u32> = Vec::new();
+        for bx in x0..=x1 {
+            for by in y0..=y1 {
+                let c = bx * self.dims[1] + by;
+                candidates.extend_from_slice(
+                    &self.bin_items[self.bin_start[c] as usize..self.bin_start[c + 1] as usize],
+                );
+            }
+        }
+        candidates.sort_unstable();
+        candidates.dedup();
+        candidates
+    }
+
+    /// The parts of the `candidates` segments inside the ball of `radius` around `centre`:
+    /// (segment, t0, t1), from |a + t·d − c|² = R², t = (−b ± √(b² − |d|²(|a − c|² − R²)))/|d|²
+    /// clipped to [0, 1].
+    fn pieces_in_ball(
+        &self,
+        candidates: &[u32],
+        centre: Vec3,
+        radius: f32,
+    ) -> Vec<(usize, f32, f32)> {
+        let mut pieces = Vec::new();
+        for &idx in candidates {
+            let s = &self.segments[idx as usize];
+            let a = Vec3::new(s.x_a, s.a.x, s.a.y);
+            let d = Vec3::new(s.dx, s.d.x, s.d.y);
+            let ac = a - centre;
+            let dd = d.length_squared();
+            let b = ac.dot(d);
+            let disc = b * b - dd * (ac.length_squared() - radius * radius);
+            if disc <= 0.0 || dd <= 0.0 {
+                continue;
+            }
+            let sq = disc.sqrt();
+            let (t0, t1) = (((-b - sq) / dd).max(0.0), ((-b + sq) / dd).min(1.0));
+            if t1 > t0 {
+                pieces.push((idx as usize, t0, t1));
+            }
+        }
+        pieces
     }
 
     /// For the fibres render-strand point `vertex` stands for (as [`Footprint::Fibres`]): the

@@ -23,12 +23,11 @@
 //!
 //! The raster draws each segment with its two vertices' colours interpolated linearly, so the
 //! light it shows at a point between them is the interpolation of the vertices' values: point
-//! values are what that reconstruction needs. (Until 2026-12-05 a vertex took the exact
-//! average over its piece, half a segment to each side, `Footprint::Fibres`; interpolating
-//! piece averages filters the light along the fibre twice, and where fibres weave over and
-//! under each other every few millimetres the camera sees mostly the lit parts, which the
-//! double average dims: dense hair side-lit read single scattering 0.84 of the path tracer with
-//! it, 0.92 with point values; ACCURACY.md §2, "Contact light at the vertex".)
+//! values are what that reconstruction needs. An average over the vertex's piece (half a
+//! segment to each side) would filter the light along the fibre twice, and where fibres weave
+//! over and under each other every few millimetres the camera sees mostly the lit parts, which
+//! the double average dims: dense hair side-lit reads single scattering 0.84 of the path tracer
+//! with piece averages, 0.92 with point values (ACCURACY.md §2, "Contact light at the vertex").
 //!
 //! A fibre segment S of radius r shadows the point o when:
 //! - the perpendicular distance across the light from o to S's axis is below r, at a
@@ -61,10 +60,12 @@
 use super::Projection;
 use crate::fiber::Fiber;
 use glam::{Vec2, Vec3};
-use rayon::prelude::*;
 
 mod bins;
 mod query;
+mod segments;
+
+use segments::{fiber_segments, light_frame_points};
 
 /// What contact shadows are built from.
 #[derive(Clone, Copy)]
@@ -181,65 +182,15 @@ impl ContactShadows {
     /// `bin_m` across the light.
     pub fn build(input: &ContactInput, proj: &Projection, bin_m: f32) -> Self {
         let ppl = input.points_per_strand.max(1);
-        let strands = input.positions.len() / ppl;
-        let r = input.fiber.params().radius_m;
-        let points: Vec<Vec3> = input.positions[..strands * ppl]
-            .par_chunks(ppl)
-            .flat_map_iter(|pts| {
-                let finite = pts.iter().all(|p| p.is_finite());
-                pts.iter()
-                    .map(move |p| if finite { proj.point(*p) } else { Vec3::NAN })
-            })
-            .collect();
-        let share = input.fiber_share;
-        let fiber = input.fiber;
-        let pairs: Vec<(FiberSegment, Segment)> = (0..strands)
-            .into_par_iter()
-            .flat_map_iter(|s| {
-                let pts = &points[s * ppl..(s + 1) * ppl];
-                let at = move |i: usize| share.get(s * ppl + i).copied().unwrap_or(1.0);
-                pts.windows(2).enumerate().filter_map(move |(k, w)| {
-                    let (a, b) = (w[0], w[1]);
-                    if !(a.is_finite() && b.is_finite()) || 0.5 * (at(k) + at(k + 1)) < 0.5 {
-                        return None;
-                    }
-                    let d = Vec2::new(b.y - a.y, b.z - a.z);
-                    let len = d.length();
-                    // A fibre exactly along the light has a disc, not a strip, as its shadow;
-                    // the exact reference skips it too.
-                    if len * len <= 1e-18 {
-                        return None;
-                    }
-                    let (wa, wb) = (proj.to_world(a), proj.to_world(b));
-                    let u = (wb - wa).normalize_or_zero();
-                    let sin_theta = u.dot(proj.toward_light(0.5 * (wa + wb)));
-                    let f = fiber.forward_scatter(sin_theta);
-                    let a_f = f.a_f.clamp(Vec3::ZERO, Vec3::ONE);
-                    let fiber = FiberSegment {
-                        a_f: a_f.into(),
-                        beta2: f.beta_f2.max(Vec3::ZERO).into(),
-                        strand: s as u32,
-                        seg: k as u32,
-                    };
-                    let seg = Segment {
-                        a: Vec2::new(a.y, a.z),
-                        d,
-                        inv_len: 1.0 / len,
-                        x_a: a.x,
-                        dx: b.x - a.x,
-                        parent: 0,
-                    };
-                    Some((fiber, seg))
-                })
-            })
-            .collect();
+        let points = light_frame_points(input, proj);
+        let (fibers, segments) = fiber_segments(input, proj, &points);
         let mut c = Self {
             window_m: input.window_m.max(0.0),
-            radius_m: r,
+            radius_m: input.fiber.params().radius_m,
             proj: *proj,
             points_per_strand: ppl,
             points,
-            fibers: Vec::new(),
+            fibers,
             segments: Vec::new(),
             max_dx: 0.0,
             origin: Vec2::ZERO,
@@ -248,20 +199,6 @@ impl ContactShadows {
             bin_start: Vec::new(),
             bin_items: Vec::new(),
         };
-        let (fibers, segments): (Vec<FiberSegment>, Vec<Segment>) = pairs
-            .into_par_iter()
-            .enumerate()
-            .map(|(i, (f, s))| {
-                (
-                    f,
-                    Segment {
-                        parent: i as u32,
-                        ..s
-                    },
-                )
-            })
-            .unzip();
-        c.fibers = fibers;
         c.bin(segments, bin_m);
         c
     }

@@ -1,3 +1,4 @@
+use super::raster::{RASTER_BAND_ROWS, TriangleSetup};
 use super::*;
 
 fn sphere(c: Vec3, r: f32) -> Solid {
@@ -129,8 +130,8 @@ fn a_mesh_fills_each_texel_inside_it_with_its_plane_across_the_bands() {
     assert!(inside > 5000 && outside > 0, "{inside} {outside}");
 }
 
-/// The box loop `TriangleSetup::rasterise` replaced (every texel centre of the box):
-/// its reference.
+/// Every texel centre of the triangle's box tested one by one: the reference that
+/// `TriangleSetup::rasterise`, which visits only each row's span, must match.
 fn rasterise_whole_box(
     t: &TriangleSetup,
     band: std::ops::Range<usize>,

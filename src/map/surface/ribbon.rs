@@ -1,14 +1,16 @@
 //! A sample's piece of strand as the texture draws it: a ribbon across the light, the texels
-//! it overlaps row by row, its deposit into a band of texel rows, and the tiles that find
-//! ribbons lying behind the first solid (the module doc of `surface` for the whole).
+//! it overlaps row by row and its deposit into a band of texel rows (the module doc of
+//! `surface` for the whole).
+//!
+//! A ribbon from a along unit d for `len` texels, `half_w` either side, overlaps texel (x, y)
+//! (centre c, offsets s = (c − a)·d along and t = (c − a)·d⊥ across) by the box-filter product
+//!
+//!   w = |(s − ½, s + ½) ∩ (0, len)| · |(t − ½, t + ½) ∩ (−half_w, half_w)|,
+//!
+//! and a texel of overlap w receives loss · w / Σw over the texel's area, so the ribbon
+//! deposits exactly its piece's loss.
 
 use glam::{Vec2, Vec3};
-
-/// Texels per side of the tiles that keep their deepest limit, so a piece lying behind the
-/// first solid at every texel it can touch is dropped before it is summed and deposited.
-/// Smooth under the default light at t = 2 s: 4 catches 31,238 of the 32,661 pieces behind
-/// (per-texel maximum over each piece's box), 8 catches 29,736, 16 catches 25,853.
-const LIMIT_TILE: usize = 4;
 
 /// A sample's piece of strand drawn as a ribbon across the light, in texel coordinates: from
 /// `a` along unit `dir` for `len` (≥ 1) texels, `half_w` either side, its depth along the
@@ -26,7 +28,7 @@ pub(super) struct Piece {
     pub(super) depth: (f32, f32),
     pub(super) loss: Vec3,
     /// Where its gathered texels ([`Piece::gather`]) lie in its run's buffer
-    /// ([`super::SurfaceShadow::build`], step 3).
+    /// (`waves.rs`).
     pub(super) texels: [u32; 2],
     /// Texel box the ribbon touches: rows `x0..x1`, columns `y0..y1`.
     pub(super) x0: u32,
@@ -186,8 +188,8 @@ impl Piece {
 /// with `qx·per_qx + qy·k` in (`from`, `to`), qx and qy the centre's offset from the ribbon's
 /// start.
 ///
-/// Why reciprocals: the spans were four divisions a row and their slack two more, 21% of
-/// curly's texture. A product by `1/k` is within an ulp or two of the quotient, and the slack
+/// Why reciprocals: four divisions a row for the spans and two more for their slack cost 21%
+/// of curly's texture. A product by `1/k` is within an ulp or two of the quotient, and the slack
 /// (a hundredth of a texel, plus 1e-5 of the magnitudes over |k|) is 80 times that.
 pub(super) struct Strip {
     per_qx: f32,
@@ -235,49 +237,5 @@ pub(super) fn deposit(
     let from = texels.partition_point(|&(k, _)| k < first);
     for &(k, w) in texels[from..].iter().take_while(|&&(k, _)| k < end) {
         rows[(k - first) as usize] += per * w;
-    }
-}
-
-/// The deepest limit (`SurfaceShadow::limit`) of each [`LIMIT_TILE`]² tile of texels, so a
-/// piece lying behind the first solid at every texel its box holds can be found without
-/// visiting them.
-#[derive(Clone, Debug, Default)]
-pub(super) struct LimitTiles {
-    cols: usize,
-    deepest: Vec<f32>,
-}
-
-impl LimitTiles {
-    /// The tiles of a `dims` texture's per-texel `limit` (row-major). Reuses its memory.
-    pub(super) fn build(&mut self, limit: &[f32], dims: [usize; 2]) {
-        self.cols = dims[1].div_ceil(LIMIT_TILE);
-        self.deepest.clear();
-        self.deepest
-            .resize(dims[0].div_ceil(LIMIT_TILE) * self.cols, f32::NEG_INFINITY);
-        for (x, row) in limit.chunks_exact(dims[1]).enumerate() {
-            let tiles = &mut self.deepest[(x / LIMIT_TILE) * self.cols..][..self.cols];
-            for (deepest, block) in tiles.iter_mut().zip(row.chunks(LIMIT_TILE)) {
-                for &l in block {
-                    *deepest = deepest.max(l);
-                }
-            }
-        }
-    }
-
-    /// Whether `piece` is deeper than the limit at every texel of its box, so
-    /// [`deposit`] keeps none of them. Conservative: it may answer `false` for such a
-    /// piece (its box's tiles reach beyond it), never `true` for one that deposits.
-    pub(super) fn behind_all(&self, piece: &Piece) -> bool {
-        let mut deepest = f32::NEG_INFINITY;
-        let ys = piece.y0 as usize / LIMIT_TILE..=(piece.y1 as usize - 1) / LIMIT_TILE;
-        for tx in piece.x0 as usize / LIMIT_TILE..=(piece.x1 as usize - 1) / LIMIT_TILE {
-            for &l in &self.deepest[tx * self.cols..][ys.clone()] {
-                deepest = deepest.max(l);
-            }
-        }
-        // A texel's depth interpolates between the ends' (`Piece::depth_at`): never nearer
-        // than the nearer end by more than its rounding, far within this margin.
-        let nearest = piece.depth.0.min(piece.depth.1);
-        nearest - 1e-5 * (1.0 + nearest.abs()) > deepest
     }
 }

@@ -1,6 +1,8 @@
 //! Tests of the surface texture: ribbons, their sums and deposits, their row spans, and the
 //! tiles that drop ribbons behind the solids.
 
+use super::limits::LimitTiles;
+use super::ribbon::deposit;
 use super::*;
 
 /// Ribbons of several lengths, widths, angles and sub-texel offsets, in a texture of
@@ -29,9 +31,7 @@ fn ribbons() -> Vec<Piece> {
 #[test]
 fn a_ribbon_gathers_its_overlapping_texels_in_front_and_the_sum_of_all() {
     // Gathering visits each texel once: its sum must be the plain sum over the row spans, and
-    // over the whole box, to the bit (the frames did not change when it took over from a
-    // separate summing pass, nor when the spans changed),
-    // and it must keep exactly the texels of positive overlap at most as deep as the limit
+    // over the whole box, to the bit, and it must keep exactly the texels of positive overlap at most as deep as the limit
     // (found here by a brute-force walk over the ribbon's whole box).
     let dims = [3 * BAND_ROWS, 40];
     let blocks: Vec<f32> = (0..16 * 14).map(|i| [0.15, 0.25, 0.7][i % 3]).collect();
