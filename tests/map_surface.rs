@@ -9,7 +9,7 @@ use wisp::accuracy::skin::measure_skin;
 use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::interp::StrandGeometry;
-use wisp::map::surface::SurfaceShadow;
+use wisp::map::surface::{DEFAULT_TEXELS_PER_COLUMN, SurfaceShadow};
 use wisp::map::{
     CountModel, LightFrame, LightMap, MapBuildInput, MapGeometry, OccluderGrid, OccluderMesh,
     Shadow, Solid,
@@ -70,9 +70,16 @@ fn map_with_sphere(geo: &StrandGeometry, light: Vec3, centre_cells: Vec3, radius
             centre,
         ),
     };
-    solids.build_for(&map, &[sphere], OccluderMesh::EMPTY);
+    solids.build_for(&map, 0.25, &[sphere], OccluderMesh::EMPTY);
     let mut skin = None;
-    SurfaceShadow::build_for(&mut skin, &map, &solids, &input, 0.5 * DS);
+    SurfaceShadow::build_for(
+        &mut skin,
+        &map,
+        &solids,
+        &input,
+        0.5 * DS,
+        DEFAULT_TEXELS_PER_COLUMN,
+    );
     Built { map, solids, skin }
 }
 

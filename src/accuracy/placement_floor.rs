@@ -25,14 +25,9 @@ pub fn placement_floor(
     seeds
         .iter()
         .map(|&seed| {
-            let placed = exact_reference_placed(
-                &engine.style,
-                &engine.strands(),
-                &engine.fiber,
-                light,
-                seed,
-            )
-            .light_at_vertices(&measured.vertices, &measured.footprint);
+            let placed =
+                exact_reference_placed(&engine.style, engine.strands(), &engine.fiber, light, seed)
+                    .light_at_vertices(&measured.vertices, &measured.footprint);
             Comparison::new(&measured.truth, &placed)
         })
         .collect()

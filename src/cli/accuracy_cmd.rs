@@ -38,7 +38,7 @@ pub struct AccuracyArgs {
     #[arg(long, value_name = "WHERE", default_value = "fibres")]
     pub footprint: String,
     /// Replace each render strand by K strands of one fibre each, 1–64
-    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=64))]
+    #[arg(long, alias = "single-fibre-strands", value_name = "K", value_parser = clap::value_parser!(u32).range(1..=64))]
     pub single_fiber_strands: Option<u32>,
     /// Measure the hair's shadow on the skin and clothes instead
     #[arg(long)]

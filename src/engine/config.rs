@@ -4,9 +4,11 @@
 
 use super::hair_map::HairMapConfig;
 use super::interpolation::InterpolationConfig;
+use super::occluders::OccluderConfig;
 use super::raster::RasterConfig;
 use super::shading::ShadingConfig;
 use super::simulation::SimulationConfig;
+use super::skin_texture::SkinTextureConfig;
 use crate::scene::Scene;
 
 /// Everything about a run that is not the hairstyle or the motion.
@@ -18,6 +20,8 @@ pub struct EngineConfig {
     pub simulation: SimulationConfig,
     pub interpolation: InterpolationConfig,
     pub hair_map: HairMapConfig,
+    pub occluders: OccluderConfig,
+    pub skin_texture: SkinTextureConfig,
     pub shading: ShadingConfig,
     pub raster: RasterConfig,
 }

@@ -40,7 +40,11 @@ pub fn estimate(
     memory.extend(InterpolationPass::estimate(&sizes));
     memory.extend(HairMapPass::estimate(&config.hair_map, &sizes));
     memory.extend(OccluderPass::estimate(&sizes));
-    memory.extend(SkinTexturePass::estimate(&sizes, config.scene.draw_solids));
+    memory.extend(SkinTexturePass::estimate(
+        &config.skin_texture,
+        &sizes,
+        config.scene.draw_solids,
+    ));
     memory.extend(ShadingPass::estimate(&config.shading, &sizes));
     memory.extend(RasterPass::estimate(&sizes));
     memory.extend(AnimationPass::estimate(motion, &sizes));

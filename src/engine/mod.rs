@@ -50,7 +50,7 @@ pub use hair_map::{
     map_geometry,
 };
 pub use interpolation::{GuideHair, InterpolationConfig, InterpolationPass};
-pub use occluders::{OccluderPass, SolidsInput};
+pub use occluders::{OccluderConfig, OccluderPass, SolidsInput};
 pub use raster::{
     DEFAULT_MIN_LINE_WIDTH_PX, DrawLines, HairToDraw, RasterConfig, RasterPass, SolidsToDraw,
 };
@@ -58,7 +58,7 @@ pub use setup::{fit_style_to_character, roots_of_guides_on_head, roots_on_head, 
 pub use shading::{ShadingConfig, ShadingInput, ShadingPass};
 pub use simulation::{SimulationConfig, SimulationPass};
 pub use sizes::{RunSizes, SizedBy};
-pub use skin_texture::SkinTexturePass;
+pub use skin_texture::{SkinTextureConfig, SkinTexturePass};
 pub use timings::{MapPartTimings, StageTimings};
 
 use crate::fiber::Fiber;
@@ -163,8 +163,8 @@ impl Engine {
             interpolation: InterpolationPass::new(config.interpolation, pose, radii),
             camera: CameraPass::new(&config.scene),
             hair_map: HairMapPass::new(config.hair_map, geom, config.scene.lights.len()),
-            occluders: OccluderPass::new(character),
-            skin_texture: SkinTexturePass::default(),
+            occluders: OccluderPass::new(config.occluders, character),
+            skin_texture: SkinTexturePass::new(config.skin_texture),
             shading: ShadingPass::new(config.shading),
             raster: RasterPass::new(config.raster, &config.scene, &style, character),
             animation,

@@ -16,6 +16,21 @@ const SKIN: Vec3 = Vec3::new(0.55, 0.38, 0.30);
 /// Albedo of the body spheres' clothes.
 const CLOTH: Vec3 = Vec3::new(0.10, 0.14, 0.22);
 
+/// How the solids' entry depths are sampled.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OccluderConfig {
+    /// Texel of the entry depths across the light, in map cells (default ¼): finer texels
+    /// draw the solids' shadow edges sharper, at a cost that grows as 1/texel² over the
+    /// solids' extent (at most `map::occluders::MAX_TEXELS`² texels).
+    pub texel_cells: f32,
+}
+
+impl Default for OccluderConfig {
+    fn default() -> Self {
+        Self { texel_cells: 0.25 }
+    }
+}
+
 /// What the solids of a frame are made of.
 #[derive(Clone, Copy)]
 pub struct SolidsInput<'a> {
@@ -29,6 +44,7 @@ pub struct SolidsInput<'a> {
 
 /// The frame's solids and, per light, their entry depths.
 pub struct OccluderPass {
+    pub config: OccluderConfig,
     /// The character's mesh has a head, so the head ellipsoid is not a solid.
     character_has_head: bool,
     grids: Vec<OccluderGrid>,
@@ -41,8 +57,9 @@ pub struct OccluderPass {
 
 impl OccluderPass {
     /// No grids yet; `character` is the motion's character, if any.
-    pub fn new(character: Option<&Character>) -> Self {
+    pub fn new(config: OccluderConfig, character: Option<&Character>) -> Self {
         Self {
+            config,
             character_has_head: character.is_some_and(Character::has_head),
             grids: Vec::new(),
             solids: Vec::new(),
@@ -72,7 +89,7 @@ impl OccluderPass {
         };
         self.grids.resize_with(maps.len(), OccluderGrid::default);
         for (grid, map) in self.grids.iter_mut().zip(maps) {
-            grid.build_for(map, &self.solids, mesh);
+            grid.build_for(map, self.config.texel_cells, &self.solids, mesh);
         }
         true
     }

@@ -6,16 +6,40 @@
 use super::hair_map::HairMapInput;
 use super::sizes::RunSizes;
 use crate::budget::MemoryPart;
-use crate::map::surface::{SurfaceShadow, TEXELS_PER_COLUMN};
+use crate::map::surface::{DEFAULT_TEXELS_PER_COLUMN, SurfaceShadow};
 use crate::map::{LightMap, OccluderGrid};
+
+/// How finely the hair's shadow on the solids is drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SkinTextureConfig {
+    /// Texels per map column across the light, along each axis (default 2): finer texels
+    /// draw narrower streaks, at a cost that grows with the texels each ribbon covers.
+    pub texels_per_column: f32,
+}
+
+impl Default for SkinTextureConfig {
+    fn default() -> Self {
+        Self {
+            texels_per_column: DEFAULT_TEXELS_PER_COLUMN,
+        }
+    }
+}
 
 /// Per light, the hair's shadow texture on the solids (`None` where the map holds no hair).
 #[derive(Default)]
 pub struct SkinTexturePass {
+    pub config: SkinTextureConfig,
     textures: Vec<Option<SurfaceShadow>>,
 }
 
 impl SkinTexturePass {
+    pub fn new(config: SkinTextureConfig) -> Self {
+        Self {
+            config,
+            textures: Vec::new(),
+        }
+    }
+
     /// Builds each light's texture from `hair` in front of `grids`, in `maps`' frames, when
     /// solids are drawn and the maps or the grids changed, for render strands whose fibres
     /// spread over `bundle_radius_m`.
@@ -38,7 +62,14 @@ impl SkinTexturePass {
             .zip(grids)
             .zip(hair.lights)
         {
-            SurfaceShadow::build_for(texture, map, grid, &hair.for_light(light), bundle_radius_m);
+            SurfaceShadow::build_for(
+                texture,
+                map,
+                grid,
+                &hair.for_light(light),
+                bundle_radius_m,
+                self.config.texels_per_column,
+            );
         }
     }
 
@@ -48,8 +79,12 @@ impl SkinTexturePass {
     }
 
     /// The textures at most, when solids are drawn.
-    pub fn estimate(sizes: &RunSizes, draw_solids: bool) -> Vec<MemoryPart> {
-        let geom = sizes.geom;
+    pub fn estimate(
+        config: &SkinTextureConfig,
+        sizes: &RunSizes,
+        draw_solids: bool,
+    ) -> Vec<MemoryPart> {
+        let (geom, density) = (sizes.geom, config.texels_per_column);
         vec![MemoryPart {
             what: "surface shadow texture",
             product: if draw_solids {
@@ -57,7 +92,7 @@ impl SkinTexturePass {
                     "{} light(s) × at most {} map columns² × {} texels each, and a ribbon per render point",
                     sizes.lights,
                     geom.columns_per_axis(),
-                    TEXELS_PER_COLUMN
+                    density
                 )
             } else {
                 "off (no solids drawn)".to_string()
@@ -65,9 +100,11 @@ impl SkinTexturePass {
             bytes: if draw_solids {
                 SurfaceShadow::estimated_bytes(
                     geom.columns_per_axis() as u64,
+                    density,
                     sizes.points,
                     SurfaceShadow::ribbon_texel_bound(
                         geom.column_m(),
+                        density,
                         0.5 * sizes.strand_spacing_m,
                         sizes.sample_len_m as f32,
                     ),

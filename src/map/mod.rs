@@ -115,9 +115,6 @@ fn on_map(c: Vec3) -> bool {
     c.is_finite() && c.abs().max_element() < MAX_CELL_COORD
 }
 
-/// Occluder texel size in cells.
-const OCCLUDER_TEXEL_CELLS: f32 = 0.25;
-
 /// Contact-shadow bins across the light, in map columns. Their count does not change the
 /// parts a query visits much (a bin's parts shrink as the parts per query grow): measured on
 /// smooth × 4 strands of one fibre (shading, 2 threads) 1 column 7.6 s, ½ 6.5 s, ¼ 6.9 s; but
@@ -212,12 +209,6 @@ impl LightMap {
         &self.stats
     }
 
-    /// The texel size of the solids' entry depths in this map's light frame
-    /// ([`OccluderGrid::build`]): a quarter of a cell, metres.
-    pub fn occluder_texel_m(&self) -> f32 {
-        OCCLUDER_TEXEL_CELLS * self.geom.ds_m
-    }
-
     /// The map's projection of world points into its light frame.
     pub fn projection(&self) -> &Projection {
         &self.proj
@@ -238,12 +229,6 @@ impl LightMap {
     /// Each sample's clamped ā_f as the last build's fill evaluated it (NaN where it did not).
     pub(crate) fn sample_forward_a(&self) -> &[Vec3] {
         &self.scratch.forward_a
-    }
-
-    /// How far a point on an occluder's surface should be moved along its normal before a
-    /// lookup, so the solid does not shadow itself: one and a half occluder texels, metres.
-    pub fn surface_offset_m(&self) -> f32 {
-        1.5 * OCCLUDER_TEXEL_CELLS * self.geom.ds_m
     }
 
     /// Cell-space coordinates (unwrapped: slices along X, columns along Y and Z) of a world

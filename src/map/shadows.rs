@@ -94,9 +94,9 @@ impl<'a> Shadow<'a> {
     }
 
     /// How far a surface point is moved along its normal before a lookup, so the solid does
-    /// not shadow itself ([`LightMap::surface_offset_m`]).
+    /// not shadow itself ([`OccluderGrid::surface_offset_m`]).
     pub fn surface_offset_m(&self) -> f32 {
-        self.hair.surface_offset_m()
+        self.solids.surface_offset_m()
     }
 }
 

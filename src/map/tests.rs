@@ -266,7 +266,7 @@ fn occluders_shadow_what_lies_behind_them() {
     let sphere = Solid {
         unit_sphere_to_world: glam::Affine3A::from_scale(Vec3::splat(0.02)),
     };
-    solids.build_for(&hair, &[sphere], crate::map::OccluderMesh::EMPTY);
+    solids.build_for(&hair, 0.25, &[sphere], crate::map::OccluderMesh::EMPTY);
     let map = crate::map::Shadow {
         hair: &hair,
         solids: &solids,

@@ -61,6 +61,9 @@ pub struct OccluderGrid {
     /// Lateral (y, z) of texel (0, 0)'s corner in the light frame, metres.
     origin: Vec2,
     texel_m: f32,
+    /// How far a surface point is moved along its normal before a lookup (one and a half of
+    /// the texels asked for), metres.
+    surface_offset_m: f32,
     dims: [usize; 2],
     /// Entry depth along L per texel (row-major in y), metres; +∞ where no solid.
     depth: Vec<f32>,
@@ -80,6 +83,7 @@ impl OccluderGrid {
     pub const EMPTY: OccluderGrid = OccluderGrid {
         origin: Vec2::ZERO,
         texel_m: 0.0,
+        surface_offset_m: 0.0,
         dims: [0, 0],
         depth: Vec::new(),
         mesh_light: Vec::new(),
@@ -88,9 +92,25 @@ impl OccluderGrid {
     };
 
     /// Recomputes the grid for `solids` and `mesh` in the light frame of `map` (after its
-    /// build, which sets the frame), with texels of [`LightMap::occluder_texel_m`].
-    pub fn build_for(&mut self, map: &LightMap, solids: &[Solid], mesh: OccluderMesh) {
-        self.build_with_mesh(map.projection(), map.occluder_texel_m(), solids, mesh);
+    /// build, which sets the frame), with texels of `texel_cells` of the map's cells (coarser
+    /// where the solids span more than the grid's texels).
+    pub fn build_for(
+        &mut self,
+        map: &LightMap,
+        texel_cells: f32,
+        solids: &[Solid],
+        mesh: OccluderMesh,
+    ) {
+        let texel_m = texel_cells * map.geometry().ds_m;
+        self.build_with_mesh(map.projection(), texel_m, solids, mesh);
+        self.surface_offset_m = 1.5 * texel_m;
+    }
+
+    /// How far a point on a solid's surface is moved along its normal before a lookup, so the
+    /// solid does not shadow itself through the grid's finite resolution ("normal offset"
+    /// shadow mapping): one and a half texels, metres (0 for a grid not built for a map).
+    pub fn surface_offset_m(&self) -> f32 {
+        self.surface_offset_m
     }
 
     /// Upper bound, in bytes, of what a grid holds once built: at most `MAX_TEXELS`² depths.

@@ -5,7 +5,8 @@
 //! rays draw them), while columns of ¾ of a strand spacing, blended between their centres,
 //! draw blobs on the column grid, a stipple the eye reads as an artefact, whatever the blend.
 //!
-//! What: a light-space texture across the light, [`TEXELS_PER_COLUMN`] texels per map column,
+//! What: a light-space texture across the light, a few texels per map column (by default
+//! [`DEFAULT_TEXELS_PER_COLUMN`]),
 //! holding the optical depth Σ n(1 − ā_f) (RGB) of the hair along each texel's ray.
 //! Each map sample (a piece of strand of length ℓ) is drawn into it as a ribbon: its image
 //! across the light, [`ribbon_width_m`] wide (the spread of the fibres a render strand stands
@@ -42,8 +43,9 @@ mod pieces;
 mod ribbon;
 mod waves;
 
-/// Texels per map column across the light, along each axis.
-pub const TEXELS_PER_COLUMN: f32 = 2.0;
+/// Texels per map column across the light, along each axis, unless the caller asks for
+/// another density.
+pub const DEFAULT_TEXELS_PER_COLUMN: f32 = 2.0;
 /// Texels per axis at most; a larger extent gets coarser texels.
 const MAX_TEXELS_PER_AXIS: usize = 1024;
 /// Texel rows per parallel band.
@@ -95,9 +97,14 @@ impl SurfaceShadow {
     /// Bytes the texture keeps for an extent of `columns` map columns per axis and `samples`
     /// map samples, each gathering at most `ribbon_texels` texels
     /// ([`SurfaceShadow::ribbon_texel_bound`]).
-    pub fn estimated_bytes(columns: u64, samples: u64, ribbon_texels: u64) -> u64 {
+    pub fn estimated_bytes(
+        columns: u64,
+        texels_per_column: f32,
+        samples: u64,
+        ribbon_texels: u64,
+    ) -> u64 {
         let per_axis =
-            ((columns as f32 * TEXELS_PER_COLUMN) as u64).min(MAX_TEXELS_PER_AXIS as u64) + 4;
+            ((columns as f32 * texels_per_column) as u64).min(MAX_TEXELS_PER_AXIS as u64) + 4;
         // Per texel: the sums, the limit, the solids' count and the two passes of the entry
         // depths (`EntryDepths`, at most the texture's texels); the tiles are a sixteenth.
         let texel = (std::mem::size_of::<Vec3>() + 5 * std::mem::size_of::<f32>()) as u64;
@@ -122,10 +129,15 @@ impl SurfaceShadow {
     /// fibres spread over `bundle_radius_m` and samples at most `sample_len_m` long. A texel
     /// with overlap has its centre strictly inside the ribbon widened by half a texel, a
     /// rectangle a × b texels (a = length + 1, b = width + 1 at the finest texels, a column
-    /// over [`TEXELS_PER_COLUMN`]), which holds at most ab + a + b + 1 = (a + 1)(b + 1) lattice
+    /// over `texels_per_column`), which holds at most ab + a + b + 1 = (a + 1)(b + 1) lattice
     /// points (a convex set of area A and perimeter P holds at most A + P/2 + 1).
-    pub fn ribbon_texel_bound(column_m: f32, bundle_radius_m: f32, sample_len_m: f32) -> u64 {
-        let texel_m = column_m / TEXELS_PER_COLUMN;
+    pub fn ribbon_texel_bound(
+        column_m: f32,
+        texels_per_column: f32,
+        bundle_radius_m: f32,
+        sample_len_m: f32,
+    ) -> u64 {
+        let texel_m = column_m / texels_per_column;
         let length = (sample_len_m / texel_m).max(1.0);
         let width = ribbon_width_m(bundle_radius_m) / texel_m;
         let bound = ((length + 2.0) * (width + 2.0)).ceil();
@@ -138,31 +150,34 @@ impl SurfaceShadow {
 
     /// The texture of `map`'s hair in front of `solids` (call after the map's build and the
     /// solids' grid in its frame: it uses the frame, the hair's extent and the entry depths),
-    /// for render strands whose fibres spread over `bundle_radius_m`; `None` when the map
-    /// holds no hair. `texture` is reused when it has one.
+    /// for render strands whose fibres spread over `bundle_radius_m`, with
+    /// `texels_per_column` texels per map column along each axis; `None` when the map holds no
+    /// hair. `texture` is reused when it has one.
     pub fn build_for(
         texture: &mut Option<SurfaceShadow>,
         map: &LightMap,
         solids: &OccluderGrid,
         input: &MapBuildInput,
         bundle_radius_m: f32,
+        texels_per_column: f32,
     ) {
         let Some(extent) = map.hair_extent_m() else {
             *texture = None;
             return;
         };
+        let texel_m = map.geometry().column_m() / texels_per_column;
         texture.get_or_insert_with(Default::default).build(
             input,
             map,
             solids,
             extent,
-            bundle_radius_m,
+            (bundle_radius_m, texel_m),
         );
     }
 
     /// Fills the texture from `input`'s samples in `map`'s light frame, over the lateral extent
     /// `lo..hi` (map metres, Y and Z) widened by a ribbon and a column, for render strands
-    /// whose fibres spread over `bundle_radius_m`. Each sample's ā_f is the map's fill's
+    /// whose fibres spread over `bundle_radius_m`, in texels of `texel_m`. Each sample's ā_f is the map's fill's
     /// (`LightMap::sample_forward_a`) where it has one, else evaluated here, to the same bits.
     /// Reuses its memory.
     fn build(
@@ -171,11 +186,11 @@ impl SurfaceShadow {
         map: &LightMap,
         solids: &OccluderGrid,
         (lo, hi): (Vec2, Vec2),
-        bundle_radius_m: f32,
+        (bundle_radius_m, texel_m): (f32, f32),
     ) {
         let column_m = map.geometry().column_m();
         let width_m = ribbon_width_m(bundle_radius_m);
-        if !self.lay_out(lo, hi, width_m + column_m, column_m) {
+        if !self.lay_out(lo, hi, width_m + column_m, texel_m) {
             return;
         }
         self.fill_limits(solids);
@@ -212,15 +227,15 @@ impl SurfaceShadow {
         self.deposit_waves();
     }
 
-    /// Sizes the texture over `lo..hi` widened by `margin_m` each side, with texels of a
-    /// column over [`TEXELS_PER_COLUMN`] (coarser where that would take more than
-    /// [`MAX_TEXELS_PER_AXIS`]), every sum 0. Returns `false`, leaving the texture empty, when
+    /// Sizes the texture over `lo..hi` widened by `margin_m` each side, with texels of
+    /// `texel_m` (coarser where that would take more than [`MAX_TEXELS_PER_AXIS`]), every sum
+    /// 0. Returns `false`, leaving the texture empty, when
     /// the extent gives no finite texel.
-    fn lay_out(&mut self, lo: Vec2, hi: Vec2, margin_m: f32, column_m: f32) -> bool {
+    fn lay_out(&mut self, lo: Vec2, hi: Vec2, margin_m: f32, texel_m: f32) -> bool {
         let margin = Vec2::splat(margin_m);
         let (lo, hi) = (lo - margin, hi + margin);
         let extent = (hi - lo).max(Vec2::ZERO);
-        let mut texel_m = column_m / TEXELS_PER_COLUMN;
+        let mut texel_m = texel_m;
         let wanted = extent.max_element() / texel_m;
         if wanted.is_nan() || wanted > MAX_TEXELS_PER_AXIS as f32 {
             texel_m = extent.max_element() / MAX_TEXELS_PER_AXIS as f32;
