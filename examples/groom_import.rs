@@ -1,4 +1,4 @@
-//! Import figures for docs/notes/groom-import.md: import and clustering time of the TressFX
+//! Import figures for BENCHMARKS.md ("Captured grooms"): import and clustering time of the TressFX
 //! ponytail and of a generated 50,000-strand groom, the rest-pose distance to the file, and how
 //! far the settled hair (2 s under gravity, head still) moves from the file's pose.
 //!

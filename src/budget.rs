@@ -23,8 +23,9 @@ pub const DEFAULT_MEMORY_BYTES: u64 = 4_000_000_000;
 /// Default work budget before the first frame: 20 CPU-minutes (10 minutes on 2 cores).
 pub const DEFAULT_WORK_CPU_S: f64 = 1200.0;
 
-/// Measured single-core costs (release build, shared 2-core VM, `wisp --threads 1 render`
-/// stage timings of the presets; see `docs/notes/hostile-inputs.md`). Estimates, good to about 2×.
+/// Measured single-core costs (release build, one core of a 2-core machine, `wisp --threads 1
+/// render` stage timings of the presets; docs/DESIGN.md, "Hostile input and the budget"). Estimates, good to
+/// about 2×.
 pub(crate) mod cost_ns {
     /// One simulation step of one guide particle, self-collision on (smooth: 8.6 ms for 8
     /// steps of 6,432 particles).

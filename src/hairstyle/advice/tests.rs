@@ -15,7 +15,7 @@ fn the_presets_need_no_advice() {
 #[test]
 fn coarse_curls_are_named_with_the_points_that_fix_them() {
     let mut style = Hairstyle::default_curly();
-    style.strands.points = 61; // the preset before 2026-12-04: 58° per segment
+    style.strands.points = 61; // 58° per segment: curls with too few points
     let advice = style.advisories();
     assert_eq!(advice.len(), 1);
     assert_eq!(advice[0].field, "strands.points");

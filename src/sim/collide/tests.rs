@@ -126,7 +126,7 @@ fn candidates_at_a_centre_resolve_to_finite_outside_points() {
 
 #[test]
 fn exit_point_is_continuous_as_the_predecessor_crosses_the_surface() {
-    // Regression (issue 11): a predecessor resting on the inflated sphere is inside or
+    // Regression: a predecessor resting on the inflated sphere is inside or
     // outside it by rounding; the exit point must not jump between the two cases.
     let c = Vec3A::new(0.1, 1.3, -0.2);
     let r = 0.13;
