@@ -3,7 +3,7 @@
 //! `cargo test --release --test lib -- map_slab::`.
 //!
 //! The slow accuracy and simulation tests run at a reduced size unless `WISP_FULL_TESTS=1`
-//! is set ([`common::full_size`]); each says its full size in its doc comment.
+//! is set ([`support::full_size`]); each says its full size in its doc comment.
 //!
 //! The tests that run the `wisp` binary are in `tests/cli/`.
 

@@ -76,7 +76,7 @@ fn hair_resting_on_the_shoulders_renders_identical_frames() {
     // The embedded dance frozen at t = 0 (speed 0): head at 1.6 m, neck and shoulder spheres
     // under the hair, where the f32 grid is 8x coarser than at the origin. Without the
     // mannequin's meshes (their capsules replace the spheres): on its capsules 369 of the 402
-    // guides come to rest and frame 1 differs from frame 0 (open, docs/notes/characters.md).
+    // guides come to rest and frame 1 differs from frame 0 (an open question).
     let frozen = Motion::from_glb_bytes(
         include_bytes!("../../animations/dance.glb"),
         "dance.glb",
