@@ -1,26 +1,10 @@
 //! The `wisp` binary as a user meets it: exit codes and messages for bad input, and a small
 //! export whose frames are complete PNGs, byte-identical for 1 and 2 threads.
 
+use crate::support::scratch_dir;
+use crate::{stderr, wisp};
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn wisp(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_wisp"))
-        .args(args)
-        .output()
-        .expect("run wisp")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn tmp(name: &str) -> std::path::PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+use std::process::Command;
 
 #[test]
 fn bad_flags_exit_2_with_a_message_naming_the_flag() {
@@ -50,7 +34,7 @@ fn bad_flags_exit_2_with_a_message_naming_the_flag() {
 
 #[test]
 fn bad_files_exit_2_naming_the_file() {
-    let dir = tmp("cli-bad-files");
+    let dir = scratch_dir("cli-bad-files");
     let bad_json = dir.join("bad.json");
     std::fs::write(&bad_json, "{ \"name\": 3 }").unwrap();
     let not_gltf = dir.join("dance.glb");
@@ -98,8 +82,8 @@ fn bad_files_exit_2_naming_the_file() {
 
 #[test]
 fn export_writes_complete_frames_identical_for_one_and_two_threads() {
-    let a = tmp("cli-export-1");
-    let b = tmp("cli-export-2");
+    let a = scratch_dir("cli-export-1");
+    let b = scratch_dir("cli-export-2");
     let common = [
         "render",
         "--frames",
@@ -150,10 +134,13 @@ fn play_without_a_display_fails_cleanly() {
 
 #[test]
 fn bench_runs_and_writes_json() {
-    let dir = tmp("cli-bench");
+    let dir = scratch_dir("cli-bench");
     let json = dir.join("bench.json");
+    let style = crate::support::small_hairstyle(&dir);
     let o = wisp(&[
         "bench",
+        "--hairstyle",
+        style.to_str().unwrap(),
         "--frames",
         "2",
         "--width",
@@ -235,7 +222,7 @@ fn a_reader_that_closes_the_pipe_early_stops_wisp_quietly() {
 fn a_hairstyle_with_coarse_curls_loads_with_a_warning_naming_the_field() {
     // The curly preset at its old 61 points: legal, but measured to light curls wrongly
     // (`Hairstyle::advisories`). It renders (exit 0) and says so; at 121 points it is silent.
-    let dir = tmp("cli-coarse-curls");
+    let dir = scratch_dir("cli-coarse-curls");
     for (points, warned) in [(61u32, true), (121, false)] {
         let mut style = wisp::hairstyle::Hairstyle::default_curly();
         style.strands.points = points;

@@ -2,17 +2,10 @@
 //! the EXR its size and coverage, and bad camera flags are bad input (exit 2).
 
 use crate::support::scratch_dir;
+use crate::wisp;
 use glam::Vec3;
-use std::process::Command;
 use wisp::export::ReferenceScene;
 use wisp::output::read_exr_rgba_f32;
-
-fn wisp(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_wisp"))
-        .args(args)
-        .output()
-        .expect("run wisp")
-}
 
 #[test]
 fn export_command_writes_the_scene_and_refuses_bad_cameras() {

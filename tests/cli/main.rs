@@ -15,3 +15,18 @@ mod hostile;
 mod render_formats;
 mod scene;
 mod window;
+
+use std::process::{Command, Output};
+
+/// Runs the built `wisp` with `args` and returns what it printed and its exit status.
+fn wisp(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_wisp"))
+        .args(args)
+        .output()
+        .expect("run wisp")
+}
+
+/// What a run printed on stderr, as text.
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}

@@ -4,9 +4,10 @@
 //! missing and damaged frames and ends byte-identical to a plain one (simulated, and from a
 //! cache), and a bad --format is refused with exit code 2.
 
+use crate::support::scratch_dir;
+use crate::{stderr, wisp};
 use std::os::unix::fs::MetadataExt;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
 
 use glam::Vec3;
 use wisp::engine::EngineConfig;
@@ -15,29 +16,11 @@ use wisp::output::{linear_to_srgb8, read_exr_rgba_f32};
 /// Small frames keep each run to a few seconds (most of it the settle and the light map).
 const SMALL: [&str; 6] = ["--width", "64", "--height", "64", "--frames", "3"];
 
-fn wisp(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_wisp"))
-        .args(args)
-        .output()
-        .expect("run wisp")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
 /// Runs wisp and requires success.
 fn ok(args: &[&str]) -> String {
     let o = wisp(args);
     assert!(o.status.success(), "{args:?}: {}", stderr(&o));
     stderr(&o)
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
 }
 
 fn s(p: &Path) -> &str {
@@ -114,7 +97,7 @@ fn copy_dir(from: &Path, to: &Path) {
 /// stays; `--quiet` prints nothing.
 #[test]
 fn png16_and_exr_carry_the_8_bit_frame_and_its_coverage() {
-    let root = tmp("formats");
+    let root = scratch_dir("formats");
     let dirs = ["png", "png16", "exr"].map(|f| {
         let d = root.join(f);
         let err = ok(&[
@@ -215,7 +198,7 @@ fn inodes(dir: &Path, names: &[String]) -> Vec<u64> {
 /// folder ends byte-identical to the plain export, so the simulation ran through the kept
 /// frame 0. A second --resume has nothing to do and touches nothing.
 fn resume_rewrites_exactly_the_damaged_frames(name: &str, extension: &str, extra: &[&str]) {
-    let root = tmp(name);
+    let root = scratch_dir(name);
     let (plain, resumed) = (root.join("plain"), root.join("resumed"));
     let frames = ["--width", "64", "--height", "64", "--frames", "4"];
     ok(&[&["render", "--out", s(&plain)], &frames[..], extra].concat());
@@ -273,7 +256,7 @@ fn resume_after_a_deleted_and_a_cut_png_matches_a_plain_export() {
 /// frames are checked by reading them whole.
 #[test]
 fn resume_from_a_cache_in_exr_matches_a_plain_export() {
-    let root = tmp("resume-cache");
+    let root = scratch_dir("resume-cache");
     let cache = root.join("dance.cache");
     ok(&["simulate", "--frames", "4", "--quiet", "--out", s(&cache)]);
     resume_rewrites_exactly_the_damaged_frames(

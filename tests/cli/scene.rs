@@ -2,30 +2,16 @@
 //! render's bytes back, flags override a file's fields, and bad scene files exit 2 naming the
 //! file, the field and the rule, never panicking.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn wisp(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_wisp"))
-        .args(args)
-        .output()
-        .expect("run wisp")
-}
+use crate::support::scratch_dir;
+use crate::wisp;
 
 fn text(b: &[u8]) -> String {
     String::from_utf8_lossy(b).into_owned()
 }
 
-fn tmp(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 #[test]
 fn printed_scene_renders_the_same_bytes_as_the_default() {
-    let dir = tmp("scene-cli-roundtrip");
+    let dir = scratch_dir("scene-cli-roundtrip");
     let size = ["--width", "64", "--height", "48"];
     let printed = wisp(&[&["render", "--print-scene"][..], &size].concat());
     assert_eq!(printed.status.code(), Some(0), "{}", text(&printed.stderr));
@@ -67,7 +53,7 @@ fn printed_scene_renders_the_same_bytes_as_the_default() {
 
 #[test]
 fn flags_override_the_scene_file() {
-    let dir = tmp("scene-cli-override");
+    let dir = scratch_dir("scene-cli-override");
     let scene = dir.join("s.json");
     std::fs::write(
         &scene,
@@ -95,7 +81,7 @@ fn flags_override_the_scene_file() {
 
 #[test]
 fn bad_scene_files_exit_2_naming_file_field_and_rule() {
-    let dir = tmp("scene-cli-bad");
+    let dir = scratch_dir("scene-cli-bad");
     let point_first =
         r#"{"lights": [{"type": "point", "position_m": [2, 0, 0], "intensity": [1, 1, 1]}]}"#;
     let cases: Vec<(&str, &str, Vec<&str>)> = vec![
@@ -191,7 +177,7 @@ fn bad_scene_files_exit_2_naming_file_field_and_rule() {
 /// point light is refused up front (exit 2), before any frame is rendered.
 #[test]
 fn export_refuses_scenes_it_cannot_describe() {
-    let dir = tmp("scene-cli-export");
+    let dir = scratch_dir("scene-cli-export");
     let scene = dir.join("s.json");
     std::fs::write(
         &scene,
