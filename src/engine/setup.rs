@@ -1,7 +1,7 @@
 //! Setting up an engine's scene: the hairstyle fitted to a character's head, where the roots lie
 //! on the head mesh, and the solids and colliders of a pose.
 
-use crate::hairstyle::{GuideSet, Hairstyle, generate};
+use crate::hairstyle::{GuideSet, Hairstyle, guide_roots};
 use crate::map::Solid;
 use crate::motion::{Motion, Pose, RootsOnHead};
 use crate::sim::{CapsuleCollider, Colliders, SphereCollider};
@@ -30,8 +30,7 @@ pub fn fit_style_to_character(style: &Hairstyle, motion: &Motion) -> Hairstyle {
 pub fn roots_on_head(style: &Hairstyle, motion: &Motion) -> Option<RootsOnHead> {
     motion.character()?;
     let style = fit_style_to_character(style, motion);
-    let (guides, _) = generate(&style);
-    roots_of_guides_on_head(&guides, &style, motion)
+    roots_at(&guide_roots(&style), &style, motion)
 }
 
 /// [`roots_on_head`] for guides made elsewhere (an imported groom placed on `style`'s head,
@@ -43,8 +42,13 @@ pub fn roots_of_guides_on_head(
 ) -> Option<RootsOnHead> {
     motion.character()?;
     let roots: Vec<Vec3> = (0..guides.count()).map(|g| guides.guide(g)[0]).collect();
+    roots_at(&roots, style, motion)
+}
+
+/// How far `roots` lie from `motion`'s drawn head, for `style`'s head's mean radius.
+fn roots_at(roots: &[Vec3], style: &Hairstyle, motion: &Motion) -> Option<RootsOnHead> {
     let [x, y, z] = style.head.radii_m;
-    motion.roots_on_head(&roots, (x * y * z).cbrt())
+    motion.roots_on_head(roots, (x * y * z).cbrt())
 }
 
 /// The opaque solids of a pose: the head ellipsoid first, then the body spheres.

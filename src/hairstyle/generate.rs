@@ -86,50 +86,66 @@ pub fn generate(style: &Hairstyle) -> (GuideSet, StrandLayout) {
     (guides, layout)
 }
 
-/// The 3 guides of each wisp, centred on the scalp at the directions `dirs`: roots spread on
+/// The roots of the guides [`generate`] makes, in its order (3 per wisp), without draping the
+/// guides: what a check of where hair grows needs, at a cost that does not grow with
+/// `guides.links`.
+pub fn guide_roots(style: &Hairstyle) -> Vec<Vec3> {
+    let mut rng = SplitMix64::new(style.seed);
+    let radii = Vec3::from(style.head.radii_m);
+    root_directions(style)
+        .into_iter()
+        .flat_map(|d| wisp_starts(style, radii, d, &mut rng).map(|s| s.root))
+        .collect()
+}
+
+/// Where the 3 guides of the wisp centred on the scalp at direction `d` start: roots spread on
 /// the wisp's disc (radius `wisps.radius_m`, a random turn), a random length within the
-/// jitter, a random layer and wave phase per wisp, each guide draped by [`push_guide`].
-/// Returns the guides and each wisp's guide indices.
+/// jitter, a random layer and wave phase per wisp. Draws 4 numbers from `rng`.
+fn wisp_starts(style: &Hairstyle, radii: Vec3, d: Vec3, rng: &mut SplitMix64) -> [GuideStart; 3] {
+    let (centre, normal) = ellipsoid_point(radii, d);
+    // Tangent frame at the wisp centre.
+    let side = Vec3::Y.cross(normal).try_normalize().unwrap_or(Vec3::X);
+    let fwd = normal.cross(side);
+    let length =
+        style.guides.length_m * (1.0 + style.guides.length_jitter * (2.0 * rng.unit() - 1.0));
+    let layer = 0.002 + 0.006 * rng.unit(); // metres above the scalp where hair lies
+    let wave_phase = std::f32::consts::TAU * rng.unit();
+    let spin = std::f32::consts::TAU * rng.unit();
+    std::array::from_fn(|k| {
+        let a = spin + k as f32 * std::f32::consts::TAU / 3.0;
+        let offset = style.wisps.radius_m * (a.cos() * side + a.sin() * fwd);
+        let (root, n) = ellipsoid_point(radii, (centre + offset).normalize());
+        GuideStart {
+            root,
+            normal: n,
+            side_dir: side,
+            link_m: length / style.guides.links as f32,
+            layer_m: layer,
+            wave_phase,
+        }
+    })
+}
+
+/// The 3 guides of each wisp ([`wisp_starts`]) at the directions `dirs`, each draped by
+/// [`push_guide`]. Returns the guides and each wisp's guide indices.
 fn rest_guides(
     style: &Hairstyle,
     dirs: &[Vec3],
     rng: &mut SplitMix64,
 ) -> (GuideSet, Vec<[u32; 3]>) {
     let radii = Vec3::from(style.head.radii_m);
-    let links = style.guides.links as usize;
-    let ppg = links + 1;
+    let ppg = style.guides.links as usize + 1;
     let wisps = dirs.len();
     let mut rest = Vec::with_capacity(wisps * 3 * ppg);
     let mut link_length_m = Vec::with_capacity(wisps * 3);
     let mut root_normal = Vec::with_capacity(wisps * 3);
     let mut wisp_guides = Vec::with_capacity(wisps);
     for &d in dirs {
-        let (centre, normal) = ellipsoid_point(radii, d);
-        // Tangent frame at the wisp centre.
-        let side = Vec3::Y.cross(normal).try_normalize().unwrap_or(Vec3::X);
-        let fwd = normal.cross(side);
-        let length =
-            style.guides.length_m * (1.0 + style.guides.length_jitter * (2.0 * rng.unit() - 1.0));
-        let layer = 0.002 + 0.006 * rng.unit(); // metres above the scalp where hair lies
-        let wave_phase = std::f32::consts::TAU * rng.unit();
-        let spin = std::f32::consts::TAU * rng.unit();
         let g0 = link_length_m.len() as u32;
-        for k in 0..3 {
-            let a = spin + k as f32 * std::f32::consts::TAU / 3.0;
-            let offset = style.wisps.radius_m * (a.cos() * side + a.sin() * fwd);
-            let (root, n) = ellipsoid_point(radii, (centre + offset).normalize());
-            let l = length / links as f32;
-            let start = GuideStart {
-                root,
-                normal: n,
-                side_dir: side,
-                link_m: l,
-                layer_m: layer,
-                wave_phase,
-            };
+        for start in wisp_starts(style, radii, d, rng) {
             push_guide(style, radii, &start, &mut rest);
-            link_length_m.push(l);
-            root_normal.push(n);
+            link_length_m.push(start.link_m);
+            root_normal.push(start.normal);
         }
         wisp_guides.push([g0, g0 + 1, g0 + 2]);
     }

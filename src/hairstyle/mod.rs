@@ -21,7 +21,7 @@ mod validate;
 
 pub use advice::{Advisory, MAX_CURL_TURN_PER_SEGMENT_DEG};
 pub use dynamics::SimParams;
-pub use generate::{SplitMix64, generate};
+pub use generate::{SplitMix64, generate, guide_roots};
 pub use load::{CURLY_JSON, HairstyleError, MAX_FILE_BYTES, SMOOTH_JSON};
 pub use model::{GuideSet, StrandLayout};
 pub use spec::{CurlSpec, GuideSpec, Hairstyle, HeadSpec, ScalpSpec, StrandSpec, WispSpec};

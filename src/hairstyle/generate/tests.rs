@@ -74,3 +74,17 @@ fn hair_hangs_down() {
         g.count()
     );
 }
+
+#[test]
+fn guide_roots_are_the_roots_generate_drapes_from() {
+    // The roots-only path draws the same random numbers in the same order as `generate`; a
+    // change to either that forgets the other shows here as a root that moved.
+    for style in [Hairstyle::default_smooth(), Hairstyle::default_curly()] {
+        let (guides, _) = generate(&style);
+        let roots = guide_roots(&style);
+        assert_eq!(roots.len(), guides.count());
+        for (g, r) in roots.iter().enumerate() {
+            assert_eq!(guides.guide(g)[0], *r, "{}: guide {g}", style.name);
+        }
+    }
+}
