@@ -1,5 +1,5 @@
 //! How far the map is from the exact reference: the figures ACCURACY.md reports and the tests
-//! assert, computed one way everywhere (`wisp accuracy`, `wisp bench`, `tests/map_accuracy.rs`).
+//! assert, computed one way everywhere (`wisp accuracy`, `wisp bench`, `tests/lib/map_accuracy.rs`).
 //!
 //! For a set of vertices, the map's T_f (mean of the three channels) is compared with the exact
 //! reference's:

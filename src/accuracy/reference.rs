@@ -35,7 +35,7 @@ pub fn single_fiber_variant(style: &Hairstyle, k: u32) -> Hairstyle {
 
 /// The placements a reference of `requested` placements averages for `style`: one when each
 /// render strand is a single fibre (nothing to place: every seed gives the same bytes,
-/// `tests/map_exact.rs`), else `requested` (at least one).
+/// `tests/lib/map_exact.rs`), else `requested` (at least one).
 pub fn placements_used(style: &Hairstyle, requested: u32) -> u32 {
     if style.strands.fibers_per_strand.round() <= 1.0 {
         1

@@ -11,7 +11,7 @@
 //! frame's time and every guide particle's position as the f32 bits the simulation left, and
 //! [`Engine::set_guide_state`](crate::engine::Engine::set_guide_state) puts them back: a frame
 //! rendered from the cache is the same bytes as the frame rendered in one run (tested in
-//! `tests/cache.rs` and, through the binary and the local shard runner, `tests/cache_cli.rs`).
+//! `tests/lib/cache.rs` and, through the binary and the local shard runner, `tests/cli/deploy.rs`).
 //! The simulation is deterministic for any thread count, so it does not matter how many
 //! threads simulated or render.
 //!

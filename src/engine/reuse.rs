@@ -5,7 +5,7 @@
 //! point lights aim at, the solids and the character's posed mesh (the hairstyle's fibre and
 //! fibres per strand are fixed for an engine). When a pass's inputs are bit-equal to those of
 //! its last build, building again would give the same bits, so it keeps what it has: frames
-//! are byte-identical with and without the reuse (`tests/scenes.rs`). A still head whose hair
+//! are byte-identical with and without the reuse (`tests/lib/scenes.rs`). A still head whose hair
 //! is at rest (the simulator holds settled guides exactly, `sim::step`), a paused window, or a
 //! relit or re-framed still frame reuse them; a dancing head never does.
 //!

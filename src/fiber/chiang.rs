@@ -20,7 +20,7 @@
 //!
 //! **Energy.** With σa = 0, Σ_p A_p = 1 for every h, N_p has unit area and M_p unit area under
 //! cos θi dθi, so ∫ ḡ dωi = 1 for every ωo: a white fibre in a white furnace has radiance exactly
-//! 1 (measured 1 + 3e-6, `tests/fiber_chiang.rs`). The forward albedo ∫ S cos θo dωo, the
+//! 1 (measured 1 + 3e-6, `tests/lib/fiber_chiang.rs`). The forward albedo ∫ S cos θo dωo, the
 //! fraction of intercepted power that leaves, is not 1: 0.991 at θi = 0, 1.40 at 80° and 11 at
 //! 89° for β_R = 7.5° and no tilt (0.69 to 2.7 over ±60°…80° with the presets' α = −7.5°),
 //! because S = ḡ/cos θi is not reciprocal. The dual tables divide by it where it exceeds 1, as
@@ -29,7 +29,7 @@
 //! **Reciprocity.** M_p(θi, θo) = M_p(θo, θi) exactly with tilt 0. ḡ(ωi, ωo) − ḡ(ωo, ωi) =
 //! Σ M_p (N̄_p(θo) − N̄_p(θi)), zero when |θi| = |θo| (the specular cone, where the lobes peak) and
 //! otherwise set by the θo-dependence of A_p (Fresnel, η', chord): 12.5% of ḡ integrated over
-//! random direction pairs, 5.3% within |θ| ≤ 60° (`tests/fiber_chiang.rs`, `reciprocity`).
+//! random direction pairs, 5.3% within |θ| ≤ 60° (`tests/lib/fiber_chiang.rs`, `reciprocity`).
 //!
 //! Pieces:
 //! - **M_p** (d'Eon et al. 2011, "An Energy-Conserving Hair Reflectance Model", their

@@ -11,7 +11,7 @@
 //! at the TRT caustics, where Φ folds and the raw N of Marschner's Eq. 8 is infinite. Errors come
 //! only from Φ's curvature and w's variation inside a segment: 2.6e-5 (1/rad, R lobe, peaks 0.016
 //! to 0.2) at 256 segments and β_n = 0.3, 3.3e-4 at β_n = 0.05 where s is below a segment's
-//! azimuth span (`tests/fiber_chiang.rs`, against `chiang::n_bar_direct` with 20 000 nodes);
+//! azimuth span (`tests/lib/fiber_chiang.rs`, against `chiang::n_bar_direct` with 20 000 nodes);
 //! the 2° table grid's own interpolation error is 1.7e-4.
 //! - ∫ N̄ w_f dφ uses w_f ⊛ logistic in closed form (`chiang::w_forward_smoothed`) at the
 //!   segment midpoints.

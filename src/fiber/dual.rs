@@ -10,8 +10,8 @@
 //! form (`chiang_tables`). Then one longitudinal quadrature over θo per table entry. Building
 //! every table for the default fibre takes tens of milliseconds (see `benches/fiber.rs`).
 //!
-//! Readings chosen (each pinned by a test in `tests/fiber_tables.rs`, `backscatter.rs` or
-//! `tests/fiber_energy.rs`):
+//! Readings chosen (each pinned by a test in `tests/lib/fiber_tables.rs`, `backscatter.rs` or
+//! `tests/lib/fiber_energy.rs`):
 //! - **Eq. 6/12, which hemisphere.** The incident azimuth is averaged over the half circle
 //!   facing the light and the outgoing one is split into the world-fixed front (away from the
 //!   light) and back halves, as the double integral prints; for a relative azimuth φ the
@@ -21,15 +21,15 @@
 //!   cos θ of the *outgoing* direction instead: ā_f(θi) = (1/π)∫∫ f_s cos θo dωo (dωo = cos θo
 //!   dθo dφo), the fraction of the power the fibre intercepts that leaves through the front half,
 //!   so ā_f + ā_b is the fibre's hemispherical albedo (checked against a brute-force quadrature
-//!   of S in tests/fiber_energy.rs). Why: ā_f is used as a per-crossing transmittance, and the
+//!   of S in tests/lib/fiber_energy.rs). Why: ā_f is used as a per-crossing transmittance, and the
 //!   map already weights grazing crossings by their projected width. The two readings agree
 //!   for narrow lobes (θo ≈ −θi) but not at grazing incidence: the incident reading carries
 //!   cos θi cos θo / cos²θd = 1 − sin²θh/cos²θd, which goes to 0 across the lobe as |θi| → 90°,
 //!   so a grazing crossing would become opaque (σa = 0, θ = 80°: ā_f = 0.33 against 0.57;
-//!   pinned by `trap4_outgoing_cosine` in tests/fiber_tables.rs).
+//!   pinned by `trap4_outgoing_cosine` in tests/lib/fiber_tables.rs).
 //! - **White-furnace normalisation.** Marschner's S is not energy conserving: with σa = 0 its
 //!   albedo ρ_w(θ) reaches 1.02 at θ = 60° and 1.84 at θ = −90° (its 1/cos²θd with lobes cut at
-//!   θo = ±90°; tests/fiber_energy.rs). ā_f and ā_b are fractions of the intercepted power, so
+//!   θo = ±90°; tests/lib/fiber_energy.rs). ā_f and ā_b are fractions of the intercepted power, so
 //!   both are divided by max(1, ρ_w(θ)), the same geometric factor for every absorption: this
 //!   keeps ā_f + ā_b ≤ 1 and keeps lighter fibres' ā_f larger (a per-fibre clamp to 1 would not).
 //! - **Trap 1** is resolved in `marschner::longitudinal_m` (unit area in θo).

@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 pub enum FiberModel {
     /// Marschner et al. 2003 (`marschner.rs`): Gaussian M_p in θh over cos²θd, N_p from the exact
     /// roots of Eq. 3 with the §5.2.2 caustic smoothing and eccentricity. Not energy conserving
-    /// (white albedo 0.93–1.8, `tests/fiber_energy.rs`).
+    /// (white albedo 0.93–1.8, `tests/lib/fiber_energy.rs`).
     #[default]
     Marschner,
     /// Chiang et al. 2016 (`chiang.rs`), the model of pbrt-v3/v4, Mitsuba 3 and Cycles: d'Eon

@@ -13,7 +13,7 @@
 //! normal plane, falling to 1 for a light along the fibre (`dual::window_fluence_inclined`;
 //! d_f·G is `Fiber::scattered_gain`, tabulated over sin²θi). The alternative T_f·d_f·(…)
 //! counts unobstructed light twice: a fibre in full light would receive 1 + d_f = 2 times the
-//! direct light (pinned by `dual_unshadowed_is_direct_only` in tests/fiber_hard_cases.rs).
+//! direct light (pinned by `dual_unshadowed_is_direct_only` in tests/lib/fiber_hard_cases.rs).
 //! f_back of the direct path uses σ̄_b² alone (direct light has no forward spread);
 //! f_back^G uses σ̄_b² + σ̄_f² (Eq. 24). f_back = 2 Ā_b g(θi + θo − Δ̄_b, σ̄_b²)/(π cos²θd) (Eqs. 10,
 //! 15 with s̃_b = 1/π in every azimuth, as Figure 5 evaluates it).

@@ -8,7 +8,7 @@
 //! TRT table has a third axis, cos 2φh ∈ [−1, 1], because eccentricity enters through η*(φh)
 //! (Marschner 2003 §5.2.3), which is linear in cos 2φh; with eccentricity 1 that axis has one
 //! sample. Resolutions were chosen by measured error against the exact evaluation (see
-//! `tests/fiber_tables.rs` and [`TableResolution::DEFAULT`]).
+//! `tests/lib/fiber_tables.rs` and [`TableResolution::DEFAULT`]).
 
 use super::marschner::{Azimuth, COS_THETA_D_MIN, azimuth_for, eta_star};
 use super::params::{Lobe, LobeConstants};
@@ -30,7 +30,7 @@ pub struct TableResolution {
 }
 
 impl TableResolution {
-    /// Chosen by measured error against direct evaluation (default fibre, tests/fiber_tables.rs;
+    /// Chosen by measured error against direct evaluation (default fibre, tests/lib/fiber_tables.rs;
     /// max abs error over 3000–6000 random points, N in 1/rad):
     ///
     /// | θd × φ × ecc × θ       | N_R    | N_TT   | N_TRT  | ā_f    | ā_b    | Fiber::new |

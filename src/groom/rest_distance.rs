@@ -7,7 +7,7 @@
 //! Interpolation with the offsets reproduces each strand's arc-length resampling, so the figure
 //! is the resampling's own error: on the shared TressFX ponytail (16 vertices resampled to 31
 //! points) a mean under 0.01 mm and a maximum under 1 mm, the corners cut at the file's
-//! vertices (`tests/groom_import.rs`).
+//! vertices (`tests/lib/groom_import.rs`).
 
 use glam::Vec3;
 use rayon::prelude::*;

@@ -1,7 +1,7 @@
 //! What a [`LightMap`](super::LightMap) holds, for the run's memory budget (`crate::budget`):
 //! an upper bound from the map's geometry and the number of samples, computed before the map
 //! exists. Keep it in step with `build/` (the vectors listed below) when the map changes;
-//! `tests/hostile_budget.rs` measures a real build against it.
+//! `tests/lib/hostile_budget.rs` measures a real build against it.
 
 use super::build::{MAX_PIECES, Piece, PieceStats, Placed, SLOT_SPAN_PER_CELL, SPLAT};
 use super::{Cell, ColumnIndex, MapGeometry};

@@ -33,7 +33,7 @@
 //!
 //! The alternative reading ā^n̄ (`CountModel::MeanCount`) is kept for measurement: it is the
 //! transmittance of a ray meeting exactly the mean number of fibres, and it is darker than the
-//! ray average (by Jensen); `tests/map_reference.rs` measures both against ray shooting.
+//! ray average (by Jensen); `tests/lib/map_reference.rs` measures both against ray shooting.
 //! The sums are kept, not their exponentials, so a lookup can take any part of a cell exactly.
 //!
 //! ## Across the light: a bilinear splat and a bilinear read
@@ -56,7 +56,7 @@
 //! slicing along the light). Reading through a cell with a uniform spread (the filter of
 //! Bertails §3.3) reads lit hair 0.16–0.23 too dark against the exact reference. A slab of hair
 //! perpendicular to L still reads exactly 1 in front of it and exactly the analytic attenuation
-//! at every face behind it (`tests/map_slab.rs`).
+//! at every face behind it (`tests/lib/map_slab.rs`).
 //!
 //! ## Opaque solids
 //! The head and body are occluders in the same light frame ([`OccluderGrid`]: entry depth per

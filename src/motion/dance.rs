@@ -18,7 +18,7 @@ impl Motion {
     /// The project's own dance (`animations/dance.glb`, made by `examples/make_dance.rs`), with
     /// default options: a human-sized rig, so the automatic fit is scale 1.
     pub fn default_dance() -> Motion {
-        // The embedded file is part of the build, not user input; `tests/motion.rs` loads it, so
+        // The embedded file is part of the build, not user input; `tests/lib/motion.rs` loads it, so
         // a broken asset fails the tests rather than reaching users.
         try_dance(&MotionOptions::default()).expect("the embedded animations/dance.glb loads")
     }

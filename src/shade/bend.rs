@@ -18,7 +18,7 @@
 //! with the light it receives looked up once (the light depends on the point, not the
 //! direction). With every inner vertex so shaded and equal segments, the raster's integral
 //! along a strand is exactly the sum of each segment shaded along its own direction
-//! (`tests/shade_bend.rs`). A vertex is a corner where its segments turn by more than β_R
+//! (`tests/lib/shade_bend.rs`). A vertex is a corner where its segments turn by more than β_R
 //! (below that its half turn is within the narrowest lobe's width, TT's β_R/2 in θh:
 //! Marschner 2003 Table 1, the Chiang model's v₀/4 in `fiber::chiang`) and by more than twice
 //! the smaller of its neighbours' turns (a strand's end counts as straight). Rejected,

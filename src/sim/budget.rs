@@ -1,7 +1,7 @@
 //! What a [`Simulator`] and its [`SimState`](super::SimState) hold, for the run's memory budget
 //! (`crate::budget`), computed before they exist: the sum of their per-particle and per-guide
 //! arrays. Keep it in step with `state.rs`, `shape.rs` and `step.rs` when they gain
-//! per-particle arrays; `tests/hostile_budget.rs` measures a real engine against the whole
+//! per-particle arrays; `tests/lib/hostile_budget.rs` measures a real engine against the whole
 //! budget.
 
 use super::Simulator;

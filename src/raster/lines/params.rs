@@ -7,8 +7,8 @@
 //! segment of linearly varying projected width covers. A segment under the minimum is drawn
 //! at the minimum with its opacity lowered in proportion, which conserves its summed coverage
 //! (length × projected width × opacity) while sub-pixel lines stay free of aliasing: dense
-//! thin lines accumulate toward full coverage (`tests/raster_coverage.rs`), and lines side by
-//! side hide what is behind them as their summed width does (`tests/raster_lines.rs`).
+//! thin lines accumulate toward full coverage (`tests/lib/raster_coverage.rs`), and lines side by
+//! side hide what is behind them as their summed width does (`tests/lib/raster_lines.rs`).
 
 use super::bundle::Profiles;
 use super::polyline::{LineStyle, LineWidth, MAX_WIDTH_PX, Polylines};
