@@ -12,7 +12,7 @@
 use crate::bounded::run_bounded;
 use crate::support::hostile::Rng;
 use crate::support::hostile::formats::{self, Verdict};
-use crate::support::scratch_dir;
+use crate::support::{full_size, scratch_dir};
 use std::time::Duration;
 
 /// Cases per format per run (the generated suite runs at least 1,000 cases in all).
@@ -128,8 +128,9 @@ fn mutated_inputs_never_panic_hang_or_balloon() {
 
 /// What an accepted hairstyle promises further down the pipeline: a small frame of the dance
 /// renders with every pixel finite, no render point skipped as non-finite, and hair or head
-/// drawn (not a blank frame). Generated hairstyles are loaded until 24 accepted ones within a
-/// small budget have rendered (`WISP_HOSTILE_RENDERS=<n>` for more).
+/// drawn (not a blank frame). Generated hairstyles are loaded until 12 accepted ones within a
+/// small budget have rendered, 24 at full size (`WISP_FULL_TESTS=1`; `WISP_HOSTILE_RENDERS=<n>`
+/// for any other count).
 #[test]
 fn accepted_hairstyles_render_finite_nonblank_frames() {
     use wisp::budget::{Budget, RunPlan};
@@ -147,7 +148,8 @@ fn accepted_hairstyles_render_finite_nonblank_frames() {
         export_png: false,
         ..RunPlan::default()
     };
-    let wanted = env_u64("WISP_HOSTILE_RENDERS").unwrap_or(24) as usize;
+    let wanted =
+        env_u64("WISP_HOSTILE_RENDERS").unwrap_or(if full_size() { 24 } else { 12 }) as usize;
     let (mut rendered, mut heavy) = (0usize, 0usize);
     let mut failures = Vec::new();
     for seed in 0xF11_0008u64..0xF11_0008 + 1_000_000 {
