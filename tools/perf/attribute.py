@@ -15,14 +15,16 @@ the inlined frames at that address, and charges the sample to:
   outermost wisp frame's name contains FUNCTION.
 
 Needs `perf` and binutils' `addr2line` and `readelf`, and a binary with debug information
-(the release profile keeps it: `Cargo.toml`, `[profile.release] debug`). No frame pointers
+(the profiling profile: `cargo build --profile profiling`, the release build with line tables,
+binaries in `target/profiling/`; `Cargo.toml`). No frame pointers
 or call graphs are needed: the inlining is read from the debug information, so plain
 `perf record -F 2000` is enough.
 
+    cargo build --profile profiling
     perf record -e cpu-clock -F 2000 -o /tmp/frame.data \\
-        target/release/wisp bench --frames 40 --threads-list 2 --parts scaling
-    python3 tools/perf/attribute.py /tmp/frame.data target/release/wisp
-    python3 tools/perf/attribute.py /tmp/frame.data target/release/wisp --lines emit
+        target/profiling/wisp bench --frames 40 --threads-list 2 --parts scaling
+    python3 tools/perf/attribute.py /tmp/frame.data target/profiling/wisp
+    python3 tools/perf/attribute.py /tmp/frame.data target/profiling/wisp --lines emit
 """
 
 import argparse
