@@ -50,6 +50,7 @@ pub mod light_paths;
 pub mod map;
 pub mod motion;
 pub mod output;
+pub mod quality;
 pub mod raster;
 pub mod rng;
 pub mod scene;

@@ -12,9 +12,11 @@
 //!   each bundle: the error no estimate from the render strands can go below.
 //! - [`skin::measure_skin`]: the hair's shadow on the skin against the same reference, per
 //!   pixel.
+//! - [`image::image_error`]: one frame against a more accurate one (quality levels).
 
 pub mod comparison;
 pub mod exact;
+pub mod image;
 mod map_vs_reference;
 mod markdown;
 mod placement_floor;

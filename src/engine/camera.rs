@@ -8,6 +8,7 @@ use crate::scene::{CameraSetup, HEAD_FOLLOWING_FOV_Y_RAD, HeadFollowing, Scene};
 use glam::Vec3;
 
 /// The camera of the frame, and the head-following framing when it follows the head.
+#[derive(Clone, Debug)]
 pub struct CameraPass {
     camera: Camera,
     follow: Option<HeadFollowing>,

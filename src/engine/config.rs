@@ -9,6 +9,7 @@ use super::raster::RasterConfig;
 use super::shading::ShadingConfig;
 use super::simulation::SimulationConfig;
 use super::skin_texture::SkinTextureConfig;
+use crate::quality::Quality;
 use crate::scene::Scene;
 
 /// Everything about a run that is not the hairstyle or the motion.
@@ -24,6 +25,10 @@ pub struct EngineConfig {
     pub skin_texture: SkinTextureConfig,
     pub shading: ShadingConfig,
     pub raster: RasterConfig,
+    /// The quality level the pass configs were set from ([`EngineConfig::apply_quality`];
+    /// default `final`, the configs' defaults). A choice written after the level may differ
+    /// from the level's.
+    pub level: Quality,
 }
 
 impl EngineConfig {

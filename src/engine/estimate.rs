@@ -31,6 +31,8 @@ pub fn estimate(
     let by = SizedBy {
         scene: &config.scene,
         segment_pieces: config.interpolation.segment_pieces,
+        strand_fraction: config.interpolation.strand_fraction,
+        step_s: config.simulation.step_s(style),
         geom: map_geometry(style, &config.hair_map),
         settle_s: config.simulation.settle_s,
     };

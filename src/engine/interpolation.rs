@@ -21,11 +21,18 @@ pub struct InterpolationConfig {
     /// shadows and the shader read the hair this many times as often along it
     /// ([`crate::interp::subdivide_in_place`]), at about as many times their cost.
     pub segment_pieces: u32,
+    /// The share of each wisp's render strands made, in (0, 1] (default 1): the kept strands
+    /// stand for the fibres of all ([`crate::hairstyle::thin_strands`]), a level of detail
+    /// for hair whose strands are narrower than a pixel. Applied when the engine is built.
+    pub strand_fraction: f32,
 }
 
 impl Default for InterpolationConfig {
     fn default() -> Self {
-        Self { segment_pieces: 1 }
+        Self {
+            segment_pieces: 1,
+            strand_fraction: 1.0,
+        }
     }
 }
 

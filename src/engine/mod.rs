@@ -18,7 +18,8 @@
 //! first frame nothing allocates) and the estimate of its memory (`estimate`); the engine
 //! holds them and decides their order and their timing, nothing else. The camera follows the
 //! head before each render. Passes that build from the strands keep what they built when
-//! their inputs did not change (`reuse`), to the same bits.
+//! their inputs did not change (`reuse`), to the same bits. A [`Quality`] level is a set of
+//! the pass configs' values that trade time for error.
 //!
 //! The solids come first so that hair hidden behind them or behind nearer hair at every pixel
 //! is neither shaded nor drawn: the frame of shading every point, byte for byte. The raster's
@@ -32,6 +33,7 @@ mod estimate;
 mod hair_map;
 mod interpolation;
 mod occluders;
+mod quality;
 mod raster;
 mod reuse;
 mod setup;
@@ -51,6 +53,7 @@ pub use hair_map::{
 };
 pub use interpolation::{GuideHair, InterpolationConfig, InterpolationPass};
 pub use occluders::{OccluderConfig, OccluderPass, SolidsInput};
+pub use quality::Quality;
 pub use raster::{
     DEFAULT_MIN_LINE_WIDTH_PX, DrawLines, HairToDraw, RasterConfig, RasterPass, SolidsToDraw,
 };
@@ -62,7 +65,7 @@ pub use skin_texture::{SkinTextureConfig, SkinTexturePass};
 pub use timings::{MapPartTimings, StageTimings};
 
 use crate::fiber::Fiber;
-use crate::hairstyle::{GuideSet, Hairstyle, StrandLayout, generate};
+use crate::hairstyle::{GuideSet, Hairstyle, StrandLayout, generate, thin_strands};
 use crate::interp::StrandGeometry;
 use crate::map::{LightMap, MapGeometry, MapStats, Shadows};
 use crate::motion::{CharacterPose, Motion, Pose};
@@ -84,6 +87,8 @@ pub struct Engine {
     pub layout: StrandLayout,
     /// What is in the frame and how it is looked at.
     pub scene: Scene,
+    /// The quality level the engine's pass configs were set from (`EngineConfig::level`).
+    pub level: Quality,
     pub animation: AnimationPass,
     pub simulation: SimulationPass,
     pub interpolation: InterpolationPass,
@@ -156,10 +161,14 @@ impl Engine {
         let animation = AnimationPass::new(motion);
         let pose = animation.pose();
         let character = animation.motion().character();
+        // The map's resolution and the simulation follow the hair as the groom has it; the
+        // strands' level of detail changes only how many strands stand for it.
         let geom = map_geometry(&style, &config.hair_map);
+        let simulation = SimulationPass::new(config.simulation, &style, &guides, pose, radii);
+        let (style, layout) = thin_strands(&style, &layout, config.interpolation.strand_fraction);
         Self {
             fiber: Fiber::new(&style.fiber),
-            simulation: SimulationPass::new(config.simulation, &style, &guides, pose, radii),
+            simulation,
             interpolation: InterpolationPass::new(config.interpolation, pose, radii),
             camera: CameraPass::new(&config.scene),
             hair_map: HairMapPass::new(config.hair_map, geom, config.scene.lights.len()),
@@ -172,6 +181,7 @@ impl Engine {
             guides,
             layout,
             scene: config.scene,
+            level: config.level,
             timings: StageTimings::default(),
             map_parts: MapPartTimings::default(),
         }

@@ -22,6 +22,10 @@ pub struct SimulationConfig {
     /// Seconds of simulated time with the head held at the first pose before frame 0, so the
     /// hair starts settled (default 2).
     pub settle_s: f64,
+    /// The simulation step, seconds, in (1e-5, 0.05] (default `None`: the hairstyle's
+    /// `dynamics.step_s`). Every parameter is a rate per unit time, so a step changes only the
+    /// discretisation error (ACCURACY.md §4's step table).
+    pub step_s: Option<f32>,
 }
 
 impl Default for SimulationConfig {
@@ -30,7 +34,15 @@ impl Default for SimulationConfig {
             simulate: true,
             self_collision: true,
             settle_s: 2.0,
+            step_s: None,
         }
+    }
+}
+
+impl SimulationConfig {
+    /// The step the simulation of `style` takes, seconds.
+    pub fn step_s(&self, style: &Hairstyle) -> f32 {
+        self.step_s.unwrap_or(style.dynamics.step_s)
     }
 }
 
@@ -55,7 +67,13 @@ impl SimulationPass {
         pose: &Pose,
         head_radii_m: Vec3,
     ) -> Self {
-        let mut sim = Simulator::from_hairstyle(style, guides);
+        let mut sim = if config.step_s(style) == style.dynamics.step_s {
+            Simulator::from_hairstyle(style, guides)
+        } else {
+            let mut stepped = style.clone();
+            stepped.dynamics.step_s = config.step_s(style);
+            Simulator::from_hairstyle(&stepped, guides)
+        };
         sim.set_self_collision(config.self_collision);
         let state = SimState::at_rest(guides, &colliders_of(pose, head_radii_m), -config.settle_s);
         Self {

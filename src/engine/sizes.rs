@@ -58,11 +58,15 @@ pub struct RunSizes {
 }
 
 /// What of a run's configuration the sizes follow from: the scene, each segment's pieces, the
-/// map's geometry and the settle.
+/// strands' level of detail, the simulation step, the map's geometry and the settle.
 #[derive(Clone, Copy, Debug)]
 pub struct SizedBy<'a> {
     pub scene: &'a Scene,
     pub segment_pieces: u32,
+    /// The share of each wisp's render strands made (`InterpolationConfig::strand_fraction`).
+    pub strand_fraction: f32,
+    /// The simulation step, seconds.
+    pub step_s: f32,
     pub geom: MapGeometry,
     pub settle_s: f64,
 }
@@ -74,7 +78,9 @@ impl RunSizes {
         let wisps = style.wisps.count as u64;
         let guides = 3 * wisps;
         let points_per_guide = style.guides.links as u64 + 1;
-        let strands = wisps * style.wisps.strands_per_wisp as u64;
+        let spw = style.wisps.strands_per_wisp;
+        let kept = (spw as f64 * by.strand_fraction.clamp(0.0, 1.0) as f64).ceil() as u64;
+        let strands = wisps * kept.clamp(1.min(spw as u64), spw as u64);
         let points_per_strand = crate::interp::subdivided_points(
             style.strands.points as usize,
             by.segment_pieces as usize,
@@ -117,7 +123,7 @@ impl RunSizes {
             from_cache,
             before_first_s,
             frame_s: plan.frame_interval_s.clamp(0.0, 1e15),
-            step_s: style.dynamics.step_s.max(1e-5) as f64,
+            step_s: by.step_s.max(1e-5) as f64,
             warm_up_slices: (before_first_s / 0.2).ceil(),
         }
     }

@@ -31,12 +31,16 @@
 //! - `exposure_stops`: the image's radiance is scaled by 2^stops (lights, ambient and
 //!   background alike), in [−20, 20].
 //! - `draw_solids`: draw the head and body (or the character's mesh); without them, hair alone.
+//! - `quality` (optional): `"preview"`, `"final"` or `"reference"` ([`Quality`]); absent, the
+//!   command's default (`play` previews, `render` and `simulate` make final frames). The
+//!   `--quality` flag overrides it, and each pass's own flags override the level.
 //!
 //! Parsing is strict ([`crate::input::json::from_str`]) and [`SceneFile::validate`] checks every
 //! rule, naming the field (`lights[1].intensity`) and the rule.
 
 use super::camera::{CameraError, CameraSetup, CameraSpec};
 use crate::light::{Light, LightError};
+use crate::quality::Quality;
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -58,6 +62,9 @@ pub struct SceneFile {
     pub background: [f32; 3],
     pub exposure_stops: f32,
     pub draw_solids: bool,
+    /// The quality level the scene asks for (absent: the command's own default).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub quality: Option<Quality>,
 }
 
 /// Image size in pixels.
@@ -124,6 +131,7 @@ impl Default for SceneFile {
             background: [0.012, 0.014, 0.018],
             exposure_stops: 0.0,
             draw_solids: true,
+            quality: None,
         }
     }
 }

@@ -39,6 +39,7 @@ mod map_reference;
 mod map_slab;
 mod map_surface;
 mod motion;
+mod quality;
 mod raster_bundle;
 mod raster_coverage;
 mod raster_lines;

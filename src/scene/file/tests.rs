@@ -72,6 +72,8 @@ fn bad_fields_are_named() {
         ),
         (r#"{"colour": [1, 1, 1]}"#, "colour"),
         (r#"{"ambient": NaN}"#, "ambient"),
+        (r#"{"quality": "fast"}"#, "quality"),
+        (r#"{"quality": 2}"#, "quality"),
     ];
     for (text, field) in cases {
         let (got, rule) = refused(text);
@@ -92,4 +94,14 @@ fn a_point_light_inside_the_hair_is_refused() {
     assert!(rule.contains("inside the hair"), "{rule}");
     let outside = [Light::point(Vec3::new(1.0, 1.6, 0.0), Vec3::ONE).unwrap()];
     assert!(check_point_lights_outside(&outside, head, 0.4).is_ok());
+}
+
+#[test]
+fn a_quality_level_is_read_and_printed_back_and_absent_by_default() {
+    let (file, _) = SceneFile::from_json(r#"{"quality": "preview"}"#, "s.json").unwrap();
+    assert_eq!(file.quality, Some(Quality::Preview));
+    let (again, _) = SceneFile::from_json(&file.to_json(), "printed").unwrap();
+    assert_eq!(again, file);
+    // The default scene names no level, so printing it says nothing of one.
+    assert!(!SceneFile::default().to_json().contains("quality"));
 }

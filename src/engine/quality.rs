@@ -1,0 +1,83 @@
+//! What each [`Quality`] level chooses for the passes: a set of the pass configs' values that
+//! trade time for error. A level is applied to a config first ([`EngineConfig::at_quality`]);
+//! a caller's own choices written after it override it (the command line writes its flags
+//! last). The time and error of each level are measured by `wisp bench --quality-list` and
+//! published in BENCHMARKS.md, with these values:
+//!
+//! | choice | preview | final | reference |
+//! |---|---|---|---|
+//! | simulation step | 1/240 s | the hairstyle's (1/480 s) | 1/960 s |
+//! | render strands made per wisp | half, each with twice the fibres | all | all |
+//! | skin-texture texels per map column | 1 | 2 | 2 |
+//! | segment pieces | 1 | 1 | 2 |
+//! | shader | dual scattering | dual scattering | light paths (`volume`) |
+//! | contact shadows (one-fibre strands) | off | off | 120 mm |
+//!
+//! The map's resolution follows the strand spacing at every level.
+
+use super::config::EngineConfig;
+use super::hair_map::{ContactShadowing, DEFAULT_CONTACT_WINDOW_M};
+use crate::fiber::ShadingMode;
+use crate::map::surface::DEFAULT_TEXELS_PER_COLUMN;
+pub use crate::quality::Quality;
+
+/// The values of one level (the table in the module doc).
+struct LevelChoices {
+    step_s: Option<f32>,
+    strand_fraction: f32,
+    texels_per_column: f32,
+    segment_pieces: u32,
+    mode: ShadingMode,
+    contact: ContactShadowing,
+}
+
+fn choices(quality: Quality) -> LevelChoices {
+    match quality {
+        Quality::Preview => LevelChoices {
+            step_s: Some(1.0 / 240.0),
+            strand_fraction: 0.5,
+            texels_per_column: 1.0,
+            segment_pieces: 1,
+            mode: ShadingMode::DualScattering,
+            contact: ContactShadowing::Off,
+        },
+        Quality::Final => LevelChoices {
+            step_s: None,
+            strand_fraction: 1.0,
+            texels_per_column: DEFAULT_TEXELS_PER_COLUMN,
+            segment_pieces: 1,
+            mode: ShadingMode::DualScattering,
+            contact: ContactShadowing::Off,
+        },
+        Quality::Reference => LevelChoices {
+            step_s: Some(1.0 / 960.0),
+            strand_fraction: 1.0,
+            texels_per_column: DEFAULT_TEXELS_PER_COLUMN,
+            segment_pieces: 2,
+            mode: ShadingMode::Volume,
+            contact: ContactShadowing::WindowM(DEFAULT_CONTACT_WINDOW_M),
+        },
+    }
+}
+
+impl EngineConfig {
+    /// Writes `quality`'s choices (the module doc's table) into the pass configs; the scene
+    /// and every choice the table does not name are left as they are.
+    pub fn apply_quality(&mut self, quality: Quality) {
+        let c = choices(quality);
+        self.level = quality;
+        self.simulation.step_s = c.step_s;
+        self.interpolation.strand_fraction = c.strand_fraction;
+        self.interpolation.segment_pieces = c.segment_pieces;
+        self.skin_texture.texels_per_column = c.texels_per_column;
+        self.shading.mode = c.mode;
+        self.hair_map.contact = c.contact;
+    }
+
+    /// The configuration at `quality` for the default scene.
+    pub fn at_quality(quality: Quality) -> Self {
+        let mut config = Self::default();
+        config.apply_quality(quality);
+        config
+    }
+}

@@ -1,0 +1,114 @@
+//! Quality levels (`wisp::quality`, `EngineConfig::at_quality`): a level is a set of pass
+//! configs; `final` is the engine's defaults; `preview` draws half the strands with the fibres
+//! of all, the same on any thread count; the budget's estimate follows the level. Their time
+//! and image error are measured by `wisp bench --quality-list` (BENCHMARKS.md), not here.
+
+use crate::common;
+use glam::Vec3;
+use wisp::budget::RunPlan;
+use wisp::engine::{Engine, EngineConfig, estimate};
+use wisp::hairstyle::Hairstyle;
+use wisp::motion::Motion;
+use wisp::quality::Quality;
+
+#[test]
+fn final_is_the_default_configuration_and_each_level_says_its_name() {
+    let default = EngineConfig::default();
+    let fin = EngineConfig::at_quality(Quality::Final);
+    assert_eq!(fin.simulation, default.simulation);
+    assert_eq!(fin.interpolation, default.interpolation);
+    assert_eq!(fin.hair_map, default.hair_map);
+    assert_eq!(fin.skin_texture, default.skin_texture);
+    assert_eq!(fin.shading, default.shading);
+    assert_eq!(default.level, Quality::Final);
+    for q in Quality::ALL {
+        assert_eq!(EngineConfig::at_quality(q).level, q);
+        assert_eq!(Quality::from_name(q.name()), Some(q));
+        assert_eq!(q.next().next().next(), q, "three levels in the cycle");
+    }
+    assert_eq!(Quality::from_name("fast"), None);
+    // The levels differ where their table says (src/engine/quality.rs).
+    let preview = EngineConfig::at_quality(Quality::Preview);
+    let reference = EngineConfig::at_quality(Quality::Reference);
+    assert!(preview.interpolation.strand_fraction < 1.0);
+    assert!(preview.simulation.step_s > Some(1.0 / 480.0));
+    assert!(reference.simulation.step_s < Some(1.0 / 480.0));
+    assert_eq!(reference.shading.mode, wisp::fiber::ShadingMode::Volume);
+}
+
+fn preview_at(width: u32) -> EngineConfig {
+    let mut config = EngineConfig::at_quality(Quality::Preview);
+    config.scene.width = width;
+    config.scene.height = width;
+    config.simulation.settle_s = 0.3;
+    config
+}
+
+#[test]
+fn preview_draws_half_the_strands_the_same_on_one_and_two_threads() {
+    let render = |threads: usize| {
+        common::on_threads(threads, || {
+            let mut engine = Engine::new(
+                Hairstyle::default_smooth(),
+                Motion::default_dance(),
+                preview_at(96),
+            );
+            let strands = engine.strands().strand_count();
+            (strands, engine.frame(0.5).to_srgb8())
+        })
+    };
+    let (strands, a) = render(1);
+    let (_, b) = render(2);
+    // 134 wisps of 25 strands: 13 of each kept (ceil 12.5).
+    assert_eq!(strands, 134 * 13);
+    assert!(a == b, "preview frames differ between 1 and 2 threads");
+}
+
+#[test]
+fn half_the_strands_cover_the_image_as_all_of_them_do() {
+    // The kept strands are drawn twice as wide (twice the fibres side by side), so the hair's
+    // summed coverage is about what all the strands leave: measured 1.013 of all the strands'
+    // (smooth, hair alone, 128 × 128, 0.5 s into the dance).
+    let coverage = |fraction: f32| {
+        let mut config = preview_at(128);
+        config.interpolation.strand_fraction = fraction;
+        config.scene.draw_solids = false;
+        config.scene.background = Vec3::ZERO;
+        let mut engine = Engine::new(Hairstyle::default_smooth(), Motion::default_dance(), config);
+        engine
+            .frame(0.5)
+            .coverage
+            .iter()
+            .map(|c| *c as f64)
+            .sum::<f64>()
+    };
+    let (all, half) = (coverage(1.0), coverage(0.5));
+    let ratio = half / all;
+    println!("summed hair coverage, half the strands / all: {ratio:.3}");
+    assert!((0.9..=1.1).contains(&ratio), "{ratio}");
+}
+
+#[test]
+fn the_estimate_follows_the_level() {
+    let (style, motion) = (Hairstyle::default_curly(), Motion::default_dance());
+    let plan = RunPlan::default();
+    let bytes = |q: Quality| estimate(&style, &motion, &EngineConfig::at_quality(q), &plan);
+    let (preview, fin) = (bytes(Quality::Preview), bytes(Quality::Final));
+    let part = |e: &wisp::budget::Estimate, what: &str| {
+        e.memory
+            .iter()
+            .filter(|p| p.what == what)
+            .map(|p| p.bytes)
+            .sum::<u64>()
+    };
+    // The render strands (and what is kept per strand point) halve with the strands.
+    let (p, f) = (
+        part(&preview, "render strands"),
+        part(&fin, "render strands"),
+    );
+    assert!(
+        p > 0 && (p as f64 / f as f64 - 0.52).abs() < 0.05,
+        "{p} of {f}"
+    );
+    assert!(preview.memory_bytes() < fin.memory_bytes());
+}
