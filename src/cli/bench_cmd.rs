@@ -12,8 +12,13 @@
 //!    lookup at every vertex, median of `--repeats` runs (`wisp accuracy` gives the same table
 //!    with more control).
 //!
+//! 4. **Quality levels** (`--quality-list`): each level's per-stage time and its image and
+//!    simulation error against a more accurate level ([`quality`]).
+//!
 //! `--parts` chooses among them. Results go to stdout as tables and, with `--json FILE`, as
 //! JSON.
+
+mod quality;
 
 use super::{AppError, SceneArgs};
 use std::path::PathBuf;
@@ -21,6 +26,7 @@ use wisp::accuracy::exact::Footprint;
 use wisp::engine::{Engine, EngineConfig, MapPartTimings, StageTimings};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
+use wisp::quality::Quality;
 
 #[derive(clap::Args, Debug)]
 pub struct BenchArgs {
@@ -39,15 +45,19 @@ pub struct BenchArgs {
     /// Timed repetitions per map resolution, 1–1000
     #[arg(long, value_name = "N", default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub repeats: u32,
-    /// Parts to run, comma separated
+    /// Parts to run, comma separated: scaling, self-collision, accuracy, quality [default:
+    /// quality with --quality-list, else the other three]
     #[arg(
         long,
         value_name = "PART,…",
-        default_value = "scaling,self-collision,accuracy",
         value_delimiter = ',',
         hide_possible_values = true
     )]
-    pub parts: Vec<BenchPart>,
+    pub parts: Option<Vec<BenchPart>>,
+    /// Quality levels to time and compare (the quality part), comma separated [default:
+    /// preview,final,reference]
+    #[arg(long, value_name = "LEVEL,…", value_delimiter = ',', value_parser = super::parse_quality)]
+    pub quality_list: Option<Vec<Quality>>,
     /// Also write the results as JSON to this file
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
@@ -61,6 +71,28 @@ pub enum BenchPart {
     Scaling,
     SelfCollision,
     Accuracy,
+    Quality,
+}
+
+impl BenchArgs {
+    /// The parts to run: `--parts`, else the quality part when `--quality-list` is given,
+    /// else scaling, self-collision and accuracy.
+    fn parts(&self) -> Vec<BenchPart> {
+        match (&self.parts, &self.quality_list) {
+            (Some(parts), _) => parts.clone(),
+            (None, Some(_)) => vec![BenchPart::Quality],
+            (None, None) => vec![
+                BenchPart::Scaling,
+                BenchPart::SelfCollision,
+                BenchPart::Accuracy,
+            ],
+        }
+    }
+
+    /// The levels of the quality part.
+    fn quality_levels(&self) -> Vec<Quality> {
+        self.quality_list.clone().unwrap_or(Quality::ALL.to_vec())
+    }
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -109,14 +141,29 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         motion,
         config,
     };
-    if args.parts.contains(&BenchPart::Scaling) {
+    let parts = args.parts();
+    if parts.contains(&BenchPart::Scaling) {
         scaling_part(&args, &scene, &mut json)?;
     }
-    if args.parts.contains(&BenchPart::SelfCollision) {
+    if parts.contains(&BenchPart::SelfCollision) {
         self_collision_part(&args, &scene, &mut json);
     }
-    if args.parts.contains(&BenchPart::Accuracy) {
+    if parts.contains(&BenchPart::Accuracy) {
         accuracy_part(&args, at_s, &scene, &mut json);
+    }
+    if parts.contains(&BenchPart::Quality) {
+        let levels = args.quality_levels();
+        for &level in &levels {
+            let mut config = quality::level_config(&scene, level);
+            check_one(
+                &args,
+                &scene.style,
+                &scene.motion,
+                &mut config,
+                quality::last_time_s(),
+            )?;
+        }
+        quality::quality_part(&args, &scene, &levels, &mut json)?;
     }
     json.insert("hairstyle".into(), scene.style.name.clone().into());
     if let Some(path) = &args.json {
@@ -152,6 +199,23 @@ fn check_budget(
         };
         args.scene.budget.check(style, motion, &mut sweep, &plan)?;
     }
+    args.scene.budget.check(style, motion, config, &plan)
+}
+
+/// Refuses the benchmark when a run of `config` up to `at_s` is over the budget.
+fn check_one(
+    args: &BenchArgs,
+    style: &Hairstyle,
+    motion: &Motion,
+    config: &mut EngineConfig,
+    at_s: f64,
+) -> Result<(), AppError> {
+    let plan = wisp::budget::RunPlan {
+        frame_interval_s: 1.0 / 30.0,
+        warm_up_s: at_s,
+        export_png: false,
+        cache: wisp::budget::CacheUse::None,
+    };
     args.scene.budget.check(style, motion, config, &plan)
 }
 
@@ -193,7 +257,7 @@ fn scaling_part(args: &BenchArgs, scene: &BenchScene, json: &mut Json) -> Result
     let mut scaling = Vec::new();
     let mut map_parts = Vec::new();
     for &threads in &args.threads_list {
-        let (med, parts_ms) = time_stages(args, scene, threads)?;
+        let (med, parts_ms) = time_stages(args.frames, || scene.engine(), threads)?;
         map_parts.push((threads, parts_ms));
         let base = *base_total.get_or_insert(med[6]);
         println!(
@@ -214,12 +278,12 @@ fn scaling_part(args: &BenchArgs, scene: &BenchScene, json: &mut Json) -> Result
     Ok(())
 }
 
-/// The frames of the dance on a pool of `threads`: the median milliseconds of each stage
-/// (`StageTimings::NAMES`) and of the total, and of each part of the map stage
-/// (`MapPartTimings::NAMES`).
+/// `frames` frames of the dance on a pool of `threads`, from the engine `make` builds in the
+/// pool: the median milliseconds of each stage (`StageTimings::NAMES`) and of the total, and
+/// of each part of the map stage (`MapPartTimings::NAMES`).
 fn time_stages(
-    args: &BenchArgs,
-    scene: &BenchScene,
+    frames: u32,
+    make: impl Fn() -> Engine + Send + Sync,
     threads: u32,
 ) -> Result<([f64; 7], [f64; 3]), AppError> {
     let pool = rayon::ThreadPoolBuilder::new()
@@ -227,8 +291,8 @@ fn time_stages(
         .build()
         .map_err(AppError::other)?;
     let per_frame: Vec<(StageTimings, MapPartTimings)> = pool.install(|| {
-        let mut engine = scene.engine();
-        (0..args.frames)
+        let mut engine = make();
+        (0..frames)
             .map(|i| {
                 engine.frame(i as f64 / 30.0);
                 (engine.timings, engine.map_parts)

@@ -142,3 +142,9 @@ pub fn parse_rgb(s: &str) -> Result<Vec3, String> {
 
 #[cfg(test)]
 mod tests;
+
+/// A quality level by name (`wisp::quality::Quality`).
+pub fn parse_quality(s: &str) -> Result<wisp::quality::Quality, String> {
+    wisp::quality::Quality::from_name(s)
+        .ok_or_else(|| format!("must be preview, final or reference (got {s:?})"))
+}

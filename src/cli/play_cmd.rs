@@ -13,9 +13,11 @@
 //! turn the lights about the vertical through the head, Up/Down tilt them about the view's
 //! horizontal axis (Up lifts a light on the camera's side of the head), V reset the view, H
 //! hide the readout, P write a screenshot (`wisp-shot-NNNN.png` in the current directory,
-//! without the readout), R restart, Esc or Q quit. The readout ([`overlay`]) shows the frame
-//! rate, the mean time of each stage and of the window's own work, the shader and whether
-//! self-collision and pause are on.
+//! without the readout), L switch between the preview and final quality levels (the hair
+//! settles again), R restart, Esc or Q quit. The readout ([`overlay`]) shows the frame
+//! rate, the mean time of each stage and of the window's own work, the shader, whether
+//! self-collision and pause are on, and the quality level (`preview` unless `--quality` or the
+//! scene file says otherwise).
 
 mod keys;
 mod orbit;
@@ -31,8 +33,9 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 use std::time::{Duration, Instant};
 use view::ViewControl;
-use wisp::engine::Engine;
+use wisp::engine::{Engine, EngineConfig};
 use wisp::output::write_png_rgb8;
+use wisp::quality::Quality;
 
 #[derive(clap::Args, Debug)]
 pub struct PlayArgs {
@@ -49,7 +52,8 @@ pub struct PlayArgs {
 /// Shortest time between two frames, seconds (at most 60 frames a second).
 const MIN_FRAME_INTERVAL_S: f64 = 1.0 / 60.0;
 
-pub fn run(args: PlayArgs) -> Result<(), AppError> {
+pub fn run(mut args: PlayArgs) -> Result<(), AppError> {
+    args.scene.default_quality = Quality::Preview;
     let (style, hair, motion, mut config) = args.scene.resolve()?;
     if let Some(path) = &args.screenshot {
         super::check_output_file("--screenshot", path)?;
@@ -83,6 +87,10 @@ pub fn run(args: PlayArgs) -> Result<(), AppError> {
         if controls.apply_keys(pressed, &mut engine, &mut view) == Flow::Quit {
             break;
         }
+        if std::mem::take(&mut controls.level_wanted) {
+            engine = rebuilt_at(&args.scene, &engine, keys::next_level(engine.level))?;
+            view = ViewControl::new(&engine);
+        }
         // A slow frame turns the lights no further than a tenth of a second would.
         turn_lights(&window, &mut engine, dt_s.min(0.1) as f32);
         view.handle_mouse(&window, &engine);
@@ -115,6 +123,26 @@ pub fn run(args: PlayArgs) -> Result<(), AppError> {
         write_png_rgb8(path, fb.width, fb.height, &fb.to_srgb8()).map_err(AppError::input)?;
     }
     Ok(())
+}
+
+/// The engine of `args` rebuilt at `level` with `engine`'s scene (its lights as turned), its
+/// hair settled again; refused (exit code 2) when that level is over the budget. The level's
+/// pass configs replace the flags' choices.
+fn rebuilt_at(args: &SceneArgs, engine: &Engine, level: Quality) -> Result<Engine, AppError> {
+    eprintln!("wisp play: quality {level}: settling the hair again");
+    let (style, hair, motion, _) = args.resolve()?;
+    let mut config = EngineConfig {
+        scene: engine.scene.clone(),
+        ..EngineConfig::at_quality(level)
+    };
+    let plan = wisp::budget::RunPlan {
+        frame_interval_s: MIN_FRAME_INTERVAL_S,
+        warm_up_s: 0.0,
+        export_png: false,
+        cache: wisp::budget::CacheUse::None,
+    };
+    args.budget.check(&style, &motion, &mut config, &plan)?;
+    Ok(super::engine(style, hair, motion, config))
 }
 
 /// A `w` × `h` window that records every key press ([`Presses`]); the loop limits the frame

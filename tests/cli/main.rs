@@ -12,6 +12,7 @@ mod deploy;
 mod export;
 mod fiber;
 mod hostile;
+mod quality;
 mod render_formats;
 mod scene;
 mod window;

@@ -1,5 +1,6 @@
 //! The window's keys: each press seen once however short ([`Presses`]), what the keys switch
-//! ([`Controls`]: pause, shader, self-collision, readout, restart, view, screenshot, quit),
+//! ([`Controls`]: pause, shader, self-collision, readout, restart, view, screenshot, quality
+//! level, quit),
 //! and the arrow keys turning the lights while held ([`turn_lights`]).
 
 use super::view::ViewControl;
@@ -9,6 +10,7 @@ use std::cell::RefCell;
 use std::rc::Rc;
 use wisp::engine::Engine;
 use wisp::fiber::ShadingMode;
+use wisp::quality::Quality;
 
 /// Light turn rate while an arrow key is held, radians per second (about 70°/s).
 const LIGHT_TURN_RAD_PER_S: f32 = 1.2;
@@ -28,6 +30,8 @@ pub(super) struct Controls {
     pub show_readout: bool,
     /// P was pressed: a screenshot is written after this frame's render.
     pub screenshot_wanted: bool,
+    /// L was pressed: the engine is rebuilt at [`next_level`] before this frame.
+    pub level_wanted: bool,
 }
 
 impl Default for Controls {
@@ -37,6 +41,7 @@ impl Default for Controls {
             paused: false,
             show_readout: true,
             screenshot_wanted: false,
+            level_wanted: false,
         }
     }
 }
@@ -62,10 +67,20 @@ impl Controls {
                 Key::R => self.t_s = 0.0,
                 Key::V => view.reset(engine),
                 Key::P => self.screenshot_wanted = true,
+                Key::L => self.level_wanted = true,
                 _ => {}
             }
         }
         Flow::Go
+    }
+}
+
+/// The level after `level` in the cycle of the L key: preview and final, the two that draw in
+/// a fraction of a second (`reference` traces light paths, seconds a frame: for exports).
+pub(super) fn next_level(level: Quality) -> Quality {
+    match level {
+        Quality::Preview => Quality::Final,
+        Quality::Final | Quality::Reference => Quality::Preview,
     }
 }
 

@@ -12,6 +12,7 @@ use std::fmt::Write;
 use std::time::Instant;
 use wisp::engine::{Engine, StageTimings};
 use wisp::fiber::ShadingMode;
+use wisp::quality::Quality;
 
 /// How often the readout's figures are renewed (means over the frames since), seconds.
 const READOUT_INTERVAL_S: f64 = 0.5;
@@ -49,6 +50,7 @@ pub struct Readout {
     pub mode: ShadingMode,
     pub self_collision: bool,
     pub paused: bool,
+    pub level: Quality,
 }
 
 impl Readout {
@@ -67,7 +69,8 @@ impl Readout {
              shade {:.1}  raster {:.1} ms\n\
              window {:.1} ms\n\
              shader: {}\n\
-             self-collision: {}",
+             self-collision: {}\n\
+             quality: {}",
             self.fps,
             if self.paused { "  paused" } else { "" },
             ms(t.animation_s),
@@ -85,6 +88,7 @@ impl Readout {
                 ShadingMode::Volume => "volume",
             },
             if self.self_collision { "on" } else { "off" },
+            self.level.name(),
         );
     }
 }
@@ -137,6 +141,7 @@ impl ReadoutMeter {
         if let Some(r) = &mut self.readout {
             r.mode = engine.shading.config.mode;
             r.self_collision = engine.simulation.config.self_collision;
+            r.level = engine.level;
             r.paused = paused;
         }
     }

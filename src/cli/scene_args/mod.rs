@@ -8,9 +8,12 @@
 //! ```text
 //! hair           --hairstyle, --groom-*          -> Hairstyle, an imported groom's hair
 //! motion         --animation, --clip, --head-*   -> Motion
-//! scene          --scene and its shortcuts       -> Scene (image, camera, lights, solids)
-//! simulation     --no-sim, --no-self-collision   -> SimulationConfig
-//! interpolation  --segment-pieces                -> InterpolationConfig
+//! scene          --scene and its shortcuts       -> Scene (image, camera, lights, solids),
+//!                --quality                          the quality level (every pass's config)
+//! simulation     --no-sim, --no-self-collision,  -> SimulationConfig
+//!                --sim-hz
+//! interpolation  --segment-pieces,               -> InterpolationConfig
+//!                --strand-fraction
 //! hair_map       --map-res, --contact-mm         -> HairMapConfig
 //! shading        --shading, --volume-*           -> ShadingConfig
 //! raster         --min-line-width-px             -> RasterConfig
@@ -37,6 +40,7 @@ use super::AppError;
 use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
+use wisp::quality::Quality;
 use wisp::scene::Scene;
 
 /// What is rendered: hair, motion, scene, each pass's options and the budget.
@@ -60,6 +64,10 @@ pub struct SceneArgs {
     pub raster: raster::RasterArgs,
     #[command(flatten)]
     pub budget: budget::BudgetArgs,
+    /// The quality level when neither `--quality` nor the scene file names one: `final`, and
+    /// `preview` for `wisp play` (set by the command, not a flag).
+    #[arg(skip)]
+    pub default_quality: Quality,
 }
 
 impl SceneArgs {
@@ -68,18 +76,19 @@ impl SceneArgs {
     pub fn resolve(&self) -> Result<(Hairstyle, ImportedHair, Motion, EngineConfig), AppError> {
         let motion = self.motion.load()?;
         let (style, hair) = self.hair.load()?;
-        let scene = self.scene_file.scene(&style, &motion)?;
-        let config = self.config(scene);
+        let (scene, quality) = self.scene_file.scene(&style, &motion)?;
+        let config = self.config(scene, quality.unwrap_or(self.default_quality));
         self.hair
             .check_roots_on_head(&style, &hair, &motion, &self.motion.source())?;
         Ok((style, hair, motion, config))
     }
 
-    /// The engine configuration: `scene`, and each pass's config from its flags.
-    fn config(&self, scene: Scene) -> EngineConfig {
+    /// The engine configuration: `scene`, each pass's config at `quality`, and the flags
+    /// given written over the level's choices.
+    fn config(&self, scene: Scene, quality: Quality) -> EngineConfig {
         let mut config = EngineConfig {
             scene,
-            ..EngineConfig::default()
+            ..EngineConfig::at_quality(quality)
         };
         self.simulation.apply(&mut config.simulation);
         self.interpolation.apply(&mut config.interpolation);

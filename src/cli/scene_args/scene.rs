@@ -10,6 +10,7 @@ use glam::Vec3;
 use std::path::PathBuf;
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
+use wisp::quality::Quality;
 use wisp::scene::file::{CameraJson, LightJson};
 use wisp::scene::{Scene, SceneFile};
 
@@ -49,6 +50,10 @@ pub struct SceneFileArgs {
     /// Image height, pixels, 16–8192 [default: 800]
     #[arg(long, value_name = "PX", value_parser = clap::value_parser!(u32).range(16..=8192), help_heading = "Image")]
     pub height: Option<u32>,
+    /// preview, final or reference: time against error (README) [default: preview for play,
+    /// final for the other commands]
+    #[arg(long, value_name = "LEVEL", value_parser = crate::cli::parse_quality, help_heading = "Quality")]
+    pub quality: Option<Quality>,
     /// Exposure: radiance times 2^stops, in [−20, 20] [default: 0]
     #[arg(long, value_name = "STOPS", value_parser = parse_finite_f32, allow_hyphen_values = true, help_heading = "Image")]
     pub exposure_stops: Option<f32>,
@@ -72,6 +77,9 @@ impl SceneFileArgs {
         }
         if let Some(h) = self.height {
             file.image.height = h;
+        }
+        if let Some(q) = self.quality {
+            file.quality = Some(q);
         }
         if let Some(l) = self.light_dir {
             match file.lights.first_mut() {
@@ -120,14 +128,19 @@ impl SceneFileArgs {
     }
 
     /// The run's scene: [`Self::effective`], validated, with its point lights checked to lie
-    /// beyond the reach of the hair of `style` on the head at the motion's first pose.
-    pub fn scene(&self, style: &Hairstyle, motion: &Motion) -> Result<Scene, AppError> {
+    /// beyond the reach of the hair of `style` on the head at the motion's first pose; and the
+    /// quality level the flag or the file asks for.
+    pub fn scene(
+        &self,
+        style: &Hairstyle,
+        motion: &Motion,
+    ) -> Result<(Scene, Option<Quality>), AppError> {
         let (name, file) = self.effective()?;
         let scene = file.validate(&name).map_err(AppError::input)?;
         let head = Vec3::from(motion.sample(0.0).head.translation);
         let reach = style.max_length_m() + style.head.radii_m.iter().copied().fold(0.0, f32::max);
         wisp::scene::file::check_point_lights_outside(&scene.lights, head, reach)
             .map_err(|(field, rule)| AppError::input(anyhow::anyhow!("{name}: {field}: {rule}")))?;
-        Ok(scene)
+        Ok((scene, file.quality))
     }
 }

@@ -55,15 +55,10 @@ pub fn parse_volume_cell_mm(s: &str) -> Result<f32, String> {
 #[derive(clap::Args, Debug, Clone)]
 #[command(next_help_heading = "Light and shading")]
 pub struct ShadingArgs {
-    /// Shader: dual, single, kajiya-kay, visibility or volume
-    #[arg(
-        long,
-        value_name = "SHADER",
-        value_enum,
-        default_value = "dual",
-        hide_possible_values = true
-    )]
-    pub shading: ShadingArg,
+    /// Shader: dual, single, kajiya-kay, visibility or volume [default: dual; volume at
+    /// --quality reference]
+    #[arg(long, value_name = "SHADER", value_enum, hide_possible_values = true)]
+    pub shading: Option<ShadingArg>,
     /// --shading volume: cell edge, mm, 0.5–100 [default: 4]
     #[arg(long, value_name = "MM", value_parser = parse_volume_cell_mm)]
     pub volume_cell_mm: Option<f32>,
@@ -76,9 +71,11 @@ pub struct ShadingArgs {
 }
 
 impl ShadingArgs {
-    /// Writes the flags into the shading's config (the light paths' flags over its defaults).
+    /// Writes the flags given over the shading's config.
     pub fn apply(&self, config: &mut ShadingConfig) {
-        config.mode = self.shading.into();
+        if let Some(mode) = self.shading {
+            config.mode = mode.into();
+        }
         if let Some(mm) = self.volume_cell_mm {
             config.light_paths.cell_m = mm * 1e-3;
         }

@@ -122,6 +122,7 @@ fn readout_says_what_is_on() {
         mode: ShadingMode::KajiyaKay,
         self_collision: false,
         paused: true,
+        level: Quality::Preview,
     };
     let mut s = String::new();
     r.write_into(&mut s);
@@ -132,6 +133,7 @@ fn readout_says_what_is_on() {
         "window 2.1 ms",
         "shader: kajiya-kay",
         "self-collision: off",
+        "quality: preview",
     ] {
         assert!(s.contains(want), "{want:?} in {s:?}");
     }
@@ -139,5 +141,5 @@ fn readout_says_what_is_on() {
     (r.paused, r.self_collision, r.mode) = (false, true, ShadingMode::DualScattering);
     r.write_into(&mut s);
     assert!(!s.contains("paused") && s.contains("self-collision: on") && s.contains("dual"));
-    assert_eq!(s.lines().count(), 7, "cleared before writing");
+    assert_eq!(s.lines().count(), 8, "cleared before writing");
 }
