@@ -185,21 +185,15 @@ fn check_budget(
     config: &mut EngineConfig,
     at_s: f64,
 ) -> Result<(), AppError> {
-    let plan = wisp::budget::RunPlan {
-        frame_interval_s: 1.0 / 30.0,
-        warm_up_s: at_s,
-        export_png: false,
-        cache: wisp::budget::CacheUse::None,
-    };
     for &n in &args.map_res_list {
         let mut sweep = {
             let mut config = config.clone();
             config.hair_map.map_res = Some(n);
             config
         };
-        args.scene.budget.check(style, motion, &mut sweep, &plan)?;
+        check_one(args, style, motion, &mut sweep, at_s)?;
     }
-    args.scene.budget.check(style, motion, config, &plan)
+    check_one(args, style, motion, config, at_s)
 }
 
 /// Refuses the benchmark when a run of `config` up to `at_s` is over the budget.

@@ -33,7 +33,7 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 use std::time::{Duration, Instant};
 use view::ViewControl;
-use wisp::engine::{Engine, EngineConfig};
+use wisp::engine::Engine;
 use wisp::output::write_png_rgb8;
 use wisp::quality::Quality;
 
@@ -125,16 +125,13 @@ pub fn run(mut args: PlayArgs) -> Result<(), AppError> {
     Ok(())
 }
 
-/// The engine of `args` rebuilt at `level` with `engine`'s scene (its lights as turned), its
-/// hair settled again; refused (exit code 2) when that level is over the budget. The level's
-/// pass configs replace the flags' choices.
+/// The engine of `args` rebuilt at `level` (the flags given still override it) with
+/// `engine`'s scene (its lights as turned), its hair settled again; refused (exit code 2) when
+/// that level is over the budget.
 fn rebuilt_at(args: &SceneArgs, engine: &Engine, level: Quality) -> Result<Engine, AppError> {
     eprintln!("wisp play: quality {level}: settling the hair again");
     let (style, hair, motion, _) = args.resolve()?;
-    let mut config = EngineConfig {
-        scene: engine.scene.clone(),
-        ..EngineConfig::at_quality(level)
-    };
+    let mut config = args.config(engine.scene.clone(), level);
     let plan = wisp::budget::RunPlan {
         frame_interval_s: MIN_FRAME_INTERVAL_S,
         warm_up_s: 0.0,

@@ -67,13 +67,9 @@ impl SimulationPass {
         pose: &Pose,
         head_radii_m: Vec3,
     ) -> Self {
-        let mut sim = if config.step_s(style) == style.dynamics.step_s {
-            Simulator::from_hairstyle(style, guides)
-        } else {
-            let mut stepped = style.clone();
-            stepped.dynamics.step_s = config.step_s(style);
-            Simulator::from_hairstyle(&stepped, guides)
-        };
+        let mut stepped = style.clone();
+        stepped.dynamics.step_s = config.step_s(style);
+        let mut sim = Simulator::from_hairstyle(&stepped, guides);
         sim.set_self_collision(config.self_collision);
         let state = SimState::at_rest(guides, &colliders_of(pose, head_radii_m), -config.settle_s);
         Self {

@@ -13,7 +13,7 @@
 //! accurate run, as ACCURACY.md §4). A level is the scene's (image, camera, lights) with that
 //! level's pass configs; other pass flags are not applied.
 
-use super::{BenchArgs, BenchScene, Json, time_stages};
+use super::{BenchArgs, BenchScene, Json, scaling_row, time_stages};
 use crate::cli::AppError;
 use glam::Vec3;
 use wisp::accuracy::image::{hair_mask, image_error};
@@ -141,24 +141,17 @@ pub fn quality_part(
         let mut timings = Vec::new();
         let mut base = None;
         for &threads in &args.threads_list {
-            let (med, _) = time_stages(args.frames, || scene.engine_with(config.clone()), threads)?;
+            let (med, parts_ms) =
+                time_stages(args.frames, || scene.engine_with(config.clone()), threads)?;
             let b = *base.get_or_insert(med[6]);
+            let [_, sim, interp, map, shading, raster, total] = med;
             println!(
-                "{:>10} {threads:>7} {:>10.2} {:>10.2} {:>10.2} {:>10.2} {:>10.2} {:>10.2}  {:.2}x",
+                "{:>10} {threads:>7} {sim:>10.2} {interp:>10.2} {map:>10.2} {shading:>10.2} \
+                 {raster:>10.2} {total:>10.2}  {:.2}x",
                 level.name(),
-                med[1],
-                med[2],
-                med[3],
-                med[4],
-                med[5],
-                med[6],
-                b / med[6]
+                b / total
             );
-            timings.push(
-                serde_json::json!({"threads": threads, "simulation_ms": med[1],
-                "interp_ms": med[2], "map_ms": med[3], "shading_ms": med[4], "raster_ms": med[5],
-                "total_ms": med[6], "speedup": b / med[6]}),
-            );
+            timings.push(scaling_row(threads, &med, b, parts_ms));
         }
         let tips = simulate(&mut scene.engine_with(config.clone())).1;
         let frames = drawn_by(config);

@@ -85,7 +85,7 @@ impl SceneArgs {
 
     /// The engine configuration: `scene`, each pass's config at `quality`, and the flags
     /// given written over the level's choices.
-    fn config(&self, scene: Scene, quality: Quality) -> EngineConfig {
+    pub fn config(&self, scene: Scene, quality: Quality) -> EngineConfig {
         let mut config = EngineConfig {
             scene,
             ..EngineConfig::at_quality(quality)
