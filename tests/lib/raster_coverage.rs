@@ -8,30 +8,12 @@
 //! approximates the integral for other angles; `raster_lines.rs` measured the latter at
 //! under 2% for lines over 100 px, the tolerance used here.
 
+use crate::common::{axis_camera, unproject};
 use glam::{Affine3A, Vec3};
 use proptest::prelude::*;
 use wisp::raster::{
-    Camera, Framebuffer, LineScratch, LineStyle, Polylines, draw_ellipsoid, draw_polylines,
+    Framebuffer, LineScratch, LineStyle, Polylines, draw_ellipsoid, draw_polylines,
 };
-
-/// Eye at the origin looking down −Z, 90° vertical fov: focal length = height / 2.
-fn axis_camera(w: u32, h: u32) -> Camera {
-    Camera::look_at(
-        Vec3::ZERO,
-        Vec3::NEG_Z,
-        Vec3::Y,
-        std::f32::consts::FRAC_PI_2,
-        w,
-        h,
-    )
-}
-
-/// World point at depth `z` projecting to pixel position (px, py).
-fn unproject(cam: &Camera, px: f32, py: f32, z: f32) -> Vec3 {
-    let f = cam.focal_px();
-    let (cx, cy) = (0.5 * cam.width as f32, 0.5 * cam.height as f32);
-    Vec3::new((px - cx) / f * z, -(py - cy) / f * z, -z)
-}
 
 /// A polyline of `n` points from pixel `a` to pixel `b` at depth `z`, physical width `w_m`,
 /// drawn white over black with the projected width model; returns the framebuffer.

@@ -193,3 +193,23 @@ pub fn mesh_penetrations_m(
     }
     out
 }
+
+/// Camera at the origin looking down −Z, 90° vertical fov: focal length = height / 2, so a
+/// point (x, y, −1) lands on pixel (w/2 + f·x, h/2 − f·y).
+pub fn axis_camera(w: u32, h: u32) -> wisp::raster::Camera {
+    wisp::raster::Camera::look_at(
+        Vec3::ZERO,
+        Vec3::NEG_Z,
+        Vec3::Y,
+        std::f32::consts::FRAC_PI_2,
+        w,
+        h,
+    )
+}
+
+/// World point at depth `z` that projects to pixel position (px, py) for [`axis_camera`].
+pub fn unproject(cam: &wisp::raster::Camera, px: f32, py: f32, z: f32) -> Vec3 {
+    let f = cam.focal_px();
+    let (cx, cy) = (0.5 * cam.width as f32, 0.5 * cam.height as f32);
+    Vec3::new((px - cx) / f * z, -(py - cy) / f * z, -z)
+}
