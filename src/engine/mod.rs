@@ -165,7 +165,7 @@ impl Engine {
         // strands' level of detail changes only how many strands stand for it.
         let geom = map_geometry(&style, &config.hair_map);
         let simulation = SimulationPass::new(config.simulation, &style, &guides, pose, radii);
-        let (style, layout) = thin_strands(&style, &layout, config.interpolation.strand_fraction);
+        let (style, layout) = thin_strands(style, layout, config.interpolation.strand_fraction);
         Self {
             fiber: Fiber::new(&style.fiber),
             simulation,

@@ -3,7 +3,7 @@
 //! estimate multiplies its per-item sizes by.
 
 use crate::budget::{CacheUse, RunPlan};
-use crate::hairstyle::Hairstyle;
+use crate::hairstyle::{Hairstyle, kept_strands};
 use crate::map::MapGeometry;
 use crate::motion::Motion;
 use crate::scene::Scene;
@@ -78,9 +78,8 @@ impl RunSizes {
         let wisps = style.wisps.count as u64;
         let guides = 3 * wisps;
         let points_per_guide = style.guides.links as u64 + 1;
-        let spw = style.wisps.strands_per_wisp;
-        let kept = (spw as f64 * by.strand_fraction.clamp(0.0, 1.0) as f64).ceil() as u64;
-        let strands = wisps * kept.clamp(1.min(spw as u64), spw as u64);
+        let kept = kept_strands(style.wisps.strands_per_wisp, by.strand_fraction);
+        let strands = wisps * kept as u64;
         let points_per_strand = crate::interp::subdivided_points(
             style.strands.points as usize,
             by.segment_pieces as usize,

@@ -26,7 +26,7 @@ pub use generate::{SplitMix64, generate, guide_roots};
 pub use load::{CURLY_JSON, HairstyleError, MAX_FILE_BYTES, SMOOTH_JSON};
 pub use model::{GuideSet, StrandLayout};
 pub use spec::{CurlSpec, GuideSpec, Hairstyle, HeadSpec, ScalpSpec, StrandSpec, WispSpec};
-pub use thin::thin_strands;
+pub use thin::{kept_strands, thin_strands};
 pub use validate::{
     MAX_GUIDE_LINKS, MAX_RENDER_POINTS, MAX_STRANDS, MAX_WISPS, MIN_HEAD_RADIUS_M, MIN_PERIOD_M,
     MIN_SCALP_POLAR_DEG,

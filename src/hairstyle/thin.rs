@@ -16,29 +16,33 @@
 use super::model::StrandLayout;
 use super::spec::Hairstyle;
 
-/// `style` and `layout` with the first `ceil(fraction × n)` (at least one) of each wisp's `n`
-/// render strands kept and `strands.fibers_per_strand` raised so that the total fibres stay the
-/// same; `strands_per_wisp` becomes the kept count of a full wisp (what the strand spacing
-/// follows). `fraction` is clamped to (0, 1]; at 1 the inputs come back unchanged.
+/// How many of a wisp's `n` render strands a level of detail of `fraction` keeps:
+/// `ceil(fraction × n)`, at least one of a non-empty wisp. `fraction` is clamped to (0, 1]; a
+/// non-finite one keeps them all. The engine's memory estimate counts strands with this too.
+pub fn kept_strands(n: u32, fraction: f32) -> u32 {
+    if !fraction.is_finite() || fraction >= 1.0 {
+        return n;
+    }
+    ((n as f32 * fraction.max(0.0)).ceil() as u32).clamp(1.min(n), n)
+}
+
+/// `style` and `layout` with the first [`kept_strands`] of each wisp's render strands kept and
+/// `strands.fibers_per_strand` raised so that the total fibres stay the same;
+/// `strands_per_wisp` becomes the kept count of a full wisp (what the strand spacing
+/// follows). At a fraction of 1 the inputs come back unchanged.
 pub fn thin_strands(
-    style: &Hairstyle,
-    layout: &StrandLayout,
+    style: Hairstyle,
+    layout: StrandLayout,
     fraction: f32,
 ) -> (Hairstyle, StrandLayout) {
-    let fraction = if fraction.is_finite() {
-        fraction.clamp(0.0, 1.0)
-    } else {
-        1.0
-    };
-    if fraction >= 1.0 || layout.count() == 0 {
-        return (style.clone(), layout.clone());
+    if !fraction.is_finite() || fraction >= 1.0 || layout.count() == 0 {
+        return (style, layout);
     }
     let wisps = layout.wisp_guides.len();
     let mut per_wisp = vec![0u32; wisps];
     for &w in &layout.strand_wisp {
         per_wisp[w as usize] += 1;
     }
-    let kept_of = |n: u32| ((n as f32 * fraction).ceil() as u32).clamp(1.min(n), n);
     let mut seen = vec![0u32; wisps];
     let keep: Vec<bool> = layout
         .strand_wisp
@@ -46,14 +50,14 @@ pub fn thin_strands(
         .map(|&w| {
             let w = w as usize;
             seen[w] += 1;
-            seen[w] <= kept_of(per_wisp[w])
+            seen[w] <= kept_strands(per_wisp[w], fraction)
         })
         .collect();
-    let thinned = keep_strands(layout, &keep);
-    let mut style = style.clone();
+    let thinned = keep_strands(&layout, &keep);
+    let mut style = style;
     let ratio = layout.count() as f64 / thinned.count().max(1) as f64;
     style.strands.fibers_per_strand = (style.strands.fibers_per_strand as f64 * ratio) as f32;
-    style.wisps.strands_per_wisp = kept_of(style.wisps.strands_per_wisp);
+    style.wisps.strands_per_wisp = kept_strands(style.wisps.strands_per_wisp, fraction);
     (style, thinned)
 }
 
