@@ -20,9 +20,9 @@ pub struct ImageError {
     pub p95_rel_luminance: f64,
 }
 
-/// Rec. 709 luminance of linear RGB.
+/// Rec. 709 luminance of linear RGB (the sum in f32, as every accuracy figure was taken).
 pub fn luminance(c: glam::Vec3) -> f64 {
-    0.2126 * c.x as f64 + 0.7152 * c.y as f64 + 0.0722 * c.z as f64
+    c.dot(glam::Vec3::new(0.2126, 0.7152, 0.0722)) as f64
 }
 
 /// `image` against `reference` over the pixels where `mask` is true (the module doc); `None`

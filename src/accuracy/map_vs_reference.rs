@@ -7,6 +7,7 @@
 //!
 //!   relative RMS = √(mean (ℓ_map − ℓ_ref)²) / √(mean ℓ_ref²),  ratio = mean ℓ_map / mean ℓ_ref.
 
+use super::image::luminance;
 use crate::accuracy::comparison::{Comparison, sample_vertices};
 use crate::accuracy::exact::Footprint;
 use crate::accuracy::reference::{ensemble_light, key_light, placements_used};
@@ -124,11 +125,6 @@ pub fn measure_map(
     }
 }
 
-/// Luminance of a linear RGB colour (Rec. 709 weights).
-fn luminance(c: &Vec3) -> f64 {
-    c.dot(Vec3::new(0.2126, 0.7152, 0.0722)) as f64
-}
-
 /// The sampled vertices, shaded on their own with the key light alone.
 struct Shading<'a> {
     engine: &'a Engine,
@@ -186,8 +182,8 @@ struct ShadedReference {
 impl ShadedReference {
     fn new(colors: Vec<Vec3>) -> Self {
         let count = colors.len().max(1) as f64;
-        let mean = colors.iter().map(luminance).sum::<f64>() / count;
-        let rms = (colors.iter().map(|c| luminance(c).powi(2)).sum::<f64>() / count).sqrt();
+        let mean = colors.iter().copied().map(luminance).sum::<f64>() / count;
+        let rms = (colors.iter().map(|c| luminance(*c).powi(2)).sum::<f64>() / count).sqrt();
         ShadedReference { colors, mean, rms }
     }
 }
@@ -236,12 +232,12 @@ impl RowBench<'_> {
         let rms = (colors
             .iter()
             .zip(&reference.colors)
-            .map(|(a, b)| (luminance(a) - luminance(b)).powi(2))
+            .map(|(a, b)| (luminance(*a) - luminance(*b)).powi(2))
             .sum::<f64>()
             / colors.len().max(1) as f64)
             .sqrt()
             / reference.rms.max(1e-12);
-        let mean = colors.iter().map(luminance).sum::<f64>() / colors.len().max(1) as f64;
+        let mean = colors.iter().copied().map(luminance).sum::<f64>() / colors.len().max(1) as f64;
         Row {
             n: geom.n,
             ds_mm: geom.ds_m * 1e3,
