@@ -6,6 +6,12 @@
 //! compared, so that the darkest pixels, where a relative error means nothing, do not dominate;
 //! the mean and the 95th percentile over the pixels compared. Which pixels is the caller's
 //! choice (a mask: where hair covers at least half a pixel, for the quality report).
+//!
+//! Beside it, [`flip_mean`]: the perceived difference of the whole picture (ꟻLIP, `flip.rs`).
+
+mod flip;
+
+pub use flip::{FLIP_PIXELS_PER_DEGREE, flip_mean};
 
 use crate::raster::Framebuffer;
 

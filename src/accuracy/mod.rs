@@ -12,7 +12,8 @@
 //!   each bundle: the error no estimate from the render strands can go below.
 //! - [`skin::measure_skin`]: the hair's shadow on the skin against the same reference, per
 //!   pixel.
-//! - [`image::image_error`]: one frame against a more accurate one (quality levels).
+//! - [`image::image_error`], [`image::flip_mean`]: one frame against a more accurate one
+//!   (quality levels), over the hair's pixels and as ꟻLIP over the whole picture.
 
 pub mod comparison;
 pub mod exact;

@@ -41,3 +41,57 @@ fn black_pixels_are_judged_against_the_floor_and_masked_pixels_not_at_all() {
     assert!(image_error(&image, &reference, &[false; 3]).is_none());
     assert!(image_error(&frame(&[Vec3::ONE]), &reference, &[true; 3]).is_none());
 }
+
+/// A 48 × 32 picture with structure at several scales (a red ramp across, green stripes 4 px
+/// wide, a constant blue), with `amplitude` added to every channel of the 8 × 8 blocks of one
+/// colour of a checkerboard: a visible change of low spatial frequency.
+fn textured(amplitude: f32) -> Framebuffer {
+    let (w, h) = (48u32, 32u32);
+    let mut fb = Framebuffer::new(w, h, Vec3::ZERO);
+    for y in 0..h {
+        for x in 0..w {
+            let stripe = if (x / 4) % 2 == 0 { 0.15 } else { 0.35 };
+            let block = ((x / 8) + (y / 8)) % 2 == 0;
+            let base = Vec3::new(x as f32 / w as f32 * 0.8, stripe, 0.25);
+            fb.color[(y * w + x) as usize] =
+                base + Vec3::splat(if block { amplitude } else { 0.0 });
+        }
+    }
+    fb
+}
+
+#[test]
+fn flip_is_zero_for_the_same_picture_and_grows_with_the_difference() {
+    let reference = textured(0.0);
+    assert_eq!(flip_mean(&reference, &reference), Some(0.0));
+    // Black against white: the largest colour difference there is, everywhere.
+    let black = Framebuffer::new(48, 32, Vec3::ZERO);
+    let white = Framebuffer::new(48, 32, Vec3::ONE);
+    let opposite = flip_mean(&black, &white).unwrap();
+    assert!(opposite > 0.5, "black against white: {opposite}");
+    // A small change is a small error, and a larger change a larger one (measured: 0.967 for
+    // black against white; 0.027, 0.038, 0.065, 0.124, 0.203 for these amplitudes).
+    let errors: Vec<f64> = [0.005, 0.01, 0.02, 0.05, 0.1]
+        .iter()
+        .map(|&a| flip_mean(&textured(a), &reference).unwrap())
+        .collect();
+    assert!(errors[0] > 0.0 && errors[0] < 0.05, "{errors:?}");
+    assert!(errors.windows(2).all(|p| p[1] > p[0]), "{errors:?}");
+    assert!(errors[4] < opposite, "{errors:?} against {opposite}");
+}
+
+#[test]
+fn flip_of_pictures_that_cannot_be_compared_is_no_figure() {
+    let reference = textured(0.0);
+    assert_eq!(
+        flip_mean(&Framebuffer::new(32, 48, Vec3::ZERO), &reference),
+        None
+    );
+    let empty = Framebuffer::new(0, 0, Vec3::ZERO);
+    assert_eq!(flip_mean(&empty, &empty), None);
+    // A buffer whose pixels do not fill its size (the fields are public).
+    let mut short = textured(0.0);
+    short.color.pop();
+    assert_eq!(flip_mean(&short, &reference), None);
+    assert_eq!(flip_mean(&reference, &short), None);
+}
