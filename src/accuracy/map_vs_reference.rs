@@ -253,7 +253,7 @@ impl RowBench<'_> {
 
 /// The `vertices` vertices a measurement samples, spread evenly over the strands' points
 /// where at least one fibre is present (past the tips, hair is not drawn).
-fn sampled_vertices(engine: &Engine, vertices: usize) -> Vec<usize> {
+pub(crate) fn sampled_vertices(engine: &Engine, vertices: usize) -> Vec<usize> {
     let strands = &engine.strands();
     let fibers = engine.style.strands.fibers_per_strand.round().max(1.0);
     let with_hair: Vec<usize> = (0..strands.positions.len())

@@ -12,22 +12,25 @@
 //!   each bundle: the error no estimate from the render strands can go below.
 //! - [`skin::measure_skin`]: the hair's shadow on the skin against the same reference, per
 //!   pixel.
+//! - [`LevelTfReference`]: a quality level's map against the reference of the full hair.
 //! - [`image::image_error`], [`image::flip_mean`]: one frame against a more accurate one
 //!   (quality levels), over the hair's pixels and as ꟻLIP over the whole picture.
 
 pub mod comparison;
 pub mod exact;
 pub mod image;
+mod level_tf;
 mod map_vs_reference;
 mod markdown;
 mod placement_floor;
 mod reference;
 pub mod skin;
 
+pub use level_tf::LevelTfReference;
 pub use map_vs_reference::{MapMeasurement, Row, measure_map, sweep_geometries};
 pub use markdown::{bias_per_bin, markdown};
 pub use placement_floor::placement_floor;
 pub use reference::{
-    DEFAULT_PLACEMENTS, ensemble_light, exact_reference, exact_reference_placed, key_light,
-    placements_used, single_fiber_variant,
+    DEFAULT_PLACEMENTS, default_rays, ensemble_light, exact_reference, exact_reference_placed,
+    key_light, placements_used, single_fiber_variant,
 };

@@ -23,6 +23,15 @@ use crate::map::MapLight;
 /// smooth's lit bin; ACCURACY.md §1).
 pub const DEFAULT_PLACEMENTS: u32 = 8;
 
+/// The rays a reference of `placements` placements shoots at each vertex on the fibres it
+/// stands for (`Footprint::Fibers`), as `wisp bench`'s references take them: 32 on each
+/// placement of several (2 on each of a bundle's 30 fibres, a quarter piece either side of the
+/// vertex), about the cost of 2.5 references of 128 (building a placement's fibres, not its
+/// rays, is most of a reference's time); 128 on the one placement of one-fibre strands.
+pub fn default_rays(placements: u32) -> u32 {
+    if placements > 1 { 32 } else { 128 }
+}
+
 /// The exact-geometry variant of a hairstyle: K render strands of one fibre for every render
 /// strand of F fibres.
 pub fn single_fiber_variant(style: &Hairstyle, k: u32) -> Hairstyle {

@@ -400,13 +400,10 @@ fn accuracy_part(args: &BenchArgs, at_s: f64, scene: &BenchScene, json: &mut Jso
     engine.frame(at_s);
     let default_n = engine.map_geometry().n;
     let geometries = wisp::accuracy::sweep_geometries(&engine, &args.map_res_list);
-    // Bundles: 32 rays asked on each of 8 placements (2 on each of 30 fibres, a quarter piece
-    // either side of the vertex), at about the cost of 2.5 references of 128 (building a
-    // placement's fibres, not its rays, is most of a reference's time). One fibre per strand
-    // has one placement: 128 rays on it.
+    // 32 rays on each of 8 placements of the bundles' fibres, 128 on one-fibre strands' one.
     let placements =
         wisp::accuracy::placements_used(&engine.style, wisp::accuracy::DEFAULT_PLACEMENTS);
-    let rays = if placements > 1 { 32 } else { 128 };
+    let rays = wisp::accuracy::default_rays(placements);
     let footprint = Footprint::Fibers { rays };
     let wisp::accuracy::MapMeasurement {
         rows, reference_ms, ..

@@ -30,6 +30,7 @@ mod hairstyle;
 mod hostile_budget;
 mod hostile_cases;
 mod hostile_loaders;
+mod level_tf;
 mod map_accuracy;
 mod map_contact;
 mod map_exact;
