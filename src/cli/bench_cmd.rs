@@ -12,12 +12,15 @@
 //!    lookup at every vertex, median of `--repeats` runs (`wisp accuracy` gives the same table
 //!    with more control).
 //!
-//! 4. **Quality levels** (`--quality-list`): each level's per-stage time and its image and
-//!    simulation error against a more accurate level ([`quality`]).
+//! 4. **Quality levels** (`--quality-list`): each level's per-stage time, its image and
+//!    simulation error against a more accurate level, and its map's T_f against the exact
+//!    reference ([`quality`]); with `--plot FILE.png`, time against image error as a picture
+//!    ([`plot`]).
 //!
 //! `--parts` chooses among them. Results go to stdout as tables and, with `--json FILE`, as
 //! JSON.
 
+mod plot;
 mod quality;
 
 use super::{AppError, SceneArgs};
@@ -61,6 +64,11 @@ pub struct BenchArgs {
     /// Also write the results as JSON to this file
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
+    /// Also draw the quality part as a 960 × 640 PNG: median ms a frame on the largest thread
+    /// count (log axis) against the mean relative luminance error, a point per level, for this
+    /// run's hairstyle
+    #[arg(long, value_name = "FILE.png")]
+    pub plot: Option<PathBuf>,
     #[command(flatten)]
     pub scene: SceneArgs,
 }
@@ -104,6 +112,9 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
     let (style, hair, motion, config) = args.scene.resolve()?;
     if let Some(path) = &args.json {
         super::check_output_file("--json", path)?;
+    }
+    if let Some(path) = &args.plot {
+        check_plot(&args, path)?;
     }
     if let Some(&n) = args
         .threads_list
@@ -163,7 +174,17 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
                 quality::last_time_s(),
             )?;
         }
-        quality::quality_part(&args, &scene, &levels, &mut json)?;
+        let points = quality::quality_part(&args, &scene, &levels, &mut json)?;
+        if let Some(path) = &args.plot {
+            let threads = args.threads_list.iter().copied().max().unwrap_or(1);
+            let data = plot::PlotData {
+                scene: &scene.style.name,
+                threads,
+                points: &points,
+            };
+            plot::write_plot(path, &data)?;
+            println!("\nplot written to {}", path.display());
+        }
     }
     json.insert("hairstyle".into(), scene.style.name.clone().into());
     if let Some(path) = &args.json {
@@ -173,6 +194,23 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
             .map_err(|e| AppError::input(anyhow::anyhow!("--json {}: {e}", path.display())))?;
     }
     Ok(())
+}
+
+/// Refuses `--plot` before any work when the run has nothing to draw (no quality part, or
+/// levels that compare none) or the file could never be written.
+fn check_plot(args: &BenchArgs, path: &std::path::Path) -> Result<(), AppError> {
+    if !args.parts().contains(&BenchPart::Quality) {
+        return Err(AppError::input(anyhow::anyhow!(
+            "--plot draws the quality part: give --quality-list (or --parts quality)"
+        )));
+    }
+    if !plot::has_comparison(&args.quality_levels()) {
+        return Err(AppError::input(anyhow::anyhow!(
+            "--plot: the levels compare none; give reference and another level, or preview and \
+             final, in --quality-list"
+        )));
+    }
+    super::check_output_file("--plot", path)
 }
 
 /// Refuses the benchmark when one of its runs is over the budget: every map of the speed

@@ -88,3 +88,79 @@ fn the_scene_file_names_a_level_and_the_flag_overrides_it() {
         stderr(&o)
     );
 }
+
+/// Width and height of `wisp bench --plot`'s picture (its `--help`: 960 × 640).
+const PLOT_SIZE: (u32, u32) = (960, 640);
+
+#[test]
+fn the_bench_quality_report_has_flip_and_tf_figures_and_draws_its_plot() {
+    let dir = scratch_dir("cli-quality-plot");
+    let style = crate::support::small_hairstyle(&dir);
+    let (plot, json) = (dir.join("q.png"), dir.join("q.json"));
+    let run = |levels: &str, extra: &[&str]| {
+        let base = [
+            "bench",
+            "--hairstyle",
+            style.to_str().unwrap(),
+            "--frames",
+            "1",
+            "--width",
+            "64",
+            "--height",
+            "48",
+            "--threads-list",
+            "1",
+            "--quality-list",
+            levels,
+        ];
+        wisp(&[&base[..], extra].concat())
+    };
+    let o = run(
+        "preview,final",
+        &[
+            "--plot",
+            plot.to_str().unwrap(),
+            "--json",
+            json.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stdout.contains("FLIP") && stdout.contains("Tf MAE"),
+        "{stdout}"
+    );
+    // A PNG of the plot's size: its decoder reads the signature and the IHDR chunk.
+    let bytes = std::fs::read(&plot).expect("the plot");
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    let reader = png::Decoder::new(std::io::Cursor::new(bytes))
+        .read_info()
+        .expect("a PNG");
+    assert_eq!((reader.info().width, reader.info().height), PLOT_SIZE);
+    // The JSON has each level's map error and preview's ꟻLIP against final, in range.
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    let levels = v["quality"].as_array().unwrap();
+    assert_eq!(levels.len(), 2);
+    for level in levels {
+        let tf = level["tf_mae"].as_f64().unwrap();
+        assert!((0.0..0.2).contains(&tf), "{level}");
+    }
+    let flip = levels[0]["vs_final"]["flip_mean"].as_f64().unwrap();
+    assert!(flip > 0.0 && flip < 1.0, "preview against final: {flip}");
+    assert!(v["quality_tf_reference"]["vertices"].as_u64().unwrap() > 0);
+    // Refused before any work: a folder that does not exist, a run without the quality part,
+    // levels that compare none.
+    let missing = dir.join("no-such-folder").join("q.png");
+    for (levels, extra) in [
+        ("preview,final", vec!["--plot", missing.to_str().unwrap()]),
+        (
+            "preview,final",
+            vec!["--plot", plot.to_str().unwrap(), "--parts", "scaling"],
+        ),
+        ("final", vec!["--plot", plot.to_str().unwrap()]),
+    ] {
+        let o = run(levels, &extra);
+        assert_eq!(o.status.code(), Some(2), "{levels} {extra:?}");
+        assert!(stderr(&o).contains("--plot"), "{extra:?}: {}", stderr(&o));
+    }
+}

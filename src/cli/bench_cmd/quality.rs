@@ -10,13 +10,22 @@
 //! drawing's; the simulation's is the guides' tips over every 1/30 s up
 //! to the last of those times against the more accurate level's own run, in frames of motion
 //! (the RMS distance over the RMS tip displacement between consecutive frames of the more
-//! accurate run, as ACCURACY.md §4). A level is the scene's (image, camera, lights) with that
-//! level's pass configs; other pass flags are not applied.
+//! accurate run, as ACCURACY.md §4). Beside the luminance error, the mean ꟻLIP of the whole
+//! frame (`wisp::accuracy::image::flip_mean`: the perceived difference, as rendering papers
+//! report it), also the mean over the frames. And at the first snapshot, the key light's T_f
+//! read from each level's map where the full hair is, against the exact reference of that
+//! hair (`wisp::accuracy::LevelTfReference`: [`TF_VERTICES`] vertices of `final`'s strands,
+//! the accuracy part's placements and rays): the map's error, whatever the level draws. A
+//! level is the scene's (image, camera, lights) with that level's pass configs; other pass
+//! flags are not applied.
 
 use super::{BenchArgs, BenchScene, Json, scaling_row, time_stages};
 use crate::cli::AppError;
 use glam::Vec3;
-use wisp::accuracy::image::{hair_mask, image_error};
+use std::time::Instant;
+use wisp::accuracy::comparison::Comparison;
+use wisp::accuracy::image::{flip_mean, hair_mask, image_error};
+use wisp::accuracy::{DEFAULT_PLACEMENTS, LevelTfReference, default_rays};
 use wisp::engine::{Engine, EngineConfig};
 use wisp::quality::Quality;
 use wisp::raster::Framebuffer;
@@ -25,10 +34,34 @@ use wisp::raster::Framebuffer;
 /// head motions (4.2–4.9 s) and settling.
 pub const SNAPSHOT_TIMES_S: [f64; 3] = [2.0, 4.5, 6.0];
 
+/// Vertices of the full hair at which each level's map is compared with the exact reference.
+pub const TF_VERTICES: usize = 1000;
+
 /// A level's frames at the snapshot times and its guides' tips at every 1/30 s up to the last.
 struct Snapshots {
     frames: Vec<Framebuffer>,
     tips: Vec<Vec<Vec3>>,
+}
+
+/// What the report measured of one level, for the plot (`--plot`).
+#[derive(Clone, Copy, Debug)]
+pub struct LevelPoint {
+    pub level: Quality,
+    /// Median ms a frame on the largest thread count measured.
+    pub ms: f64,
+    /// Mean relative luminance error against `reference` (0 for `reference` itself), when
+    /// `reference` was run.
+    pub vs_reference: Option<f64>,
+    /// The same against `final`, for `preview` and `final` (0) when both were run.
+    pub vs_final: Option<f64>,
+}
+
+/// The mean over the snapshot frames of the figures of one level against another.
+#[derive(Clone, Copy, Debug)]
+struct FrameError {
+    mean_rel_luminance: f64,
+    p95_rel_luminance: f64,
+    flip: f64,
 }
 
 /// The last snapshot time, seconds: how far each level's run goes.
@@ -68,16 +101,22 @@ fn simulate(engine: &mut Engine) -> (Vec<Vec<Vec3>>, Vec<Vec<Vec3>>) {
     (states, tips)
 }
 
-/// The frames `engine` draws of the guide particles `states` at the snapshot times.
-fn frames_of(engine: &mut Engine, states: &[Vec<Vec3>]) -> Vec<Framebuffer> {
-    SNAPSHOT_TIMES_S
-        .iter()
-        .zip(states)
-        .map(|(&t, positions)| {
-            engine.set_guide_state(t, positions);
-            engine.render().clone()
-        })
-        .collect()
+/// The frames `engine` draws of the guide particles `states` at the snapshot times; `first`
+/// sees the engine once it has drawn the first.
+fn frames_of(
+    engine: &mut Engine,
+    states: &[Vec<Vec3>],
+    mut first: impl FnMut(&Engine),
+) -> Vec<Framebuffer> {
+    let mut frames = Vec::new();
+    for (&t, positions) in SNAPSHOT_TIMES_S.iter().zip(states) {
+        engine.set_guide_state(t, positions);
+        frames.push(engine.render().clone());
+        if frames.len() == 1 {
+            first(engine);
+        }
+    }
+    frames
 }
 
 /// The tips of `run` against `truth`, in frames of motion (the module doc).
@@ -97,25 +136,62 @@ fn tip_error_frames(run: &Snapshots, truth: &Snapshots) -> f64 {
 }
 
 /// The mean over the snapshot frames of the mean and of the 95th percentile of the relative
-/// luminance error of `run` against `truth`, over the hair's pixels of each frame in `masks`.
-fn frame_error(run: &Snapshots, truth: &Snapshots, masks: &[Vec<bool>]) -> (f64, f64) {
+/// luminance error of `run` against `truth`, over the hair's pixels of each frame in `masks`,
+/// and of the mean ꟻLIP over each whole frame.
+fn frame_error(run: &Snapshots, truth: &Snapshots, masks: &[Vec<bool>]) -> FrameError {
     let errors: Vec<_> = (0..masks.len())
         .filter_map(|i| image_error(&run.frames[i], &truth.frames[i], &masks[i]))
         .collect();
     let n = errors.len().max(1) as f64;
-    (
-        errors.iter().map(|e| e.mean_rel_luminance).sum::<f64>() / n,
-        errors.iter().map(|e| e.p95_rel_luminance).sum::<f64>() / n,
-    )
+    let flips: Vec<f64> = (0..masks.len())
+        .filter_map(|i| flip_mean(&run.frames[i], &truth.frames[i]))
+        .collect();
+    FrameError {
+        mean_rel_luminance: errors.iter().map(|e| e.mean_rel_luminance).sum::<f64>() / n,
+        p95_rel_luminance: errors.iter().map(|e| e.p95_rel_luminance).sum::<f64>() / n,
+        flip: flips.iter().sum::<f64>() / flips.len().max(1) as f64,
+    }
 }
 
-/// The report (the module doc) for `levels`, in the order given.
+/// One level's run: its timings (the JSON rows) and median ms a frame on the largest thread
+/// count, its snapshots, and its map's T_f against the exact reference.
+struct LevelRun {
+    level: Quality,
+    timings: Vec<serde_json::Value>,
+    ms: f64,
+    snapshots: Snapshots,
+    tf: Comparison,
+}
+
+/// The exact reference the levels' maps are compared with, and what it took.
+struct TfReference {
+    reference: LevelTfReference,
+    ms: f64,
+}
+
+impl TfReference {
+    /// The reference of `full`'s hair (every strand) drawn from the guide particles of the
+    /// first snapshot, `states[0]`.
+    fn of(full: &mut Engine, states: &[Vec<Vec3>]) -> Self {
+        let t0 = Instant::now();
+        if let Some(first) = states.first() {
+            full.set_guide_state(SNAPSHOT_TIMES_S[0], first);
+        }
+        let reference = LevelTfReference::new(full, TF_VERTICES, DEFAULT_PLACEMENTS);
+        TfReference {
+            reference,
+            ms: t0.elapsed().as_secs_f64() * 1e3,
+        }
+    }
+}
+
+/// The report (the module doc) for `levels`, in the order given; what the plot draws.
 pub fn quality_part(
     args: &BenchArgs,
     scene: &BenchScene,
     levels: &[Quality],
     json: &mut Json,
-) -> Result<(), AppError> {
+) -> Result<Vec<LevelPoint>, AppError> {
     println!(
         "\nquality levels, median ms per frame over {} frames:",
         args.frames
@@ -129,65 +205,100 @@ pub fn quality_part(
     let mut truth = scene.engine_with(level_config(scene, Quality::Final));
     let camera = truth.camera.clone();
     let states = simulate(&mut truth).0;
-    let drawn_by = |config: EngineConfig| {
+    let tf_reference = TfReference::of(&mut truth, &states);
+    let drawn_by = |config: EngineConfig, first: &mut dyn FnMut(&Engine)| {
         let mut engine = scene.engine_with(config);
         engine.camera = camera.clone();
-        frames_of(&mut engine, &states)
+        frames_of(&mut engine, &states, first)
     };
-    let mut rows = Vec::new();
     let mut runs = Vec::new();
     for &level in levels {
         let config = level_config(scene, level);
-        let mut timings = Vec::new();
-        let mut base = None;
-        for &threads in &args.threads_list {
-            let (med, parts_ms) =
-                time_stages(args.frames, || scene.engine_with(config.clone()), threads)?;
-            let b = *base.get_or_insert(med[6]);
-            let [_, sim, interp, map, shading, raster, total] = med;
-            println!(
-                "{:>10} {threads:>7} {sim:>10.2} {interp:>10.2} {map:>10.2} {shading:>10.2} \
-                 {raster:>10.2} {total:>10.2}  {:.2}x",
-                level.name(),
-                b / total
-            );
-            timings.push(scaling_row(threads, &med, b, parts_ms));
-        }
+        let (timings, ms) = time_level(args, scene, level, &config)?;
         let tips = simulate(&mut scene.engine_with(config.clone())).1;
-        let frames = drawn_by(config);
-        runs.push((level, Snapshots { frames, tips }));
-        rows.push((level, timings));
+        let mut tf = Comparison::default();
+        let frames = drawn_by(config, &mut |engine| {
+            tf = tf_reference.reference.compare(engine)
+        });
+        runs.push(LevelRun {
+            level,
+            timings,
+            ms,
+            snapshots: Snapshots { frames, tips },
+            tf,
+        });
     }
     let masks: Vec<Vec<bool>> = {
         let mut config = level_config(scene, Quality::Final);
         config.scene.draw_solids = false;
-        drawn_by(config).iter().map(hair_mask).collect()
+        drawn_by(config, &mut |_| ())
+            .iter()
+            .map(hair_mask)
+            .collect()
     };
-    print_errors(&runs, &masks, rows, json);
-    Ok(())
+    let (entries, points) = print_errors(&runs, &masks);
+    print_tf(&runs, &tf_reference, json);
+    json.insert("quality".into(), entries.into());
+    Ok(points)
+}
+
+/// `level`'s per-stage medians on each thread count, printed: its JSON rows and its median
+/// ms a frame on the largest thread count.
+fn time_level(
+    args: &BenchArgs,
+    scene: &BenchScene,
+    level: Quality,
+    config: &EngineConfig,
+) -> Result<(Vec<serde_json::Value>, f64), AppError> {
+    let mut timings = Vec::new();
+    let mut base = None;
+    let mut largest = (0, 0.0);
+    for &threads in &args.threads_list {
+        let (med, parts_ms) =
+            time_stages(args.frames, || scene.engine_with(config.clone()), threads)?;
+        let b = *base.get_or_insert(med[6]);
+        let [_, sim, interp, map, shading, raster, total] = med;
+        println!(
+            "{:>10} {threads:>7} {sim:>10.2} {interp:>10.2} {map:>10.2} {shading:>10.2} \
+             {raster:>10.2} {total:>10.2}  {:.2}x",
+            level.name(),
+            b / total
+        );
+        if threads > largest.0 {
+            largest = (threads, total);
+        }
+        timings.push(scaling_row(threads, &med, b, parts_ms));
+    }
+    Ok((timings, largest.1))
 }
 
 /// Prints each level's error against `reference` and `preview`'s against `final` (where those
-/// levels were run), and writes the report's JSON.
+/// levels were run); returns the report's JSON entries (with each level's T_f figures) and the
+/// plot's points.
 fn print_errors(
-    runs: &[(Quality, Snapshots)],
+    runs: &[LevelRun],
     masks: &[Vec<bool>],
-    rows: Vec<(Quality, Vec<serde_json::Value>)>,
-    json: &mut Json,
-) {
-    let find = |q: Quality| runs.iter().find(|(l, _)| *l == q).map(|(_, s)| s);
+) -> (Vec<serde_json::Value>, Vec<LevelPoint>) {
+    let find = |q: Quality| runs.iter().find(|r| r.level == q).map(|r| &r.snapshots);
     println!(
-        "\nimage error over the hair's pixels at t = {SNAPSHOT_TIMES_S:?} s (mean of the frames), \
-         guide tips in frames of motion:"
+        "\nimage error at t = {SNAPSHOT_TIMES_S:?} s (mean of the frames): relative luminance \
+         over the hair's pixels, ꟻLIP over the whole frame; guide tips in frames of motion:"
     );
     println!(
-        "{:>10} {:>10} {:>14} {:>14} {:>12}",
-        "level", "against", "mean rel. lum.", "95th pct", "tips"
+        "{:>10} {:>10} {:>14} {:>14} {:>8} {:>12}",
+        "level", "against", "mean rel. lum.", "95th pct", "FLIP", "tips"
     );
-    let mut out = Vec::new();
-    for (level, timings) in rows {
-        let run = find(level).expect("every level was run");
-        let mut entry = serde_json::json!({"level": level.name(), "timings": timings});
+    let (mut entries, mut points) = (Vec::new(), Vec::new());
+    for run in runs {
+        let level = run.level;
+        let mut entry = serde_json::json!({"level": level.name(), "timings": run.timings,
+            "tf_mae": run.tf.mae, "tf_overall_bias": run.tf.overall_bias});
+        let mut point = LevelPoint {
+            level,
+            ms: run.ms,
+            vs_reference: find(Quality::Reference).map(|_| 0.0),
+            vs_final: None,
+        };
         for (truth_level, key) in [
             (Quality::Reference, "vs_reference"),
             (Quality::Final, "vs_final"),
@@ -200,20 +311,59 @@ fn print_errors(
             if level == truth_level || against_final_only_for_preview {
                 continue;
             }
-            let (mean, p95) = frame_error(run, truth, masks);
-            let tips = tip_error_frames(run, truth);
+            let e = frame_error(&run.snapshots, truth, masks);
+            let tips = tip_error_frames(&run.snapshots, truth);
             println!(
-                "{:>10} {:>10} {:>13.2}% {:>13.2}% {:>12.2}",
+                "{:>10} {:>10} {:>13.2}% {:>13.2}% {:>8.4} {:>12.2}",
                 level.name(),
                 truth_level.name(),
-                mean * 100.0,
-                p95 * 100.0,
+                e.mean_rel_luminance * 100.0,
+                e.p95_rel_luminance * 100.0,
+                e.flip,
                 tips
             );
-            entry[key] = serde_json::json!({"mean_rel_luminance": mean, "p95_rel_luminance": p95,
+            entry[key] = serde_json::json!({"mean_rel_luminance": e.mean_rel_luminance,
+                "p95_rel_luminance": e.p95_rel_luminance, "flip_mean": e.flip,
                 "tip_error_frames": tips});
+            match truth_level {
+                Quality::Reference => point.vs_reference = Some(e.mean_rel_luminance),
+                _ => point.vs_final = Some(e.mean_rel_luminance),
+            }
         }
-        out.push(entry);
+        if level == Quality::Final && find(Quality::Preview).is_some() {
+            point.vs_final = Some(0.0);
+        }
+        entries.push(entry);
+        points.push(point);
     }
-    json.insert("quality".into(), out.into());
+    (entries, points)
+}
+
+/// Prints each level's T_f against the exact reference, and writes what the reference was.
+fn print_tf(runs: &[LevelRun], tf: &TfReference, json: &mut Json) {
+    let r = &tf.reference;
+    let rays = default_rays(r.placements());
+    println!(
+        "\nkey light's T_f at t = {:.1} s against the exact reference of the full hair ({} vertices \
+         of final's strands, {rays} rays on each of {} placement(s) of the fibres, {:.0} ms), \
+         each level's map read there:",
+        SNAPSHOT_TIMES_S[0],
+        r.vertices(),
+        r.placements(),
+        tf.ms
+    );
+    println!("{:>10} {:>8} {:>8}", "level", "Tf MAE", "bias");
+    for run in runs {
+        println!(
+            "{:>10} {:>8.4} {:>+8.4}",
+            run.level.name(),
+            run.tf.mae,
+            run.tf.overall_bias
+        );
+    }
+    json.insert(
+        "quality_tf_reference".into(),
+        serde_json::json!({"t_s": SNAPSHOT_TIMES_S[0], "vertices": r.vertices(),
+            "placements": r.placements(), "rays": rays, "ms": tf.ms}),
+    );
 }
