@@ -10,6 +10,8 @@ use glam::Vec3;
 /// The motion and its pose at the last sampled time.
 pub struct AnimationPass {
     motion: Motion,
+    /// The last sampled time, seconds of the motion.
+    time_s: f64,
     pose: Pose,
     /// The character's mesh posed at the last sampled time (empty without a character, or
     /// before the first sample).
@@ -22,14 +24,21 @@ impl AnimationPass {
         Self {
             pose: motion.sample(0.0),
             motion,
+            time_s: 0.0,
             character: CharacterPose::default(),
         }
     }
 
     /// Samples the motion at `t_s` (seconds of the motion): the pose and the posed mesh.
     pub fn run(&mut self, t_s: f64) {
+        self.time_s = t_s;
         self.motion.sample_into(t_s as f32, &mut self.pose);
         self.motion.pose_character(t_s as f32, &mut self.character);
+    }
+
+    /// The last sampled time, seconds of the motion.
+    pub fn time_s(&self) -> f64 {
+        self.time_s
     }
 
     pub fn motion(&self) -> &Motion {

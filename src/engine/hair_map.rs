@@ -16,14 +16,32 @@ use crate::map::{CONTACT_BIN_COLUMNS, CountModel, LightMap, MapBuildInput, MapGe
 use glam::Vec3;
 use rayon::prelude::*;
 
-/// How the hair's light maps are made.
-#[derive(Clone, Copy, Debug, PartialEq, Default)]
+/// How the hair's light maps are made, and how often.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HairMapConfig {
     /// Map cells per axis; `None` (the default) sizes the map from the scene
     /// ([`MapGeometry::for_scene`]).
     pub map_res: Option<u32>,
+    /// With `map_res` unset, cells this many times as wide as the scene's own choice
+    /// (default 1; [`MapGeometry::for_scene_scaled`]).
+    pub cell_scale: f32,
+    /// Seconds of motion between two builds of the map stage (hair map, occluders, skin
+    /// texture); frames between them are lit by the last build. 0 (the default) builds it for
+    /// every frame. See [`super::map_rate`].
+    pub rebuild_interval_s: f64,
     /// Contact shadows for hair of one fibre per render strand (default off).
     pub contact: ContactShadowing,
+}
+
+impl Default for HairMapConfig {
+    fn default() -> Self {
+        Self {
+            map_res: None,
+            cell_scale: 1.0,
+            rebuild_interval_s: 0.0,
+            contact: ContactShadowing::Off,
+        }
+    }
 }
 
 /// Whether the maps take the fibres just in front of each vertex exactly (`map::contact`).
@@ -67,16 +85,18 @@ impl ContactShadowing {
 }
 
 /// The map geometry for `style` under `config`: `config.map_res` cells per axis over the span
-/// the hair needs, or sized from the scene ([`MapGeometry::for_scene`]).
+/// the hair needs, or sized from the scene with cells `config.cell_scale` times as wide
+/// ([`MapGeometry::for_scene_scaled`]).
 pub fn map_geometry(style: &Hairstyle, config: &HairMapConfig) -> MapGeometry {
     let span = MapGeometry::span_m(style.max_length_m(), style.head_size_m());
     match config.map_res {
         Some(n) => MapGeometry::with_resolution(span, n),
-        None => MapGeometry::for_scene(
+        None => MapGeometry::for_scene_scaled(
             style.max_length_m(),
             style.head_size_m(),
             style.strand_spacing_m(),
             style.strands.fibers_per_strand,
+            config.cell_scale,
         ),
     }
 }

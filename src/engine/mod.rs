@@ -32,6 +32,7 @@ mod config;
 mod estimate;
 mod hair_map;
 mod interpolation;
+mod map_rate;
 mod occluders;
 mod quality;
 mod raster;
@@ -74,6 +75,7 @@ use crate::scene::{CameraSetup, Scene};
 use crate::shade::shade_skin;
 use crate::sim::SimState;
 use glam::Vec3;
+use map_rate::MapSchedule;
 use std::time::Instant;
 
 /// The hairstyle, its hair, the scene and the passes of a frame.
@@ -101,6 +103,8 @@ pub struct Engine {
     /// Timings of the last frame, and of the last map stage's parts (inside `timings.map_s`).
     pub timings: StageTimings,
     pub map_parts: MapPartTimings,
+    /// When the map stage was last built (`HairMapConfig::rebuild_interval_s`).
+    map_schedule: MapSchedule,
 }
 
 impl Engine {
@@ -184,6 +188,7 @@ impl Engine {
             level: config.level,
             timings: StageTimings::default(),
             map_parts: MapPartTimings::default(),
+            map_schedule: MapSchedule::default(),
         }
     }
 
@@ -224,6 +229,7 @@ impl Engine {
         self.animation.run(t_s);
         let t1 = Instant::now();
         self.simulation.set_positions(positions);
+        self.map_schedule.forget();
         self.interpolate([t0, t1, Instant::now()]);
     }
 
@@ -256,7 +262,7 @@ impl Engine {
     pub fn render(&mut self) -> &Framebuffer {
         self.camera.follow(&self.scene, self.animation.pose());
         let t0 = Instant::now();
-        self.build_map();
+        self.build_map_when_due();
         let t1 = Instant::now();
         self.draw_solids();
         let t2 = Instant::now();
@@ -273,6 +279,19 @@ impl Engine {
         self.timings.shading_s = (t3 - t2).as_secs_f64();
         self.timings.raster_s = ((t2 - t1) + (t4 - t3)).as_secs_f64();
         self.raster.framebuffer()
+    }
+
+    /// The map stage ([`Engine::build_map`]) when its rate asks for it at the current time
+    /// (`map_rate`); otherwise the frame is lit by the last build and the parts read 0.
+    fn build_map_when_due(&mut self) {
+        let t_s = self.animation.time_s();
+        let interval_s = self.hair_map.config.rebuild_interval_s;
+        if self.map_schedule.due(t_s, &self.scene.lights, interval_s) {
+            self.build_map();
+            self.map_schedule.built(t_s, &self.scene.lights);
+        } else {
+            self.map_parts = MapPartTimings::default();
+        }
     }
 
     /// The hair map, occluder and skin texture passes on the current hair and pose, each
@@ -395,6 +414,7 @@ impl Engine {
     /// changed (a benchmark of the map stage on still hair).
     pub fn invalidate_maps(&mut self) {
         self.hair_map.invalidate();
+        self.map_schedule.forget();
     }
 
     /// Whether the last [`Engine::build_map`] kept the maps it had.

@@ -9,11 +9,13 @@
 //! | simulation step | 1/240 s | the hairstyle's (1/480 s) | 1/960 s |
 //! | render strands made per wisp | half, each with twice the fibres | all | all |
 //! | skin-texture texels per map column | 1 | 2 | 2 |
+//! | light map cells | 1.5 × as wide as the scene's choice | the scene's choice | the scene's choice |
+//! | map stage (maps, occluders, skin texture) built | 30 times a second of motion | every frame | every frame |
 //! | segment pieces | 1 | 1 | 2 |
 //! | shader | dual scattering | dual scattering | light paths (`volume`) |
 //! | contact shadows (one-fibre strands) | off | off | 120 mm |
 //!
-//! The map's resolution follows the strand spacing at every level.
+//! The map's resolution follows the strand spacing at every level (`MapGeometry::for_scene`).
 
 use super::config::EngineConfig;
 use super::hair_map::{ContactShadowing, DEFAULT_CONTACT_WINDOW_M};
@@ -21,11 +23,18 @@ use crate::fiber::ShadingMode;
 use crate::map::surface::DEFAULT_TEXELS_PER_COLUMN;
 pub use crate::quality::Quality;
 
+/// How much wider `preview`'s map cells are than the scene's choice: T_f MAE against the
+/// exact reference 0.017 where the default reads 0.012, at about half the map build's time
+/// (ACCURACY.md, BENCHMARKS.md).
+const PREVIEW_MAP_CELL_SCALE: f32 = 1.5;
+
 /// The values of one level (the table in the module doc).
 struct LevelChoices {
     step_s: Option<f32>,
     strand_fraction: f32,
     texels_per_column: f32,
+    map_cell_scale: f32,
+    map_interval_s: f64,
     segment_pieces: u32,
     mode: ShadingMode,
     contact: ContactShadowing,
@@ -37,6 +46,8 @@ fn choices(quality: Quality) -> LevelChoices {
             step_s: Some(1.0 / 240.0),
             strand_fraction: 0.5,
             texels_per_column: 1.0,
+            map_cell_scale: PREVIEW_MAP_CELL_SCALE,
+            map_interval_s: 1.0 / 30.0,
             segment_pieces: 1,
             mode: ShadingMode::DualScattering,
             contact: ContactShadowing::Off,
@@ -45,6 +56,8 @@ fn choices(quality: Quality) -> LevelChoices {
             step_s: None,
             strand_fraction: 1.0,
             texels_per_column: DEFAULT_TEXELS_PER_COLUMN,
+            map_cell_scale: 1.0,
+            map_interval_s: 0.0,
             segment_pieces: 1,
             mode: ShadingMode::DualScattering,
             contact: ContactShadowing::Off,
@@ -53,6 +66,8 @@ fn choices(quality: Quality) -> LevelChoices {
             step_s: Some(1.0 / 960.0),
             strand_fraction: 1.0,
             texels_per_column: DEFAULT_TEXELS_PER_COLUMN,
+            map_cell_scale: 1.0,
+            map_interval_s: 0.0,
             segment_pieces: 2,
             mode: ShadingMode::Volume,
             contact: ContactShadowing::WindowM(DEFAULT_CONTACT_WINDOW_M),
@@ -72,6 +87,8 @@ impl EngineConfig {
         self.skin_texture.texels_per_column = c.texels_per_column;
         self.shading.mode = c.mode;
         self.hair_map.contact = c.contact;
+        self.hair_map.cell_scale = c.map_cell_scale;
+        self.hair_map.rebuild_interval_s = c.map_interval_s;
     }
 
     /// The configuration at `quality` for the default scene.

@@ -69,15 +69,46 @@ impl MapGeometry {
         strand_spacing_m: f32,
         fibers_per_strand: f32,
     ) -> Self {
+        Self::for_scene_scaled(
+            max_length_m,
+            head_size_m,
+            strand_spacing_m,
+            fibers_per_strand,
+            1.0,
+        )
+    }
+
+    /// [`MapGeometry::for_scene`] with cells and columns `cell_scale` times as wide (the same
+    /// columns per cell): a coarser map for a quicker frame (the `preview` level), whose T_f
+    /// error against the exact reference ACCURACY.md gives. A scale that is not finite and
+    /// positive is taken as 1.
+    pub fn for_scene_scaled(
+        max_length_m: f32,
+        head_size_m: f32,
+        strand_spacing_m: f32,
+        fibers_per_strand: f32,
+        cell_scale: f32,
+    ) -> Self {
+        let scale = if cell_scale.is_finite() && cell_scale > 0.0 {
+            cell_scale
+        } else {
+            1.0
+        };
         let span = Self::span_m(max_length_m, head_size_m);
         let widen = (30.0 / fibers_per_strand.max(1e-3)).sqrt().max(1.0);
         let cell = 1.5 * strand_spacing_m.max(1e-6) * widen;
-        let n = (span / cell).ceil().clamp(8.0, 1024.0) as u32;
-        let geom = Self::with_resolution(span, n);
-        let lateral = (geom.ds_m / (0.75 * strand_spacing_m.max(1e-6)))
-            .round()
-            .clamp(1.0, MAX_LATERAL_COLUMNS as f32) as u32;
-        Self { lateral, ..geom }
+        let lateral_of = |n: f32| {
+            let ds_m = span / n;
+            (ds_m / (0.75 * strand_spacing_m.max(1e-6)))
+                .round()
+                .clamp(1.0, MAX_LATERAL_COLUMNS as f32) as u32
+        };
+        let lateral = lateral_of((span / cell).ceil().clamp(8.0, 1024.0));
+        let n = (span / (cell * scale)).ceil().clamp(8.0, 1024.0) as u32;
+        Self {
+            lateral,
+            ..Self::with_resolution(span, n)
+        }
     }
 
     /// The smallest span that always holds the hair: 2·lmax + hmax (Bertails §2.2), plus 2%

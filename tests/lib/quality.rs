@@ -112,3 +112,52 @@ fn the_estimate_follows_the_level() {
     );
     assert!(preview.memory_bytes() < fin.memory_bytes());
 }
+
+/// `preview` builds the map stage 30 times a second of motion: at 60 frames a second every
+/// other frame is lit by the maps of the frame before (its map parts read 0 and the maps are
+/// the same bits), a snapshot set from outside builds at once, and the frames stay the same
+/// on one and two threads.
+#[test]
+fn preview_builds_the_maps_every_other_frame_at_sixty_frames_a_second() {
+    let run = |threads: usize| {
+        common::on_threads(threads, || {
+            let mut engine = Engine::new(
+                Hairstyle::default_smooth(),
+                Motion::default_dance(),
+                preview_at(64),
+            );
+            let mut built = Vec::new();
+            let mut frames = Vec::new();
+            for i in 1..=6 {
+                let before = engine.map().stats().clone();
+                frames.push(engine.frame(0.5 + i as f64 / 60.0).to_srgb8());
+                built.push(engine.map_parts.hair_s > 0.0);
+                if !built[built.len() - 1] {
+                    assert_eq!(&before, engine.map().stats());
+                }
+            }
+            let positions = engine.state().positions.clone();
+            engine.set_guide_state(0.5 + 7.0 / 60.0, &positions);
+            engine.render();
+            built.push(engine.map_parts.hair_s > 0.0);
+            (built, frames)
+        })
+    };
+    let (built, a) = run(1);
+    let (_, b) = run(2);
+    assert_eq!(built, [true, false, true, false, true, false, true]);
+    assert!(a == b, "preview frames differ between 1 and 2 threads");
+}
+
+/// `preview`'s map has cells 1.5 times as wide as `final`'s, with as many columns per cell.
+#[test]
+fn preview_map_is_coarser_with_the_same_columns_per_cell() {
+    let geom = |q: Quality| {
+        let style = Hairstyle::default_smooth();
+        wisp::engine::map_geometry(&style, &EngineConfig::at_quality(q).hair_map)
+    };
+    let (p, f) = (geom(Quality::Preview), geom(Quality::Final));
+    assert_eq!(p.lateral, f.lateral);
+    let ratio = f.n as f32 / p.n as f32;
+    assert!((ratio - 1.5).abs() < 0.03, "{} / {}", f.n, p.n);
+}

@@ -14,7 +14,8 @@
 //!                --sim-hz
 //! interpolation  --segment-pieces,               -> InterpolationConfig
 //!                --strand-fraction
-//! hair_map       --map-res, --contact-mm         -> HairMapConfig
+//! hair_map       --map-res, --map-hz,            -> HairMapConfig
+//!                --contact-mm
 //! shading        --shading, --volume-*           -> ShadingConfig
 //! raster         --min-line-width-px             -> RasterConfig
 //! budget         --max-memory-gb, --max-work-*   -> Budget (checked before the engine is built)
