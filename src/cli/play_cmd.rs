@@ -1,7 +1,8 @@
 //! `wisp play`: the dance with simulated, self-shadowed hair, live in a window (minifb).
 //!
-//! The motion runs on the wall clock (times `--speed`); the simulation catches up in fixed steps,
-//! so a slow frame makes the hair jump ahead rather than slow down.
+//! The motion moves the same whole number of simulation steps each frame, the steps of the frame
+//! interval the window sustains ([`clock`]), times `--speed`: real time on average, and one
+//! slow frame does not make the next one slower.
 //!
 //! Mouse ([`view`], on the gestures of [`orbit`]): left drag orbits the camera about its
 //! target, right or middle drag (or Shift + left drag) pans it across the view, the wheel
@@ -15,16 +16,19 @@
 //! hide the readout, P write a screenshot (`wisp-shot-NNNN.png` in the current directory,
 //! without the readout), L switch between the preview and final quality levels (the hair
 //! settles again), R restart, Esc or Q quit. The readout ([`overlay`]) shows the frame
-//! rate, the mean time of each stage and of the window's own work, the shader, whether
+//! rate, the mean time of each stage and of the window's own work, the simulation steps per
+//! frame, the shader, whether
 //! self-collision and pause are on, and the quality level (`preview` unless `--quality` or the
 //! scene file says otherwise).
 
+mod clock;
 mod keys;
 mod orbit;
 mod overlay;
 mod view;
 
 use super::{AppError, SceneArgs};
+use clock::MotionClock;
 use keys::{Controls, Flow, PressRecorder, Presses, turn_lights};
 use minifb::{Window, WindowOptions};
 use overlay::ReadoutMeter;
@@ -75,12 +79,14 @@ pub fn run(mut args: PlayArgs) -> Result<(), AppError> {
     let mut meter = ReadoutMeter::new();
     let mut argb = Vec::new();
     let mut clock = Instant::now();
+    let mut motion_clock = MotionClock::new(MIN_FRAME_INTERVAL_S, step_s(&engine));
     let mut shown = 0u32;
     while window.is_open() {
         let now = Instant::now();
         let dt_s = (now - clock).as_secs_f64();
+        let moved_s = motion_clock.tick(dt_s, MIN_FRAME_INTERVAL_S);
         if !controls.paused {
-            controls.t_s += dt_s;
+            controls.t_s += moved_s;
         }
         clock = now;
         let pressed = std::mem::take(&mut presses.borrow_mut().pressed);
@@ -90,6 +96,7 @@ pub fn run(mut args: PlayArgs) -> Result<(), AppError> {
         if std::mem::take(&mut controls.level_wanted) {
             engine = rebuilt_at(&args.scene, &engine, keys::next_level(engine.level))?;
             view = ViewControl::new(&engine);
+            motion_clock = MotionClock::new(MIN_FRAME_INTERVAL_S, step_s(&engine));
         }
         // A slow frame turns the lights no further than a tenth of a second would.
         turn_lights(&window, &mut engine, dt_s.min(0.1) as f32);
@@ -109,7 +116,13 @@ pub fn run(mut args: PlayArgs) -> Result<(), AppError> {
             .update_with_buffer(&argb, w, h)
             .map_err(|e| AppError::other(anyhow::anyhow!("window update failed: {e}")))?;
         shown += 1;
-        meter.record(&engine, t_window.elapsed().as_secs_f64(), controls.paused);
+        let steps = motion_clock.steps_per_frame();
+        meter.record(
+            &engine,
+            t_window.elapsed().as_secs_f64(),
+            controls.paused,
+            steps,
+        );
         if args.frames.is_some_and(|n| shown >= n) {
             break;
         }
@@ -123,6 +136,11 @@ pub fn run(mut args: PlayArgs) -> Result<(), AppError> {
         write_png_rgb8(path, fb.width, fb.height, &fb.to_srgb8()).map_err(AppError::input)?;
     }
     Ok(())
+}
+
+/// Seconds of one simulation step of `engine`.
+fn step_s(engine: &Engine) -> f64 {
+    engine.simulation.config.step_s(&engine.style) as f64
 }
 
 /// The engine of `args` rebuilt at `level` (the flags given still override it) with

@@ -24,7 +24,8 @@ pub(super) enum Flow {
 
 /// The motion's clock and the switches the keys flip.
 pub(super) struct Controls {
-    /// Seconds of the motion shown: the wall clock's, except while paused; R sets it to 0.
+    /// Seconds of the motion shown: moved by the motion clock (`clock`) except while paused;
+    /// R sets it to 0.
     pub t_s: f64,
     pub paused: bool,
     pub show_readout: bool,

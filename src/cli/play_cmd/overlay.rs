@@ -51,6 +51,8 @@ pub struct Readout {
     pub self_collision: bool,
     pub paused: bool,
     pub level: Quality,
+    /// Simulation steps each frame moves the motion by.
+    pub steps_per_frame: u32,
 }
 
 impl Readout {
@@ -65,6 +67,7 @@ impl Readout {
             out,
             "{:.1} fps{}\n\
              anim {:.1}  sim {:.1} ms\n\
+             sim steps/frame: {}\n\
              interp {:.1}  map {:.1} ms\n\
              shade {:.1}  raster {:.1} ms\n\
              window {:.1} ms\n\
@@ -75,6 +78,7 @@ impl Readout {
             if self.paused { "  paused" } else { "" },
             ms(t.animation_s),
             ms(t.simulation_s),
+            self.steps_per_frame,
             ms(t.interpolation_s),
             ms(t.map_s),
             ms(t.shading_s),
@@ -121,8 +125,8 @@ impl ReadoutMeter {
 
     /// Counts a frame shown: the engine's stage timings and `window_s` of the window's own
     /// work; renews the figures when they are due (at once the first time), and takes the
-    /// shader, self-collision and `paused` as they are now.
-    pub fn record(&mut self, engine: &Engine, window_s: f64, paused: bool) {
+    /// shader, self-collision, `paused` and the simulation steps per frame as they are now.
+    pub fn record(&mut self, engine: &Engine, window_s: f64, paused: bool, steps: u32) {
         self.stages.add(&engine.timings);
         self.window_s += window_s;
         self.frames += 1;
@@ -143,6 +147,7 @@ impl ReadoutMeter {
             r.self_collision = engine.simulation.config.self_collision;
             r.level = engine.level;
             r.paused = paused;
+            r.steps_per_frame = steps;
         }
     }
 

@@ -123,6 +123,7 @@ fn readout_says_what_is_on() {
         self_collision: false,
         paused: true,
         level: Quality::Preview,
+        steps_per_frame: 4,
     };
     let mut s = String::new();
     r.write_into(&mut s);
@@ -134,6 +135,7 @@ fn readout_says_what_is_on() {
         "shader: kajiya-kay",
         "self-collision: off",
         "quality: preview",
+        "sim steps/frame: 4",
     ] {
         assert!(s.contains(want), "{want:?} in {s:?}");
     }
@@ -141,5 +143,5 @@ fn readout_says_what_is_on() {
     (r.paused, r.self_collision, r.mode) = (false, true, ShadingMode::DualScattering);
     r.write_into(&mut s);
     assert!(!s.contains("paused") && s.contains("self-collision: on") && s.contains("dual"));
-    assert_eq!(s.lines().count(), 8, "cleared before writing");
+    assert_eq!(s.lines().count(), 9, "cleared before writing");
 }
