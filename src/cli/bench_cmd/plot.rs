@@ -89,13 +89,26 @@ fn series(data: &PlotData) -> [Series; 2] {
     ]
 }
 
+/// The label of an x tick at `ms`: the value at 1, 2 and 5 times a power of ten, none at the
+/// ticks between (their grid lines stay).
+fn round_ticks_only(ms: &f64) -> String {
+    let leading = ms / 10f64.powf(ms.log10().floor());
+    if [1.0, 2.0, 5.0].iter().any(|d| (leading - d).abs() < 1e-6) {
+        format!("{ms:.0}")
+    } else {
+        String::new()
+    }
+}
+
 fn draw(root: &DrawingArea<BitMapBackend, Shift>, data: &PlotData) -> DrawResult {
     root.fill(&WHITE)?;
     let all = series(data);
     let points = || all.iter().flat_map(|s| s.2.iter());
     let (lo, hi) = points().fold((f64::MAX, 0.0f64), |(lo, hi), p| (lo.min(p.0), hi.max(p.0)));
+    // From a power of ten, so that the axis has its ticks from there on (plotters puts the
+    // ticks between decades after the first power of ten in the range).
     let (lo, hi) = if hi > 0.0 {
-        (lo / 1.6, hi * 1.6)
+        (10f64.powf((lo / 1.6).log10().floor()), hi * 1.6)
     } else {
         (1.0, 1000.0)
     };
@@ -116,7 +129,8 @@ fn draw(root: &DrawingArea<BitMapBackend, Shift>, data: &PlotData) -> DrawResult
             data.threads,
             if data.threads == 1 { "" } else { "s" }
         ))
-        .x_label_formatter(&|ms| format!("{ms:.0}"))
+        .x_labels(12)
+        .x_label_formatter(&round_ticks_only)
         .y_label_formatter(&|e| format!("{e:.prec$}", prec = if top >= 10.0 { 0 } else { 1 }))
         .y_desc("mean relative luminance error over the hair (%)")
         .axis_desc_style(("sans-serif", 18))
