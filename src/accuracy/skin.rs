@@ -67,6 +67,7 @@ pub fn measure_skin(engine: &mut Engine, rays: u32) -> SkinReport {
         hair: &hair,
         solids: &solids,
         skin: skin.as_ref(),
+        earlier: None,
     };
     let offset_m = map.surface_offset_m();
     let map_img = engine.solids_image(|p, n, _| {

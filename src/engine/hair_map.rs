@@ -25,9 +25,10 @@ pub struct HairMapConfig {
     /// With `map_res` unset, cells this many times as wide as the scene's own choice
     /// (default 1; [`MapGeometry::for_scene_scaled`]).
     pub cell_scale: f32,
-    /// Seconds of motion between two builds of the map stage (hair map, occluders, skin
-    /// texture); frames between them are lit by the last build. 0 (the default) builds it for
-    /// every frame. See [`super::map_rate`].
+    /// Seconds of motion between two builds of the hair maps; the hair of the frames between
+    /// is lit by the last build, read where each point was then (the occluders and the skin
+    /// texture follow every frame). 0 (the default) builds them for every frame. See
+    /// `engine::map_rate`.
     pub rebuild_interval_s: f64,
     /// Contact shadows for hair of one fibre per render strand (default off).
     pub contact: ContactShadowing,
@@ -198,6 +199,12 @@ impl HairMapPass {
         let lengths = self.kept_lengths.unchanged_or_record(&[&s.lengths_m]);
         let lights = self.kept_lights.unchanged_or_record(&[input.lights]);
         points && lengths && lights
+    }
+
+    /// The render-strand points the maps were last built from (empty before the first
+    /// build).
+    pub fn built_positions(&self) -> &[Vec3] {
+        self.kept_points.first()
     }
 
     /// Makes the next run rebuild the maps even if nothing they are made of changed.

@@ -68,13 +68,13 @@ pub use timings::{MapPartTimings, StageTimings};
 use crate::fiber::Fiber;
 use crate::hairstyle::{GuideSet, Hairstyle, StrandLayout, generate, thin_strands};
 use crate::interp::StrandGeometry;
-use crate::map::{LightMap, MapGeometry, MapStats, Shadows};
+use crate::map::{BuiltEarlier, LightMap, MapGeometry, MapStats, Shadows};
 use crate::motion::{CharacterPose, Motion, Pose};
 use crate::raster::{Camera, Framebuffer, draw_polylines, draw_seen_polylines};
 use crate::scene::{CameraSetup, Scene};
 use crate::shade::shade_skin;
 use crate::sim::SimState;
-use glam::Vec3;
+use glam::{Affine3A, Vec3};
 use map_rate::MapSchedule;
 use std::time::Instant;
 
@@ -103,8 +103,11 @@ pub struct Engine {
     /// Timings of the last frame, and of the last map stage's parts (inside `timings.map_s`).
     pub timings: StageTimings,
     pub map_parts: MapPartTimings,
-    /// When the map stage was last built (`HairMapConfig::rebuild_interval_s`).
+    /// When the hair maps were last built (`HairMapConfig::rebuild_interval_s`), the head's
+    /// pose then, and whether the current frame's hair is lit by that earlier build.
     map_schedule: MapSchedule,
+    head_at_build: Affine3A,
+    lit_earlier: bool,
 }
 
 impl Engine {
@@ -189,6 +192,8 @@ impl Engine {
             timings: StageTimings::default(),
             map_parts: MapPartTimings::default(),
             map_schedule: MapSchedule::default(),
+            head_at_build: Affine3A::IDENTITY,
+            lit_earlier: false,
         }
     }
 
@@ -281,22 +286,45 @@ impl Engine {
         self.raster.framebuffer()
     }
 
-    /// The map stage ([`Engine::build_map`]) when its rate asks for it at the current time
-    /// (`map_rate`); otherwise the frame is lit by the last build and the parts read 0.
+    /// The map stage ([`Engine::build_map`]), its hair maps only when their rate asks for them
+    /// at the current time (`map_rate`; otherwise the hair is lit by their last build and
+    /// the hair map's part reads 0).
     fn build_map_when_due(&mut self) {
         let t_s = self.animation.time_s();
         let interval_s = self.hair_map.config.rebuild_interval_s;
-        if self.map_schedule.due(t_s, &self.scene.lights, interval_s) {
-            self.build_map();
+        self.lit_earlier = !self.map_schedule.due(t_s, &self.scene.lights, interval_s);
+        self.build_map_parts(!self.lit_earlier);
+        if !self.lit_earlier {
             self.map_schedule.built(t_s, &self.scene.lights);
-        } else {
-            self.map_parts = MapPartTimings::default();
+            self.head_at_build = self.animation.pose().head;
         }
+    }
+
+    /// The shadows the frame is lit by: hair maps built for it, or for an earlier frame and
+    /// read where the hair and the head were then (`map::BuiltEarlier`).
+    fn frame_shadows(&self) -> Shadows<'_> {
+        lit_by(
+            (&self.hair_map, &self.occluders, &self.skin_texture),
+            self.head_back(),
+        )
+    }
+
+    /// World now → world at the hair maps' last build, when the frame is lit by it.
+    fn head_back(&self) -> Option<Affine3A> {
+        self.lit_earlier
+            .then(|| self.head_at_build * self.animation.pose().head.inverse())
     }
 
     /// The hair map, occluder and skin texture passes on the current hair and pose, each
     /// timed; a pass whose inputs did not change keeps what it has.
     pub fn build_map(&mut self) {
+        self.build_map_parts(true);
+    }
+
+    /// [`Engine::build_map`], with the hair maps kept as they are unless `hair_maps`: the
+    /// occluders and the skin texture are then built for the current pose and hair in the
+    /// frames of the maps' last build.
+    fn build_map_parts(&mut self, hair_maps: bool) {
         let started = Instant::now();
         let hair = HairMapInput {
             strands: self.interpolation.strands(),
@@ -305,7 +333,7 @@ impl Engine {
             fiber: &self.fiber,
             fibers_per_strand: self.style.strands.fibers_per_strand,
         };
-        let maps_changed = self.hair_map.run(&hair);
+        let maps_changed = hair_maps && self.hair_map.run(&hair);
         let t_occluders = Instant::now();
         let solids = SolidsInput {
             pose: self.animation.pose(),
@@ -324,7 +352,11 @@ impl Engine {
             maps_changed || grids_changed,
         );
         self.map_parts = MapPartTimings {
-            hair_s: (t_occluders - started).as_secs_f64(),
+            hair_s: if hair_maps {
+                (t_occluders - started).as_secs_f64()
+            } else {
+                0.0
+            },
             occluders_s: (t_skin - t_occluders).as_secs_f64(),
             surface_s: t_skin.elapsed().as_secs_f64(),
         };
@@ -348,11 +380,10 @@ impl Engine {
             seen: only_seen.then_some(self.raster.seen()),
             colliders: self.interpolation.colliders(),
         };
-        let shadows = Shadows {
-            maps: self.hair_map.maps(),
-            solids: self.occluders.grids(),
-            skin: self.skin_texture.textures(),
-        };
+        let shadows = lit_by(
+            (&self.hair_map, &self.occluders, &self.skin_texture),
+            self.head_back(),
+        );
         self.shading.run(shadows, &input);
     }
 
@@ -367,11 +398,10 @@ impl Engine {
     /// Clears the image and draws the solids, lit through each light's shadows, when the
     /// scene draws them.
     fn draw_solids(&mut self) {
-        let shadows = Shadows {
-            maps: self.hair_map.maps(),
-            solids: self.occluders.grids(),
-            skin: self.skin_texture.textures(),
-        };
+        let shadows = lit_by(
+            (&self.hair_map, &self.occluders, &self.skin_texture),
+            self.head_back(),
+        );
         let lighting = self.shading.lighting(&self.scene);
         let (solids, albedo) = self.occluders.solids();
         let to_draw = SolidsToDraw {
@@ -482,13 +512,10 @@ impl Engine {
     pub fn maps(&self) -> &[LightMap] {
         self.hair_map.maps()
     }
-    /// Every light's shadows (hair map, solids, skin texture), in the order of `scene.lights`.
+    /// Every light's shadows (hair map, solids, skin texture), in the order of `scene.lights`,
+    /// as the last frame was lit by them.
     pub fn shadows(&self) -> Shadows<'_> {
-        Shadows {
-            maps: self.hair_map.maps(),
-            solids: self.occluders.grids(),
-            skin: self.skin_texture.textures(),
-        }
+        self.frame_shadows()
     }
     /// Colours of the last shading (linear RGB), indexed like `strands().positions`. After
     /// [`Engine::render`] the points the raster could not draw are black, as they were not
@@ -500,6 +527,23 @@ impl Engine {
     /// render strand of F fibres of radius r covers at most, F·2r.
     pub fn widths_m(&self) -> &[f32] {
         self.raster.widths_m()
+    }
+}
+
+/// The shadows of the map stage's passes; `head_back` (world now → world at their build) when
+/// they were built for an earlier frame.
+fn lit_by<'a>(
+    (hair_map, occluders, skin): (&'a HairMapPass, &'a OccluderPass, &'a SkinTexturePass),
+    head_back: Option<Affine3A>,
+) -> Shadows<'a> {
+    Shadows {
+        maps: hair_map.maps(),
+        solids: occluders.grids(),
+        skin: skin.textures(),
+        earlier: head_back.map(|head_back| BuiltEarlier {
+            positions: hair_map.built_positions(),
+            head_back,
+        }),
     }
 }
 

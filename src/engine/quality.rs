@@ -10,7 +10,7 @@
 //! | render strands made per wisp | half, each with twice the fibres | all | all |
 //! | skin-texture texels per map column | 1 | 2 | 2 |
 //! | light map cells | 1.5 × as wide as the scene's choice | the scene's choice | the scene's choice |
-//! | map stage (maps, occluders, skin texture) built | 30 times a second of motion | every frame | every frame |
+//! | hair maps built | 30 times a second of motion | every frame | every frame |
 //! | segment pieces | 1 | 1 | 2 |
 //! | shader | dual scattering | dual scattering | light paths (`volume`) |
 //! | contact shadows (one-fibre strands) | off | off | 120 mm |

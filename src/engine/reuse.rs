@@ -53,6 +53,11 @@ impl<T: Copy + PartialEq> Kept<T> {
         same
     }
 
+    /// The first slice last recorded (empty before any).
+    pub fn first(&self) -> &[T] {
+        self.items.first().map_or(&[], Vec::as_slice)
+    }
+
     /// Bytes of the recorded copies at most, for `items` values in all.
     pub fn estimated_bytes(items: u64) -> u64 {
         items.saturating_mul(size_of::<T>() as u64)

@@ -102,7 +102,7 @@ pub(crate) use column_index::ColumnIndex;
 pub use geometry::{MAX_LATERAL_COLUMNS, MapGeometry};
 pub use occluders::{OccluderGrid, OccluderMesh, Solid};
 pub use projection::{CENTRAL_MIN_DEPTH_M, LightFrame, MapLight, Projection};
-pub use shadows::{Shadow, Shadows};
+pub use shadows::{BuiltEarlier, Shadow, Shadows};
 
 use glam::{Vec2, Vec3};
 

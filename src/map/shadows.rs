@@ -11,7 +11,21 @@ use super::occluders::NO_SOLIDS;
 use super::surface::SurfaceShadow;
 use super::{LightMap, OccluderGrid};
 use crate::fiber::LightAtPoint;
-use glam::Vec3;
+use glam::{Affine3A, Vec3};
+
+/// Where the hair and the head were when a hair map built for an earlier frame was made (the
+/// hair maps at a lower rate than the frames, `engine::map_rate`): a frame lit by it reads
+/// each render-strand point where it was then, and any other point of hair carried back with
+/// the head, so the shadows move with the hair instead of staying where it was. Points of the
+/// solids (skin, clothes) are read where they are, in the solids' grid and the skin texture,
+/// which are built for every frame (in the old map's frame).
+#[derive(Clone, Copy, Debug)]
+pub struct BuiltEarlier<'a> {
+    /// The render-strand points the maps were built from, indexed as now.
+    pub positions: &'a [Vec3],
+    /// World now → world then: the head's motion since, undone (rigid).
+    pub head_back: Affine3A,
+}
 
 /// One light's shadows: its hair map, its solids' grid and its skin texture (if any).
 #[derive(Clone, Copy, Debug)]
@@ -19,6 +33,8 @@ pub struct Shadow<'a> {
     pub hair: &'a LightMap,
     pub solids: &'a OccluderGrid,
     pub skin: Option<&'a SurfaceShadow>,
+    /// `None` when the shadows were built for this frame.
+    pub earlier: Option<BuiltEarlier<'a>>,
 }
 
 impl<'a> Shadow<'a> {
@@ -28,13 +44,32 @@ impl<'a> Shadow<'a> {
             hair,
             solids: &NO_SOLIDS,
             skin: None,
+            earlier: None,
+        }
+    }
+
+    /// World point `p` of now where the shadows were built.
+    #[inline]
+    fn back(&self, p: Vec3) -> Vec3 {
+        match &self.earlier {
+            None => p,
+            Some(e) => e.head_back.transform_point3(p),
+        }
+    }
+
+    /// Direction `d` of now where the shadows were built.
+    #[inline]
+    fn back_dir(&self, d: Vec3) -> Vec3 {
+        match &self.earlier {
+            None => d,
+            Some(e) => e.head_back.transform_vector3(d),
         }
     }
 
     /// Light reaching world point `p` through the hair and past the solids
     /// ([`LightMap::light_at`]).
     pub fn light_at(&self, p: Vec3) -> LightAtPoint {
-        self.hair.light_past(self.solids, p)
+        self.hair.light_past(self.solids, self.back(p))
     }
 
     /// The light reaching a point of a fibre the camera sees from `to_eye`
@@ -46,6 +81,7 @@ impl<'a> Shadow<'a> {
         tangent: Vec3,
         fiber_radius_m: f32,
     ) -> LightAtPoint {
+        let (p, to_eye, tangent) = (self.back(p), self.back_dir(to_eye), self.back_dir(tangent));
         self.hair
             .light_at_seen_past(self.solids, p, to_eye, tangent, fiber_radius_m)
     }
@@ -60,6 +96,15 @@ impl<'a> Shadow<'a> {
         tangent: Vec3,
         fiber_radius_m: f32,
     ) -> LightAtPoint {
+        let p = match &self.earlier {
+            None => p,
+            Some(e) => e
+                .positions
+                .get(vertex)
+                .copied()
+                .unwrap_or_else(|| e.head_back.transform_point3(p)),
+        };
+        let (to_eye, tangent) = (self.back_dir(to_eye), self.back_dir(tangent));
         self.hair
             .light_at_vertex_seen_past(self.solids, vertex, p, to_eye, tangent, fiber_radius_m)
     }
@@ -67,10 +112,11 @@ impl<'a> Shadow<'a> {
     /// Forward transmittance T_f (R, G, B) reaching a point of a surface (skin, clothes) at
     /// world point `p` facing the light, past the hair and the solids. With the skin texture:
     /// exp(−L)·V, L the texture's optical depth of the hair in front of the first solid along
-    /// the ray (`super::surface`), V the solids' visibility. Without it: [`Self::light_at`].
+    /// the ray (`super::surface`), V the solids' visibility. Without it: the map's
+    /// [`LightMap::light_at`]. Read where `p` is (see [`BuiltEarlier`]).
     pub fn light_at_surface(&self, p: Vec3) -> Vec3 {
         let Some(surface) = self.skin else {
-            return self.light_at(p).tf;
+            return self.hair.light_past(self.solids, p).tf;
         };
         let m = self.hair.projection().point(p);
         if !m.is_finite() {
@@ -108,6 +154,8 @@ pub struct Shadows<'a> {
     pub maps: &'a [LightMap],
     pub solids: &'a [OccluderGrid],
     pub skin: &'a [Option<SurfaceShadow>],
+    /// `None` when the shadows were built for this frame.
+    pub earlier: Option<BuiltEarlier<'a>>,
 }
 
 impl<'a> Shadows<'a> {
@@ -117,6 +165,7 @@ impl<'a> Shadows<'a> {
             maps,
             solids: &[],
             skin: &[],
+            earlier: None,
         }
     }
 
@@ -126,6 +175,7 @@ impl<'a> Shadows<'a> {
             hair: self.maps.get(k)?,
             solids: self.solids.get(k).unwrap_or(&NO_SOLIDS),
             skin: self.skin.get(k).and_then(Option::as_ref),
+            earlier: self.earlier,
         })
     }
 

@@ -271,6 +271,7 @@ fn occluders_shadow_what_lies_behind_them() {
         hair: &hair,
         solids: &solids,
         skin: None,
+        earlier: None,
     };
     assert!(map.light_at(Vec3::new(0.05, 0.0, 0.0)).direct_fraction < 1e-6);
     assert_eq!(map.light_at(Vec3::new(0.05, 0.0, 0.0)).tf, Vec3::ZERO);
@@ -280,4 +281,48 @@ fn occluders_shadow_what_lies_behind_them() {
     let n = Vec3::new(-1.0, 0.3, 0.0).normalize();
     let p = n * 0.02 + n * map.surface_offset_m();
     assert!(map.light_at(p).direct_fraction > 0.999);
+}
+
+/// Shadows built for an earlier frame (`BuiltEarlier`) read a render-strand point where it
+/// was then and any other hair point carried back with the head; surface points where they
+/// are. Light along +X, a sphere of 2 cm at the origin shadows x > 0.
+#[test]
+fn shadows_built_earlier_read_the_hair_where_it_was() {
+    use crate::map::{BuiltEarlier, Solid};
+    let hair = build(&[Vec3::new(0.3, 0.3, 0.3)], 0.01, 64, 0.01);
+    let mut solids = crate::map::OccluderGrid::default();
+    let sphere = Solid {
+        unit_sphere_to_world: glam::Affine3A::from_scale(Vec3::splat(0.02)),
+    };
+    solids.build_for(&hair, 0.25, &[sphere], crate::map::OccluderMesh::EMPTY);
+    let (shadowed, open) = (Vec3::new(0.05, 0.0, 0.0), Vec3::new(-0.05, 0.0, 0.0));
+    // Since the build the head moved 0.1 m along +X: a point now at `shadowed` + 0.1 was at
+    // `shadowed`; vertex 0 was at `shadowed` and is now in the open.
+    let positions = [shadowed];
+    let map = crate::map::Shadow {
+        hair: &hair,
+        solids: &solids,
+        skin: None,
+        earlier: Some(BuiltEarlier {
+            positions: &positions,
+            head_back: glam::Affine3A::from_translation(Vec3::new(-0.1, 0.0, 0.0)),
+        }),
+    };
+    let (x, y) = (Vec3::X, Vec3::Y);
+    assert!(
+        map.light_at_vertex_seen(0, open, -x, y, 4e-5)
+            .direct_fraction
+            < 1e-6
+    );
+    assert!(map.light_at(shadowed + 0.1 * x).direct_fraction < 1e-6);
+    assert_eq!(map.light_at(shadowed), OPEN, "carried back to x = -0.05");
+    // A vertex index past the recorded ones is carried back with the head.
+    assert!(
+        map.light_at_vertex_seen(7, shadowed + 0.1 * x, -x, y, 4e-5)
+            .direct_fraction
+            < 1e-6
+    );
+    // Surfaces are read where they are.
+    assert!(map.solid_visibility(shadowed) < 1e-6);
+    assert!(map.solid_visibility(open) > 0.999);
 }

@@ -33,6 +33,7 @@ impl Built {
             hair: &self.map,
             solids: &self.solids,
             skin: self.skin.as_ref(),
+            earlier: None,
         }
     }
 }

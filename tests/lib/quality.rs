@@ -113,10 +113,10 @@ fn the_estimate_follows_the_level() {
     assert!(preview.memory_bytes() < fin.memory_bytes());
 }
 
-/// `preview` builds the map stage 30 times a second of motion: at 60 frames a second every
-/// other frame is lit by the maps of the frame before (its map parts read 0 and the maps are
-/// the same bits), a snapshot set from outside builds at once, and the frames stay the same
-/// on one and two threads.
+/// `preview` builds the hair maps 30 times a second of motion: at 60 frames a second every
+/// other frame's hair is lit by the maps of the frame before (its hair map part reads 0 and
+/// the maps are the same bits), a snapshot set from outside builds at once, and the frames
+/// stay the same on one and two threads.
 #[test]
 fn preview_builds_the_maps_every_other_frame_at_sixty_frames_a_second() {
     let run = |threads: usize| {

@@ -1,5 +1,5 @@
-//! The hair map pass's flags ([`HairMapConfig`]): the map's resolution, how often the map
-//! stage is built, and contact shadows.
+//! The hair map pass's flags ([`HairMapConfig`]): the map's resolution, how often the maps
+//! are built, and contact shadows.
 
 use crate::cli::parse_contact_mm;
 use wisp::engine::{ContactShadowing, HairMapConfig};
@@ -11,8 +11,8 @@ pub struct HairMapArgs {
     /// wide at --quality preview]
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(4..=1024))]
     pub map_res: Option<u32>,
-    /// Builds of the light maps and the hair's shadow on the skin per second of motion, 1–1000,
-    /// or 0 for every frame [default: every frame; 30 at --quality preview]
+    /// Builds of the hair's light maps per second of motion, 1–1000, or 0 for every frame
+    /// [default: every frame; 30 at --quality preview]
     #[arg(long, value_name = "HZ", value_parser = clap::value_parser!(u32).range(0..=1000), help_heading = "Quality")]
     pub map_hz: Option<u32>,
     /// Contact shadows of one-fibre strands, mm to the light [default: off]
