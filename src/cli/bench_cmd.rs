@@ -20,6 +20,7 @@
 //! `--parts` chooses among them. Results go to stdout as tables and, with `--json FILE`, as
 //! JSON.
 
+mod map_rate;
 mod plot;
 mod quality;
 
@@ -36,6 +37,9 @@ pub struct BenchArgs {
     /// Frames of the dance timed per thread count, 1–10000
     #[arg(long, value_name = "N", default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..=10_000))]
     pub frames: u32,
+    /// Frames per second of motion the timed frames are apart, 1–240 (the window draws 60)
+    #[arg(long, value_name = "N", default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=240))]
+    pub fps: u32,
     /// Thread counts to compare, comma separated, each 1–256
     #[arg(long, value_name = "N,…", default_value = "1,2", value_delimiter = ',', value_parser = clap::value_parser!(u32).range(1..=256))]
     pub threads_list: Vec<u32>,
@@ -289,7 +293,8 @@ fn scaling_part(args: &BenchArgs, scene: &BenchScene, json: &mut Json) -> Result
     let mut scaling = Vec::new();
     let mut map_parts = Vec::new();
     for &threads in &args.threads_list {
-        let (med, parts_ms) = time_stages(args.frames, || scene.engine(), threads)?;
+        let timed = Timed::medians(args);
+        let (med, parts_ms) = time_stages(timed, || scene.engine(), threads)?;
         map_parts.push((threads, parts_ms));
         let base = *base_total.get_or_insert(med[6]);
         println!(
@@ -310,11 +315,33 @@ fn scaling_part(args: &BenchArgs, scene: &BenchScene, json: &mut Json) -> Result
     Ok(())
 }
 
-/// `frames` frames of the dance on a pool of `threads`, from the engine `make` builds in the
-/// pool: the median milliseconds of each stage (`StageTimings::NAMES`) and of the total, and
-/// of each part of the map stage (`MapPartTimings::NAMES`).
-fn time_stages(
+/// Which frames [`time_stages`] times and how it sums them up.
+#[derive(Clone, Copy)]
+struct Timed {
     frames: u32,
+    /// Frames per second of motion.
+    fps: u32,
+    /// Means instead of medians: for levels that build their maps on some frames only, whose
+    /// cost per frame is the mean.
+    mean: bool,
+}
+
+impl Timed {
+    fn medians(args: &BenchArgs) -> Self {
+        Self {
+            frames: args.frames,
+            fps: args.fps,
+            mean: false,
+        }
+    }
+}
+
+/// `timed.frames` frames of the dance `timed.fps` a second apart on a pool of `threads`, from
+/// the engine `make` builds in the pool: the median (or mean) milliseconds of each stage
+/// (`StageTimings::NAMES`) and of the total, and of each part of the map stage
+/// (`MapPartTimings::NAMES`).
+fn time_stages(
+    timed: Timed,
     make: impl Fn() -> Engine + Send + Sync,
     threads: u32,
 ) -> Result<([f64; 7], [f64; 3]), AppError> {
@@ -324,26 +351,33 @@ fn time_stages(
         .map_err(AppError::other)?;
     let per_frame: Vec<(StageTimings, MapPartTimings)> = pool.install(|| {
         let mut engine = make();
-        (0..frames)
+        (0..timed.frames)
             .map(|i| {
-                engine.frame(i as f64 / 30.0);
+                engine.frame(i as f64 / timed.fps as f64);
                 (engine.timings, engine.map_parts)
             })
             .collect()
     });
     let (per_frame, parts): (Vec<StageTimings>, Vec<MapPartTimings>) =
         per_frame.into_iter().unzip();
+    let summary = |v: &mut Vec<f64>| {
+        if timed.mean {
+            v.iter().sum::<f64>() / v.len().max(1) as f64
+        } else {
+            median(v)
+        }
+    };
     let parts_ms = [0, 1, 2].map(|k| {
         let mut v: Vec<f64> = parts.iter().map(|p| p.as_array()[k]).collect();
-        median(&mut v) * 1e3
+        summary(&mut v) * 1e3
     });
     let mut med = [0.0f64; 7];
     for (s, m) in med.iter_mut().enumerate().take(6) {
         let mut v: Vec<f64> = per_frame.iter().map(|t| t.as_array()[s]).collect();
-        *m = median(&mut v) * 1e3;
+        *m = summary(&mut v) * 1e3;
     }
     let mut totals: Vec<f64> = per_frame.iter().map(|t| t.total_s() * 1e3).collect();
-    med[6] = median(&mut totals);
+    med[6] = summary(&mut totals);
     Ok((med, parts_ms))
 }
 

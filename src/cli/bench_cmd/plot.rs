@@ -1,5 +1,5 @@
 //! `wisp bench --plot FILE.png`: the quality report as a picture, speed against error. Each
-//! level is a point at its median ms a frame on the largest thread count measured (log x axis)
+//! level is a point at its mean ms a frame on the largest thread count measured (log x axis)
 //! and its mean relative luminance error over the hair's pixels (%, y axis), labelled with its
 //! name: against `reference` (`reference` itself at 0), the points joined by a line; and
 //! `preview` against `final` (`final` at 0) as a second series of other markers. A run of the
@@ -125,7 +125,7 @@ fn draw(root: &DrawingArea<BitMapBackend, Shift>, data: &PlotData) -> DrawResult
     chart
         .configure_mesh()
         .x_desc(format!(
-            "median ms a frame on {} thread{} (log scale)",
+            "mean ms a frame on {} thread{} (log scale)",
             data.threads,
             if data.threads == 1 { "" } else { "s" }
         ))

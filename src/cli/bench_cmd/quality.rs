@@ -1,7 +1,7 @@
 //! `wisp bench --quality-list`: each quality level's time and error, as one report.
 //!
-//! For each level: the per-stage medians over `--frames` frames of the dance on each thread
-//! count; then frames of the dance at fixed times ([`SNAPSHOT_TIMES_S`]) compared with the same
+//! For each level: the per-stage means over `--frames` frames of the dance (`--fps` a second)
+//! on each thread count (means, since a level may build its maps on some frames only); then frames of the dance at fixed times ([`SNAPSHOT_TIMES_S`]) compared with the same
 //! frames of a more accurate level: every level against `reference` (what it leaves out) and
 //! `preview` against `final` (what speed costs), as the relative luminance error over the hair's
 //! pixels (`wisp::accuracy::image`: its mean and 95th percentile, each the mean over the
@@ -19,14 +19,15 @@
 //! level is the scene's (image, camera, lights) with that level's pass configs; other pass
 //! flags are not applied.
 
-use super::{BenchArgs, BenchScene, Json, scaling_row, time_stages};
+use super::map_rate::{SPAN_S, WINDOW_FPS, map_rate_error};
+use super::{BenchArgs, BenchScene, Json, Timed, scaling_row, time_stages};
 use crate::cli::AppError;
 use glam::Vec3;
 use std::time::Instant;
 use wisp::accuracy::comparison::Comparison;
 use wisp::accuracy::image::{flip_mean, hair_mask, image_error};
 use wisp::accuracy::{DEFAULT_PLACEMENTS, LevelTfReference, default_rays};
-use wisp::engine::{Engine, EngineConfig};
+use wisp::engine::{CameraPass, Engine, EngineConfig};
 use wisp::quality::Quality;
 use wisp::raster::Framebuffer;
 
@@ -153,7 +154,7 @@ fn frame_error(run: &Snapshots, truth: &Snapshots, masks: &[Vec<bool>]) -> Frame
     }
 }
 
-/// One level's run: its timings (the JSON rows) and median ms a frame on the largest thread
+/// One level's run: its timings (the JSON rows) and mean ms a frame on the largest thread
 /// count, its snapshots, and its map's T_f against the exact reference.
 struct LevelRun {
     level: Quality,
@@ -193,8 +194,8 @@ pub fn quality_part(
     json: &mut Json,
 ) -> Result<Vec<LevelPoint>, AppError> {
     println!(
-        "\nquality levels, median ms per frame over {} frames:",
-        args.frames
+        "\nquality levels, mean ms per frame over {} frames, {} a second:",
+        args.frames, args.fps
     );
     println!(
         "{:>10} {:>7} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}  speed-up",
@@ -236,14 +237,58 @@ pub fn quality_part(
             .map(hair_mask)
             .collect()
     };
-    let (entries, points) = print_errors(&runs, &masks);
+    let (mut entries, points) = print_errors(&runs, &masks);
     print_tf(&runs, &tf_reference, json);
+    print_map_rates(scene, levels, &camera, &mut entries);
     json.insert("quality".into(), entries.into());
     Ok(points)
 }
 
-/// `level`'s per-stage medians on each thread count, printed: its JSON rows and its median
-/// ms a frame on the largest thread count.
+/// Prints the error of each level's map rate (`map_rate`) where it builds its maps on some
+/// frames only, and adds it to the level's JSON entry.
+fn print_map_rates(
+    scene: &BenchScene,
+    levels: &[Quality],
+    camera: &CameraPass,
+    entries: &mut [serde_json::Value],
+) {
+    let mut header = false;
+    for (&level, entry) in levels.iter().zip(entries) {
+        let config = level_config(scene, level);
+        let Some(e) = map_rate_error(scene, &config, camera) else {
+            continue;
+        };
+        if !std::mem::replace(&mut header, true) {
+            println!(
+                "
+maps built {:.0} times a second of motion against every frame, {} frames a \
+                 second over {:.1}–{:.1} s of the dance (the shadows' lateness alone):",
+                1.0 / config.hair_map.rebuild_interval_s,
+                WINDOW_FPS,
+                SPAN_S.0,
+                SPAN_S.1
+            );
+            println!(
+                "{:>10} {:>14} {:>14} {:>8}",
+                "level", "mean rel. lum.", "95th pct", "FLIP"
+            );
+        }
+        println!(
+            "{:>10} {:>13.2}% {:>13.2}% {:>8.4}",
+            level.name(),
+            e.mean_rel_luminance * 100.0,
+            e.p95_rel_luminance * 100.0,
+            e.flip
+        );
+        entry["map_rate"] = serde_json::json!({"hz": 1.0 / config.hair_map.rebuild_interval_s,
+            "window_fps": WINDOW_FPS, "frames": e.frames,
+            "mean_rel_luminance": e.mean_rel_luminance, "p95_rel_luminance": e.p95_rel_luminance,
+            "flip_mean": e.flip});
+    }
+}
+
+/// `level`'s per-stage means on each thread count, printed: its JSON rows and its mean ms a
+/// frame on the largest thread count.
 fn time_level(
     args: &BenchArgs,
     scene: &BenchScene,
@@ -254,8 +299,11 @@ fn time_level(
     let mut base = None;
     let mut largest = (0, 0.0);
     for &threads in &args.threads_list {
-        let (med, parts_ms) =
-            time_stages(args.frames, || scene.engine_with(config.clone()), threads)?;
+        let timed = Timed {
+            mean: true,
+            ..Timed::medians(args)
+        };
+        let (med, parts_ms) = time_stages(timed, || scene.engine_with(config.clone()), threads)?;
         let b = *base.get_or_insert(med[6]);
         let [_, sim, interp, map, shading, raster, total] = med;
         println!(
