@@ -68,11 +68,20 @@ pub struct BenchArgs {
     /// Also write the results as JSON to this file
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
-    /// Also draw the quality part as a 960 × 640 PNG: median ms a frame on the largest thread
+    /// Also draw the quality part as a 960 × 640 PNG: mean ms a frame on the largest thread
     /// count (log axis) against the mean relative luminance error, a point per level, for this
-    /// run's hairstyle
+    /// run's hairstyle and those of --plot-with
     #[arg(long, value_name = "FILE.png")]
     pub plot: Option<PathBuf>,
+    /// Also draw in the plot the scenes of these earlier `--json` reports, comma separated (a
+    /// curve per scene)
+    #[arg(
+        long,
+        value_name = "FILE.json,…",
+        value_delimiter = ',',
+        requires = "plot"
+    )]
+    pub plot_with: Vec<PathBuf>,
     #[command(flatten)]
     pub scene: SceneArgs,
 }
@@ -117,6 +126,11 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
     if let Some(path) = &args.json {
         super::check_output_file("--json", path)?;
     }
+    let earlier: Vec<plot::ScenePoints> = args
+        .plot_with
+        .iter()
+        .map(|p| plot::read_report(p))
+        .collect::<Result<_, _>>()?;
     if let Some(path) = &args.plot {
         check_plot(&args, path)?;
     }
@@ -181,10 +195,14 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         let points = quality::quality_part(&args, &scene, &levels, &mut json)?;
         if let Some(path) = &args.plot {
             let threads = args.threads_list.iter().copied().max().unwrap_or(1);
+            let mut scenes = vec![plot::ScenePoints {
+                name: scene.style.name.clone(),
+                points,
+            }];
+            scenes.extend(earlier);
             let data = plot::PlotData {
-                scene: &scene.style.name,
                 threads,
-                points: &points,
+                scenes: &scenes,
             };
             plot::write_plot(path, &data)?;
             println!("\nplot written to {}", path.display());
@@ -336,8 +354,9 @@ impl Timed {
     }
 }
 
-/// `timed.frames` frames of the dance `timed.fps` a second apart on a pool of `threads`, from
-/// the engine `make` builds in the pool: the median (or mean) milliseconds of each stage
+/// `timed.frames` frames of the dance `timed.fps` a second apart on a pool of `threads`, after
+/// one untimed frame, from the engine `make` builds in the pool: the median (or mean)
+/// milliseconds of each stage
 /// (`StageTimings::NAMES`) and of the total, and of each part of the map stage
 /// (`MapPartTimings::NAMES`).
 fn time_stages(
@@ -351,7 +370,9 @@ fn time_stages(
         .map_err(AppError::other)?;
     let per_frame: Vec<(StageTimings, MapPartTimings)> = pool.install(|| {
         let mut engine = make();
-        (0..timed.frames)
+        // One frame untimed: the first allocates the passes' buffers.
+        engine.frame(0.0);
+        (1..=timed.frames)
             .map(|i| {
                 engine.frame(i as f64 / timed.fps as f64);
                 (engine.timings, engine.map_parts)

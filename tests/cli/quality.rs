@@ -148,6 +148,22 @@ fn the_bench_quality_report_has_flip_and_tf_figures_and_draws_its_plot() {
     let flip = levels[0]["vs_final"]["flip_mean"].as_f64().unwrap();
     assert!(flip > 0.0 && flip < 1.0, "preview against final: {flip}");
     assert!(v["quality_tf_reference"]["vertices"].as_u64().unwrap() > 0);
+    // The report drawn again beside this run's scene (`--plot-with`).
+    let both = dir.join("both.png");
+    let o = run(
+        "preview,final",
+        &[
+            "--plot",
+            both.to_str().unwrap(),
+            "--plot-with",
+            json.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_eq!(
+        &std::fs::read(&both).expect("the plot")[..8],
+        b"\x89PNG\r\n\x1a\n"
+    );
     // Refused before any work: a folder that does not exist, a run without the quality part,
     // levels that compare none.
     let missing = dir.join("no-such-folder").join("q.png");
@@ -158,6 +174,16 @@ fn the_bench_quality_report_has_flip_and_tf_figures_and_draws_its_plot() {
             vec!["--plot", plot.to_str().unwrap(), "--parts", "scaling"],
         ),
         ("final", vec!["--plot", plot.to_str().unwrap()]),
+        ("preview,final", vec!["--plot-with", json.to_str().unwrap()]),
+        (
+            "preview,final",
+            vec![
+                "--plot",
+                plot.to_str().unwrap(),
+                "--plot-with",
+                plot.to_str().unwrap(),
+            ],
+        ),
     ] {
         let o = run(levels, &extra);
         assert_eq!(o.status.code(), Some(2), "{levels} {extra:?}");

@@ -3,12 +3,16 @@
 //! and its mean relative luminance error over the hair's pixels (%, y axis), labelled with its
 //! name: against `reference` (`reference` itself at 0), the points joined by a line; and
 //! `preview` against `final` (`final` at 0) as a second series of other markers. A run of the
-//! bench is one scene (one hairstyle), named in the legend; a plot of several scenes is one
-//! run's plot per scene.
+//! bench is one scene (one hairstyle), named in the legend; `--plot-with A.json,…` adds the
+//! scenes of earlier runs' `--json` reports ([`earlier`]), a colour per scene.
 //!
 //! Drawn with plotters' bitmap backend into a buffer, text with the DejaVu Sans subset the
 //! binary carries (`assets/fonts/`), and written as an 8-bit PNG through a temporary file
 //! renamed into place (`wisp::output::write_png_rgb8`).
+
+mod earlier;
+
+pub use earlier::read_report;
 
 use super::quality::LevelPoint;
 use crate::cli::AppError;
@@ -27,13 +31,28 @@ const FONT: &[u8] = include_bytes!(concat!(
     "/assets/fonts/DejaVuSans-subset.ttf"
 ));
 
-/// What the picture shows of one run: the scene's name, the thread count of the times, and
-/// the levels' points.
-pub struct PlotData<'a> {
-    pub scene: &'a str,
-    pub threads: u32,
-    pub points: &'a [LevelPoint],
+/// One scene's levels: the hairstyle's name and the levels' points.
+#[derive(Clone, Debug)]
+pub struct ScenePoints {
+    pub name: String,
+    pub points: Vec<LevelPoint>,
 }
+
+/// What the picture shows: the thread count of this run's times and each scene's points.
+pub struct PlotData<'a> {
+    pub threads: u32,
+    pub scenes: &'a [ScenePoints],
+}
+
+/// A colour per scene (the first is this run's), in turn.
+const SCENE_COLORS: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(23, 190, 207),
+];
 
 /// Whether `levels` give the plot something to draw: a level against `reference`, or
 /// `preview` against `final`.
@@ -60,33 +79,55 @@ pub fn write_plot(path: &Path, data: &PlotData) -> Result<(), AppError> {
 type DrawResult =
     Result<(), DrawingAreaErrorKind<<BitMapBackend<'static> as DrawingBackend>::ErrorType>>;
 
-/// The series: (legend, colour, points as (ms, error %, level name)), the points in order of
-/// time.
-type Series = (String, RGBColor, Vec<(f64, f64, &'static str)>);
+/// The series: (legend, colour, points as (ms, error %, level name), against `reference`),
+/// the points in order of time.
+type Series = (String, RGBColor, Vec<(f64, f64, &'static str)>, bool);
 
-/// The two series of `data`: against `reference` and `preview` against `final`.
-fn series(data: &PlotData) -> [Series; 2] {
-    let of = |error: fn(&LevelPoint) -> Option<f64>| {
-        let mut v: Vec<(f64, f64, &'static str)> = data
-            .points
-            .iter()
-            .filter_map(|p| error(p).map(|e| (p.ms.max(1e-3), e * 100.0, p.level.name())))
-            .collect();
-        v.sort_by(|a, b| a.0.total_cmp(&b.0));
-        v
-    };
-    [
-        (
-            format!("{}: against reference", data.scene),
-            RGBColor(31, 119, 180),
+/// Each scene's two series: against `reference` and `preview` against `final`.
+fn series(data: &PlotData) -> Vec<Series> {
+    let mut all = Vec::new();
+    for (k, scene) in data.scenes.iter().enumerate() {
+        let of = |error: fn(&LevelPoint) -> Option<f64>| {
+            let mut v: Vec<(f64, f64, &'static str)> = scene
+                .points
+                .iter()
+                .filter_map(|p| error(p).map(|e| (p.ms.max(1e-3), e * 100.0, p.level.name())))
+                .collect();
+            v.sort_by(|a, b| a.0.total_cmp(&b.0));
+            v
+        };
+        let color = SCENE_COLORS[k % SCENE_COLORS.len()];
+        all.push((
+            format!("{}: against reference", scene.name),
+            color,
             of(|p| p.vs_reference),
-        ),
-        (
-            format!("{}: preview against final", data.scene),
-            RGBColor(214, 39, 40),
+            true,
+        ));
+        all.push((
+            format!("{}: preview against final", scene.name),
+            lighter(color),
             of(|p| p.vs_final),
-        ),
-    ]
+            false,
+        ));
+    }
+    all
+}
+
+/// The scenes' names, each once, in order.
+fn scene_names(data: &PlotData) -> String {
+    let mut names: Vec<&str> = Vec::new();
+    for s in data.scenes {
+        if !names.contains(&s.name.as_str()) {
+            names.push(&s.name);
+        }
+    }
+    names.join(", ")
+}
+
+/// `c` halfway to white: the preview-against-final series of a scene.
+fn lighter(c: RGBColor) -> RGBColor {
+    let half = |v: u8| v + (255 - v) / 2;
+    RGBColor(half(c.0), half(c.1), half(c.2))
 }
 
 /// The label of an x tick at `ms`: the value at 1, 2 and 5 times a power of ten, none at the
@@ -115,7 +156,10 @@ fn draw(root: &DrawingArea<BitMapBackend, Shift>, data: &PlotData) -> DrawResult
     let top = points().map(|p| p.1).fold(1.0f64, f64::max) * 1.2;
     let mut chart = ChartBuilder::on(root)
         .caption(
-            format!("wisp bench: time against image error, {}", data.scene),
+            format!(
+                "wisp bench: time against image error, {}",
+                scene_names(data)
+            ),
             ("sans-serif", 24),
         )
         .margin(20)
@@ -136,7 +180,7 @@ fn draw(root: &DrawingArea<BitMapBackend, Shift>, data: &PlotData) -> DrawResult
         .axis_desc_style(("sans-serif", 18))
         .label_style(("sans-serif", 15))
         .draw()?;
-    for (k, (name, color, pts)) in all.iter().enumerate() {
+    for (name, color, pts, against_reference) in &all {
         if pts.is_empty() {
             continue;
         }
@@ -150,7 +194,7 @@ fn draw(root: &DrawingArea<BitMapBackend, Shift>, data: &PlotData) -> DrawResult
             .legend(move |(x, y)| {
                 PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(2))
             });
-        if k == 0 {
+        if *against_reference {
             chart.draw_series(
                 pts.iter()
                     .map(|p| Circle::new((p.0, p.1), 6, color.filled())),
