@@ -46,6 +46,7 @@ fn main() {
         maps: &maps,
         solids: &solids,
         skin: &skin,
+        earlier: None,
     };
     let scene = e.scene.clone();
     let lighting = e.shading.lighting(&scene);
