@@ -257,16 +257,21 @@ fn a_tapered_sample_spreads_its_crossings_along_its_whole_piece() {
     }
 }
 
-#[test]
-fn occluders_shadow_what_lies_behind_them() {
-    use crate::map::Solid;
-    // An empty map (no hair) with a sphere of radius 2 cm at the origin; light along +X.
+/// An empty map (no hair) with a sphere of radius 2 cm at the origin in its solids' grid; light
+/// along +X.
+fn map_with_a_sphere() -> (LightMap, crate::map::OccluderGrid) {
     let hair = build(&[Vec3::new(0.3, 0.3, 0.3)], 0.01, 64, 0.01);
     let mut solids = crate::map::OccluderGrid::default();
-    let sphere = Solid {
+    let sphere = crate::map::Solid {
         unit_sphere_to_world: glam::Affine3A::from_scale(Vec3::splat(0.02)),
     };
     solids.build_for(&hair, 0.25, &[sphere], crate::map::OccluderMesh::EMPTY);
+    (hair, solids)
+}
+
+#[test]
+fn occluders_shadow_what_lies_behind_them() {
+    let (hair, solids) = map_with_a_sphere();
     let map = crate::map::Shadow {
         hair: &hair,
         solids: &solids,
@@ -288,13 +293,8 @@ fn occluders_shadow_what_lies_behind_them() {
 /// are. Light along +X, a sphere of 2 cm at the origin shadows x > 0.
 #[test]
 fn shadows_built_earlier_read_the_hair_where_it_was() {
-    use crate::map::{BuiltEarlier, Solid};
-    let hair = build(&[Vec3::new(0.3, 0.3, 0.3)], 0.01, 64, 0.01);
-    let mut solids = crate::map::OccluderGrid::default();
-    let sphere = Solid {
-        unit_sphere_to_world: glam::Affine3A::from_scale(Vec3::splat(0.02)),
-    };
-    solids.build_for(&hair, 0.25, &[sphere], crate::map::OccluderMesh::EMPTY);
+    use crate::map::BuiltEarlier;
+    let (hair, solids) = map_with_a_sphere();
     let (shadowed, open) = (Vec3::new(0.05, 0.0, 0.0), Vec3::new(-0.05, 0.0, 0.0));
     // Since the build the head moved 0.1 m along +X: a point now at `shadowed` + 0.1 was at
     // `shadowed`; vertex 0 was at `shadowed` and is now in the open.
