@@ -319,6 +319,7 @@ impl Engine {
     /// timed; a pass whose inputs did not change keeps what it has.
     pub fn build_map(&mut self) {
         self.build_map_parts(true);
+        self.lit_earlier = false;
     }
 
     /// [`Engine::build_map`], with the hair maps kept as they are unless `hair_maps`: the
