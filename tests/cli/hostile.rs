@@ -157,6 +157,18 @@ fn hostile_flags_exit_2_naming_the_flag() {
         ),
         (args("render --light-dir 1,2"), 2, "--light-dir"),
         (args("render --map-res 3"), 2, "--map-res"),
+        (args("render --map-hz 1001"), 2, "--map-hz"),
+        (args("bench --fps 0"), 2, "--fps"),
+        (
+            args("render --hairstyle groom.ply"),
+            2,
+            "unsupported hair format .ply",
+        ),
+        (
+            args("render --hairstyle strands.abc"),
+            2,
+            "unsupported hair format .abc",
+        ),
         (args("render --max-memory-gb 0"), 2, "--max-memory-gb"),
         (args("render --max-memory-gb nan"), 2, "--max-memory-gb"),
         (

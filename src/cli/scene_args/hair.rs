@@ -153,6 +153,15 @@ pub fn load_hairstyle(arg: &str) -> Result<Hairstyle, AppError> {
         _ => {}
     }
     let path = Path::new(arg);
+    // A file of another hair format would be read as JSON and fail on its first binary byte.
+    if let Some(ext) = path.extension().and_then(|e| e.to_str())
+        && !ext.eq_ignore_ascii_case("json")
+    {
+        return Err(AppError::input(anyhow::anyhow!(
+            "--hairstyle {arg}: unsupported hair format .{ext}; wisp reads .json hairstyles and \
+             .tfx (TressFX) and .hair (cyHair) strand files"
+        )));
+    }
     Hairstyle::load(path).map_err(|e| match e {
         HairstyleError::Io { .. } if !path.exists() => AppError::input(anyhow::anyhow!(
             "--hairstyle {arg}: not a preset ({}) and no such file",
