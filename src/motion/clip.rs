@@ -1,7 +1,9 @@
 //! The animation clip: which one is played, and its channels read into [`Track`]s by node.
 //!
 //! The clip asked for is matched by name (exactly, then in any case); without a request the
-//! clip named "Dance" plays, else the first. Every channel's key times must be finite and
+//! clip named "Dance" plays, else the first whose name contains "dance", else "idle" (in any
+//! case), else the longest (the first of the longest): a rig's clips are often in
+//! alphabetical order, and its first ("Agree", "Attack") is rarely the one to watch hair on. Every channel's key times must be finite and
 //! strictly increasing (weights channels too: every channel sets the clip's range
 //! `[first key, last key]`); translation and scale outputs must be VEC3 and rotation outputs
 //! VEC4 quaternions of length in [`ROTATION_KEY_LENGTH`]. Morph-target weights are not read
@@ -14,9 +16,10 @@ use super::error::MotionError;
 use super::gltf_io::{Loaded, read_accessor};
 use super::sampler::{Interpolation, Track};
 
-/// Picks the clip: requested name (exact, then any case), else "Dance", else the first.
+/// Picks the clip: requested name (exact, then any case), else the module doc's default.
 pub(super) fn choose_clip<'a>(
     doc: &'a gltf::Document,
+    loaded: &Loaded,
     requested: Option<&str>,
     file: &str,
 ) -> Result<gltf::Animation<'a>, MotionError> {
@@ -43,8 +46,43 @@ pub(super) fn choose_clip<'a>(
             requested: want.to_string(),
             available: anims.iter().map(name).collect(),
         }),
-        None => Ok(find("Dance").unwrap_or_else(|| anims[0].clone())),
+        None => Ok(find("Dance")
+            .or_else(|| named_like(&anims, "dance"))
+            .or_else(|| named_like(&anims, "idle"))
+            .unwrap_or_else(|| longest(&anims, loaded))),
     }
+}
+
+/// The first clip whose name contains `word` in any case.
+fn named_like<'a>(anims: &[gltf::Animation<'a>], word: &str) -> Option<gltf::Animation<'a>> {
+    anims
+        .iter()
+        .find(|a| a.name().is_some_and(|n| n.to_lowercase().contains(word)))
+        .cloned()
+}
+
+/// The longest clip by its key times (a clip whose times cannot be read counts as 0 s; the
+/// first of equals). `anims` is not empty.
+fn longest<'a>(anims: &[gltf::Animation<'a>], loaded: &Loaded) -> gltf::Animation<'a> {
+    let duration_s = |a: &gltf::Animation| {
+        let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
+        for (ci, ch) in a.channels().enumerate() {
+            if let Ok(times) = read_key_times(&ch.sampler(), loaded, ci)
+                && let (Some(&first), Some(&last)) = (times.first(), times.last())
+            {
+                (lo, hi) = (lo.min(first), hi.max(last));
+            }
+        }
+        if hi >= lo { hi - lo } else { 0.0 }
+    };
+    let mut best = (0, f32::NEG_INFINITY);
+    for (k, a) in anims.iter().enumerate() {
+        let d = duration_s(a);
+        if d > best.1 {
+            best = (k, d);
+        }
+    }
+    anims[best.0].clone()
 }
 
 /// The clip's tracks of the animated nodes: `[translation, rotation, scale]` by node index.

@@ -72,7 +72,7 @@ pub(crate) fn from_bytes(
     let loaded = parse(bytes, file, base_dir)?;
     let doc = &loaded.doc;
     let skel = build_skeleton(doc, file)?;
-    let anim = choose_clip(doc, opts.clip.as_deref(), file)?;
+    let anim = choose_clip(doc, &loaded, opts.clip.as_deref(), file)?;
     let clip_name = anim
         .name()
         .map_or_else(|| format!("#{}", anim.index()), str::to_string);

@@ -406,6 +406,36 @@ fn robot_expressive_dance() {
     );
 }
 
+/// Without --clip: "Dance", else a clip named like dance, else like idle, else the longest
+/// (a rig's alphabetically first clip, "agree", is rarely the one to watch hair on).
+#[test]
+fn the_default_clip_is_a_dance_an_idle_or_the_longest() {
+    let mut fx = Fx::default();
+    let head = fx.node(json!({"name": "Head"}));
+    let q = [0.0, 0.0, 0.0, 1.0];
+    let turn = [0.0, 0.38268343, 0.0, 0.9238795];
+    fx.channel(head, "rotation", "LINEAR", &[0.0, 1.0], &[q, turn].concat());
+    fx.channel(head, "rotation", "LINEAR", &[0.0, 3.0], &[q, turn].concat());
+    let chosen = |clips: &[(&str, usize)]| {
+        load(&fx.bytes_one_channel_each(clips), &fixed_fit())
+            .unwrap()
+            .clip_name()
+            .to_string()
+    };
+    assert_eq!(chosen(&[("agree", 0), ("idle", 0), ("walk", 0)]), "idle");
+    assert_eq!(
+        chosen(&[("Agree", 0), ("Idle", 0), ("Salsa_Dance", 0)]),
+        "Salsa_Dance"
+    );
+    assert_eq!(chosen(&[("agree", 0), ("dance", 1), ("Dance", 0)]), "Dance");
+    assert_eq!(chosen(&[("agree", 0), ("walk", 1), ("wave", 0)]), "walk");
+    assert_eq!(
+        chosen(&[("agree", 0), ("wave", 0)]),
+        "agree",
+        "the first of equals"
+    );
+}
+
 #[test]
 fn robot_expressive_every_clip_loads() {
     let Some(path) = common::robot_expressive_glb() else {

@@ -55,7 +55,21 @@ impl MotionArgs {
             ..MotionOptions::default()
         };
         match &self.animation {
-            Some(path) => Motion::load(path, &opts).map_err(|e| self.motion_error(e)),
+            Some(path) => {
+                let motion = Motion::load(path, &opts).map_err(|e| self.motion_error(e))?;
+                // Say what was chosen: a rig's clips and joints are many, and a wrong head or
+                // clip shows only as hair that looks wrong.
+                eprintln!(
+                    "wisp: {}: clip \"{}\" ({:.1} s), head joint \"{}\" (node {}); --clip and \
+                     --head-joint choose others",
+                    path.display(),
+                    motion.clip_name(),
+                    motion.duration_s(),
+                    motion.head_joint().1,
+                    motion.head_joint().0
+                );
+                Ok(motion)
+            }
             None => {
                 if self.clip.is_some() || self.head_joint.is_some() {
                     return Err(AppError::input(anyhow::anyhow!(

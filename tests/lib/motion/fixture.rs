@@ -103,6 +103,20 @@ impl Fx {
         doc
     }
 
+    /// The glTF with one clip per `(name, channel)`: each clip holds that channel alone.
+    pub fn bytes_one_channel_each(&self, clips: &[(&str, usize)]) -> Vec<u8> {
+        let mut doc = self.json(&[]);
+        doc["animations"] = clips
+            .iter()
+            .map(|&(name, k)| {
+                let mut channel = self.channels[k].clone();
+                channel["sampler"] = json!(0);
+                json!({"name": name, "samplers": [self.samplers[k]], "channels": [channel]})
+            })
+            .collect();
+        doc.to_string().into_bytes()
+    }
+
     pub fn bytes(&self, clips: &[&str]) -> Vec<u8> {
         self.json(clips).to_string().into_bytes()
     }
