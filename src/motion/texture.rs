@@ -1,12 +1,12 @@
-//! Base colour textures of a character's materials: PNG images (embedded in a buffer view, a
-//! `data:` URI or a file next to a `.gltf`), decoded once at load into linear RGB.
+//! Base colour textures of a character's materials: PNG and JPEG images (embedded in a buffer
+//! view, a `data:` URI or a file next to a `.gltf`), decoded once at load into linear RGB.
 //!
 //! glTF stores base colour textures sRGB-encoded (§3.9.2); they are decoded to linear values
-//! here, so the renderer multiplies linear albedos. Only PNG is decoded (the `png` crate is
-//! already a dependency for the output); a JPEG or other image leaves the material with its
-//! colour factor, counted in `Cache::unsupported`, rather than pulling in a JPEG decoder.
-//! Images are bounded: at most [`MAX_TEXTURE_SIDE`] pixels a side and [`MAX_TEXTURE_BYTES`]
-//! decoded bytes per file (the PNG decoder's own allocation limit).
+//! here, so the renderer multiplies linear albedos. PNG (the `png` crate, also the output's)
+//! and baseline or progressive JPEG in grey or RGB (`jpeg-decoder`) are read; any other image
+//! (WebP, KTX2, CMYK JPEG) leaves the material with its colour factor and is counted
+//! (`Character::unread_textures`) so that the command line can say so. Images are bounded: at
+//! most [`MAX_TEXTURE_SIDE`] pixels a side and [`MAX_TEXTURE_BYTES`] decoded bytes per file.
 
 use glam::Vec3;
 
@@ -40,7 +40,7 @@ pub(crate) struct Cache {
     textures: Vec<Texture>,
     tex_coord: Vec<u32>,
     bytes_left: usize,
-    /// Textures that are not PNG.
+    /// Textures in a format this module does not read.
     pub(crate) unsupported: usize,
 }
 
@@ -64,8 +64,8 @@ impl Cache {
         self.textures
     }
 
-    /// The decoded texture of a material's `baseColorTexture`, or `None` when its image is not
-    /// a PNG.
+    /// The decoded texture of a material's `baseColorTexture`, or `None` when its image is in
+    /// a format this module does not read.
     pub(crate) fn load(
         &mut self,
         info: &gltf::texture::Info,
@@ -94,10 +94,15 @@ impl Cache {
                 self.decode_png(&bytes)
                     .map_err(|e| invalid(file, format!("{at}: PNG: {e}")))?,
             )
+        } else if bytes.starts_with(&[0xFF, 0xD8, 0xFF]) {
+            self.decode_jpeg(&bytes)
+                .map_err(|e| invalid(file, format!("{at}: JPEG: {e}")))?
         } else {
-            self.unsupported += 1;
             None
         };
+        if decoded.is_none() {
+            self.unsupported += 1;
+        }
         let out = decoded.map(|t| {
             self.textures.push(t);
             self.tex_coord.push(info.tex_coord());
@@ -107,6 +112,49 @@ impl Cache {
             *s = Some(out);
         }
         Ok(out)
+    }
+
+    /// Decodes a JPEG into linear RGB texels, charging its decoded bytes (and the texels') to
+    /// the file's texture budget; `None` for a pixel format without RGB (CMYK).
+    fn decode_jpeg(&mut self, bytes: &[u8]) -> Result<Option<Texture>, String> {
+        let mut decoder = jpeg_decoder::Decoder::new(std::io::Cursor::new(bytes));
+        decoder.set_max_decoding_buffer_size(self.bytes_left);
+        decoder.read_info().map_err(|e| e.to_string())?;
+        let info = decoder.info().ok_or("no image header")?;
+        let (w, h) = (u32::from(info.width), u32::from(info.height));
+        check_side(w, h)?;
+        let channels = match info.pixel_format {
+            jpeg_decoder::PixelFormat::L8 => 1,
+            jpeg_decoder::PixelFormat::L16 => 2,
+            jpeg_decoder::PixelFormat::RGB24 => 3,
+            jpeg_decoder::PixelFormat::CMYK32 => return Ok(None),
+        };
+        let pixels = decoder.decode().map_err(|e| e.to_string())?;
+        let texel_bytes = w as usize * h as usize * size_of::<Vec3>();
+        self.bytes_left = self
+            .bytes_left
+            .saturating_sub(pixels.len() + texel_bytes);
+        let lut = srgb_to_linear_table();
+        // L16 is big-endian: its high byte first.
+        let texels: Vec<Vec3> = pixels
+            .chunks_exact(channels)
+            .map(|px| match channels {
+                3 => Vec3::new(
+                    lut[px[0] as usize],
+                    lut[px[1] as usize],
+                    lut[px[2] as usize],
+                ),
+                _ => Vec3::splat(lut[px[0] as usize]),
+            })
+            .collect();
+        if texels.len() != w as usize * h as usize {
+            return Err("the decoded image is shorter than its size".into());
+        }
+        Ok(Some(Texture {
+            width: w,
+            height: h,
+            texels,
+        }))
     }
 
     /// Decodes a PNG into linear RGB texels, charging its decoded bytes (and the texels') to the
@@ -121,11 +169,7 @@ impl Cache {
         decoder.set_transformations(png::Transformations::normalize_to_color8());
         let mut reader = decoder.read_info().map_err(|e| e.to_string())?;
         let (w, h) = (reader.info().width, reader.info().height);
-        if w == 0 || h == 0 || w > MAX_TEXTURE_SIDE || h > MAX_TEXTURE_SIDE {
-            return Err(format!(
-                "{w}x{h} pixels: each side must be in [1, {MAX_TEXTURE_SIDE}]"
-            ));
-        }
+        check_side(w, h)?;
         let size = reader
             .output_buffer_size()
             .ok_or("the image is too large")?;
@@ -161,6 +205,16 @@ impl Cache {
             texels,
         })
     }
+}
+
+/// Refuses a texture without pixels or wider or taller than [`MAX_TEXTURE_SIDE`].
+fn check_side(w: u32, h: u32) -> Result<(), String> {
+    if w == 0 || h == 0 || w > MAX_TEXTURE_SIDE || h > MAX_TEXTURE_SIDE {
+        return Err(format!(
+            "{w}x{h} pixels: each side must be in [1, {MAX_TEXTURE_SIDE}]"
+        ));
+    }
+    Ok(())
 }
 
 /// The encoded bytes of glTF image `image` (named `at` in messages): its buffer view's bytes,

@@ -88,6 +88,12 @@ struct Breakage {
 /// vertices on both, and a one-vertex-triangle rigid prop on `Head` (0.5 above it). The clip
 /// moves `Root` from 0 to (2, 0, 0) and turns `Head` by 90° about Z over 1 s.
 fn tiny_character(b: Breakage) -> Vec<u8> {
+    let (doc, bin) = tiny_character_doc(b);
+    glb(&doc, &bin)
+}
+
+/// [`tiny_character`]'s glTF document and binary chunk, for a test to add to.
+fn tiny_character_doc(b: Breakage) -> (Value, Vec<u8>) {
     let mut d = Data::default();
     let mut pos = vec![1.0, 0.0, 0.0, 1.0, 2.0, 0.0, 0.5, 1.5, 0.0, 1.0, 1.0, 0.0];
     if b.nan_position {
@@ -151,7 +157,42 @@ fn tiny_character(b: Breakage) -> Vec<u8> {
         "bufferViews": d.views,
         "buffers": [{"byteLength": d.bin.len()}],
     });
-    glb(&doc, &d.bin)
+    (doc, d.bin)
+}
+
+/// The tiny character with `image` (a `data:` URI's MIME type and bytes) as its material's
+/// base colour texture.
+fn tiny_character_textured(mime: &str, image: &[u8]) -> Motion {
+    let (mut doc, bin) = tiny_character_doc(Breakage::default());
+    let uri = format!(
+        "data:{mime};base64,{}",
+        crate::motion::fixture::base64(image)
+    );
+    doc["images"] = json!([{ "uri": uri }]);
+    doc["textures"] = json!([{ "source": 0 }]);
+    doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": 0 });
+    Motion::from_glb_bytes(&glb(&doc, &bin), "tiny.glb", &identity_fit()).unwrap()
+}
+
+/// A JPEG base colour is decoded to linear RGB (sRGB 255 → 1, 0 → 0); an image wisp does
+/// not read is counted, its material keeping its colour factor.
+/// `tests/data/red_blue_16x8.jpg`: 16 × 8 pixels, the left half red, the right blue, made with
+/// `cjpeg -quality 100 -sample 1x1` from a PPM.
+#[test]
+fn jpeg_textures_are_read_and_other_formats_counted() {
+    let jpeg = include_bytes!("../data/red_blue_16x8.jpg");
+    let m = tiny_character_textured("image/jpeg", jpeg);
+    let ch = m.character().expect("a character");
+    assert_eq!(ch.unread_textures, 0);
+    let t = &ch.textures[0];
+    assert_eq!((t.width, t.height), (16, 8));
+    let (left, right) = (t.texels[16 * 4 + 2], t.texels[16 * 4 + 13]);
+    assert!((left - Vec3::X).abs().max_element() < 0.02, "{left}");
+    assert!((right - Vec3::Z).abs().max_element() < 0.02, "{right}");
+    let webp = b"RIFF\x1a\0\0\0WEBPVP8 ";
+    let m = tiny_character_textured("image/webp", webp);
+    let ch = m.character().expect("a character");
+    assert_eq!((ch.unread_textures, ch.textures.len()), (1, 0));
 }
 
 fn identity_fit() -> MotionOptions {

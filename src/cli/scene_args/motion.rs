@@ -68,6 +68,16 @@ impl MotionArgs {
                     motion.head_joint().1,
                     motion.head_joint().0
                 );
+                if let Some(n) = motion.character().map(|c| c.unread_textures)
+                    && n > 0
+                {
+                    eprintln!(
+                        "wisp: warning: {}: {n} base colour texture(s) in a format wisp does not \
+                         read (it reads PNG and grey or RGB JPEG): their materials keep their \
+                         colour factor",
+                        path.display()
+                    );
+                }
                 Ok(motion)
             }
             None => {

@@ -111,6 +111,7 @@ impl<'a> Builder<'a> {
                 textures: Vec::new(),
                 rest_model: Vec::new(),
                 skipped_primitives: 0,
+                unread_textures: 0,
             },
             skin_bones: vec![None; doc.skins().len()],
             node_bone: vec![None; skel.names.len()],
@@ -265,6 +266,7 @@ impl<'a> Builder<'a> {
         if ch.triangles.is_empty() {
             return Ok(None);
         }
+        ch.unread_textures = self.textures.unsupported;
         ch.textures = self.textures.into_textures();
         let rest: Vec<Affine3A> = ch
             .bones

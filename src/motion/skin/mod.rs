@@ -89,6 +89,9 @@ pub struct Character {
     pub(crate) rest_model: Vec<Vec3>,
     /// Primitives skipped because they are not triangles.
     pub skipped_primitives: usize,
+    /// Base colour textures in a format wisp does not read (`motion::texture`): their
+    /// materials keep their colour factor.
+    pub unread_textures: usize,
 }
 
 /// A posed character (reused every frame): positions and unit normals in the pose world.
