@@ -131,9 +131,7 @@ impl Cache {
         };
         let pixels = decoder.decode().map_err(|e| e.to_string())?;
         let texel_bytes = w as usize * h as usize * size_of::<Vec3>();
-        self.bytes_left = self
-            .bytes_left
-            .saturating_sub(pixels.len() + texel_bytes);
+        self.bytes_left = self.bytes_left.saturating_sub(pixels.len() + texel_bytes);
         let lut = srgb_to_linear_table();
         // L16 is big-endian: its high byte first.
         let texels: Vec<Vec3> = pixels
