@@ -180,7 +180,10 @@ fn draw(root: &DrawingArea<BitMapBackend, Shift>, data: &PlotData) -> DrawResult
         .axis_desc_style(("sans-serif", 18))
         .label_style(("sans-serif", 15))
         .draw()?;
-    for (name, color, pts, against_reference) in &all {
+    for (k, (name, color, pts, against_reference)) in all.iter().enumerate() {
+        // Labels above the points of every other scene and below the rest, so that two
+        // scenes' levels at about the same place (their `reference`) stay readable.
+        let label_dy = if (k / 2) % 2 == 0 { -22 } else { 8 };
         if pts.is_empty() {
             continue;
         }
@@ -206,7 +209,7 @@ fn draw(root: &DrawingArea<BitMapBackend, Shift>, data: &PlotData) -> DrawResult
             )?;
         }
         chart.draw_series(pts.iter().map(|&(x, y, level)| {
-            EmptyElement::at((x, y)) + Text::new(level, (9, -22), ("sans-serif", 16))
+            EmptyElement::at((x, y)) + Text::new(level, (9, label_dy), ("sans-serif", 16))
         }))?;
     }
     chart
