@@ -392,26 +392,31 @@ fn time_stages(
         let mut v: Vec<f64> = parts.iter().map(|p| p.as_array()[k]).collect();
         summary(&mut v) * 1e3
     });
-    let mut med = [0.0f64; 7];
-    for (s, m) in med.iter_mut().enumerate().take(6) {
+    let mut stage_ms = [0.0f64; 7];
+    for (s, m) in stage_ms.iter_mut().enumerate().take(6) {
         let mut v: Vec<f64> = per_frame.iter().map(|t| t.as_array()[s]).collect();
         *m = summary(&mut v) * 1e3;
     }
     let mut totals: Vec<f64> = per_frame.iter().map(|t| t.total_s() * 1e3).collect();
-    med[6] = summary(&mut totals);
-    Ok((med, parts_ms))
+    stage_ms[6] = summary(&mut totals);
+    Ok((stage_ms, parts_ms))
 }
 
-/// One thread count's row of the JSON: stage medians `med`, the speed-up over `base`, the
-/// map stage's parts.
-fn scaling_row(threads: u32, med: &[f64; 7], base: f64, parts_ms: [f64; 3]) -> serde_json::Value {
+/// One thread count's row of the JSON: the stages' ms `stage_ms` (medians or means, as
+/// [`time_stages`] gave them), the speed-up over `base`, the map stage's parts.
+fn scaling_row(
+    threads: u32,
+    stage_ms: &[f64; 7],
+    base: f64,
+    parts_ms: [f64; 3],
+) -> serde_json::Value {
     let mut row = serde_json::Map::new();
     row.insert("threads".into(), threads.into());
-    for (name, v) in StageTimings::NAMES.iter().zip(&med[..6]) {
+    for (name, v) in StageTimings::NAMES.iter().zip(&stage_ms[..6]) {
         row.insert(format!("{name}_ms"), (*v).into());
     }
-    row.insert("total_ms".into(), med[6].into());
-    row.insert("speedup".into(), (base / med[6]).into());
+    row.insert("total_ms".into(), stage_ms[6].into());
+    row.insert("speedup".into(), (base / stage_ms[6]).into());
     for (key, v) in ["map_hair_ms", "map_occluders_ms", "map_skin_texture_ms"]
         .iter()
         .zip(parts_ms)

@@ -48,7 +48,7 @@ struct Snapshots {
 #[derive(Clone, Copy, Debug)]
 pub struct LevelPoint {
     pub level: Quality,
-    /// Median ms a frame on the largest thread count measured.
+    /// Mean ms a frame on the largest thread count measured.
     pub ms: f64,
     /// Mean relative luminance error against `reference` (0 for `reference` itself), when
     /// `reference` was run.
@@ -303,9 +303,10 @@ fn time_level(
             mean: true,
             ..Timed::medians(args)
         };
-        let (med, parts_ms) = time_stages(timed, || scene.engine_with(config.clone()), threads)?;
-        let b = *base.get_or_insert(med[6]);
-        let [_, sim, interp, map, shading, raster, total] = med;
+        let (stage_ms, parts_ms) =
+            time_stages(timed, || scene.engine_with(config.clone()), threads)?;
+        let b = *base.get_or_insert(stage_ms[6]);
+        let [_, sim, interp, map, shading, raster, total] = stage_ms;
         println!(
             "{:>10} {threads:>7} {sim:>10.2} {interp:>10.2} {map:>10.2} {shading:>10.2} \
              {raster:>10.2} {total:>10.2}  {:.2}x",
@@ -315,7 +316,7 @@ fn time_level(
         if threads > largest.0 {
             largest = (threads, total);
         }
-        timings.push(scaling_row(threads, &med, b, parts_ms));
+        timings.push(scaling_row(threads, &stage_ms, b, parts_ms));
     }
     Ok((timings, largest.1))
 }
