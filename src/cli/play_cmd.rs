@@ -84,7 +84,7 @@ pub fn run(mut args: PlayArgs) -> Result<(), AppError> {
     while window.is_open() {
         let now = Instant::now();
         let dt_s = (now - clock).as_secs_f64();
-        let moved_s = motion_clock.tick(dt_s, MIN_FRAME_INTERVAL_S);
+        let moved_s = motion_clock.tick(dt_s);
         if !controls.paused {
             controls.t_s += moved_s;
         }

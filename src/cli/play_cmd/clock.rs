@@ -19,17 +19,22 @@ pub(super) const MAX_FRAME_INTERVAL_S: f64 = 0.1;
 pub(super) struct MotionClock {
     /// Mean wall seconds between frames.
     interval_s: f64,
+    /// The window's shortest interval between frames (it waits out the rest).
+    shortest_s: f64,
     /// Seconds of one simulation step.
     step_s: f64,
 }
 
 impl MotionClock {
-    /// A clock expecting frames every `interval_s` that moves in steps of `step_s` (each taken
-    /// as positive and finite, else a 60th and a 480th of a second).
-    pub fn new(interval_s: f64, step_s: f64) -> Self {
+    /// A clock for a window that shows a frame every `shortest_s` at most often, expecting
+    /// that rate, and moves in steps of `step_s` (each taken as positive and finite, else a
+    /// 60th and a 480th of a second).
+    pub fn new(shortest_s: f64, step_s: f64) -> Self {
         let positive = |x: f64, or: f64| if x.is_finite() && x > 0.0 { x } else { or };
+        let shortest_s = positive(shortest_s, 1.0 / 60.0).min(MAX_FRAME_INTERVAL_S);
         Self {
-            interval_s: positive(interval_s, 1.0 / 60.0).min(MAX_FRAME_INTERVAL_S),
+            interval_s: shortest_s,
+            shortest_s,
             step_s: positive(step_s, 1.0 / 480.0),
         }
     }
@@ -37,9 +42,9 @@ impl MotionClock {
     /// Records a frame that took `wall_s` (clamped to the window's shortest interval and
     /// [`MAX_FRAME_INTERVAL_S`]) and returns how far the motion moves for the next frame:
     /// a whole number of steps, at least one.
-    pub fn tick(&mut self, wall_s: f64, shortest_s: f64) -> f64 {
+    pub fn tick(&mut self, wall_s: f64) -> f64 {
         let wall_s = if wall_s.is_finite() { wall_s } else { 0.0 };
-        let measured = wall_s.clamp(shortest_s.min(MAX_FRAME_INTERVAL_S), MAX_FRAME_INTERVAL_S);
+        let measured = wall_s.clamp(self.shortest_s, MAX_FRAME_INTERVAL_S);
         self.interval_s += NEWEST_WEIGHT * (measured - self.interval_s);
         self.steps_per_frame() as f64 * self.step_s
     }

@@ -7,7 +7,7 @@ const STEP_S: f64 = 1.0 / 240.0;
 #[test]
 fn a_steady_window_keeps_real_time_in_whole_steps() {
     let mut clock = MotionClock::new(FRAME_S, STEP_S);
-    let moved: f64 = (0..600).map(|_| clock.tick(FRAME_S, FRAME_S)).sum();
+    let moved: f64 = (0..600).map(|_| clock.tick(FRAME_S)).sum();
     assert_eq!(clock.steps_per_frame(), 4);
     assert!((moved - 10.0).abs() < 1e-9, "600 frames moved {moved} s");
 }
@@ -18,14 +18,14 @@ fn a_steady_window_keeps_real_time_in_whole_steps() {
 fn one_slow_frame_does_not_slow_the_next() {
     let mut clock = MotionClock::new(FRAME_S, STEP_S);
     for _ in 0..100 {
-        clock.tick(FRAME_S, FRAME_S);
+        clock.tick(FRAME_S);
     }
-    let after_spike = clock.tick(20.0 * FRAME_S, FRAME_S);
+    let after_spike = clock.tick(20.0 * FRAME_S);
     assert!(
         after_spike <= 5.0 * STEP_S,
         "moved {after_spike} s after the spike"
     );
-    let next = clock.tick(FRAME_S, FRAME_S);
+    let next = clock.tick(FRAME_S);
     assert!(next <= 5.0 * STEP_S);
 }
 
@@ -35,11 +35,11 @@ fn one_slow_frame_does_not_slow_the_next() {
 fn a_slow_window_follows_up_to_the_longest_interval() {
     let mut clock = MotionClock::new(FRAME_S, STEP_S);
     for _ in 0..400 {
-        clock.tick(0.05, FRAME_S);
+        clock.tick(0.05);
     }
     assert_eq!(clock.steps_per_frame(), 12);
     for _ in 0..400 {
-        clock.tick(1.0, FRAME_S);
+        clock.tick(1.0);
     }
     let most = (MAX_FRAME_INTERVAL_S / STEP_S).round() as u32;
     assert_eq!(clock.steps_per_frame(), most);
@@ -49,11 +49,11 @@ fn a_slow_window_follows_up_to_the_longest_interval() {
 #[test]
 fn bad_inputs_give_at_least_one_step() {
     let mut clock = MotionClock::new(f64::NAN, 0.0);
-    assert!(clock.tick(f64::NAN, FRAME_S) > 0.0);
-    assert!(clock.tick(f64::INFINITY, FRAME_S).is_finite());
+    assert!(clock.tick(f64::NAN) > 0.0);
+    assert!(clock.tick(f64::INFINITY).is_finite());
     let mut fine = MotionClock::new(FRAME_S, 1.0);
     assert_eq!(
-        fine.tick(FRAME_S, FRAME_S),
+        fine.tick(FRAME_S),
         1.0,
         "a step longer than a frame: one a frame"
     );
