@@ -300,15 +300,6 @@ impl Engine {
         }
     }
 
-    /// The shadows the frame is lit by: hair maps built for it, or for an earlier frame and
-    /// read where the hair and the head were then (`map::BuiltEarlier`).
-    fn frame_shadows(&self) -> Shadows<'_> {
-        lit_by(
-            (&self.hair_map, &self.occluders, &self.skin_texture),
-            self.head_back(),
-        )
-    }
-
     /// World now → world at the hair maps' last build, when the frame is lit by it.
     fn head_back(&self) -> Option<Affine3A> {
         self.lit_earlier
@@ -514,9 +505,13 @@ impl Engine {
         self.hair_map.maps()
     }
     /// Every light's shadows (hair map, solids, skin texture), in the order of `scene.lights`,
-    /// as the last frame was lit by them.
+    /// as the last frame was lit by them: hair maps built for it, or for an earlier frame and
+    /// read where the hair and the head were then (`map::BuiltEarlier`).
     pub fn shadows(&self) -> Shadows<'_> {
-        self.frame_shadows()
+        lit_by(
+            (&self.hair_map, &self.occluders, &self.skin_texture),
+            self.head_back(),
+        )
     }
     /// Colours of the last shading (linear RGB), indexed like `strands().positions`. After
     /// [`Engine::render`] the points the raster could not draw are black, as they were not
