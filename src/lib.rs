@@ -7,7 +7,7 @@
 //! sim      rigid-link guide strands: roots on the moving scalp, gravity, damping, bending,
 //!          head/body collisions, self-collision from the guides' own density grid (Bertails
 //!          2005 §4.1)
-//! groom    captured strands (.tfx, .hair) -> placed on the head, wisps, guides, rest offsets
+//! groom    captured strands (.tfx .hair .ply .data) -> placed on the head, wisps, guides, rest offsets
 //! interp   render strands from their wisp's 3 guides, Catmull-Rom smoothing, curls
 //! map      light-oriented, modulo-indexed grid: fill, column sweep -> Tf, σ̄f², direct fraction
 //! shade    per render-strand vertex: filtered map lookup -> fibre shader

@@ -59,7 +59,7 @@ fn cache_error(e: CacheError) -> AppError {
 fn refuse_imported(hair: &super::ImportedHair) -> Result<(), AppError> {
     match hair {
         Some(_) => Err(AppError::input(anyhow::anyhow!(
-            "--hairstyle: the simulation cache (simulate, render --cache) works with generated hairstyles only; render an imported groom (.tfx, .hair) without --cache"
+            "--hairstyle: the simulation cache (simulate, render --cache) works with generated hairstyles only; render an imported groom (.tfx, .hair, .ply, .data) without --cache"
         ))),
         None => Ok(()),
     }

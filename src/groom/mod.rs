@@ -1,8 +1,9 @@
-//! Captured grooms: strands from TressFX `.tfx` and cyHair `.hair` files turned into wisp's
-//! hair model (guides, render-strand layout), placed on wisp's head.
+//! Captured grooms: strands from TressFX `.tfx`, cyHair `.hair`, PLY `.ply` and USC-HairSalon
+//! `.data` files turned into wisp's hair model (guides, render-strand layout), placed on wisp's
+//! head.
 //!
 //! ```text
-//! read      input::{tfx, cyhair}           strands in the file's units (several files: one groom)
+//! read      input::strand_file             strands in the file's units (several files: one groom)
 //! drop      strands::keep_strands          zero-length strands (counted in the report)
 //! place     place::place_on_head           scale, 0°/180° turn and offset (fit::fit_to_head):
 //!                                          roots on the head, hair outside; far roots refused

@@ -8,11 +8,14 @@
 //! bytes. The read itself is bounded too (`take(cap + 1)`), so a file that grows between the
 //! check and the read is still caught.
 //!
-//! [`json`] holds the strict JSON reading shared by the JSON formats; [`tfx`] and [`cyhair`]
-//! read captured strands ([`strands`]) for groom import; [`strand_file`] picks the reader.
+//! [`json`] holds the strict JSON reading shared by the JSON formats; [`tfx`], [`cyhair`],
+//! [`ply`] and [`hairsalon`] read captured strands ([`strands`]) for groom import;
+//! [`strand_file`] picks the reader.
 
 pub mod cyhair;
+pub mod hairsalon;
 pub mod json;
+pub mod ply;
 pub mod strand_file;
 pub mod strands;
 pub mod tfx;

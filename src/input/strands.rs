@@ -1,9 +1,11 @@
 //! Captured hair strands read from a file: the common result of the groom readers
-//! ([`super::tfx`], [`super::cyhair`]) and their typed error.
+//! ([`super::tfx`], [`super::cyhair`], [`super::ply`], [`super::hairsalon`]) and their typed
+//! error.
 //!
 //! Every reader checks each count in a header against the file's size before it allocates
 //! (a header may declare 4 billion strands in a 300-byte file), refuses non-finite
-//! coordinates, and names the file, the byte offset and the rule in its error. Strands are
+//! coordinates, and names the file, the byte offset (the element, for PLY) and the rule in its
+//! error. Strands are
 //! kept as the file has them (units and axes of the file, root first); zero-length strands are
 //! kept too (they are not malformed) and dropped later by the groom builder, which counts them.
 
@@ -54,8 +56,20 @@ pub enum StrandFileError {
         offset: u64,
         rule: String,
     },
-    /// Neither `.tfx` nor `.hair` (by extension or by the `HAIR` signature).
-    #[error("{file}: not a strand file: expected a TressFX `.tfx` or a cyHair `.hair` file")]
+    /// A PLY file whose header the PLY reader refuses (`rule` is its message).
+    #[error("{file}: not a PLY file wisp can read: {rule}")]
+    PlyHeader { file: String, rule: String },
+    /// A PLY file whose `element` (as the header names it) breaks `rule`.
+    #[error("{file}: PLY element `{element}`: {rule}")]
+    Ply {
+        file: String,
+        element: String,
+        rule: String,
+    },
+    /// None of the strand formats (by extension or by the `HAIR` and `ply` signatures).
+    #[error(
+        "{file}: not a strand file: expected a TressFX `.tfx`, a cyHair `.hair`, a PLY `.ply` or a USC-HairSalon `.data` file"
+    )]
     UnknownFormat { file: String },
 }
 

@@ -1,6 +1,6 @@
 //! The hair's flags: a hairstyle (an embedded preset or a JSON file), or a captured groom
-//! (TressFX `.tfx`, cyHair `.hair` files) with the hairstyle whose head, fibre and dynamics it
-//! takes.
+//! (TressFX `.tfx`, cyHair `.hair`, PLY `.ply`, USC-HairSalon `.data` files) with the hairstyle
+//! whose head, fibre and dynamics it takes.
 //!
 //! An imported groom is placed on the hairstyle's own head ellipsoid, not on one fitted to a
 //! character's head mesh: a mesh's bounding box is a poor scalp for a human groom (the TressFX
@@ -24,7 +24,7 @@ pub type ImportedHair = Option<(GuideSet, StrandLayout)>;
 #[derive(clap::Args, Debug, Clone)]
 #[command(next_help_heading = "Hair")]
 pub struct HairArgs {
-    /// smooth|curly|dense or JSON; .tfx/.hair groom files
+    /// smooth|curly|dense or JSON; .tfx/.hair/.ply/.data groom files
     #[arg(
         long,
         value_name = "STYLE",
@@ -50,7 +50,7 @@ impl HairArgs {
             .partition(|a| wisp::input::strand_file::is_strand_file_name(a));
         if styles.len() > 1 || (styles.is_empty() && files.is_empty()) {
             return Err(AppError::input(anyhow::anyhow!(
-                "--hairstyle {}: give one preset or JSON hairstyle, plus any number of .tfx/.hair strand files",
+                "--hairstyle {}: give one preset or JSON hairstyle, plus any number of .tfx/.hair/.ply/.data strand files",
                 self.hairstyle.join(",")
             )));
         }
@@ -158,8 +158,8 @@ pub fn load_hairstyle(arg: &str) -> Result<Hairstyle, AppError> {
         && !ext.eq_ignore_ascii_case("json")
     {
         return Err(AppError::input(anyhow::anyhow!(
-            "--hairstyle {arg}: unsupported hair format .{ext}; wisp reads .json hairstyles and \
-             .tfx (TressFX) and .hair (cyHair) strand files"
+            "--hairstyle {arg}: unsupported hair format .{ext}; wisp reads .json, .tfx, .hair, \
+             .ply, .data (hairstyle JSON; TressFX, cyHair, PLY and USC-HairSalon strands)"
         )));
     }
     Hairstyle::load(path).map_err(|e| match e {
