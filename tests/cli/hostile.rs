@@ -159,15 +159,26 @@ fn hostile_flags_exit_2_naming_the_flag() {
         (args("render --map-res 3"), 2, "--map-res"),
         (args("render --map-hz 1001"), 2, "--map-hz"),
         (args("bench --fps 0"), 2, "--fps"),
+        // A strand file of a format wisp reads is read as one: a missing one is named.
         (
-            args("render --hairstyle groom.ply"),
+            args("render --hairstyle missing-groom.ply"),
             2,
-            "unsupported hair format .ply",
+            "missing-groom.ply: cannot read",
+        ),
+        (
+            args("render --hairstyle missing-strands.data"),
+            2,
+            "missing-strands.data: cannot read",
         ),
         (
             args("render --hairstyle strands.abc"),
             2,
-            "unsupported hair format .abc",
+            "unsupported hair format .abc; wisp reads .json, .tfx, .hair, .ply, .data",
+        ),
+        (
+            args("render --hairstyle head.obj"),
+            2,
+            "unsupported hair format .obj",
         ),
         (args("render --max-memory-gb 0"), 2, "--max-memory-gb"),
         (args("render --max-memory-gb nan"), 2, "--max-memory-gb"),

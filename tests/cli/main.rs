@@ -11,6 +11,7 @@ mod basics;
 mod deploy;
 mod export;
 mod fiber;
+mod groom_formats;
 mod hostile;
 mod quality;
 mod render_formats;

@@ -16,7 +16,7 @@ use crate::support::{full_size, scratch_dir};
 use std::time::Duration;
 
 /// Cases per format per run (the generated suite runs at least 1,000 cases in all).
-const CASES_PER_FORMAT: [usize; 7] = [500, 300, 200, 100, 300, 200, 200];
+const CASES_PER_FORMAT: [usize; 9] = [500, 300, 200, 100, 300, 200, 200, 300, 200];
 /// Hang bound per case: the slowest case takes milliseconds (see the run's summary).
 const TIME_LIMIT: Duration = Duration::from_secs(30);
 /// Memory bound per case: a base for the parsed structures plus a multiple of the input size.

@@ -25,6 +25,7 @@ mod fiber_energy;
 mod fiber_hard_cases;
 mod fiber_shading;
 mod fiber_tables;
+mod groom_formats;
 mod groom_import;
 mod hairstyle;
 mod hostile_budget;

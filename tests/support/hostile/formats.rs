@@ -6,6 +6,7 @@
 //! [`all`]: its seeds (valid files, the entry first) and a loader calling the library. The
 //! mutators and the runner in `tests/lib/hostile_loaders.rs` then cover it with no further code.
 
+use super::super::strand_files;
 use super::Rng;
 use super::mutate;
 use serde_json::Value;
@@ -324,6 +325,32 @@ fn load_strands(case: &Case, _dir: &Path) -> Result<Verdict, String> {
     }
 }
 
+/// `wisp::groom::synthetic_strands` as one list of points per strand.
+fn synthetic_strand_lists(count: usize, points: usize) -> Vec<Vec<glam::Vec3>> {
+    let f = wisp::groom::synthetic_strands(count, points);
+    f.strands().map(<[glam::Vec3]>::to_vec).collect()
+}
+
+/// PLY seeds: every strand layout in little-endian binary, and ASCII with strand indices.
+fn ply_seeds() -> Vec<Case> {
+    use strand_files::{PLY_LAYOUTS, PlyEncoding, strands_ply};
+    let strands = synthetic_strand_lists(60, 8);
+    let mut seeds: Vec<Case> = PLY_LAYOUTS
+        .iter()
+        .map(|&l| {
+            file(
+                "hostile.ply",
+                strands_ply(&strands, l, PlyEncoding::LittleEndian),
+            )
+        })
+        .collect();
+    seeds.push(file(
+        "hostile.ply",
+        strands_ply(&strands, PLY_LAYOUTS[0], PlyEncoding::Ascii),
+    ));
+    seeds
+}
+
 /// A cyHair seed: the exporter's own output for a synthetic groom.
 fn cyhair_seed() -> Vec<u8> {
     let f = wisp::groom::synthetic_strands(60, 8);
@@ -414,6 +441,21 @@ pub fn all() -> Vec<Format> {
             name: "cyHair strands (.hair)",
             layout: Layout::Binary,
             seeds: vec![file("hostile.hair", cyhair_seed())],
+            load: load_strands,
+        },
+        Format {
+            name: "PLY strands (.ply, each layout, ASCII and binary)",
+            layout: Layout::Binary,
+            seeds: ply_seeds(),
+            load: load_strands,
+        },
+        Format {
+            name: "USC-HairSalon strands (.data)",
+            layout: Layout::Binary,
+            seeds: vec![file(
+                "hostile.data",
+                strand_files::hairsalon_bytes(&synthetic_strand_lists(60, 8)),
+            )],
             load: load_strands,
         },
     ]

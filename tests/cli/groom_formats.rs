@@ -1,0 +1,74 @@
+//! `wisp render --hairstyle` with the PLY and USC-HairSalon `.data` strand files a user brings:
+//! one frame renders with the groom's figures on stderr, and the hair alone covers a good part
+//! of the picture.
+
+use crate::support::scratch_dir;
+use crate::support::strand_files::{PlyEncoding, PlyLayout, hairsalon_bytes, strands_ply};
+use crate::{stderr, wisp};
+use glam::Vec3;
+use std::path::Path;
+
+/// Share of the 96×96 frame's pixels that differ from its top-left corner (the background).
+fn hair_share(png_path: &Path) -> f64 {
+    let decoder = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(png_path).unwrap_or_else(|e| panic!("{}: {e}", png_path.display())),
+    ));
+    let mut reader = decoder.read_info().expect("png header");
+    let mut buf = vec![0; reader.output_buffer_size().expect("size")];
+    let info = reader.next_frame(&mut buf).expect("png data");
+    assert_eq!((info.width, info.height), (96, 96));
+    let channels = info.color_type.samples();
+    let px: Vec<&[u8]> = buf[..info.buffer_size()].chunks_exact(channels).collect();
+    let corner = px[0];
+    let differ = px
+        .iter()
+        .filter(|p| p.iter().zip(corner).any(|(a, b)| a.abs_diff(*b) > 8))
+        .count();
+    differ as f64 / px.len() as f64
+}
+
+#[test]
+fn a_ply_and_a_hairsalon_groom_render_one_frame() {
+    let dir = scratch_dir("cli-groom-formats");
+    let strands: Vec<Vec<Vec3>> = wisp::groom::synthetic_strands(300, 12)
+        .strands()
+        .map(<[Vec3]>::to_vec)
+        .collect();
+    let files = [
+        (
+            "groom.ply",
+            strands_ply(&strands, PlyLayout::Counts, PlyEncoding::LittleEndian),
+        ),
+        ("groom.data", hairsalon_bytes(&strands)),
+    ];
+    for (name, bytes) in files {
+        let path = dir.join(name);
+        std::fs::write(&path, bytes).unwrap();
+        let out = dir.join(format!("frames-{name}"));
+        let o = wisp(&[
+            "render",
+            "--hairstyle",
+            path.to_str().unwrap(),
+            "--frames",
+            "1",
+            "--width",
+            "96",
+            "--height",
+            "96",
+            "--no-solids",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let err = stderr(&o);
+        assert!(o.status.success(), "{name}: {err}");
+        // All 300 strands kept (none is zero length), in 300 / 25 = 12 wisps.
+        assert!(
+            err.contains("300 strands (0 dropped: zero length) in 12 wisps"),
+            "{name}: {err}"
+        );
+        // Hair only (--no-solids), and the camera frames it: like the library's cyHair test,
+        // at least a twentieth of the picture is hair (measured: 0.34).
+        let share = hair_share(&out.join("frame_00000.png"));
+        assert!(share > 0.05, "{name}: hair on {share:.3} of the frame");
+    }
+}
