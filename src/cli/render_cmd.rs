@@ -16,6 +16,7 @@
 //! render, not beyond); only their map, shading, raster and encoding are saved. Frames of a
 //! cache are independent, and kept ones cost nothing.
 
+mod curves;
 mod export;
 mod out_dir;
 
@@ -29,6 +30,7 @@ use wisp::output::FrameFormat;
 use wisp::scene::Scene;
 
 pub use super::shard::MAX_FRAMES;
+pub use curves::CurvesOutput;
 pub use export::export_frames;
 pub use out_dir::{FramePlan, Tidy, plan_frames, prepare_output_dir};
 
@@ -74,6 +76,9 @@ pub struct RenderArgs {
     /// Keep the frames already complete in --out and render only the others
     #[arg(long)]
     pub resume: bool,
+    /// Also write each frame's hair strands to FILE.usda (USD curves, for Blender/Houdini)
+    #[arg(long, value_name = "FILE", value_parser = curves::parse_curves_path, conflicts_with_all = ["resume", "shard"])]
+    pub curves: Option<PathBuf>,
     /// Print only errors (no progress bar)
     #[arg(long)]
     pub quiet: bool,
@@ -106,28 +111,40 @@ pub struct FrameOutput {
     pub independent_frames: bool,
     /// Print only errors.
     pub quiet: bool,
+    /// Where the render strands of every rendered frame go, if anywhere (`--curves`).
+    pub curves: Option<CurvesOutput>,
 }
 
 impl FrameOutput {
-    pub fn of(args: &RenderArgs) -> Self {
+    /// The output `args` ask for; `--curves` with the frames' rate `fps` and the time of
+    /// frame 0, `start_s`.
+    pub fn of(args: &RenderArgs, fps: f64, start_s: f64) -> Self {
         Self {
             dir: args.out.clone(),
             format: args.format.into(),
             resume: args.resume,
             independent_frames: args.cache.is_some(),
             quiet: args.quiet,
+            curves: args
+                .curves
+                .clone()
+                .map(|path| CurvesOutput { path, fps, start_s }),
         }
     }
 
-    /// Makes the output directory ready (tidied as `tidy` allows) and plans the frames of
-    /// `indices` at the scene's image size; `None` when every one of them is already complete
-    /// (`--resume`) and there is nothing to render.
+    /// Makes the output directory ready (tidied as `tidy` allows; the `--curves` file's
+    /// directory checked) and plans the frames of `indices` at the scene's image size;
+    /// `None` when every one of them is already complete (`--resume`) and there is nothing
+    /// to render.
     pub fn prepare(
         &self,
         tidy: &Tidy,
         indices: std::ops::Range<u32>,
         scene: &Scene,
     ) -> Result<Option<FramePlan>, AppError> {
+        if let Some(curves) = &self.curves {
+            curves.check_dir()?;
+        }
         prepare_output_dir(&self.dir, tidy, self.format, self.quiet)?;
         let todo = plan_frames(self, indices, scene.width, scene.height);
         Ok((!todo.nothing_to_render()).then_some(todo))
@@ -179,7 +196,7 @@ pub fn run(args: RenderArgs) -> Result<(), AppError> {
     args.scene
         .budget
         .check(&style, &motion, &mut config, &plan)?;
-    let output = FrameOutput::of(&args);
+    let output = FrameOutput::of(&args, f64::from(args.fps), start_s);
     let Some(todo) = output.prepare(&Tidy::whole_run(frames), 0..frames, &config.scene)? else {
         return Ok(());
     };

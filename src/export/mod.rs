@@ -17,9 +17,13 @@
 //!   these colours on the fibres the path tracer sees.
 //!
 //! Every file is written under a temporary name and renamed into place.
+//!
+//! [`usd`] writes the render strands of every frame of a run, for other tools (Blender,
+//! Houdini): USD ASCII `BasisCurves` with a time sample per frame (`wisp render --curves`).
 
 pub mod cyhair;
 pub mod mitsuba;
+pub mod usd;
 
 use std::path::{Path, PathBuf};
 

@@ -8,6 +8,7 @@
 mod support;
 
 mod basics;
+mod curves;
 mod deploy;
 mod export;
 mod fiber;

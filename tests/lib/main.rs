@@ -55,3 +55,4 @@ mod sim_alloc;
 mod sim_dance;
 mod sim_rest;
 mod sim_still_frames;
+mod usd_curves;

@@ -5,7 +5,9 @@
 //! through a bounded channel to a writer thread that encodes and writes them
 //! (`wisp::output::FrameWriter`: temporary name, then rename, so an interrupted export leaves
 //! complete frames only). Pixel buffers travel back on a second channel, so the export
-//! allocates nothing per frame once running.
+//! allocates nothing per frame once running. With `--curves`, each rendered frame's strands
+//! are appended to the curves file on the calling thread ([`super::curves`]), which is renamed
+//! into place after the last frame.
 //!
 //! A progress bar (indicatif) shows frames done, frames per second and the time left on a
 //! terminal; it is hidden with `--quiet` and when stderr is not a terminal, where a line every
@@ -13,6 +15,7 @@
 //! wrong or empty ([`warn_about_first_frame`]); at the end the mean stage timings and what was
 //! written and kept go to stderr.
 
+use super::curves::CurvesExport;
 use super::{FrameOutput, FramePlan};
 use crate::cli::AppError;
 use indicatif::ProgressBar;
@@ -37,6 +40,8 @@ enum Stop {
     Hair(AppError),
     /// The writer thread stopped (a write failed) before this frame.
     Writer(u32),
+    /// Writing the frame's curves failed.
+    Curves(AppError),
 }
 
 /// Renders the frames of `plan` not kept and writes them to `output` as `frame_NNNNN.EXT`
@@ -51,6 +56,15 @@ pub fn export_frames(
     started: Instant,
     hair_at: impl FnMut(&mut Engine, u32) -> Result<f64, AppError>,
 ) -> Result<(), AppError> {
+    let mut curves = match &output.curves {
+        Some(c) => Some(CurvesExport::start(
+            c,
+            engine,
+            plan.indices.clone(),
+            output.quiet,
+        )?),
+        None => None,
+    };
     let mut writer = FrameWriter::start(output.dir.clone(), output.format);
     let last = plan.last_to_render();
     let free = plan
@@ -62,11 +76,18 @@ pub fn export_frames(
     let bar = progress_bar(plan.indices.len(), output.quiet);
     bar.set_position(free as u64);
     bar.reset_eta();
-    let (tally, stop) = render_frames(engine, plan, output, &mut writer, &bar, hair_at);
+    let (tally, stop) = render_frames(
+        engine,
+        plan,
+        output,
+        (&mut writer, curves.as_mut()),
+        &bar,
+        hair_at,
+    );
     bar.finish_and_clear();
     let output_s = writer.finish().map_err(AppError::other)?;
     match stop {
-        Some(Stop::Hair(e)) => return Err(e),
+        Some(Stop::Hair(e) | Stop::Curves(e)) => return Err(e),
         Some(Stop::Writer(i)) => {
             return Err(AppError::other(anyhow::anyhow!(
                 "frame {i}: the frame writer stopped"
@@ -77,7 +98,7 @@ pub fn export_frames(
     if !output.quiet {
         report(&tally, &output_s, plan, output, started);
     }
-    Ok(())
+    curves.map_or(Ok(()), |c| c.finish(output.quiet))
 }
 
 /// Whether frame `i` needs no work at all: it is `kept`, and either frames are independent
@@ -87,12 +108,13 @@ fn passes_freely(i: u32, kept: bool, output: &FrameOutput, last: Option<u32>) ->
 }
 
 /// The loop over the frames: each frame's hair put in place, then rendered and handed to
-/// `writer` (or, for a kept frame, only simulated through), with the progress on `bar`.
+/// `writer` and to `curves` (or, for a kept frame, only simulated through), with the progress
+/// on `bar`.
 fn render_frames(
     engine: &mut Engine,
     plan: &FramePlan,
     output: &FrameOutput,
-    writer: &mut FrameWriter,
+    (writer, mut curves): (&mut FrameWriter, Option<&mut CurvesExport>),
     bar: &ProgressBar,
     mut hair_at: impl FnMut(&mut Engine, u32) -> Result<f64, AppError>,
 ) -> (Tally, Option<Stop>) {
@@ -125,6 +147,11 @@ fn render_frames(
         tally.timings.add(&engine.timings);
         if writer.write(engine.framebuffer(), background, i).is_err() {
             return (tally, Some(Stop::Writer(i)));
+        }
+        if let (Some(c), Some(out)) = (curves.as_deref_mut(), &output.curves)
+            && let Err(e) = c.add(engine, out, i)
+        {
+            return (tally, Some(Stop::Curves(e)));
         }
         bar.inc(1);
         let done = bar.position();
