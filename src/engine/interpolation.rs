@@ -101,17 +101,15 @@ impl InterpolationPass {
         }]
     }
 
-    /// The interpolation of each 0.2 s slice of the settle and warm-up.
+    /// The interpolation at the end of the settle and warm-up (`Engine::run_up_to`), none when
+    /// nothing is simulated before the first frame.
     pub fn work_before_first_frame(sizes: &RunSizes) -> WorkPart {
+        let times = sizes.warm_up_slices.min(1.0);
         WorkPart {
             what: "warm-up interpolation",
-            product: format!(
-                "{} render points × {} slices of 0.2 s",
-                grouped(sizes.points),
-                sizes.warm_up_slices
-            ),
-            cpu_s: sizes.points as f64 * sizes.warm_up_slices * cost_ns::POINT_INTERP * 1e-9,
-            set_by: "render strands × strands.points (× --segment-pieces), --start-s",
+            product: format!("{} render points × {times}", grouped(sizes.points)),
+            cpu_s: sizes.points as f64 * times * cost_ns::POINT_INTERP * 1e-9,
+            set_by: "render strands × strands.points (× --segment-pieces)",
         }
     }
 }

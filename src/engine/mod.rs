@@ -60,7 +60,7 @@ pub use raster::{
 };
 pub use setup::{fit_style_to_character, roots_of_guides_on_head, roots_on_head, write_colliders};
 pub use shading::{ShadingConfig, ShadingInput, ShadingPass};
-pub use simulation::{SimulationConfig, SimulationPass};
+pub use simulation::{GROOM_SETTLE_STEP_S, SimulationConfig, SimulationPass};
 pub use sizes::{RunSizes, SizedBy};
 pub use skin_texture::{SkinTextureConfig, SkinTexturePass};
 pub use timings::{MapPartTimings, StageTimings};
@@ -198,12 +198,17 @@ impl Engine {
     }
 
     /// Simulates from the current time up to `t_s` in slices of 0.2 s (the simulation caps its
-    /// catch-up per call), so that a first frame late in the clip has the hair's history.
+    /// catch-up per call), so that a first frame late in the clip has the hair's history. The
+    /// render strands are interpolated once, at `t_s` (they follow from the guides alone).
     pub fn run_up_to(&mut self, t_s: f64) {
         let mut t = self.simulation.state.time_s;
         while t < t_s {
             t = (t + 0.2).min(t_s);
-            self.advance(t);
+            if t < t_s {
+                self.animate_and_simulate(t);
+            } else {
+                self.advance(t);
+            }
         }
     }
 
@@ -212,6 +217,18 @@ impl Engine {
         let t0 = Instant::now();
         self.animation.run(t_s);
         let t1 = Instant::now();
+        self.simulate(t_s);
+        self.interpolate([t0, t1, Instant::now()]);
+    }
+
+    /// Animation and simulation up to time `t_s`, without the render strands.
+    fn animate_and_simulate(&mut self, t_s: f64) {
+        self.animation.run(t_s);
+        self.simulate(t_s);
+    }
+
+    /// The simulation up to `t_s` on the animation's motion and pose.
+    fn simulate(&mut self, t_s: f64) {
         self.simulation.run(
             t_s,
             self.animation.motion(),
@@ -219,7 +236,6 @@ impl Engine {
             &self.guides,
             head_radii_m(&self.style),
         );
-        self.interpolate([t0, t1, Instant::now()]);
     }
 
     /// Animation and interpolation at time `t_s` with the guide particles set to `positions`

@@ -8,7 +8,7 @@ use super::sizes::RunSizes;
 use crate::budget::{MemoryPart, WorkPart, cost_ns, grouped};
 use crate::hairstyle::{GuideSet, Hairstyle};
 use crate::motion::{Motion, Pose};
-use crate::sim::{Colliders, SimState, Simulator, StepStats};
+use crate::sim::{CoarseSettle, Colliders, SimState, Simulator, StepStats};
 use glam::Vec3;
 
 /// How the guides move.
@@ -26,7 +26,15 @@ pub struct SimulationConfig {
     /// `dynamics.step_s`). Every parameter is a rate per unit time, so a step changes only the
     /// discretisation error (ACCURACY.md §4's step table).
     pub step_s: Option<f32>,
+    /// The step of the settle but its last [`crate::sim::SETTLE_TAIL_S`], seconds, when longer than the
+    /// simulation's (`crate::sim::settle`; default `None`: the simulation's step throughout).
+    /// Imported grooms settle in [`GROOM_SETTLE_STEP_S`].
+    pub settle_step_s: Option<f32>,
 }
+
+/// The settle step of imported grooms, seconds (`crate::sim::settle`: 4× fewer steps before
+/// the first frame than at 1/480 s).
+pub const GROOM_SETTLE_STEP_S: f32 = 1.0 / 60.0;
 
 impl Default for SimulationConfig {
     fn default() -> Self {
@@ -35,6 +43,7 @@ impl Default for SimulationConfig {
             self_collision: true,
             settle_s: 2.0,
             step_s: None,
+            settle_step_s: None,
         }
     }
 }
@@ -56,6 +65,8 @@ pub struct SimulationPass {
     scratch_pose: Pose,
     /// Figures of the last advance.
     pub stats: StepStats,
+    /// The settle in coarse steps, while it lasts (`SimulationConfig::settle_step_s`).
+    settle: Option<CoarseSettle>,
 }
 
 impl SimulationPass {
@@ -72,12 +83,19 @@ impl SimulationPass {
         let mut sim = Simulator::from_hairstyle(&stepped, guides);
         sim.set_self_collision(config.self_collision);
         let state = SimState::at_rest(guides, &colliders_of(pose, head_radii_m), -config.settle_s);
+        let settle = config
+            .settle_step_s
+            .filter(|_| config.simulate)
+            .and_then(|coarse| {
+                CoarseSettle::start(&mut sim, &state, 0.0, coarse, crate::sim::SETTLE_TAIL_S)
+            });
         Self {
             config,
             sim,
             state,
             scratch_pose: pose.clone(),
             stats: StepStats::default(),
+            settle,
         }
     }
 
@@ -93,12 +111,24 @@ impl SimulationPass {
     ) {
         if self.config.simulate {
             let scratch_pose = &mut self.scratch_pose;
-            let colliders_at = |t: f64, c: &mut Colliders| {
+            let mut colliders_at = |t: f64, c: &mut Colliders| {
                 motion.sample_into(t.max(0.0) as f32, scratch_pose);
                 write_colliders(scratch_pose, head_radii_m, c);
             };
             self.sim.set_self_collision(self.config.self_collision);
-            self.stats = self.sim.advance(&mut self.state, t_s, colliders_at);
+            let mut settled = StepStats::default();
+            if let Some(settle) = self.settle {
+                let (stats, done) =
+                    settle.advance(&mut self.sim, &mut self.state, t_s, &mut colliders_at);
+                if !done {
+                    self.stats = stats;
+                    return;
+                }
+                self.settle = None;
+                settled = stats;
+            }
+            let stats = self.sim.advance(&mut self.state, t_s, colliders_at);
+            self.stats = settled.then(stats);
         } else {
             let head = pose.head;
             for (p, r) in self.state.positions.iter_mut().zip(&guides.rest) {
@@ -142,7 +172,7 @@ impl SimulationPass {
                 0.0,
             )
         } else if config.simulate {
-            let steps = ((sizes.before_first_s + sizes.frame_s) / sizes.step_s).ceil();
+            let steps = steps_before_first_frame(config, sizes);
             (
                 format!(
                     "{} guide particles × {} steps of {:.4} s",
@@ -168,5 +198,20 @@ impl SimulationPass {
             cpu_s,
             set_by: "wisps.count × guides.links, dynamics.step_s, --start-s",
         }
+    }
+}
+
+/// Steps the simulation takes before the first frame is drawn: the settle's coarse steps
+/// (`SimulationConfig::settle_step_s`), then steps of the simulation's own step up to the end of
+/// the first frame.
+fn steps_before_first_frame(config: &SimulationConfig, sizes: &RunSizes) -> f64 {
+    let fine_s = sizes.before_first_s + sizes.frame_s;
+    let coarse_span_s = config.settle_s.min(sizes.before_first_s) - crate::sim::SETTLE_TAIL_S;
+    match config.settle_step_s {
+        Some(coarse) if f64::from(coarse) > sizes.step_s && coarse_span_s > 0.0 => {
+            (coarse_span_s / f64::from(coarse)).ceil()
+                + ((fine_s - coarse_span_s) / sizes.step_s).ceil()
+        }
+        _ => (fine_s / sizes.step_s).ceil(),
     }
 }

@@ -53,7 +53,7 @@ pub struct RunSizes {
     pub before_first_s: f64,
     pub frame_s: f64,
     pub step_s: f64,
-    /// Slices of 0.2 s the engine advances in before the first frame, interpolating each time.
+    /// Slices of 0.2 s the engine advances in before the first frame.
     pub warm_up_slices: f64,
 }
 

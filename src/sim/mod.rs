@@ -16,7 +16,7 @@
 //! loop, `guide_step.rs` for one guide's stages and their equations, `shape.rs` for the rest
 //! shape and the hair each particle stands for, `bend.rs` for the bending constants and
 //! damping, `collide.rs` for collisions and their order, `density.rs` for self-collision
-//! (§4.1).
+//! (§4.1), `settle.rs` for settling in coarse steps before the first frame.
 //!
 //! Every parameter is a rate or a frequency per unit time, converted to per-step factors with
 //! exact solutions over the step (`bend.rs`, `density.rs`), so the model is the same at any
@@ -38,6 +38,7 @@ pub mod collide;
 pub mod dance;
 pub mod density;
 mod guide_step;
+pub mod settle;
 mod shape;
 pub mod state;
 pub mod step;
@@ -46,6 +47,7 @@ pub use bend::bending_frequency_rad_s;
 pub use capsule::CapsuleCollider;
 pub use collide::{COLLISION_MARGIN_M, Colliders, SphereCollider};
 pub use density::MAX_NODES as DENSITY_GRID_MAX_NODES;
+pub use settle::{CoarseSettle, SETTLE_TAIL_S};
 pub use state::SimState;
 pub use step::{Simulator, StepStats};
 

@@ -94,6 +94,20 @@ impl SimState {
         }
     }
 
+    /// Restarts the step clock at `t_s`: the next steps are at `t_s + n · step_s`, for the
+    /// simulator's step then (after [`super::Simulator::set_step_s`]), `step_ratio` times the
+    /// step before. The rest windows (`guide_step.rs`, rest) count steps, so each guide's count
+    /// is divided by `step_ratio`: a guide keeps the time it has been still, and a guide held
+    /// at rest stays held.
+    pub(crate) fn restart_clock(&mut self, t_s: f64, step_ratio: f64) {
+        self.time_s = t_s;
+        self.origin_s = t_s;
+        self.steps = 0;
+        for s in &mut self.still_steps {
+            *s = (f64::from(*s) / step_ratio).min(f64::from(u32::MAX)) as u32;
+        }
+    }
+
     /// Kinetic energy per unit particle mass, Σ ½|v|² in m²/s², with `v` the displacement of
     /// each particle over the last step divided by its duration (the motion one sees, not the
     /// integrator's corrected velocity; the two differ by the follow-the-leader correction,

@@ -60,6 +60,29 @@ pub struct StepStats {
     pub dropped_s: f64,
 }
 
+impl StepStats {
+    /// The figures of this advance followed by `later`: counts and skipped time summed, the
+    /// largest penetration, and the resting guides at the end.
+    pub fn then(self, later: StepStats) -> StepStats {
+        StepStats {
+            steps: self.steps + later.steps,
+            repelled_particles: self
+                .repelled_particles
+                .saturating_add(later.repelled_particles),
+            self_collision_skipped_steps: self.self_collision_skipped_steps
+                + later.self_collision_skipped_steps,
+            max_penetration_m: self.max_penetration_m.max(later.max_penetration_m),
+            reset_guides: self.reset_guides.saturating_add(later.reset_guides),
+            resting_guides: if later.steps > 0 {
+                later.resting_guides
+            } else {
+                self.resting_guides
+            },
+            dropped_s: self.dropped_s + later.dropped_s,
+        }
+    }
+}
+
 /// Advances guide strands in fixed steps (see the module doc).
 pub struct Simulator {
     params: SimParams,
@@ -150,6 +173,18 @@ impl Simulator {
         } else {
             0
         }
+    }
+
+    /// Changes the step to `step_s` (sanitised as in [`Simulator::new`]) and the per-step
+    /// constants that follow from it (`bend.rs`, `guide_step.rs`). A state's step clock counts
+    /// steps of the old step: restart it ([`SimState::restart_clock`]) before advancing it.
+    pub fn set_step_s(&mut self, step_s: f32) {
+        let mut params = self.params.clone();
+        params.step_s = step_s;
+        self.params = params.sanitized();
+        self.consts = Consts::new(&self.params);
+        self.shape.damping_weights =
+            super::bend::damping_weights(self.consts.bend_damp, self.shape.points_per_guide);
     }
 
     /// The (sanitised) parameters in use.

@@ -78,7 +78,11 @@ impl SceneArgs {
         let motion = self.motion.load()?;
         let (style, hair) = self.hair.load()?;
         let (scene, quality) = self.scene_file.scene(&style, &motion)?;
-        let config = self.config(scene, quality.unwrap_or(self.default_quality));
+        let mut config = self.config(scene, quality.unwrap_or(self.default_quality));
+        if hair.is_some() {
+            // An imported groom's hair falls from its captured pose: settle it in coarse steps.
+            config.simulation.settle_step_s = Some(wisp::engine::GROOM_SETTLE_STEP_S);
+        }
         self.hair
             .check_roots_on_head(&style, &hair, &motion, &self.motion.source())?;
         Ok((style, hair, motion, config))
