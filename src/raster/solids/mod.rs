@@ -4,7 +4,7 @@
 //! - [`draw_ellipsoid`] (`ellipsoid`): an ellipsoid (the head, body spheres) ray cast per
 //!   pixel over its exact screen box, with an anti-aliased silhouette.
 //! - [`draw_mesh`] (`mesh`): a triangle mesh (a character), four visibility samples a pixel
-//!   and one shade a pixel.
+//!   and one shade a pixel and layer (the surfaces its samples see).
 //!
 //! Both shade through a caller's closure, blend colour and coverage by the covered fraction
 //! with "over", and write depth only where a pixel is at least about half covered (the

@@ -13,15 +13,18 @@
 //! 2. **Visibility** (`visibility`, parallel over bands): four samples per pixel keep the
 //!    nearest triangle and its depth. Samples start at the framebuffer's depth, so solids
 //!    drawn before (the head ellipsoid) hide what is behind them.
-//! 3. **Shading** (`shading`, the same band task): a covered pixel is shaded once, at its
-//!    first covered sample, and blended by its covered fraction.
+//! 3. **Shading** (`shading`, the same band task): a covered pixel is shaded once per layer
+//!    its samples see (one surface at one depth: once inside a surface, once for each side of
+//!    an edge where one part of the body passes in front of another or two materials meet),
+//!    the layers averaged by their samples, and blended by its covered fraction.
 //!
 //! Deterministic for any thread count: a band is drawn by one task, its triangles in input
 //! order, with strict depth tests (the first triangle wins a tie).
 //!
 //! Why this design: shading dominates (each pixel of skin reads the light map, about 100 ns),
-//! so visibility first and one shade per pixel costs the least; multisampling only the
-//! visibility buys anti-aliased silhouettes for four depth tests per pixel. Rejected: shading
+//! so visibility first and one shade per pixel and layer costs the least; multisampling only
+//! the visibility buys anti-aliased silhouettes, inner edges included, for four depth tests
+//! per pixel and a second shade on the few pixels along those edges. Rejected: shading
 //! in the raster loop (overdraw shades hidden pixels: a body has 2–3 layers where arms cross
 //! it) and per-vertex (Gouraud) lighting, which blurs hair shadows over the 2–5 cm between a
 //! low-poly mesh's vertices.
@@ -92,6 +95,7 @@ pub fn draw_mesh(
     let tris = &scratch.tris;
     let bins = &scratch.bins;
     let rows = BAND_ROWS * w;
+    let inv_focal_px = 1.0 / view.focal_px;
     fb.color
         .par_chunks_mut(rows)
         .zip(fb.depth.par_chunks_mut(rows))
@@ -140,7 +144,7 @@ pub fn draw_mesh(
                 depth,
                 coverage,
             };
-            shade_band(&band, tris, mesh, &shade, samples, px);
+            shade_band(&band, tris, mesh, &shade, samples, (px, inv_focal_px));
         });
 }
 

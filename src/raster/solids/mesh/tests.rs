@@ -125,3 +125,67 @@ fn near_plane_and_hostile_input() {
     draw(&mut fb, &cam, &p, &n[..3], &t, true);
     assert!(fb.coverage.iter().all(|a| *a == 0.0));
 }
+
+/// Where a nearer part of the mesh passes in front of a farther part (an arm before the trunk),
+/// the edge is anti-aliased as a silhouette is: a triangle at z = 0.5 with a sloped edge over a
+/// square at z = 0, one surface, shaded by depth (0.5 in front, 0 behind). Every pixel is fully
+/// covered, and the pixels the sloped edge crosses take the average of the samples' layers:
+/// strictly between 0 and 0.5 (with one shade per pixel each would be exactly 0 or 0.5). The
+/// sloped edges cross every row of the triangle's projected height (about 24 of the 64 × 64
+/// image), each row with at least one intermediate pixel; interior pixels keep exactly their
+/// layer's shade.
+#[test]
+fn an_inner_edge_between_two_depths_is_anti_aliased() {
+    let cam = Camera::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, Vec3::Y, 0.8, 64, 64);
+    let (mut p, mut n, mut t) = quad_mesh(0.0, 0.8);
+    let base = p.len() as u32;
+    p.extend([
+        Vec3::new(-0.3, -0.4, 0.5),
+        Vec3::new(0.3, -0.35, 0.5),
+        Vec3::new(-0.05, 0.4, 0.5),
+    ]);
+    n.extend([Vec3::Z; 3]);
+    t.push([base, base + 1, base + 2]);
+    let surfaces = [Surface {
+        albedo: Vec3::ONE,
+        texture: None,
+        double_sided: false,
+    }];
+    let ts = vec![0u16; t.len()];
+    let mesh = Mesh {
+        positions: &p,
+        normals: &n,
+        uv: &[],
+        triangles: &t,
+        triangle_surface: &ts,
+        surfaces: &surfaces,
+        textures: &[],
+    };
+    let mut fb = Framebuffer::new(64, 64, Vec3::ZERO);
+    let mut scratch = MeshScratch::default();
+    draw_mesh(
+        &mut fb,
+        &cam,
+        &mesh,
+        |q, _, _| Vec3::splat(q.z),
+        &mut scratch,
+    );
+    let mut rows_with_mix = 0;
+    for y in 0..64 {
+        let row = &fb.color[y * 64..(y + 1) * 64];
+        if row.iter().any(|c| c.x > 0.01 && c.x < 0.49) {
+            rows_with_mix += 1;
+        }
+    }
+    // The triangle spans y from −0.4 to 0.4 at depth 2.5: 0.8·f/2.5 ≈ 24.4 pixel rows
+    // (f = 32/tan 0.4 ≈ 76.1).
+    let f = cam.focal_px();
+    let rows = 0.8 * f / 2.5;
+    assert!(
+        rows_with_mix as f32 >= rows - 2.0,
+        "{rows_with_mix} of {rows}"
+    );
+    assert_eq!(fb.coverage[32 * 64 + 32], 1.0);
+    assert!((fb.color[32 * 64 + 30].x - 0.5).abs() < 1e-5);
+    assert_eq!(fb.color[5 * 64 + 5].x, 0.0);
+}
