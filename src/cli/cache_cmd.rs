@@ -132,7 +132,7 @@ fn cache_header(
     frames: u32,
     start_s: f64,
 ) -> CacheHeader {
-    let label = args.scene.motion.label(motion);
+    let label = args.scene.motion.label(motion, !config.scene.draw_solids);
     let expected = Expected::new(style, motion, &label);
     CacheHeader {
         frames,
@@ -213,7 +213,7 @@ pub fn render_from_cache(args: RenderArgs) -> Result<(), AppError> {
     };
     let (style, hair, motion, mut config) = args.scene.resolve()?;
     refuse_imported(&hair)?;
-    let label = args.scene.motion.label(&motion);
+    let label = args.scene.motion.label(&motion, !config.scene.draw_solids);
     let expected = Expected::new(&style, &motion, &label);
     let mut reader = CacheReader::open(&path, &expected).map_err(cache_error)?;
     let header = reader.header().clone();

@@ -143,6 +143,12 @@ pub fn parse_rgb(s: &str) -> Result<Vec3, String> {
 #[cfg(test)]
 mod tests;
 
+/// A camera framing by name (`wisp::scene::Framing`).
+pub fn parse_framing(s: &str) -> Result<wisp::scene::Framing, String> {
+    wisp::scene::Framing::from_name(s)
+        .ok_or_else(|| format!("must be head, upper or full (got {s:?})"))
+}
+
 /// A quality level by name (`wisp::quality::Quality`).
 pub fn parse_quality(s: &str) -> Result<wisp::quality::Quality, String> {
     wisp::quality::Quality::from_name(s)

@@ -45,7 +45,7 @@ mod skin_texture;
 mod timings;
 
 pub use animation::AnimationPass;
-pub use camera::CameraPass;
+pub use camera::{CameraPass, FramingInput};
 pub use config::EngineConfig;
 pub use estimate::{estimate, fit_map_resolution};
 pub use hair_map::{
@@ -462,12 +462,13 @@ impl Engine {
 
     /// Places the camera once the hair has settled.
     fn place_camera(&mut self) {
-        self.camera.place(
-            &self.scene,
-            &self.interpolation.strands().positions,
-            self.animation.pose(),
-            self.style.max_length_m(),
-        );
+        let input = FramingInput {
+            strand_positions: &self.interpolation.strands().positions,
+            pose: self.animation.pose(),
+            motion: self.animation.motion(),
+            max_length_m: self.style.max_length_m(),
+        };
+        self.camera.place(&self.scene, input);
     }
 
     /// Sets where the camera is and places it at once: a fixed camera as given, a

@@ -50,6 +50,7 @@ mod clip;
 pub mod colliders;
 pub mod dance;
 mod error;
+mod extent;
 pub mod fit;
 mod gltf_io;
 mod joints;
@@ -65,6 +66,7 @@ pub mod skin;
 pub mod texture;
 
 pub use error::MotionError;
+pub use extent::FigureExtent;
 pub use fit::HAIRSTYLE_HEAD_RADIUS_M;
 pub use gltf_io::{MAX_BUFFER_BYTES, MAX_DECODED_VALUES, MAX_FILE_BYTES, MAX_JSON_CONTAINERS};
 pub use options::{Fit, JointRef, MotionOptions, SphereSpec};

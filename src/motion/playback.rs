@@ -1,6 +1,7 @@
 //! A loaded motion ([`Motion`]): the clip's evaluated nodes and tracks, the head joint and the
 //! fit, the body colliders and the character, with what it says of itself (clip, fit,
-//! duration, memory) and its simplest constructor, a still pose. Building one from a file is
+//! duration, memory), its simplest constructor (a head alone, still) and the clip's first pose
+//! held still ([`Motion::held_still`]). Building one from a file is
 //! `load.rs` ([`Motion::load`]), the embedded dance `dance.rs`, sampling one `pose.rs`.
 
 use glam::{Affine3A, Quat, Vec3};
@@ -66,6 +67,36 @@ impl Motion {
             head_joint_name: "still".to_string(),
             head_joint_index: 0,
         }
+    }
+
+    /// The clip's first pose held still: every evaluated node keeps its transform at the
+    /// clip's first key, and the whole figure is moved so that the head centre is at the
+    /// origin (the head frame is the first pose's rotation and no translation, up to rounding),
+    /// as [`Motion::still`] puts the head there. The character, its colliders and the fit stay,
+    /// so hair sits on a standing body instead of a head alone. Duration 0.
+    ///
+    /// The first key rather than the bind pose: a rig's bind pose is often a T-pose with the
+    /// arms through the hair's fall, while the first key is a pose the clip was made to start
+    /// from and the one the moving run settles its hair on.
+    pub fn held_still(mut self) -> Motion {
+        let clip_t = self.start_s;
+        let mut pose = super::Pose::default();
+        self.pose_at_clip_time(clip_t, &mut pose);
+        // The head centre in model units (the pose world is the model's divided by the scale).
+        let centre_model = Vec3::from(pose.head.translation) * self.fit.scale;
+        let to_origin = Affine3A::from_translation(-centre_model);
+        for node in &mut self.nodes {
+            let local = node.local(clip_t);
+            node.rest_matrix = Some(match node.parent {
+                None => to_origin * local,
+                Some(_) => local,
+            });
+            node.translation = None;
+            node.rotation = None;
+            node.scale = None;
+        }
+        self.duration_s = 0.0;
+        self
     }
 
     /// Heap bytes held: the key times and values of the evaluated nodes' tracks.

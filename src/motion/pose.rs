@@ -91,10 +91,14 @@ impl Motion {
     /// the pose world. Allocation-free once `out` has held this character. Does nothing
     /// without a character.
     pub fn pose_character(&self, t_s: f32, out: &mut CharacterPose) {
+        self.pose_character_at_clip_time(self.clip_time_s(t_s), out);
+    }
+
+    /// [`Self::pose_character`] at clip time `clip_t` (seconds within the key range).
+    pub(super) fn pose_character_at_clip_time(&self, clip_t: f32, out: &mut CharacterPose) {
         let Some(ch) = &self.character else {
             return;
         };
-        let clip_t = self.clip_time_s(t_s);
         out.node_worlds.clear();
         for node in &self.nodes {
             let local = node.local(clip_t);

@@ -1,5 +1,6 @@
 //! Where the camera is: a validated fixed camera ([`CameraSpec`]) or the engine's own framing
-//! that follows the head ([`HeadFollowing`]), chosen by [`CameraSetup`].
+//! (close on the head and following it, [`HeadFollowing`], or the figure's upper half or
+//! whole, `super::framing`), chosen by [`CameraSetup`].
 //!
 //! What: the user-facing camera description, checked once when it is made, so every later
 //! stage can take it as given; [`crate::raster::Camera`] is the raster's plain-data pinhole
@@ -14,6 +15,7 @@
 // `!(a > b)` on purpose: unlike `a <= b` it is also true for NaN, so one test rejects both.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+use super::Framing;
 use crate::raster::Camera;
 use glam::{Affine3A, Vec3};
 
@@ -112,14 +114,21 @@ impl CameraSpec {
 }
 
 /// How the engine places its camera.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum CameraSetup {
-    /// Frame the settled hair at a three-quarter front view of the first pose, then follow the
-    /// head's translation ([`HeadFollowing`]); the default.
-    #[default]
-    HeadFollowing,
+    /// The engine's own camera, at a three-quarter front view of the first pose, showing as
+    /// much of the figure as the [`Framing`] says (`None`: [`Framing::default_for`] the
+    /// motion); `head` follows the head's translation ([`HeadFollowing`]), `upper` and `full`
+    /// stand still. The default.
+    Framed(Option<Framing>),
     /// A camera fixed in the world.
     Fixed(CameraSpec),
+}
+
+impl Default for CameraSetup {
+    fn default() -> Self {
+        CameraSetup::Framed(None)
+    }
 }
 
 /// The head-following framing: the target and eye as offsets from the head's position, fixed

@@ -20,8 +20,11 @@
 //! }
 //! ```
 //!
-//! - `camera`: `{"type": "follow_head"}` (frames the settled hair from three-quarters front and
-//!   follows the head), or `{"type": "fixed", "position_m": [x, y, z], "target_m": [x, y, z],
+//! - `camera`: `{"type": "follow_head", "framing": "upper"}`: the engine's own camera, from
+//!   three-quarters front; `framing` (optional) is `"head"` (the settled hair, following the
+//!   head), `"upper"` (head to hips) or `"full"` (the whole figure), the last two framed on the
+//!   character's whole clip and still ([`Framing`]; absent: `upper` when a character's body is
+//!   drawn, else `head`). Or `{"type": "fixed", "position_m": [x, y, z], "target_m": [x, y, z],
 //!   "up": [0, 1, 0], "fov_y_deg": 30}` (`up` and `fov_y_deg` optional).
 //! - `lights`: one or more (at most [`MAX_LIGHTS`]); each gets its own map. `directional`:
 //!   `direction` the light travels (any non-zero vector, world, Y up) and `irradiance` on a
@@ -39,6 +42,7 @@
 //! rule, naming the field (`lights[1].intensity`) and the rule.
 
 use super::camera::{CameraError, CameraSetup, CameraSpec};
+use super::framing::Framing;
 use crate::light::{Light, LightError};
 use crate::quality::Quality;
 use glam::Vec3;
@@ -76,12 +80,16 @@ pub struct ImageSize {
 }
 
 /// The camera as written.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum CameraJson {
-    /// Frame the settled hair and follow the head (the default).
-    #[default]
-    FollowHead,
+    /// The engine's own camera (the default): `framing` `head` (the settled hair, following
+    /// the head), `upper` or `full` ([`Framing`]); absent, the motion's default
+    /// ([`Framing::default_for`]).
+    FollowHead {
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        framing: Option<Framing>,
+    },
     /// Fixed in the world.
     Fixed {
         position_m: [f32; 3],
@@ -91,6 +99,12 @@ pub enum CameraJson {
         #[serde(default = "default_fov_deg")]
         fov_y_deg: f32,
     },
+}
+
+impl Default for CameraJson {
+    fn default() -> Self {
+        CameraJson::FollowHead { framing: None }
+    }
 }
 
 fn default_up() -> [f32; 3] {
@@ -122,7 +136,7 @@ impl Default for SceneFile {
                 width: 800,
                 height: 800,
             },
-            camera: CameraJson::FollowHead,
+            camera: CameraJson::default(),
             lights: vec![LightJson::Directional {
                 direction: crate::light::DEFAULT_LIGHT_TRAVEL,
                 irradiance: [6.0; 3],
@@ -192,7 +206,7 @@ impl Default for Scene {
         Scene {
             width: 800,
             height: 800,
-            camera: CameraSetup::HeadFollowing,
+            camera: CameraSetup::default(),
             lights: vec![crate::light::default_light()],
             ambient: Vec3::new(0.035, 0.04, 0.05),
             background: Vec3::new(0.012, 0.014, 0.018),
@@ -309,7 +323,7 @@ impl SceneFile {
     /// is reported at the field it names).
     fn camera_setup(&self) -> Result<CameraSetup, (String, String)> {
         Ok(match self.camera {
-            CameraJson::FollowHead => CameraSetup::HeadFollowing,
+            CameraJson::FollowHead { framing } => CameraSetup::Framed(framing),
             CameraJson::Fixed {
                 position_m,
                 target_m,

@@ -197,3 +197,42 @@ fn export_refuses_scenes_it_cannot_describe() {
     assert!(text(&o.stderr).contains("one directional light"));
     assert!(!out.join("scene.json").exists());
 }
+
+/// `--framing` writes the engine camera's framing into the scene (`--print-scene` shows it),
+/// and is refused (exit 2, naming the flag) for an unknown name, beside `--camera-eye`, and
+/// over a scene file whose camera is fixed.
+#[test]
+fn framing_flag_is_written_into_the_scene_and_refused_where_it_cannot_apply() {
+    let printed = wisp(&["render", "--print-scene", "--framing", "full"]);
+    assert_eq!(printed.status.code(), Some(0), "{}", text(&printed.stderr));
+    let out = text(&printed.stdout);
+    assert!(out.contains("\"framing\": \"full\""), "{out}");
+    let bad = wisp(&["render", "--print-scene", "--framing", "legs"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(text(&bad.stderr).contains("head, upper or full"));
+    let eye = [
+        "render",
+        "--print-scene",
+        "--framing",
+        "upper",
+        "--camera-eye",
+        "0,0,1",
+        "--camera-target",
+        "0,0,0",
+    ];
+    assert_eq!(wisp(&eye).status.code(), Some(2));
+    let dir = scratch_dir("scene-cli-framing");
+    let fixed = dir.join("fixed.json");
+    let camera = r#"{"camera": {"type": "fixed", "position_m": [0, 0, 1], "target_m": [0, 0, 0]}}"#;
+    std::fs::write(&fixed, camera).unwrap();
+    let o = wisp(&[
+        "render",
+        "--print-scene",
+        "--scene",
+        fixed.to_str().unwrap(),
+        "--framing",
+        "upper",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(text(&o.stderr).contains("--framing"), "{}", text(&o.stderr));
+}

@@ -19,6 +19,8 @@ const SCROLL_PER_NOTCH: f32 = 2.0;
 pub(super) struct ViewControl {
     /// The camera setup the engine started with (V returns to it).
     initial: CameraSetup,
+    /// Whether the engine's own camera followed the head (its `head` framing).
+    initial_follows_head: bool,
     orbit: Option<Orbit>,
     /// The last mouse position, pixels, while a button is held.
     last_mouse: Option<(f32, f32)>,
@@ -28,6 +30,7 @@ impl ViewControl {
     pub fn new(engine: &Engine) -> Self {
         ViewControl {
             initial: engine.scene.camera,
+            initial_follows_head: engine.camera.follows_head(),
             orbit: None,
             last_mouse: None,
         }
@@ -35,9 +38,10 @@ impl ViewControl {
 
     /// Where the orbit is anchored: the head's position for a head-following camera.
     fn offset_m(&self, engine: &Engine) -> Vec3 {
-        match self.initial {
-            CameraSetup::HeadFollowing => Vec3::from(engine.pose().head.translation),
-            CameraSetup::Fixed(_) => Vec3::ZERO,
+        if self.initial_follows_head {
+            Vec3::from(engine.pose().head.translation)
+        } else {
+            Vec3::ZERO
         }
     }
 

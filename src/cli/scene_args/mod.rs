@@ -75,7 +75,7 @@ impl SceneArgs {
     /// Loads the motion and the hairstyle (and an imported groom's hair), and builds the scene
     /// and the engine configuration; refuses a groom whose roots miss the character's head.
     pub fn resolve(&self) -> Result<(Hairstyle, ImportedHair, Motion, EngineConfig), AppError> {
-        let motion = self.motion.load()?;
+        let motion = self.motion.load(self.hair_alone()?)?;
         let (style, hair) = self.hair.load()?;
         let (scene, quality) = self.scene_file.scene(&style, &motion)?;
         let mut config = self.config(scene, quality.unwrap_or(self.default_quality));
@@ -86,6 +86,12 @@ impl SceneArgs {
         self.hair
             .check_roots_on_head(&style, &hair, &motion, &self.motion.source())?;
         Ok((style, hair, motion, config))
+    }
+
+    /// Whether no solids are drawn (`--no-solids`, or the scene file's `draw_solids`): with
+    /// `--still`, the motion is then the head alone (`MotionArgs::load`).
+    pub fn hair_alone(&self) -> Result<bool, AppError> {
+        Ok(!self.scene_file.effective()?.1.draw_solids)
     }
 
     /// The engine configuration: `scene`, each pass's config at `quality`, and the flags

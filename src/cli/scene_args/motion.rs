@@ -27,17 +27,32 @@ pub struct MotionArgs {
     /// Playback speed, 1 = real time, in (0, 1000]
     #[arg(long, value_name = "X", default_value_t = 1.0, value_parser = parse_speed, allow_hyphen_values = true)]
     pub speed: f32,
-    /// Hold the head still in its rest pose (no motion)
+    /// No motion: the character stands in the clip's first pose, its head at the origin (with
+    /// --no-solids, the head alone)
     #[arg(long)]
     pub still: bool,
 }
 
 impl MotionArgs {
-    /// The motion: still, the clip of the `--animation` file, or the embedded dance.
-    pub fn load(&self) -> Result<Motion, AppError> {
-        if self.still {
+    /// The motion: the clip of the `--animation` file or the embedded dance, held in its first
+    /// pose with `--still` ([`Motion::held_still`]). `hair_alone` (no solids drawn) with
+    /// `--still` gives the head alone at the origin ([`Motion::still`]): nothing of a body
+    /// would be seen, and hair hanging free from a bare head is the setup the comparisons with
+    /// path tracers (`tools/reference`) export.
+    pub fn load(&self, hair_alone: bool) -> Result<Motion, AppError> {
+        if self.still && hair_alone {
             return Ok(Motion::still(glam::Affine3A::IDENTITY));
         }
+        let motion = self.load_clip()?;
+        Ok(if self.still {
+            motion.held_still()
+        } else {
+            motion
+        })
+    }
+
+    /// The clip of the `--animation` file, or the embedded dance.
+    fn load_clip(&self) -> Result<Motion, AppError> {
         let opts = MotionOptions {
             clip: self.clip.clone(),
             head_joint: self
@@ -117,16 +132,21 @@ impl MotionArgs {
     }
 
     /// What the motion flags chose, for a simulation cache's header and messages.
-    pub fn label(&self, motion: &Motion) -> String {
-        if self.still {
+    /// `hair_alone` as [`Self::load`] took it.
+    pub fn label(&self, motion: &Motion, hair_alone: bool) -> String {
+        if self.still && hair_alone {
             return "--still (no motion)".to_string();
         }
-        format!(
-            "clip \"{}\" of {}, head joint \"{}\", speed {}",
+        let clip = format!(
+            "clip \"{}\" of {}, head joint \"{}\"",
             motion.clip_name(),
             self.source(),
             motion.head_joint().1,
-            motion.speed()
-        )
+        );
+        if self.still {
+            format!("--still: the first pose of {clip}")
+        } else {
+            format!("{clip}, speed {}", motion.speed())
+        }
     }
 }

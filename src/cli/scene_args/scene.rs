@@ -12,7 +12,7 @@ use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
 use wisp::quality::Quality;
 use wisp::scene::file::{CameraJson, LightJson};
-use wisp::scene::{Scene, SceneFile};
+use wisp::scene::{Framing, Scene, SceneFile};
 
 #[derive(clap::Args, Debug, Clone)]
 #[command(next_help_heading = "Scene")]
@@ -20,7 +20,12 @@ pub struct SceneFileArgs {
     /// Scene file (camera, lights, image, …); the flags override its fields
     #[arg(long, value_name = "FILE.json")]
     pub scene: Option<PathBuf>,
-    /// Fixed camera's eye, world metres [default: follow the head]
+    /// The engine's camera: head (close, following the head), upper (head to hips) or full
+    /// (the whole figure), the last two still [default: upper with a character's body drawn,
+    /// else head]
+    #[arg(long, value_name = "FRAMING", value_parser = crate::cli::parse_framing, conflicts_with = "camera_eye")]
+    pub framing: Option<Framing>,
+    /// Fixed camera's eye, world metres [default: the engine's own, --framing]
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_hyphen_values = true, requires = "camera_target")]
     pub camera_eye: Option<Vec3>,
     /// Fixed camera's target, world metres; needs --camera-eye
@@ -97,6 +102,16 @@ impl SceneFileArgs {
 
     /// Writes the camera, solids, irradiance, ambient and exposure flags into `scene`.
     fn write_view(&self, scene: &mut SceneFile) -> Result<(), AppError> {
+        if let Some(f) = self.framing {
+            match &mut scene.camera {
+                CameraJson::FollowHead { framing } => *framing = Some(f),
+                CameraJson::Fixed { .. } => {
+                    return Err(AppError::input(anyhow::anyhow!(
+                        "--framing chooses how the engine's own camera frames the figure, and the scene's camera is fixed (camera.type \"fixed\")"
+                    )));
+                }
+            }
+        }
         if let (Some(eye), Some(target)) = (self.camera_eye, self.camera_target) {
             scene.camera = CameraJson::Fixed {
                 position_m: eye.to_array(),

@@ -105,3 +105,38 @@ fn a_quality_level_is_read_and_printed_back_and_absent_by_default() {
     // The default scene names no level, so printing it says nothing of one.
     assert!(!SceneFile::default().to_json().contains("quality"));
 }
+
+/// `framing` of the engine's camera: each name is read (and printed back), absent leaves the
+/// choice to the motion (`None`); an unknown name, an unknown field beside it and a framing
+/// on a fixed camera are refused, naming the camera.
+#[test]
+fn the_follow_head_camera_takes_a_framing_and_refuses_what_it_does_not_know() {
+    for f in Framing::ALL {
+        let text = format!(
+            r#"{{"camera": {{"type": "follow_head", "framing": "{}"}}}}"#,
+            f.name()
+        );
+        let (file, scene) = SceneFile::from_json(&text, "s.json").unwrap();
+        assert_eq!(scene.camera, CameraSetup::Framed(Some(f)));
+        assert!(
+            file.to_json()
+                .contains(&format!("\"framing\": \"{}\"", f.name()))
+        );
+        assert_eq!(
+            SceneFile::from_json(&file.to_json(), "s.json").unwrap().0,
+            file
+        );
+    }
+    let (file, scene) =
+        SceneFile::from_json(r#"{"camera": {"type": "follow_head"}}"#, "s").unwrap();
+    assert_eq!(scene.camera, CameraSetup::Framed(None));
+    assert!(!file.to_json().contains("framing"));
+    for text in [
+        r#"{"camera": {"type": "follow_head", "framing": "legs"}}"#,
+        r#"{"camera": {"type": "follow_head", "framing": "upper", "zoom": 2}}"#,
+        r#"{"camera": {"type": "fixed", "position_m": [0, 0, 1], "target_m": [0, 0, 0], "framing": "upper"}}"#,
+    ] {
+        let (field, message) = refused(text);
+        assert!(field.starts_with("camera"), "{text}: {field}: {message}");
+    }
+}

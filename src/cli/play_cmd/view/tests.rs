@@ -25,7 +25,7 @@ fn the_mouse_camera_replaces_and_restores_the_engines() {
     engine.frame(0.1);
     assert_eq!(*engine.camera(), spec.camera(48, 32));
     assert_ne!(engine.camera().eye, first.eye);
-    engine.set_camera(CameraSetup::HeadFollowing);
+    engine.set_camera(CameraSetup::default());
     engine.frame(0.2);
     let back = engine.camera();
     assert!(
