@@ -8,7 +8,7 @@
 //! humanoid rig's head and colliders, against hundreds of nodes in the file, so sampling needs
 //! neither a hash map nor a pass over the whole hierarchy.
 
-use glam::{Affine3A, Mat3A, Quat, Vec3, Vec3A};
+use glam::{Affine3A, Mat3A, Quat, Vec3, Vec3A, Vec4};
 
 use super::clip::NodeTracks;
 use super::sampler::Track;
@@ -81,6 +81,8 @@ pub(crate) struct ChainSet<'a> {
     /// Index in `nodes` of each glTF node already evaluated.
     slot_of: Vec<Option<usize>>,
     nodes: Vec<ChainNode>,
+    /// Turn of the whole model, put on every root node ([`super::up_axis`]).
+    turn: Quat,
 }
 
 impl<'a> ChainSet<'a> {
@@ -92,7 +94,15 @@ impl<'a> ChainSet<'a> {
             tracks,
             slot_of: vec![None; skel.names.len()],
             nodes: Vec::new(),
+            turn: Quat::IDENTITY,
         }
+    }
+
+    /// Turns the whole model by `turn` (the same turn as the skeleton's,
+    /// [`Skeleton::turn_world`]): root nodes evaluated from now on are premultiplied by it.
+    pub(crate) fn turned(mut self, turn: Quat) -> Self {
+        self.turn = turn;
+        self
     }
 
     /// The chain of glTF node `joint`, evaluating the nodes on it that are not yet.
@@ -141,7 +151,7 @@ impl<'a> ChainSet<'a> {
         let is_matrix =
             nd.is_some_and(|nd| matches!(nd.transform(), gltf::scene::Transform::Matrix { .. }));
         let animated = t.is_some() || r.is_some() || s.is_some();
-        ChainNode {
+        let node = ChainNode {
             parent,
             rest_matrix: (is_matrix && !animated).then_some(m),
             rest_t: rt,
@@ -150,8 +160,28 @@ impl<'a> ChainSet<'a> {
             translation: t,
             rotation: r,
             scale: s,
+        };
+        if parent.is_none() && self.turn != Quat::IDENTITY {
+            turn_root(node, self.turn)
+        } else {
+            node
         }
     }
+}
+
+/// A root node premultiplied by `turn`: `turn·(T·R·S) = (turn·t)·(turn·r)·S`, applied to the
+/// rest values and to every key (both maps are linear, so they commute with interpolation).
+fn turn_root(mut node: ChainNode, turn: Quat) -> ChainNode {
+    node.rest_matrix = node.rest_matrix.map(|m| Affine3A::from_quat(turn) * m);
+    node.rest_t = turn * node.rest_t;
+    node.rest_r = turn * node.rest_r;
+    if let Some(track) = &mut node.translation {
+        track.map_values(|v| (turn * v.truncate()).extend(v.w));
+    }
+    if let Some(track) = &mut node.rotation {
+        track.map_values(|v| Vec4::from(turn * Quat::from_vec4(v)));
+    }
+    node
 }
 
 /// Rotation part of an affine map with its scale (and any shear) removed: the columns are

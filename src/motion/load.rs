@@ -12,7 +12,7 @@
 
 use std::path::Path;
 
-use glam::Vec3;
+use glam::{Quat, Vec3};
 
 use super::chain::ChainSet;
 use super::chain::JointChain;
@@ -26,6 +26,7 @@ use super::options::{Fit, MotionOptions};
 use super::playback::Motion;
 use super::skeleton::{Skeleton, build_skeleton};
 use super::skin::{Character, load_character};
+use super::up_axis::{standing_turn, topmost_head};
 
 impl Motion {
     /// Loads a glTF 2.0 motion from a `.glb` or `.gltf` file (recognised by content). Relative
@@ -71,17 +72,27 @@ pub(crate) fn from_bytes(
     }
     let loaded = parse(bytes, file, base_dir)?;
     let doc = &loaded.doc;
-    let skel = build_skeleton(doc, file)?;
+    let mut skel = build_skeleton(doc, file)?;
     let anim = choose_clip(doc, &loaded, opts.clip.as_deref(), file)?;
     let clip_name = anim
         .name()
         .map_or_else(|| format!("#{}", anim.index()), str::to_string);
-    let head = match &opts.head_joint {
-        Some(r) => resolve_joint(&skel, r, file, "head joint")?,
-        None => default_head(&skel, file)?,
+    let (head, head_is_topmost) = match &opts.head_joint {
+        Some(r) => (resolve_joint(&skel, r, file, "head joint")?, false),
+        None => match default_head(&skel, file) {
+            Ok(head) => (head, false),
+            Err(e) => (topmost_head(&skel).ok_or(e)?, true),
+        },
     };
+    let (turn, file_up) = if opts.keep_axes {
+        (Quat::IDENTITY, Vec3::Y)
+    } else {
+        standing_turn(&skel, head)
+    };
+    skel.turn_world(turn);
+    let skel = skel;
     let clip = read_clip(&anim, &loaded, file, &clip_name)?;
-    let mut chains = ChainSet::new(doc, &skel, clip.tracks);
+    let mut chains = ChainSet::new(doc, &skel, clip.tracks).turned(turn);
 
     let character = if opts.meshes {
         let in_head = skel.subtree(head);
@@ -131,6 +142,8 @@ pub(crate) fn from_bytes(
         head_half_extents_m,
         head_joint_name: skel.names[head].clone(),
         head_joint_index: head,
+        file_up,
+        head_is_topmost,
     };
     motion
         .check_reach()

@@ -64,6 +64,7 @@ pub mod scalp;
 mod skeleton;
 pub mod skin;
 pub mod texture;
+pub mod up_axis;
 
 pub use error::MotionError;
 pub use extent::FigureExtent;

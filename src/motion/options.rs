@@ -52,7 +52,7 @@ pub struct MotionOptions {
     pub clip: Option<String>,
     /// Head joint. Default: a skin joint (or any node if there is no skin) named "head"
     /// (case-insensitive), else the shortest name containing "head" and neither "end" nor
-    /// "top".
+    /// "top", else the topmost joint (see [`up_axis`](super::up_axis)).
     pub head_joint: Option<JointRef>,
     /// Hairstyle-to-joint fit. Default (`None`): automatic, see [`fit`](super::fit).
     pub fit: Option<Fit>,
@@ -68,6 +68,9 @@ pub struct MotionOptions {
     pub meshes: bool,
     /// Playback rate (1 = real time; negative plays backwards). Must be finite.
     pub speed: f32,
+    /// Keep the file's axes even when its model lies along another axis than +Y (default
+    /// false: such a model is turned upright, see [`up_axis`](super::up_axis)).
+    pub keep_axes: bool,
 }
 
 impl Default for MotionOptions {
@@ -80,6 +83,7 @@ impl Default for MotionOptions {
             body_capsules: true,
             meshes: true,
             speed: 1.0,
+            keep_axes: false,
         }
     }
 }

@@ -34,6 +34,11 @@ pub struct Motion {
     pub(crate) head_half_extents_m: Option<Vec3>,
     pub(crate) head_joint_name: String,
     pub(crate) head_joint_index: usize,
+    /// The world axis the model stood along in the file (+Y unless it was turned upright,
+    /// see [`super::up_axis`]).
+    pub(crate) file_up: Vec3,
+    /// The head joint was found as the topmost joint (no joint is named like "head").
+    pub(crate) head_is_topmost: bool,
 }
 
 impl Motion {
@@ -66,6 +71,8 @@ impl Motion {
             head_half_extents_m: None,
             head_joint_name: "still".to_string(),
             head_joint_index: 0,
+            file_up: Vec3::Y,
+            head_is_topmost: false,
         }
     }
 
@@ -113,6 +120,17 @@ impl Motion {
             .as_ref()
             .map_or(0, |c| c.held_bytes() + c.pose_bytes(self.nodes.len()));
         tracks + (self.nodes.len() * size_of::<ChainNode>()) as u64 + character
+    }
+
+    /// The world axis the model stood along in the file: +Y, or the axis it was turned from
+    /// so that it stands Y-up (see `MotionOptions::keep_axes`).
+    pub fn file_up(&self) -> Vec3 {
+        self.file_up
+    }
+
+    /// Whether the head joint is the rig's topmost joint, found without a name.
+    pub fn head_is_topmost(&self) -> bool {
+        self.head_is_topmost
     }
 
     /// The character's meshes (bind space), if the motion has any.

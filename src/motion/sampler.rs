@@ -109,6 +109,19 @@ impl Track {
         (first, last)
     }
 
+    /// Applies a linear map to every stored value, tangents included: a map that is linear
+    /// in the values (a rotation of translation keys, a quaternion premultiplied by a fixed
+    /// one) commutes with every interpolation mode, so the track then samples as the mapped
+    /// original. Values that come out non-finite are left as they were.
+    pub(crate) fn map_values(&mut self, f: impl Fn(Vec4) -> Vec4) {
+        for v in &mut self.values {
+            let mapped = f(*v);
+            if mapped.is_finite() {
+                *v = mapped;
+            }
+        }
+    }
+
     /// The interpolation mode.
     pub fn interpolation(&self) -> Interpolation {
         self.interpolation

@@ -38,6 +38,15 @@ impl Skeleton {
         self.rest_world[node]
     }
 
+    /// Turns the whole model by `turn` about the world origin: every rest world matrix is
+    /// premultiplied (see [`super::up_axis`]).
+    pub(crate) fn turn_world(&mut self, turn: Quat) {
+        let m = Affine3A::from_quat(turn);
+        for w in &mut self.rest_world {
+            *w = m * *w;
+        }
+    }
+
     /// Which nodes are `root` or lie below it.
     pub(crate) fn subtree(&self, root: usize) -> Vec<bool> {
         let mut inside = vec![false; self.names.len()];

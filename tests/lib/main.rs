@@ -50,6 +50,7 @@ mod raster_lines;
 mod raster_seen;
 mod render;
 mod render_options;
+mod rigs;
 mod scenes;
 mod segment_pieces;
 mod shade_bend;

@@ -11,6 +11,7 @@
 #![allow(dead_code)]
 
 pub mod hostile;
+pub mod rig_variants;
 pub mod strand_files;
 
 /// True when `WISP_FULL_TESTS=1`: the slow accuracy and simulation tests then run at their

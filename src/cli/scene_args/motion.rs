@@ -15,9 +15,14 @@ pub struct MotionArgs {
     /// Animation clip [default: "Dance" if present, else the first]
     #[arg(long, value_name = "NAME")]
     pub clip: Option<String>,
-    /// Head joint, node name or index [default: one with "head" in its name]
+    /// Head joint, node name or index [default: one with "head" in its name, else the
+    /// topmost joint]
     #[arg(long, value_name = "JOINT")]
     pub head_joint: Option<String>,
+    /// Keep the file's axes when its model lies along Z or X instead of standing along +Y
+    /// [default: such a model is turned upright]
+    #[arg(long)]
+    pub keep_axes: bool,
     /// Head fit: size over the hairstyle's 0.09 m head; with --head-offset
     #[arg(long, value_name = "S", value_parser = parse_positive_f32, requires = "head_offset")]
     pub head_scale: Option<f32>,
@@ -63,6 +68,7 @@ impl MotionArgs {
                     Err(_) => JointRef::Name(s.to_string()),
                 }),
             speed: self.speed,
+            keep_axes: self.keep_axes,
             fit: self
                 .head_scale
                 .zip(self.head_offset)
@@ -75,14 +81,27 @@ impl MotionArgs {
                 // Say what was chosen: a rig's clips and joints are many, and a wrong head or
                 // clip shows only as hair that looks wrong.
                 eprintln!(
-                    "wisp: {}: clip \"{}\" ({:.1} s), head joint \"{}\" (node {}); --clip and \
+                    "wisp: {}: clip \"{}\" ({:.1} s), head joint \"{}\" (node {}{}); --clip and \
                      --head-joint choose others",
                     path.display(),
                     motion.clip_name(),
                     motion.duration_s(),
                     motion.head_joint().1,
-                    motion.head_joint().0
+                    motion.head_joint().0,
+                    if motion.head_is_topmost() {
+                        ", the topmost joint: none is named like \"head\""
+                    } else {
+                        ""
+                    }
                 );
+                if motion.file_up() != Vec3::Y {
+                    eprintln!(
+                        "wisp: {}: the model stands along {} in the file, not glTF's +Y (its \
+                         neck-to-head direction): turned upright; --keep-axes keeps the file's axes",
+                        path.display(),
+                        axis_name(motion.file_up())
+                    );
+                }
                 if let Some(n) = motion.character().map(|c| c.unread_textures)
                     && n > 0
                 {
@@ -138,10 +157,15 @@ impl MotionArgs {
             return "--still (no motion)".to_string();
         }
         let clip = format!(
-            "clip \"{}\" of {}, head joint \"{}\"",
+            "clip \"{}\" of {}, head joint \"{}\"{}",
             motion.clip_name(),
             self.source(),
             motion.head_joint().1,
+            if self.keep_axes {
+                ", the file's axes kept"
+            } else {
+                ""
+            }
         );
         if self.still {
             format!("--still: the first pose of {clip}")
@@ -149,4 +173,16 @@ impl MotionArgs {
             format!("{clip}, speed {}", motion.speed())
         }
     }
+}
+
+/// "+Z", "-X", … for a world axis.
+fn axis_name(a: Vec3) -> String {
+    let (sign, name) = if a.x.abs() > 0.5 {
+        (a.x, "X")
+    } else if a.y.abs() > 0.5 {
+        (a.y, "Y")
+    } else {
+        (a.z, "Z")
+    };
+    format!("{}{name}", if sign < 0.0 { "-" } else { "+" })
 }

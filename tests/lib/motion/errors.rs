@@ -83,7 +83,8 @@ fn unknown_head_joint_lists_the_joints() {
     fx.node(json!({"name": "Skull"}));
     fx.channel(root, "translation", "LINEAR", &[0.0, 1.0], &[0.0; 6]);
     let bytes = fx.bytes(&["Dance"]);
-    // No joint named like "head" and none requested.
+    // No joint named like "head", none requested, and no joint above another to take as the
+    // topmost.
     let e = load(&bytes, &MotionOptions::default()).expect_err("no head");
     let msg = e.to_string();
     assert!(msg.contains("0 Pelvis") && msg.contains("1 Skull"), "{msg}");
