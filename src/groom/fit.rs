@@ -240,7 +240,7 @@ pub fn surface_distance_m(p: Vec3, radii_m: Vec3) -> f32 {
 }
 
 /// Gaussian elimination with partial pivoting on a 4×4 system.
-fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> Option<[f64; 4]> {
+pub(super) fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> Option<[f64; 4]> {
     for c in 0..4 {
         let piv = (c..4).max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))?;
         if a[piv][c].abs() < 1e-300 {

@@ -32,6 +32,7 @@ pub mod fit;
 mod place;
 mod polyline;
 mod rest_distance;
+mod root_sphere;
 mod strands;
 mod style;
 mod synthetic;
@@ -72,6 +73,9 @@ pub struct GroomReport {
     pub strands_dropped: usize,
     pub wisps: usize,
     pub placement: Option<Placement>,
+    /// The placement is the sphere through the roots (a partial groom: the fit onto the head
+    /// shrank it, see `place.rs`).
+    pub placed_by_root_sphere: bool,
     /// Mean and largest root distance from the head surface after the fit, metres.
     pub root_distance_mean_m: f32,
     pub root_distance_max_m: f32,
@@ -156,6 +160,7 @@ pub fn build_groom(
         strands_dropped: read - count,
         wisps,
         placement: Some(placement),
+        placed_by_root_sphere: on_head.from_root_sphere,
         root_distance_mean_m: on_head.root_distance_m.iter().sum::<f32>() / count as f32,
         root_distance_max_m: on_head.worst_m,
         cluster_s,
@@ -194,7 +199,7 @@ fn longest_placed_m(
     let longest_m = s.render.chunks(s.n).map(arc_length).fold(0.0f32, f32::max);
     if !(longest_m > 0.0 && longest_m <= 2.0) {
         return Err(format!(
-            "the longest strand is {longest_m:.2} m once fitted to the head: at most 2 m"
+            "the longest strand is {longest_m:.3} m once fitted to the head: it must be more than 0 and at most 2 m"
         ));
     }
     Ok(longest_m)

@@ -7,11 +7,18 @@
 //! distance to the head surface is then measured; when more than [`ROOTS_OFF_HEAD_SHARE`]
 //! of them are over [`ROOT_TOLERANCE_M`], the groom is refused, naming its worst strand: it
 //! belongs to another head shape or orientation, or is not Y-up.
+//!
+//! A partial groom whose roots form a strip or a line (a mohawk, bangs) leaves the fit's scale
+//! free: it can shrink the groom onto a point of the head, or fit the hairline's small circle
+//! as if it went round the head. Such a groom is placed by the sphere through its own roots
+//! ([`super::root_sphere`]), and so is any groom the fit leaves with its longest strand under
+//! [`MIN_LONGEST_STRAND_M`].
 
-use glam::Vec3;
+use glam::{DVec3, Quat, Vec3};
 
 use super::error::GroomError;
 use super::fit::{self, Placement};
+use super::root_sphere::{is_strip, sphere_through};
 use super::strands::Kept;
 use crate::input::strands::StrandFile;
 
@@ -21,6 +28,9 @@ use crate::input::strands::StrandFile;
 pub const ROOT_TOLERANCE_M: f32 = 0.03;
 /// Share of roots allowed beyond [`ROOT_TOLERANCE_M`] (ties, hair growing off a bun).
 pub const ROOTS_OFF_HEAD_SHARE: f32 = 0.1;
+/// A fit whose longest strand comes out shorter than this has shrunk the groom onto a point
+/// of the head (no groom wisp simulates has hair under 2 cm long).
+pub const MIN_LONGEST_STRAND_M: f32 = 0.02;
 
 /// The groom's placement and how far its roots are from the head surface.
 pub(super) struct OnHead {
@@ -29,6 +39,8 @@ pub(super) struct OnHead {
     pub(super) root_distance_m: Vec<f32>,
     /// The largest of them.
     pub(super) worst_m: f32,
+    /// Placed by the sphere through the roots: the fit onto the head shrank the groom.
+    pub(super) from_root_sphere: bool,
 }
 
 /// Places the `kept` strands of `files` on the head ellipsoid of semi-axes `radii`, turned by
@@ -58,11 +70,30 @@ pub(super) fn place_on_head(
         .step_by(stride)
         .flat_map(|k| k.points.iter().skip(2).copied())
         .collect();
-    let placement =
-        fit::fit_to_head(&roots, &hair, yaw, radii).ok_or_else(|| GroomError::Invalid {
-            files: names.to_string(),
-            rule: "the roots cannot be fitted onto the head (all roots in one point?)".into(),
-        })?;
+    let fitted = fit::fit_to_head(&roots, &hair, yaw, radii);
+    let longest_file = kept
+        .iter()
+        .map(|k| k.points.windows(2).map(|w| w[0].distance(w[1])).sum::<f32>())
+        .fold(0.0f32, f32::max);
+    // A strip of roots, or a fit that shrank the groom to a point: the sphere of the roots'
+    // own head (module doc).
+    let collapsed = |p: &Placement| p.scale * longest_file < MIN_LONGEST_STRAND_M;
+    let by_sphere = from_root_sphere(&roots, yaw, radii);
+    let (placement, from_root_sphere) = match (fitted, by_sphere) {
+        (_, Some((p, true))) if !collapsed(&p) => (p, true),
+        (Some(p), _) if !collapsed(&p) => (p, false),
+        _ => match by_sphere.map(|b| b.0).filter(|p| !collapsed(p)) {
+            Some(p) => (p, true),
+            None => {
+                return Err(GroomError::Invalid {
+                    files: names.to_string(),
+                    rule: "the roots cannot be fitted onto the head: they lie in one point or \
+                           on a straight line, and no sphere passes through them"
+                        .into(),
+                });
+            }
+        },
+    };
     let dist: Vec<f32> = roots
         .iter()
         .map(|r| fit::surface_distance_m(placement.apply(*r), radii))
@@ -89,5 +120,24 @@ pub(super) fn place_on_head(
         placement,
         root_distance_m: dist,
         worst_m: worst_d,
+        from_root_sphere,
     })
+}
+
+/// The placement that puts the sphere through the turned `roots` (their own head,
+/// [`sphere_through`]) onto wisp's head: its centre at the head centre, its radius scaled to
+/// the mean of the semi-axes `radii`; with whether the roots form a strip on it ([`is_strip`]).
+fn from_root_sphere(roots: &[Vec3], yaw_rad: f32, radii: Vec3) -> Option<(Placement, bool)> {
+    let turn = Quat::from_rotation_y(yaw_rad);
+    let turned: Vec<DVec3> = roots.iter().map(|p| (turn * *p).as_dvec3()).collect();
+    let (centre, radius) = sphere_through(&turned)?;
+    let strip = is_strip(&turned, centre);
+    let scale = f64::from((radii.x + radii.y + radii.z) / 3.0) / radius;
+    let placement = Placement {
+        scale: scale as f32,
+        yaw_rad,
+        offset_m: (-scale * centre).as_vec3(),
+    };
+    (placement.scale.is_finite() && placement.scale > 0.0 && placement.offset_m.is_finite())
+        .then_some((placement, strip))
 }

@@ -127,13 +127,18 @@ fn report_import(groom: &Groom, seconds: f64) {
     });
     eprintln!(
         "wisp: groom {}: {} strands ({} dropped: zero length) in {} wisps, imported in {:.2} s; \
-         placed on the head at scale {:.5}, turn {:.0}°, roots {:.1} mm from the scalp (mean, max {:.1}); \
+         placed on the head{} at scale {:.5}, turn {:.0}°, roots {:.1} mm from the scalp (mean, max {:.1}); \
          rest pose vs file: mean {:.3} mm, max {:.3} mm",
         printable(&groom.style.name),
         r.strands_read - r.strands_dropped,
         r.strands_dropped,
         r.wisps,
         seconds,
+        if r.placed_by_root_sphere {
+            " by the sphere through its roots (a partial groom)"
+        } else {
+            ""
+        },
         p.scale,
         p.yaw_rad.to_degrees(),
         r.root_distance_mean_m * 1e3,
