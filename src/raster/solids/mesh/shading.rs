@@ -55,7 +55,15 @@ pub(super) fn shade_band(
     for i in (0..band.rows).flat_map(|row| row * band.w + x_lo..row * band.w + x_hi) {
         let hits = &samples.tri[i * SAMPLES..(i + 1) * SAMPLES];
         let depths = &samples.depth[i * SAMPLES..(i + 1) * SAMPLES];
-        let (layers, count) = layers_of(hits, depths, tris, LAYER_GAP_PX * inv_focal_px);
+        // Most pixels are missed by every sample or inside one triangle.
+        let (layers, count) = if hits.iter().all(|&t| t == hits[0]) {
+            if hits[0] == NONE {
+                continue;
+            }
+            ([(0, SAMPLES); SAMPLES], 1)
+        } else {
+            layers_of(hits, depths, tris, LAYER_GAP_PX * inv_focal_px)
+        };
         if count == 0 {
             continue;
         }
