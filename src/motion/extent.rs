@@ -77,7 +77,7 @@ impl Motion {
                 .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), p| {
                     (lo.min(p.y), hi.max(p.y))
                 });
-            if !(bottom_y <= top_y) {
+            if bottom_y > top_y || bottom_y.is_nan() {
                 continue;
             }
             let cut_y = top_y - UPPER_FRACTION * (top_y - bottom_y);

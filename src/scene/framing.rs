@@ -182,7 +182,8 @@ mod tests {
         let (w, h) = (640, 360);
         let axes = ViewAxes::looking_back_along(Vec3::new(0.5, 0.1, 1.0));
         let empty = (Vec3::ONE, Vec3::ZERO);
-        let cam = frame_boxes(&[(lo, hi), empty], axes, 0.5236, w, h);
+        let fov = std::f32::consts::FRAC_PI_6;
+        let cam = frame_boxes(&[(lo, hi), empty], axes, fov, w, h);
         let mut reach_y: f32 = 0.0;
         for k in 0..8 {
             let c = Vec3::new(
