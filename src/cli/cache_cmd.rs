@@ -229,7 +229,7 @@ pub fn render_from_cache(args: RenderArgs) -> Result<(), AppError> {
     args.scene
         .budget
         .check(&style, &motion, &mut config, &plan)?;
-    let output = FrameOutput::of(&args);
+    let output = FrameOutput::of(&args, f64::from(header.fps), header.start_s);
     let tidy = tidy_for_cache(&args, &header, &part);
     let Some(todo) = output.prepare(&tidy, part.clone(), &config.scene)? else {
         return Ok(());
