@@ -247,3 +247,17 @@ fn join_glb(doc: &Value, bin: &[u8]) -> Vec<u8> {
     out.extend_from_slice(&bin);
     out
 }
+
+/// The GLB `glb` with the rest rotations of the named nodes replaced (a T-pose rest for a
+/// rig whose clip animates those nodes: the motion is the same, only the pose the loader
+/// measures the character in changes).
+pub fn with_rest_rotations(glb: &[u8], rotations: &[(&str, Quat)]) -> Vec<u8> {
+    let (mut doc, bin) = split_glb(glb);
+    for node in doc["nodes"].as_array_mut().expect("nodes") {
+        let name = node.get("name").and_then(Value::as_str).map(str::to_string);
+        if let Some((_, q)) = rotations.iter().find(|(n, _)| Some(*n) == name.as_deref()) {
+            node["rotation"] = json!(q.to_array());
+        }
+    }
+    join_glb(&doc, &bin)
+}
