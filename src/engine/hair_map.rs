@@ -89,16 +89,26 @@ impl ContactShadowing {
 /// the hair needs, or sized from the scene with cells `config.cell_scale` times as wide
 /// ([`MapGeometry::for_scene_scaled`]).
 pub fn map_geometry(style: &Hairstyle, config: &HairMapConfig) -> MapGeometry {
-    let span = MapGeometry::span_m(style.max_length_m(), style.head_size_m());
+    let span = map_span_m(style);
     match config.map_res {
         Some(n) => MapGeometry::with_resolution(span, n),
-        None => MapGeometry::for_scene_scaled(
-            style.max_length_m(),
-            style.head_size_m(),
+        None => MapGeometry::for_span_scaled(
+            span,
             style.strand_spacing_m(),
             style.strands.fibers_per_strand,
             config.cell_scale,
         ),
+    }
+}
+
+/// The span of `style`'s map, metres: 2·lmax + hmax (Bertails §2.2, [`MapGeometry::span_m`]),
+/// or twice an imported groom's reach when that is larger (`Hairstyle::reach_m`: roots off the
+/// head ellipsoid).
+pub fn map_span_m(style: &Hairstyle) -> f32 {
+    let swing = MapGeometry::span_m(style.max_length_m(), style.head_size_m());
+    match style.guides.reach_m {
+        Some(r) => swing.max(MapGeometry::span_for_reach_m(r)),
+        None => swing,
     }
 }
 

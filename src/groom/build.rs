@@ -155,7 +155,7 @@ pub(super) fn build_model(
 
 /// The strands of each wisp in strand order, by counting sort (no per-wisp allocation): wisp
 /// w's members are `members[start[w]..start[w + 1]]`.
-fn members_by_wisp(wisp_of: &[u32]) -> (Vec<usize>, Vec<u32>) {
+pub(super) fn members_by_wisp(wisp_of: &[u32]) -> (Vec<usize>, Vec<u32>) {
     let wisps = wisp_of.iter().map(|w| *w as usize + 1).max().unwrap_or(0);
     let mut start = vec![0usize; wisps + 1];
     for &w in wisp_of {
@@ -208,19 +208,19 @@ fn wisp_guides(
 }
 
 /// Each render strand's place among its wisp's guides.
-struct StrandFits {
+pub(super) struct StrandFits {
     /// Barycentric weights over the wisp's 3 guides.
-    weights: Vec<[f32; 3]>,
+    pub(super) weights: Vec<[f32; 3]>,
     /// Length as a fraction of the blended guide's, in (0, 1].
-    length: Vec<f32>,
+    pub(super) length: Vec<f32>,
     /// `n` rest offsets per strand (see `crate::interp::rest_offsets_of`).
-    rest_offset: Vec<Vec3>,
+    pub(super) rest_offset: Vec<Vec3>,
 }
 
 /// Per strand, independently and in parallel: weights from its root's position in its guides'
 /// root triangle ([`barycentric_clamped`]), the length fraction of its resampled points
 /// against the blended guides, and the offsets that carry the smoothed blend onto its points.
-fn strand_fits(
+pub(super) fn strand_fits(
     s: &Resampled,
     wisp_of: &[u32],
     wisp_guides: &[[u32; 3]],

@@ -11,6 +11,8 @@
 //! cluster   cluster::cluster               k-means on root + shape, grid-accelerated (no O(N²))
 //! guides    build::pick_guides             3 strands of each wisp, spanning its roots
 //! offsets   interp::rest_offsets_of        each strand's own departure from its wisp's blend
+//! densify   densify::densify               a sparse groom: render strands added among its
+//!                                          guides up to a head's density (`densify.rs`)
 //! style     style::groom_style             the base style with the groom's counts and lengths
 //! ```
 //!
@@ -23,10 +25,18 @@
 //! Wisps per strand: [`STRANDS_PER_WISP`] = 25 (Bertails 2005 §5: 134 wisps for 3,350
 //! strands), capped at [`MAX_AUTO_WISPS`] wisps so the simulation costs at most about 3× the
 //! `smooth` preset's 134 wisps: the rest pose is exact whatever the count (offsets), so more
-//! wisps only buy finer motion at a linear simulation cost.
+//! wisps only buy finer motion at a linear simulation cost. A sparse groom (fewer strands than
+//! a head of hair renders, [`density_of`]) is clustered into wisps of about 3 strands instead,
+//! and render strands are interpolated among them ([`densify`](densify::densify)).
+//!
+//! The light map holds the groom wherever it swings: its style's `guides.reach_m` is the
+//! farthest a placed root plus its strand's length reaches from the head's centre, which the
+//! map's span holds when it is farther than the head's largest radius plus the longest strand
+//! (roots off the ellipsoid).
 
 mod build;
 pub mod cluster;
+pub mod densify;
 mod error;
 pub mod fit;
 mod place;
@@ -37,6 +47,7 @@ mod strands;
 mod style;
 mod synthetic;
 
+pub use densify::{Density, density_of};
 pub use error::GroomError;
 pub use fit::Placement;
 pub use place::{ROOT_TOLERANCE_M, ROOTS_OFF_HEAD_SHARE};
@@ -83,6 +94,8 @@ pub struct GroomReport {
     /// points to the file's polyline and file vertices to the rest polyline), metres.
     pub rest_distance_mean_m: f32,
     pub rest_distance_max_m: f32,
+    /// Render strands interpolated among the guides of a sparse groom (0 for a dense one).
+    pub strands_added: usize,
     /// Seconds spent clustering (a measurement, for the notes; never asserted).
     pub cluster_s: f64,
 }
@@ -136,10 +149,16 @@ pub fn build_groom(
     let longest_m =
         longest_placed_m(&resampled, &kept, files, placement.scale).map_err(&invalid)?;
 
+    let roots: Vec<Vec3> = resampled.render.chunks(n).map(|p| p[0]).collect();
+    let density = density_of(&roots, base);
+    let per_wisp = match density {
+        Some(_) => cluster::MIN_WISP_STRANDS,
+        None => STRANDS_PER_WISP,
+    };
     let want = opts
         .wisps
-        .unwrap_or_else(|| count.div_ceil(STRANDS_PER_WISP).min(MAX_AUTO_WISPS));
-    let (guides, layout, cluster_s) =
+        .unwrap_or_else(|| count.div_ceil(per_wisp).min(MAX_AUTO_WISPS));
+    let (guides, mut layout, wisp_of, cluster_s) =
         cluster_into_wisps(&resampled, want, radii, base.strands.tip_taper);
     let overflow = |v: &Vec3| !v.is_finite();
     let bad_link = |l: &f32| !(l.is_finite() && *l > 0.0);
@@ -153,7 +172,14 @@ pub fn build_groom(
         )));
     }
     let wisps = layout.wisp_guides.len();
-    let style = style::groom_style(base, files, wisps, count, longest_m).map_err(&invalid)?;
+    let shape = style::GroomShape {
+        wisps,
+        render_strands: density.map_or(count, |d| d.render_strands),
+        scalp_share: density.map(|d| d.scalp_share),
+        longest_m,
+        reach_m: reach_m(&resampled),
+    };
+    let style = style::groom_style(base, files, &shape).map_err(&invalid)?;
 
     let mut report = GroomReport {
         strands_read: read,
@@ -172,6 +198,11 @@ pub fn build_groom(
         .collect();
     (report.rest_distance_mean_m, report.rest_distance_max_m) =
         rest_distance_m(&guides, &layout, &placed);
+    if let Some(d) = density {
+        report.strands_added = d.render_strands - count;
+        let extra = report.strands_added;
+        densify::densify(&resampled, &wisp_of, &guides, &mut layout, extra, base.seed);
+    }
     Ok(Groom {
         style,
         guides,
@@ -205,20 +236,29 @@ fn longest_placed_m(
     Ok(longest_m)
 }
 
+/// The farthest the strands `s` reach from the head's centre, metres: a root's distance plus
+/// its strand's length, the most of any strand (where the strand can swing to about its root).
+fn reach_m(s: &build::Resampled) -> f32 {
+    s.render
+        .chunks(s.n)
+        .map(|p| p[0].length() + arc_length(p))
+        .fold(0.0f32, f32::max)
+}
+
 /// The strands clustered into about `want` wisps (on their guide resampling, see [`cluster`])
-/// and the hair model built on them, with the seconds spent clustering. Guide roots get the
-/// normal of the head ellipsoid of semi-axes `radii`.
+/// and the hair model built on them, with each strand's wisp and the seconds spent
+/// clustering. Guide roots get the normal of the head ellipsoid of semi-axes `radii`.
 fn cluster_into_wisps(
     s: &build::Resampled,
     want: usize,
     radii: Vec3,
     tip_taper: f32,
-) -> (GuideSet, StrandLayout, f64) {
+) -> (GuideSet, StrandLayout, Vec<u32>, f64) {
     let features: Vec<cluster::Feature> = s.guide.chunks(s.ppg).map(build::feature_of).collect();
     let clustering = std::time::Instant::now();
     let wisp_of = cluster::cluster(&features, want.max(1));
     let cluster_s = clustering.elapsed().as_secs_f64();
     let normal = |p: Vec3| (p / (radii * radii)).normalize_or(Vec3::Y);
     let (guides, layout) = build::build_model(s, &wisp_of, normal, tip_taper);
-    (guides, layout, cluster_s)
+    (guides, layout, wisp_of, cluster_s)
 }

@@ -90,6 +90,12 @@ pub struct GuideSpec {
     /// Wave period along the guide in metres (used when the amplitude is > 0), in [0.001, 10].
     #[serde(default = "default_wave_period")]
     pub wave_period_m: f32,
+    /// The farthest any hair reaches from the head's centre, metres, in (0, 10]: an imported
+    /// groom's own extent (its roots' distance plus their strands' lengths), whose roots may lie
+    /// off the head ellipsoid. Absent (the default): the head's largest radius plus the longest
+    /// guide. The light map's span holds twice the larger of the two ([`Hairstyle::reach_m`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reach_m: Option<f32>,
 }
 
 fn default_wave_period() -> f32 {
@@ -154,5 +160,13 @@ impl Hairstyle {
     /// Largest head dimension in metres (the hmax of Bertails §2.2).
     pub fn head_size_m(&self) -> f32 {
         2.0 * self.head.radii_m.iter().copied().fold(0.0, f32::max)
+    }
+
+    /// The farthest hair can reach from the head's centre, metres: the head's largest radius
+    /// plus the longest guide (a strand swinging about a root on the head, Bertails §2.2), or
+    /// `guides.reach_m` when that is farther.
+    pub fn reach_m(&self) -> f32 {
+        let swing = self.max_length_m() + 0.5 * self.head_size_m();
+        self.guides.reach_m.map_or(swing, |r| r.max(swing))
     }
 }

@@ -135,7 +135,11 @@ impl Hairstyle {
             MIN_PERIOD_M,
             10.0,
             false,
-        )
+        )?;
+        match self.guides.reach_m {
+            Some(r) => in_range("guides.reach_m", r, 0.0, 10.0, true),
+            None => Ok(()),
+        }
     }
 
     /// The render strands' points (with the `strands` render strands, under

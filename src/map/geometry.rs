@@ -89,12 +89,28 @@ impl MapGeometry {
         fibers_per_strand: f32,
         cell_scale: f32,
     ) -> Self {
+        Self::for_span_scaled(
+            Self::span_m(max_length_m, head_size_m),
+            strand_spacing_m,
+            fibers_per_strand,
+            cell_scale,
+        )
+    }
+
+    /// [`MapGeometry::for_scene_scaled`] over a span of `span_m` given whole (hair whose reach
+    /// is not a swing about roots on the head: an imported groom's, `Hairstyle::reach_m`).
+    pub fn for_span_scaled(
+        span_m: f32,
+        strand_spacing_m: f32,
+        fibers_per_strand: f32,
+        cell_scale: f32,
+    ) -> Self {
         let scale = if cell_scale.is_finite() && cell_scale > 0.0 {
             cell_scale
         } else {
             1.0
         };
-        let span = Self::span_m(max_length_m, head_size_m);
+        let span = span_m;
         let widen = (30.0 / fibers_per_strand.max(1e-3)).sqrt().max(1.0);
         let cell = 1.5 * strand_spacing_m.max(1e-6) * widen;
         let lateral_of = |n: f32| {
@@ -115,6 +131,12 @@ impl MapGeometry {
     /// so that a strand pulled exactly straight does not land on the wrap boundary.
     pub fn span_m(max_length_m: f32, head_size_m: f32) -> f32 {
         1.02 * (2.0 * max_length_m + head_size_m)
+    }
+
+    /// The span that holds hair reaching `reach_m` from the head's centre in every direction:
+    /// twice the reach, plus the same 2% as [`MapGeometry::span_m`].
+    pub fn span_for_reach_m(reach_m: f32) -> f32 {
+        1.02 * (2.0 * reach_m)
     }
 }
 

@@ -29,6 +29,7 @@ mod framing;
 mod groom_formats;
 mod groom_import;
 mod groom_partial;
+mod groom_sparse;
 mod hairstyle;
 mod hostile_budget;
 mod hostile_cases;
