@@ -12,6 +12,12 @@ pub enum GroomError {
     File(#[from] StrandFileError),
     #[error("{files}: {rule}")]
     Invalid { files: String, rule: String },
+    /// Neither the fit onto the head nor the sphere through the roots places the groom (its
+    /// roots are not a scalp's: fur, or roots in one point or on a line).
+    #[error(
+        "{files}: the groom cannot be placed on the head: fitted to the head it shrinks under {min_mm:.0} mm, and no sphere passes through its roots (are they a scalp's?)"
+    )]
+    NotOnAHead { files: String, min_mm: f32 },
     #[error(
         "{file}: strand {strand}: its root is {distance_mm:.0} mm from the head surface after fitting the groom to the head (scale {scale:.4}, turn {yaw_deg:.0}°), and {share:.0}% of all roots are over {tolerance_mm:.0} mm: the groom's roots do not lie on a head (is it Y-up?)"
     )]

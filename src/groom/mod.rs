@@ -34,6 +34,7 @@
 //! map's span holds when it is farther than the head's largest radius plus the longest strand
 //! (roots off the ellipsoid).
 
+mod as_authored;
 mod build;
 pub mod cluster;
 pub mod densify;
@@ -47,6 +48,7 @@ mod strands;
 mod style;
 mod synthetic;
 
+pub use as_authored::guess_unit_m;
 pub use densify::{Density, density_of};
 pub use error::GroomError;
 pub use fit::Placement;
@@ -73,6 +75,11 @@ pub struct GroomOptions {
     /// Turn of the groom about +Y in radians before the fit (default: 0 or π, whichever puts
     /// most hair behind the head).
     pub yaw_rad: Option<f32>,
+    /// Keep the groom where it was authored instead of fitting it onto the head: only scaled
+    /// to metres, roots pinned in place (see `as_authored.rs`).
+    pub as_authored: bool,
+    /// Metres per file unit for a groom kept as authored (default: guessed from its size).
+    pub unit_m: Option<f32>,
 }
 
 /// Figures of an import.
@@ -98,6 +105,8 @@ pub struct GroomReport {
     pub strands_added: usize,
     /// Seconds spent clustering (a measurement, for the notes; never asserted).
     pub cluster_s: f64,
+    /// Kept as authored: the metres per file unit, and whether they were guessed.
+    pub as_authored_unit_m: Option<(f32, bool)>,
 }
 
 /// A captured groom ready for the engine.
@@ -140,7 +149,13 @@ pub fn build_groom(
     let (kept, read) = strands::keep_strands(files, &names)?;
     let count = kept.len();
     let radii = Vec3::from(base.head.radii_m);
-    let on_head = place::place_on_head(&kept, files, radii, opts.yaw_rad, &names)?;
+    let (on_head, authored_unit) = if opts.as_authored {
+        let (on_head, unit, guessed) = as_authored::as_authored(&kept, opts.unit_m);
+        (on_head, Some((unit, guessed)))
+    } else {
+        let on_head = place::place_on_head(&kept, files, radii, opts.yaw_rad, &names)?;
+        (on_head, None)
+    };
     let placement = on_head.placement;
 
     let ppg = base.guides.links as usize + 1;
@@ -158,8 +173,14 @@ pub fn build_groom(
     let want = opts
         .wisps
         .unwrap_or_else(|| count.div_ceil(per_wisp).min(MAX_AUTO_WISPS));
+    // Roots kept as authored are not on the head: their normal points away from the groom's
+    // middle (out of an animal's body, for fur).
+    let centre = authored_unit.map(|_| {
+        let sum: Vec3 = resampled.guide.chunks(resampled.ppg).map(|g| g[0]).sum();
+        sum / count.max(1) as f32
+    });
     let (guides, mut layout, wisp_of, cluster_s) =
-        cluster_into_wisps(&resampled, want, radii, base.strands.tip_taper);
+        cluster_into_wisps(&resampled, want, radii, centre, base.strands.tip_taper);
     let overflow = |v: &Vec3| !v.is_finite();
     let bad_link = |l: &f32| !(l.is_finite() && *l > 0.0);
     if guides.rest.iter().any(overflow)
@@ -179,7 +200,12 @@ pub fn build_groom(
         longest_m,
         reach_m: reach_m(&resampled),
     };
-    let style = style::groom_style(base, files, &shape).map_err(&invalid)?;
+    let mut style = style::groom_style(base, files, &shape).map_err(&invalid)?;
+    if authored_unit.is_some() {
+        // No head under a groom kept as authored: the head ellipsoid, a collider at the
+        // origin, shrinks to the smallest the hairstyle allows.
+        style.head.radii_m = [crate::hairstyle::MIN_HEAD_RADIUS_M; 3];
+    }
 
     let mut report = GroomReport {
         strands_read: read,
@@ -190,6 +216,7 @@ pub fn build_groom(
         root_distance_mean_m: on_head.root_distance_m.iter().sum::<f32>() / count as f32,
         root_distance_max_m: on_head.worst_m,
         cluster_s,
+        as_authored_unit_m: authored_unit,
         ..Default::default()
     };
     let placed: Vec<Vec<Vec3>> = kept
@@ -247,18 +274,23 @@ fn reach_m(s: &build::Resampled) -> f32 {
 
 /// The strands clustered into about `want` wisps (on their guide resampling, see [`cluster`])
 /// and the hair model built on them, with each strand's wisp and the seconds spent
-/// clustering. Guide roots get the normal of the head ellipsoid of semi-axes `radii`.
+/// clustering. Guide roots get the normal of the head ellipsoid of semi-axes `radii`, or the
+/// direction from `centre` when there is one.
 fn cluster_into_wisps(
     s: &build::Resampled,
     want: usize,
     radii: Vec3,
+    centre: Option<Vec3>,
     tip_taper: f32,
 ) -> (GuideSet, StrandLayout, Vec<u32>, f64) {
     let features: Vec<cluster::Feature> = s.guide.chunks(s.ppg).map(build::feature_of).collect();
     let clustering = std::time::Instant::now();
     let wisp_of = cluster::cluster(&features, want.max(1));
     let cluster_s = clustering.elapsed().as_secs_f64();
-    let normal = |p: Vec3| (p / (radii * radii)).normalize_or(Vec3::Y);
+    let normal = |p: Vec3| match centre {
+        Some(c) => (p - c).normalize_or(Vec3::Y),
+        None => (p / (radii * radii)).normalize_or(Vec3::Y),
+    };
     let (guides, layout) = build::build_model(s, &wisp_of, normal, tip_taper);
     (guides, layout, wisp_of, cluster_s)
 }

@@ -73,27 +73,23 @@ pub(super) fn place_on_head(
     let fitted = fit::fit_to_head(&roots, &hair, yaw, radii);
     let longest_file = kept
         .iter()
-        .map(|k| k.points.windows(2).map(|w| w[0].distance(w[1])).sum::<f32>())
+        .map(|k| {
+            k.points
+                .windows(2)
+                .map(|w| w[0].distance(w[1]))
+                .sum::<f32>()
+        })
         .fold(0.0f32, f32::max);
     // A strip of roots, or a fit that shrank the groom to a point: the sphere of the roots'
     // own head (module doc).
     let collapsed = |p: &Placement| p.scale * longest_file < MIN_LONGEST_STRAND_M;
     let by_sphere = from_root_sphere(&roots, yaw, radii);
-    let (placement, from_root_sphere) = match (fitted, by_sphere) {
-        (_, Some((p, true))) if !collapsed(&p) => (p, true),
-        (Some(p), _) if !collapsed(&p) => (p, false),
-        _ => match by_sphere.map(|b| b.0).filter(|p| !collapsed(p)) {
-            Some(p) => (p, true),
-            None => {
-                return Err(GroomError::Invalid {
-                    files: names.to_string(),
-                    rule: "the roots cannot be fitted onto the head: they lie in one point or \
-                           on a straight line, and no sphere passes through them"
-                        .into(),
-                });
-            }
-        },
+    let not_on_a_head = || GroomError::NotOnAHead {
+        files: names.to_string(),
+        min_mm: MIN_LONGEST_STRAND_M * 1000.0,
     };
+    let (placement, from_root_sphere) =
+        choose(fitted, by_sphere, &collapsed).ok_or_else(not_on_a_head)?;
     let dist: Vec<f32> = roots
         .iter()
         .map(|r| fit::surface_distance_m(placement.apply(*r), radii))
@@ -116,12 +112,33 @@ pub(super) fn place_on_head(
             yaw_deg: placement.yaw_rad.to_degrees(),
         });
     }
+    if collapsed(&placement) {
+        // Every root on the head, but only with the groom shrunk to a point.
+        return Err(not_on_a_head());
+    }
     Ok(OnHead {
         placement,
         root_distance_m: dist,
         worst_m: worst_d,
         from_root_sphere,
     })
+}
+
+/// The placement used, and whether it is the roots' sphere: a strip's sphere, else a fit that
+/// did not collapse, else any sphere that did not, else the collapsed fit (whose roots' distances
+/// then say whether the groom is off the head or only shrunk).
+fn choose(
+    fitted: Option<Placement>,
+    by_sphere: Option<(Placement, bool)>,
+    collapsed: &impl Fn(&Placement) -> bool,
+) -> Option<(Placement, bool)> {
+    match (fitted, by_sphere) {
+        (_, Some((p, true))) if !collapsed(&p) => Some((p, true)),
+        (Some(p), _) if !collapsed(&p) => Some((p, false)),
+        (_, Some((p, _))) if !collapsed(&p) => Some((p, true)),
+        (Some(p), _) => Some((p, false)),
+        (None, s) => s.map(|(p, _)| (p, true)),
+    }
 }
 
 /// The placement that puts the sphere through the turned `roots` (their own head,

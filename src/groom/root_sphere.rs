@@ -35,7 +35,11 @@ pub fn sphere_through(roots: &[DVec3]) -> Option<(DVec3, f64)> {
         return None;
     }
     let mean = roots.iter().copied().sum::<DVec3>() / roots.len() as f64;
-    let spread = roots.iter().map(|p| (*p - mean).length_squared()).sum::<f64>() / roots.len() as f64;
+    let spread = roots
+        .iter()
+        .map(|p| (*p - mean).length_squared())
+        .sum::<f64>()
+        / roots.len() as f64;
     if !(spread > 0.0 && spread.is_finite()) {
         return None;
     }
@@ -82,7 +86,10 @@ pub fn sphere_through(roots: &[DVec3]) -> Option<(DVec3, f64)> {
 /// near 0; the shared TressFX ponytail's parts: front and top 0.33, back 0.91, the ring of
 /// roots at the tail's tie 0.81.
 pub fn is_strip(roots: &[DVec3], centre: DVec3) -> bool {
-    let dirs: Vec<DVec3> = roots.iter().map(|p| (*p - centre).normalize_or_zero()).collect();
+    let dirs: Vec<DVec3> = roots
+        .iter()
+        .map(|p| (*p - centre).normalize_or_zero())
+        .collect();
     let Some(m) = dirs.iter().copied().sum::<DVec3>().try_normalize() else {
         return false;
     };

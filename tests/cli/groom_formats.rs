@@ -73,3 +73,61 @@ fn a_ply_and_a_hairsalon_groom_render_one_frame() {
         assert!(share > 0.05, "{name}: hair on {share:.3} of the frame");
     }
 }
+
+#[test]
+fn fur_is_refused_naming_the_flag_that_keeps_it_as_authored() {
+    let dir = scratch_dir("cli-groom-as-authored");
+    // 1,000 strands of 4 points, 3 cm long, over a 30 cm ball 50 cm up: fur, in centimetres.
+    let golden = std::f32::consts::PI * (3.0 - 5f32.sqrt());
+    let strands: Vec<Vec<Vec3>> = (0..1000)
+        .map(|i| {
+            let y = 1.0 - 2.0 * (i as f32 + 0.5) / 1000.0;
+            let r = (1.0 - y * y).sqrt();
+            let a = golden * i as f32;
+            let d = Vec3::new(r * a.cos(), y, r * a.sin());
+            (0..4)
+                .map(|k| Vec3::new(0.0, 50.0, 0.0) + d * (15.0 + k as f32))
+                .collect()
+        })
+        .collect();
+    let path = dir.join("fur.ply");
+    std::fs::write(
+        &path,
+        strands_ply(&strands, PlyLayout::Counts, PlyEncoding::LittleEndian),
+    )
+    .unwrap();
+    let out = dir.join("frames");
+    let run = |extra: &[&str]| {
+        let mut a = vec![
+            "render",
+            "--hairstyle",
+            path.to_str().unwrap(),
+            "--frames",
+            "1",
+            "--width",
+            "96",
+            "--height",
+            "96",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        a.extend_from_slice(extra);
+        wisp(&a)
+    };
+    let o = run(&[]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--groom-as-authored"), "{}", stderr(&o));
+    let o = run(&["--groom-as-authored"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("kept as authored at 0.01 m a unit (guessed"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(hair_share(&out.join("frame_00000.png")) > 0.05);
+    // Pinned in place, the groom follows no motion; the unit needs the mode.
+    let o = run(&["--groom-as-authored", "--animation", "x.glb"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let o = run(&["--groom-unit-m", "0.01"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}

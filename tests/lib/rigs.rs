@@ -105,7 +105,11 @@ fn a_t_pose_rest_gives_the_same_head_and_hair() {
         assert_eq!(t_pose.sample(t).head, original.sample(t).head);
     }
     let (a, b) = (hair_after_whips(original), hair_after_whips(t_pose));
-    let max = a.iter().zip(&b).map(|(p, q)| p.distance(*q)).fold(0.0, f32::max);
+    let max = a
+        .iter()
+        .zip(&b)
+        .map(|(p, q)| p.distance(*q))
+        .fold(0.0, f32::max);
     eprintln!("T-pose rest: hair {max:.2e} m apart at most");
     // The capsules are fitted per bone in the bone's own frame, so holding the arms out at
     // rest changes them only through vertices blended across bones (1.1 µm measured).

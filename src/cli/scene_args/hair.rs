@@ -7,10 +7,10 @@
 //! ponytail on RobotExpressive's boxy head: 19% of roots over 30 mm off). The roots are then
 //! checked on the drawn head mesh ([`HairArgs::check_roots_on_head`]).
 
-use crate::cli::{AppError, parse_finite_f32, printable};
+use crate::cli::{AppError, parse_finite_f32, parse_positive_f32, printable};
 use glam::Vec3;
 use std::path::Path;
-use wisp::groom::{Groom, GroomOptions, Placement};
+use wisp::groom::{Groom, GroomError, GroomOptions, Placement};
 use wisp::hairstyle::{GuideSet, Hairstyle, HairstyleError, StrandLayout};
 use wisp::motion::Motion;
 
@@ -38,6 +38,13 @@ pub struct HairArgs {
     /// Imported groom's turn about the vertical, degrees [default: 0 or 180]
     #[arg(long, value_name = "DEG", value_parser = parse_finite_f32, allow_hyphen_values = true)]
     pub groom_turn_deg: Option<f32>,
+    /// Keep an imported groom where it was authored (fur, a groom without its head): roots
+    /// pinned in place, not fitted onto a head; no motion
+    #[arg(long)]
+    pub groom_as_authored: bool,
+    /// Metres per unit of a groom kept as authored [default: guessed from its size]
+    #[arg(long, value_name = "M", value_parser = parse_positive_f32, requires = "groom_as_authored")]
+    pub groom_unit_m: Option<f32>,
 }
 
 impl HairArgs {
@@ -63,10 +70,18 @@ impl HairArgs {
         let opts = GroomOptions {
             wisps: self.groom_wisps.map(|w| w as usize),
             yaw_rad: self.groom_turn_deg.map(f32::to_radians),
+            as_authored: self.groom_as_authored,
+            unit_m: self.groom_unit_m,
         };
         let paths: Vec<&Path> = files.iter().map(|f| Path::new(f.as_str())).collect();
         let started = std::time::Instant::now();
-        let groom = wisp::groom::load_groom(&paths, &base, &opts).map_err(AppError::input)?;
+        let groom = wisp::groom::load_groom(&paths, &base, &opts).map_err(|e| match e {
+            GroomError::RootsOffHead { .. } | GroomError::NotOnAHead { .. } => AppError::input(anyhow::anyhow!(
+                "{e}; a groom that is not a scalp's (fur, a groom made on another head) renders \
+                 where it was authored with --groom-as-authored"
+            )),
+            e => AppError::input(e),
+        })?;
         report_import(&groom, started.elapsed().as_secs_f64());
         // What the groom keeps of the hairstyle (not its curls: an imported groom has its own
         // shape) is checked as it will be drawn.
@@ -117,7 +132,7 @@ impl HairArgs {
 }
 
 /// The import's figures on stderr: strands kept and dropped, wisps, time, and where the groom
-/// was placed on the head.
+/// was placed on the head (or kept as authored).
 fn report_import(groom: &Groom, seconds: f64) {
     let r = &groom.report;
     let p = r.placement.unwrap_or(Placement {
@@ -125,24 +140,37 @@ fn report_import(groom: &Groom, seconds: f64) {
         yaw_rad: 0.0,
         offset_m: Vec3::ZERO,
     });
+    let placed = match r.as_authored_unit_m {
+        Some((unit, guessed)) => format!(
+            "kept as authored at {unit} m a unit{}",
+            if guessed {
+                " (guessed from its size; --groom-unit-m gives it)"
+            } else {
+                ""
+            }
+        ),
+        None => format!(
+            "placed on the head{} at scale {:.5}, turn {:.0}°, roots {:.1} mm from the scalp \
+             (mean, max {:.1})",
+            if r.placed_by_root_sphere {
+                " by the sphere through its roots (a partial groom)"
+            } else {
+                ""
+            },
+            p.scale,
+            p.yaw_rad.to_degrees(),
+            r.root_distance_mean_m * 1e3,
+            r.root_distance_max_m * 1e3,
+        ),
+    };
     eprintln!(
         "wisp: groom {}: {} strands ({} dropped: zero length) in {} wisps, imported in {:.2} s; \
-         placed on the head{} at scale {:.5}, turn {:.0}°, roots {:.1} mm from the scalp (mean, max {:.1}); \
-         rest pose vs file: mean {:.3} mm, max {:.3} mm",
+         {placed}; rest pose vs file: mean {:.3} mm, max {:.3} mm",
         printable(&groom.style.name),
         r.strands_read - r.strands_dropped,
         r.strands_dropped,
         r.wisps,
         seconds,
-        if r.placed_by_root_sphere {
-            " by the sphere through its roots (a partial groom)"
-        } else {
-            ""
-        },
-        p.scale,
-        p.yaw_rad.to_degrees(),
-        r.root_distance_mean_m * 1e3,
-        r.root_distance_max_m * 1e3,
         r.rest_distance_mean_m * 1e3,
         r.rest_distance_max_m * 1e3,
     );

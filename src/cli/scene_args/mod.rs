@@ -75,9 +75,24 @@ impl SceneArgs {
     /// Loads the motion and the hairstyle (and an imported groom's hair), and builds the scene
     /// and the engine configuration; refuses a groom whose roots miss the character's head.
     pub fn resolve(&self) -> Result<(Hairstyle, ImportedHair, Motion, EngineConfig), AppError> {
-        let motion = self.motion.load(self.hair_alone()?)?;
+        let motion = if self.hair.groom_as_authored {
+            // Roots pinned where the file has them: nothing moves them, and no head or body
+            // is drawn (the groom's own is not in the file).
+            if self.motion.animation.is_some() {
+                return Err(AppError::input(anyhow::anyhow!(
+                    "--groom-as-authored pins the groom's roots in place; it takes no \
+                     --animation (roots following a character's bones are not supported)"
+                )));
+            }
+            Motion::still(glam::Affine3A::IDENTITY)
+        } else {
+            self.motion.load(self.hair_alone()?)?
+        };
         let (style, hair) = self.hair.load()?;
-        let (scene, quality) = self.scene_file.scene(&style, &motion)?;
+        let (mut scene, quality) = self.scene_file.scene(&style, &motion)?;
+        if self.hair.groom_as_authored {
+            scene.draw_solids = false;
+        }
         let mut config = self.config(scene, quality.unwrap_or(self.default_quality));
         if hair.is_some() {
             // An imported groom's hair falls from its captured pose: settle it in coarse steps.
