@@ -1,6 +1,7 @@
 //! End to end: hairstyle -> simulation -> map -> shading -> raster, through the library.
 
 use crate::common;
+use wisp::scene::{CameraSetup, Framing};
 
 use glam::{Affine3A, Vec3};
 use wisp::engine::{Engine, EngineConfig};
@@ -154,6 +155,8 @@ fn one_fiber_hair_with_contact_shadows_is_byte_identical_with_one_and_two_thread
         common::on_threads(threads, || {
             let config = {
                 let mut config = EngineConfig::sized(160, 160);
+                // The hair close up: what these tests look at.
+                config.scene.camera = CameraSetup::Framed(Some(Framing::Head));
                 config.hair_map.contact = contact;
                 config
             };
@@ -201,6 +204,8 @@ fn volume_shading_is_byte_identical_with_one_and_two_threads_and_adds_light() {
         common::on_threads(threads, || {
             let mut config = {
                 let mut config = EngineConfig::sized(160, 160);
+                // The hair close up: what these tests look at.
+                config.scene.camera = CameraSetup::Framed(Some(Framing::Head));
                 config.shading.light_paths = wisp::light_paths::LightPathParams {
                     paths: 20_000,
                     ..Default::default()
