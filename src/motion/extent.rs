@@ -24,6 +24,10 @@ const SAMPLES_PER_S: f32 = 30.0;
 /// more coarsely in time: 4 M vertices skin in well under a second).
 const MAX_SAMPLES: usize = 241;
 const MAX_POSED_VERTICES: usize = 4_000_000;
+/// Posed vertices farther than this from the head centre (pose metres: a human-sized world)
+/// are left out: a whole figure, arms raised, lies within 2.2 m of its head, and one stray
+/// vertex of a broken rig must not move the camera out of sight of the rest.
+const MAX_REACH_M: f32 = 3.0;
 /// The upper body: the top fraction of the figure's height.
 const UPPER_FRACTION: f32 = 0.5;
 /// Slabs of height each sample's figure is cut into, each boxed on its own: at one instant
@@ -61,6 +65,8 @@ impl Motion {
             .min(MAX_SAMPLES)
             .min((MAX_POSED_VERTICES / vertices).max(2));
         let mut posed = CharacterPose::default();
+        let mut head = super::Pose::default();
+        let mut near: Vec<Vec3> = Vec::with_capacity(vertices);
         let mut full = Vec::with_capacity(samples * SLABS);
         let mut upper = Vec::with_capacity(samples * SLABS);
         for k in 0..samples {
@@ -69,11 +75,19 @@ impl Motion {
             } else {
                 0.0
             };
-            self.pose_character_at_clip_time(self.start_s + f * self.duration_s, &mut posed);
-            let (bottom_y, top_y) = posed
-                .positions
+            let clip_t = self.start_s + f * self.duration_s;
+            self.pose_character_at_clip_time(clip_t, &mut posed);
+            self.pose_at_clip_time(clip_t, &mut head);
+            let centre = Vec3::from(head.head.translation);
+            near.clear();
+            near.extend(
+                posed
+                    .positions
+                    .iter()
+                    .filter(|p| p.is_finite() && p.distance(centre) <= MAX_REACH_M),
+            );
+            let (bottom_y, top_y) = near
                 .iter()
-                .filter(|p| p.is_finite())
                 .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), p| {
                     (lo.min(p.y), hi.max(p.y))
                 });
@@ -81,8 +95,8 @@ impl Motion {
                 continue;
             }
             let cut_y = top_y - UPPER_FRACTION * (top_y - bottom_y);
-            full.extend(slab_boxes(&posed.positions, (bottom_y, top_y), axes));
-            upper.extend(slab_boxes(&posed.positions, (cut_y, top_y), axes));
+            full.extend(slab_boxes(&near, (bottom_y, top_y), axes));
+            upper.extend(slab_boxes(&near, (cut_y, top_y), axes));
         }
         (!full.is_empty()).then_some(FigureExtent { full, upper })
     }
