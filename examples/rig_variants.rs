@@ -11,6 +11,7 @@
 //! `DIR/dance_unnamed.glb` (every node name dropped).
 
 #[path = "../tests/support/rig_variants.rs"]
+#[allow(dead_code)]
 mod rig_variants;
 
 use rig_variants::{Frame, re_expressed};

@@ -108,7 +108,7 @@ fn topmost_along(skel: &Skeleton, joints: &[usize], axis: Vec3) -> Option<usize>
     if height(top) <= bottom {
         return None;
     }
-    let is_leaf = !skel.parents.iter().any(|p| *p == Some(top));
+    let is_leaf = !skel.parents.contains(&Some(top));
     match skel.parents[top] {
         Some(p) if is_leaf && skel.is_joint[p] => Some(p),
         _ => Some(top),

@@ -228,11 +228,11 @@ fn split_glb(glb: &[u8]) -> (Value, Vec<u8>) {
 /// A GLB of `doc` and `bin` (JSON padded with spaces, BIN with zeros).
 fn join_glb(doc: &Value, bin: &[u8]) -> Vec<u8> {
     let mut json = doc.to_string().into_bytes();
-    while json.len() % 4 != 0 {
+    while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
     let mut bin = bin.to_vec();
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let total = 12 + 8 + json.len() + 8 + bin.len();
