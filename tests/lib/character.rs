@@ -3,35 +3,13 @@
 //! hair, hair shadows it), and hair against the drawn mesh over a whole clip of the dance.
 
 use crate::common;
+use crate::support::rig_variants::join_glb;
 
 use glam::{Affine3A, Vec3};
 use serde_json::{Value, json};
 use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::{CharacterPose, Fit, Motion, MotionOptions};
-
-/// A GLB from a JSON document and its binary chunk.
-fn glb(doc: &Value, bin: &[u8]) -> Vec<u8> {
-    let mut json = doc.to_string().into_bytes();
-    while !json.len().is_multiple_of(4) {
-        json.push(b' ');
-    }
-    let mut bin = bin.to_vec();
-    while !bin.len().is_multiple_of(4) {
-        bin.push(0);
-    }
-    let total = 12 + 8 + json.len() + 8 + bin.len();
-    let mut out = Vec::new();
-    out.extend_from_slice(b"glTF");
-    for v in [2u32, total as u32, json.len() as u32, 0x4E4F_534A] {
-        out.extend_from_slice(&v.to_le_bytes());
-    }
-    out.extend_from_slice(&json);
-    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(&0x004E_4942u32.to_le_bytes());
-    out.extend_from_slice(&bin);
-    out
-}
 
 /// Buffer views and accessors of a document being built.
 #[derive(Default)]
@@ -89,7 +67,7 @@ struct Breakage {
 /// moves `Root` from 0 to (2, 0, 0) and turns `Head` by 90° about Z over 1 s.
 fn tiny_character(b: Breakage) -> Vec<u8> {
     let (doc, bin) = tiny_character_doc(b);
-    glb(&doc, &bin)
+    join_glb(&doc, &bin)
 }
 
 /// [`tiny_character`]'s glTF document and binary chunk, for a test to add to.
@@ -171,7 +149,7 @@ fn tiny_character_textured(mime: &str, image: &[u8]) -> Motion {
     doc["images"] = json!([{ "uri": uri }]);
     doc["textures"] = json!([{ "source": 0 }]);
     doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": 0 });
-    Motion::from_glb_bytes(&glb(&doc, &bin), "tiny.glb", &identity_fit()).unwrap()
+    Motion::from_glb_bytes(&join_glb(&doc, &bin), "tiny.glb", &identity_fit()).unwrap()
 }
 
 /// A JPEG base colour is decoded to linear RGB (sRGB 255 → 1, 0 → 0); an image wisp does

@@ -226,7 +226,7 @@ fn split_glb(glb: &[u8]) -> (Value, Vec<u8>) {
 }
 
 /// A GLB of `doc` and `bin` (JSON padded with spaces, BIN with zeros).
-fn join_glb(doc: &Value, bin: &[u8]) -> Vec<u8> {
+pub fn join_glb(doc: &Value, bin: &[u8]) -> Vec<u8> {
     let mut json = doc.to_string().into_bytes();
     while !json.len().is_multiple_of(4) {
         json.push(b' ');
