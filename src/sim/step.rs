@@ -92,6 +92,8 @@ pub struct Simulator {
     correction: Vec<Vec3A>,
     /// Scratch written by the collider closure.
     colliders: Colliders,
+    /// The colliders of the step before, to tell a still scene (`guide_step.rs`, stage 3d).
+    prev_colliders: Colliders,
     /// Head semi-axes given to `new`, used when the closure leaves invalid ones.
     head_radii_m: Vec3,
     /// The self-collision density grid, rebuilt every step when self-collision is on.
@@ -143,6 +145,7 @@ impl Simulator {
             correction: vec![Vec3A::ZERO; shape.rest.len()],
             shape,
             colliders: Colliders::head_only(Affine3A::IDENTITY, head_radii_m),
+            prev_colliders: Colliders::head_only(Affine3A::IDENTITY, head_radii_m),
             head_radii_m,
             grid: DensityGrid::new(cell_m, if self_collision { reach_m } else { 0.0 }),
             self_collision_possible: self_collision,
@@ -250,9 +253,11 @@ impl Simulator {
         let target_steps = ((t_end_s - state.origin_s) / dt).round();
         while (state.steps as f64) < target_steps {
             let t = state.origin_s + (state.steps + 1) as f64 * dt;
+            copy_colliders(&self.colliders, &mut self.prev_colliders);
             colliders_at(t, &mut self.colliders);
             self.sanitize_colliders(state.head);
-            let s = self.step(state);
+            let still_scene = state.steps > 0 && self.colliders == self.prev_colliders;
+            let s = self.step(state, still_scene);
             stats.steps += 1;
             stats.repelled_particles = stats.repelled_particles.saturating_add(s.repelled);
             stats.self_collision_skipped_steps += s.grid_skipped;
@@ -280,8 +285,9 @@ impl Simulator {
         }
     }
 
-    /// One fixed step of every guide, in parallel.
-    fn step(&mut self, state: &mut SimState) -> GuideStats {
+    /// One fixed step of every guide, in parallel; `still_scene` when no collider moved
+    /// since the step before.
+    fn step(&mut self, state: &mut SimState, still_scene: bool) -> GuideStats {
         let ppg = self.shape.points_per_guide;
         // The density grid of the positions and velocities the step starts from, in the head
         // frame of the step (the same transform for the splat and the queries).
@@ -306,6 +312,7 @@ impl Simulator {
             head,
             head_rot: Quat::from_mat3a(&head.matrix3).normalize(),
             scene: &scene,
+            still_scene,
             grid: (self.self_collision && self.grid.is_active()).then_some(&self.grid),
         };
         let stats = state
@@ -335,6 +342,14 @@ impl Simulator {
             ..stats
         }
     }
+}
+
+/// Copies `from` into `to`, reusing `to`'s allocations (a derived `clone_from` would not).
+fn copy_colliders(from: &Colliders, to: &mut Colliders) {
+    to.head = from.head;
+    to.head_radii_m = from.head_radii_m;
+    to.spheres.clone_from(&from.spheres);
+    to.capsules.clone_from(&from.capsules);
 }
 
 /// Moves the whole state rigidly from its head pose to `new_head` (used when a time gap is

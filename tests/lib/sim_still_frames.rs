@@ -99,3 +99,58 @@ fn hair_resting_on_the_shoulders_renders_identical_frames() {
     let changed = changed_frames("frozen_dance_smooth", style, frozen);
     assert_eq!(changed, 0, "{changed} of {FRAMES} frames changed");
 }
+
+#[test]
+fn hair_on_the_still_character_stays_put_after_the_settle() {
+    // The embedded dance held still (`render --still`): the mannequin's meshes and capsules
+    // under the hair. Before the static friction on a still scene (`sim::guide_step`, stage
+    // 3d) contact was frictionless, and at the first frame 34 of the 402 guides were still
+    // sliding: one lying across the shoulder moved 2 mm between frames 0 and 1 and 37 mm over
+    // the next 3 s.
+    let size = 200;
+    let mut engine = Engine::new(
+        Hairstyle::default_smooth(),
+        Motion::default_dance().held_still(),
+        EngineConfig::sized(size, size),
+    );
+    let first = engine.frame(0.0).to_srgb8();
+    let settled = engine.simulation.state.positions.clone();
+    let second = engine.frame(1.0 / 30.0).to_srgb8();
+    // Pixels whose 8-bit value differs by more than 2 in any channel; the bound is 0.1% of
+    // the image (40 of 40 000 pixels).
+    let changed = first
+        .chunks(3)
+        .zip(second.chunks(3))
+        .filter(|(a, b)| a.iter().zip(*b).any(|(x, y)| x.abs_diff(*y) > 2))
+        .count();
+    if changed > 0 {
+        let path = write_diff("still_character", size, size, &first, &second);
+        eprintln!("{changed} pixels changed; see {}", path.display());
+    }
+    assert!(
+        changed * 1000 < (size * size) as usize,
+        "{changed} of {} pixels changed between frames 0 and 1",
+        size * size
+    );
+    // Over 1 s every particle stays within 0.1 mm of where the settle left it: 0.13 of a
+    // pixel at 800×800, where the engine frames about 0.78 mm per pixel (`sim_rest.rs`).
+    // Frame by frame, as a render advances (one jump past `max_catch_up_s` would carry the
+    // hair over the gap instead).
+    for f in 2..=30 {
+        engine.advance(f64::from(f) / 30.0);
+    }
+    let moved_m = engine
+        .simulation
+        .state
+        .positions
+        .iter()
+        .zip(&settled)
+        .map(|(a, b)| a.distance(*b))
+        .fold(0.0f32, f32::max);
+    assert!(moved_m < 1.0e-4, "a particle moved {moved_m} m over 1 s");
+    assert_eq!(
+        engine.simulation.stats.resting_guides as usize,
+        engine.guides.count(),
+        "every guide at rest after 1 s"
+    );
+}
