@@ -6,8 +6,8 @@
 //! the back), then projected radially onto the head ellipsoid. The lattice gives even spacing
 //! without a relaxation pass and is deterministic.
 //!
-//! Guides: each link leaves along a direction that starts as the scalp normal and turns toward
-//! gravity (and, for roots near the face, toward the back, as combed hair); every new particle is
+//! Guides: the first link leaves the scalp at a slant of 25° toward the comb, and the next ones
+//! turn toward gravity (and, for roots near the face, toward the back, as combed hair); every new particle is
 //! pushed out of the head ellipsoid inflated by a small layer offset, so the rest pose drapes
 //! over the head instead of passing through it. The simulation then settles it.
 //!
@@ -186,16 +186,48 @@ fn strand_layout(
             strand_length.push(1.0 - style.strands.length_variation * lengths.unit());
         }
     }
+    let points = style.strands.points as usize;
     StrandLayout {
+        rest_offset: tip_fan(style, strand_wisp.len(), points),
         wisp_guides,
         strand_wisp,
         strand_weights,
         strand_phase,
         strand_length,
         tip_taper: style.strands.tip_taper,
-        points_per_strand: style.strands.points as usize,
-        rest_offset: Vec::new(),
+        points_per_strand: points,
     }
+}
+
+/// Largest sideways reach of a render strand's tip from where its wisp's blend puts it, as a
+/// fraction of the wisp radius.
+const TIP_FAN_OF_WISP_RADIUS: f32 = 0.6;
+
+/// Each render strand's departure from its wisp's blend over its tip taper (the layout's
+/// `rest_offset`, `points` per strand): 0 before the taper, growing as the square of the way
+/// through it to a reach drawn in [0, `TIP_FAN_OF_WISP_RADIUS`] × the wisp radius, sideways in
+/// a direction of its own. The blends of a wisp's strands run parallel to the tips, so without
+/// it the strands of a wisp end side by side like the bristles of a brush cut straight; real
+/// tips part where their fibres thin out. None (empty) without a taper. Drawn from a stream of
+/// its own, so every other placement is the same with or without it.
+fn tip_fan(style: &Hairstyle, strands: usize, points: usize) -> Vec<Vec3> {
+    let taper = style.strands.tip_taper;
+    if taper.is_nan() || taper <= 0.0 || points < 2 {
+        return Vec::new();
+    }
+    let mut rng = SplitMix64::new(style.seed ^ 0x7195_FA2E_D0C7_3B11);
+    let mut out = Vec::with_capacity(strands * points);
+    for _ in 0..strands {
+        let reach = TIP_FAN_OF_WISP_RADIUS * style.wisps.radius_m * rng.unit();
+        let (sin, cos) = (std::f32::consts::TAU * rng.unit()).sin_cos();
+        for i in 0..points {
+            let u = i as f32 / (points - 1) as f32;
+            let through = ((u - (1.0 - taper)) / taper).clamp(0.0, 1.0);
+            let r = reach * through * through;
+            out.push(Vec3::new(r * cos, r * sin, 0.0));
+        }
+    }
+    out
 }
 
 /// Where a guide starts and how it lies: its root on the scalp and the unit scalp normal
@@ -208,6 +240,23 @@ struct GuideStart {
     link_m: f32,
     layer_m: f32,
     wave_phase: f32,
+}
+
+/// Elevation of a guide's first link above the scalp's tangent plane, degrees: hair leaves
+/// its follicle at a slant and lies down within a few millimetres. A first link along the
+/// normal (a whole link, 2.3 cm for the smooth preset) stood every root up like a brush
+/// bristle at the crown, with its shadowed side showing as a dark stub along the parting.
+const ROOT_ELEVATION_DEG: f32 = 25.0;
+
+/// The first link's direction: `ROOT_ELEVATION_DEG` above the scalp (unit `normal`), toward
+/// where the hair is combed (`hang`, projected onto the tangent plane); the normal where the
+/// comb has no tangential part.
+fn root_direction(normal: Vec3, hang: Vec3) -> Vec3 {
+    let Some(along) = (hang - normal * hang.dot(normal)).try_normalize() else {
+        return normal;
+    };
+    let (sin, cos) = ROOT_ELEVATION_DEG.to_radians().sin_cos();
+    (normal * sin + along * cos).normalize_or(normal)
 }
 
 /// Appends the particles of one guide, root first, each link of length `start.link_m`
@@ -225,6 +274,7 @@ fn push_guide(style: &Hairstyle, radii: Vec3, start: &GuideStart, out: &mut Vec<
     let inflated = radii + Vec3::splat(layer);
     let mut p = root;
     let mut dir = normal;
+    let mut first = normal;
     out.push(p);
     let amp = style.guides.wave_amplitude_m;
     let mut prev_wave = 0.0;
@@ -237,12 +287,15 @@ fn push_guide(style: &Hairstyle, radii: Vec3, start: &GuideStart, out: &mut Vec<
         let side = (p.x / radii.x).clamp(-1.0, 1.0);
         let comb = Vec3::new(0.8 * side, 0.0, -2.5) * front;
         let hang = (Vec3::NEG_Y + comb).normalize();
-        // The first link leaves along the scalp normal; the next ones turn to the comb over
-        // the first 4 cm.
+        if i == 1 {
+            first = root_direction(normal, hang);
+        }
+        // The first link leaves at a slant toward the comb (`root_direction`); the next ones
+        // turn from there to the comb over the first 4 cm.
         let t = (s / 0.04).min(1.0);
-        let want = (normal * (1.0 - t) + hang * t).normalize_or(hang);
+        let want = (first * (1.0 - t) + hang * t).normalize_or(hang);
         dir = if i == 1 {
-            normal
+            first
         } else {
             (dir + 2.0 * want).normalize_or(want)
         };

@@ -5,8 +5,10 @@ use crate::hairstyle::{Hairstyle, generate};
 fn strands_of_a_wisp_lie_between_its_guides_and_roots_stay_on_guides_plane() {
     let style = Hairstyle::default_smooth();
     let (g, mut layout) = generate(&style);
-    // Full-length strands: their tips are the blend of the guides' tips.
+    // Full-length strands without the generator's tip fan: their tips are the blend of the
+    // guides' tips.
     layout.strand_length.fill(1.0);
+    layout.rest_offset.clear();
     let mut geo = StrandGeometry::default();
     interpolate(&g, &layout, &style.curl, &g.rest, &mut geo);
     assert_eq!(

@@ -42,8 +42,16 @@ fn links_are_rigid_roots_on_scalp_and_no_particle_inside_the_head() {
             for p in &pts[1..] {
                 assert!((*p / r).length() >= 0.999, "particle inside the head");
             }
-            // The first link leaves the scalp outward.
-            assert!((pts[1] - pts[0]).dot(g.root_normal[k]) > 0.5 * g.link_length_m[k]);
+            // The first link leaves the scalp outward at ROOT_ELEVATION_DEG (25°, normal share
+            // sin 25° = 0.423); the wave's sideways step and the push out to the hair's layer
+            // (along the scaled radius, not the normal) turn it by a few degrees. Its normal
+            // share stays in [0.3, 0.6) (17° to 37°: outward, and lying down, no bristle), or
+            // is 1 where the comb has no tangential part.
+            let up = (pts[1] - pts[0]).dot(g.root_normal[k]) / g.link_length_m[k];
+            assert!(
+                (0.3..0.6).contains(&up) || up > 0.9999,
+                "first link's normal share {up}, want in [0.3, 0.6)"
+            );
         }
     }
 }
@@ -87,4 +95,32 @@ fn guide_roots_are_the_roots_generate_drapes_from() {
             assert_eq!(guides.guide(g)[0], *r, "{}: guide {g}", style.name);
         }
     }
+}
+
+#[test]
+fn strand_tips_fan_out_over_the_taper_only() {
+    let style = Hairstyle::default_smooth();
+    let (_, layout) = generate(&style);
+    let n = layout.points_per_strand;
+    assert_eq!(layout.rest_offset.len(), layout.count() * n);
+    // Points before the last tip_taper (0.3) of the strand keep the blend: u = i/30 < 0.7.
+    let before = ((1.0 - style.strands.tip_taper) * (n - 1) as f32).floor() as usize;
+    let reach_max = TIP_FAN_OF_WISP_RADIUS * style.wisps.radius_m;
+    let mut tips = Vec::new();
+    for chunk in layout.rest_offset.chunks(n) {
+        assert!(chunk[..=before].iter().all(|o| *o == Vec3::ZERO));
+        // Sideways only (no z), and within the largest reach at the tip.
+        assert!(chunk.iter().all(|o| o.z == 0.0));
+        let tip = chunk[n - 1].length();
+        assert!(tip <= reach_max * (1.0 + 1e-5), "tip reach {tip}");
+        tips.push(tip);
+    }
+    // The reach is uniform in [0, 0.6 r]: its mean over 3350 strands is 0.3 r to within a
+    // few per cent (standard error 0.6 r / √(12 · 3350) = 0.003 r).
+    let mean = tips.iter().sum::<f32>() / tips.len() as f32;
+    assert!((mean / reach_max - 0.5).abs() < 0.02, "mean reach {mean}");
+    // Without a taper there is no fan.
+    let mut flat = style.clone();
+    flat.strands.tip_taper = 0.0;
+    assert!(generate(&flat).1.rest_offset.is_empty());
 }
