@@ -18,6 +18,7 @@ use glam::{DVec3, Quat, Vec3};
 
 use super::error::GroomError;
 use super::fit::{self, Placement};
+use super::polyline::arc_length;
 use super::root_sphere::{is_strip, sphere_through};
 use super::strands::Kept;
 use crate::input::strands::StrandFile;
@@ -73,12 +74,7 @@ pub(super) fn place_on_head(
     let fitted = fit::fit_to_head(&roots, &hair, yaw, radii);
     let longest_file = kept
         .iter()
-        .map(|k| {
-            k.points
-                .windows(2)
-                .map(|w| w[0].distance(w[1]))
-                .sum::<f32>()
-        })
+        .map(|k| arc_length(k.points))
         .fold(0.0f32, f32::max);
     // A strip of roots, or a fit that shrank the groom to a point: the sphere of the roots'
     // own head (module doc).
