@@ -58,7 +58,10 @@ pub use quality::Quality;
 pub use raster::{
     DEFAULT_MIN_LINE_WIDTH_PX, DrawLines, HairToDraw, RasterConfig, RasterPass, SolidsToDraw,
 };
-pub use setup::{fit_style_to_character, roots_of_guides_on_head, roots_on_head, write_colliders};
+pub use setup::{
+    carry_roots_by_bones, fit_style_to_character, roots_of_guides_on_head, roots_on_head,
+    write_colliders,
+};
 pub use shading::{ShadingConfig, ShadingInput, ShadingPass};
 pub use simulation::{GROOM_SETTLE_STEP_S, SimulationConfig, SimulationPass};
 pub use sizes::{RunSizes, SizedBy};

@@ -3,7 +3,7 @@
 
 use crate::hairstyle::{GuideSet, Hairstyle, guide_roots};
 use crate::map::Solid;
-use crate::motion::{Motion, Pose, RootsOnHead};
+use crate::motion::{CarryError, Motion, Pose, RootsOnHead};
 use crate::sim::{CapsuleCollider, Colliders, SphereCollider};
 use glam::{Affine3A, Vec3};
 
@@ -51,6 +51,18 @@ fn roots_at(roots: &[Vec3], style: &Hairstyle, motion: &Motion) -> Option<RootsO
     motion.roots_on_head(roots, (x * y * z).cbrt())
 }
 
+/// Pins the roots of `guides`, a groom kept as authored on `motion`'s character, each to the
+/// nearest bone of the character (`motion::carriers`): the motion keeps the bones that carry
+/// roots and each guide its carrier (`GuideSet::carrier`). Returns how many bones carry roots.
+pub fn carry_roots_by_bones(
+    guides: &mut GuideSet,
+    motion: &mut Motion,
+) -> Result<usize, CarryError> {
+    let roots: Vec<Vec3> = (0..guides.count()).map(|g| guides.guide(g)[0]).collect();
+    guides.carrier = motion.carry_by_nearest_bones(&roots)?;
+    Ok(motion.carrier_count())
+}
+
 /// The opaque solids of a pose: the head ellipsoid first, then the body spheres.
 pub(super) fn solids_of(pose: &Pose, head_radii_m: Vec3) -> impl Iterator<Item = Solid> + '_ {
     let head = Solid {
@@ -71,7 +83,8 @@ pub(super) fn colliders_of(pose: &Pose, radii: Vec3) -> Colliders {
     c
 }
 
-/// Writes `pose`'s colliders (head ellipsoid of `radii`, body spheres and capsules) into `c`,
+/// Writes `pose`'s colliders (head ellipsoid of `radii`, body spheres and capsules) and the
+/// bones that carry roots into `c`,
 /// reusing its buffers: what the engine's simulation and interpolation are kept out of.
 pub fn write_colliders(pose: &Pose, radii: Vec3, c: &mut Colliders) {
     c.head = pose.head;
@@ -89,4 +102,5 @@ pub fn write_colliders(pose: &Pose, radii: Vec3, c: &mut Colliders) {
             b: k.b,
             radius_m: k.radius_m,
         }));
+    c.carriers.clone_from(&pose.carriers);
 }

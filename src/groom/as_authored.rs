@@ -7,7 +7,7 @@
 //! 0.5 m across, a horse's coat 3 m), `5 < D ≤ 300` centimetres, larger millimetres. The
 //! guess is said in the import's line, so a wrong one is one flag away.
 
-use glam::Vec3;
+use glam::{Quat, Vec3};
 
 use super::fit::Placement;
 use super::place::OnHead;
@@ -29,10 +29,25 @@ pub fn guess_unit_m(diagonal: f32) -> f32 {
     }
 }
 
-/// The placement of the `kept` strands as authored: scaled by `unit_m` (guessed when `None`),
-/// not turned or moved; their roots are where the file has them, so none is off a head. Also
-/// returns the unit used and whether it was guessed.
-pub(super) fn as_authored(kept: &[Kept], unit_m: Option<f32>) -> (OnHead, f32, bool) {
+/// Where a groom kept as authored on its own character lies in the head frame: the file's
+/// coordinates are the character's, so they are turned as the model was to stand upright
+/// (`Motion::file_turn`) and moved so that the head centre at rest (`Motion::head_at_rest`,
+/// pose metres) is the origin.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AuthoredFrame {
+    pub upright: Quat,
+    pub head_at_rest_m: Vec3,
+}
+
+/// The placement of the `kept` strands as authored: scaled by `unit_m` (guessed when `None`)
+/// and, on a character, put in its head frame (`frame`); not fitted, so their roots are where
+/// the file has them and none is off a head. Also returns the unit used and whether it was
+/// guessed.
+pub(super) fn as_authored(
+    kept: &[Kept],
+    unit_m: Option<f32>,
+    frame: Option<AuthoredFrame>,
+) -> (OnHead, f32, bool) {
     let (lo, hi) = kept.iter().flat_map(|k| k.points.iter()).fold(
         (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
         |(lo, hi), p| (lo.min(*p), hi.max(*p)),
@@ -43,7 +58,8 @@ pub(super) fn as_authored(kept: &[Kept], unit_m: Option<f32>) -> (OnHead, f32, b
         placement: Placement {
             scale: unit,
             yaw_rad: 0.0,
-            offset_m: Vec3::ZERO,
+            offset_m: frame.map_or(Vec3::ZERO, |f| -f.head_at_rest_m),
+            upright: frame.map_or(Quat::IDENTITY, |f| f.upright),
         },
         root_distance_m: vec![0.0; kept.len()],
         worst_m: 0.0,

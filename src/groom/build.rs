@@ -203,6 +203,7 @@ fn wisp_guides(
         rest,
         link_length_m,
         root_normal,
+        carrier: Vec::new(),
     };
     (guides, wisp_guides)
 }

@@ -24,18 +24,22 @@ use glam::{DVec3, Quat, Vec3};
 /// Huber threshold of the fit's robust weights, metres.
 const HUBER_M: f64 = 0.005;
 
-/// The placement of a groom in the head frame: `p_head = scale · (turn · p_file) + offset_m`.
+/// The placement of a groom in the head frame:
+/// `p_head = scale · (R_y(yaw) · upright · p_file) + offset_m`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Placement {
     pub scale: f32,
     /// Turn about +Y applied before scaling, radians.
     pub yaw_rad: f32,
     pub offset_m: Vec3,
+    /// Turn applied first: the one that stood the groom's character upright (a groom kept as
+    /// authored on a Z-up model, `Motion::file_turn`); identity otherwise.
+    pub upright: Quat,
 }
 
 impl Placement {
     pub fn apply(&self, p: Vec3) -> Vec3 {
-        self.scale * (Quat::from_rotation_y(self.yaw_rad) * p) + self.offset_m
+        self.scale * (Quat::from_rotation_y(self.yaw_rad) * (self.upright * p)) + self.offset_m
     }
 }
 
@@ -73,6 +77,7 @@ pub fn fit_to_head(
         scale: s as f32,
         yaw_rad,
         offset_m: o.as_vec3(),
+        upright: glam::Quat::IDENTITY,
     };
     (s.is_finite() && s > 0.0 && o.is_finite()).then_some(placement)
 }

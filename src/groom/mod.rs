@@ -47,8 +47,9 @@ mod root_sphere;
 mod strands;
 mod style;
 mod synthetic;
+mod synthetic_fur;
 
-pub use as_authored::guess_unit_m;
+pub use as_authored::{AuthoredFrame, guess_unit_m};
 pub use densify::{Density, density_of};
 pub use error::GroomError;
 pub use fit::Placement;
@@ -56,6 +57,7 @@ pub use place::{ROOT_TOLERANCE_M, ROOTS_OFF_HEAD_SHARE};
 pub use polyline::{arc_length, resample_by_arc_length};
 pub use rest_distance::rest_distance_m;
 pub use synthetic::synthetic_strands;
+pub use synthetic_fur::{FUR_POINTS, synthetic_fur};
 
 use crate::hairstyle::{GuideSet, Hairstyle, StrandLayout};
 use crate::input::strand_file::load_strand_file;
@@ -80,6 +82,9 @@ pub struct GroomOptions {
     pub as_authored: bool,
     /// Metres per file unit for a groom kept as authored (default: guessed from its size).
     pub unit_m: Option<f32>,
+    /// A groom kept as authored on its own character: where the character's head is
+    /// (default `None`: no character, the file's coordinates are the world's).
+    pub authored_on: Option<AuthoredFrame>,
 }
 
 /// Figures of an import.
@@ -150,7 +155,7 @@ pub fn build_groom(
     let count = kept.len();
     let radii = Vec3::from(base.head.radii_m);
     let (on_head, authored_unit) = if opts.as_authored {
-        let (on_head, unit, guessed) = as_authored::as_authored(&kept, opts.unit_m);
+        let (on_head, unit, guessed) = as_authored::as_authored(&kept, opts.unit_m, opts.authored_on);
         (on_head, Some((unit, guessed)))
     } else {
         let on_head = place::place_on_head(&kept, files, radii, opts.yaw_rad, &names)?;

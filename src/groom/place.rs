@@ -150,6 +150,7 @@ fn from_root_sphere(roots: &[Vec3], yaw_rad: f32, radii: Vec3) -> Option<(Placem
         scale: scale as f32,
         yaw_rad,
         offset_m: (-scale * centre).as_vec3(),
+        upright: glam::Quat::IDENTITY,
     };
     (placement.scale.is_finite() && placement.scale > 0.0 && placement.offset_m.is_finite())
         .then_some((placement, strip))

@@ -154,6 +154,7 @@ fn rest_guides(
         rest,
         link_length_m,
         root_normal,
+        carrier: Vec::new(),
     };
     (guides, wisp_guides)
 }

@@ -24,7 +24,7 @@ pub use advice::{Advisory, MAX_CURL_TURN_PER_SEGMENT_DEG};
 pub use dynamics::SimParams;
 pub use generate::{SplitMix64, generate, guide_roots};
 pub use load::{CURLY_JSON, HairstyleError, MAX_FILE_BYTES, SMOOTH_JSON};
-pub use model::{GuideSet, StrandLayout};
+pub use model::{GuideSet, StrandLayout, carrier_frame};
 pub use spec::{CurlSpec, GuideSpec, Hairstyle, HeadSpec, ScalpSpec, StrandSpec, WispSpec};
 pub use thin::{kept_strands, thin_strands};
 pub use validate::{

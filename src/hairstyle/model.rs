@@ -16,6 +16,10 @@ pub struct GuideSet {
     pub link_length_m: Vec<f32>,
     /// Unit scalp normal at each guide's root, head frame.
     pub root_normal: Vec<Vec3>,
+    /// Per guide, the bone that carries its root: an index into the pose's carriers
+    /// (`Pose::carriers`, a groom kept as authored on its character, see
+    /// `motion::carriers`). Empty: every root rides on the head.
+    pub carrier: Vec<u32>,
 }
 
 impl GuideSet {
@@ -26,6 +30,35 @@ impl GuideSet {
     pub fn guide(&self, g: usize) -> &[Vec3] {
         &self.rest[g * self.points_per_guide..(g + 1) * self.points_per_guide]
     }
+
+    /// Head frame → world now for guide `g`'s root: its carrier among `carriers` (head frame
+    /// → world, one per carrying bone), or `head` when it has none or the index is out of
+    /// range.
+    #[inline]
+    pub fn root_frame(
+        &self,
+        g: usize,
+        head: glam::Affine3A,
+        carriers: &[glam::Affine3A],
+    ) -> glam::Affine3A {
+        carrier_frame(&self.carrier, g, head, carriers)
+    }
+}
+
+/// [`GuideSet::root_frame`] from the carrier indices alone (for code that holds them apart
+/// from the guide set).
+#[inline]
+pub fn carrier_frame(
+    carrier: &[u32],
+    g: usize,
+    head: glam::Affine3A,
+    carriers: &[glam::Affine3A],
+) -> glam::Affine3A {
+    carrier
+        .get(g)
+        .and_then(|&c| carriers.get(c as usize))
+        .copied()
+        .unwrap_or(head)
 }
 
 /// How render strands are made from guides (Bertails 2005 §4.1: interpolated within a wisp).

@@ -143,6 +143,7 @@ pub(crate) fn from_bytes(
         head_joint_name: skel.names[head].clone(),
         head_joint_index: head,
         file_up,
+        carriers: Vec::new(),
         head_is_topmost,
     };
     motion

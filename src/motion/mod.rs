@@ -45,6 +45,7 @@
 //! `pose.rs` over the [`sampler`] tracks. Options and errors: `options.rs`, `error.rs`.
 
 mod capsules;
+mod carriers;
 mod chain;
 mod clip;
 pub mod colliders;
@@ -66,6 +67,7 @@ pub mod skin;
 pub mod texture;
 pub mod up_axis;
 
+pub use carriers::CarryError;
 pub use error::MotionError;
 pub use extent::FigureExtent;
 pub use fit::HAIRSTYLE_HEAD_RADIUS_M;

@@ -39,6 +39,8 @@ pub struct Motion {
     pub(crate) file_up: Vec3,
     /// The head joint was found as the topmost joint (no joint is named like "head").
     pub(crate) head_is_topmost: bool,
+    /// Bones that carry a groom's roots (`carriers.rs`); empty for hair on a head.
+    pub(crate) carriers: Vec<super::carriers::Carrier>,
 }
 
 impl Motion {
@@ -73,6 +75,7 @@ impl Motion {
             head_joint_index: 0,
             file_up: Vec3::Y,
             head_is_topmost: false,
+            carriers: Vec::new(),
         }
     }
 

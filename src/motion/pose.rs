@@ -47,6 +47,9 @@ pub struct Pose {
     /// Body capsules fitted to the character's mesh, pose world (see
     /// [`MotionOptions`](super::MotionOptions)).
     pub capsules: Vec<Capsule>,
+    /// Head frame → pose world of each bone that carries a groom's roots
+    /// ([`Motion::carry_by_nearest_bones`], `carriers.rs`); empty for hair on a head.
+    pub carriers: Vec<Affine3A>,
 }
 
 impl Default for Pose {
@@ -55,6 +58,7 @@ impl Default for Pose {
             head: Affine3A::IDENTITY,
             spheres: Vec::new(),
             capsules: Vec::new(),
+            carriers: Vec::new(),
         }
     }
 }
@@ -76,6 +80,7 @@ impl Motion {
             head: Affine3A::IDENTITY,
             spheres: Vec::with_capacity(self.spheres.len()),
             capsules: Vec::with_capacity(self.capsules.len()),
+            carriers: Vec::with_capacity(self.carriers.len()),
         };
         self.sample_into(t_s, &mut pose);
         pose
@@ -121,12 +126,7 @@ impl Motion {
     /// The pose at clip time `clip_t` (seconds within the key range).
     pub(super) fn pose_at_clip_time(&self, clip_t: f32, pose: &mut Pose) {
         let inv_scale = 1.0 / self.fit.scale;
-        let (rot, origin) = self.joint_frame(&self.head, clip_t);
-        let center_model = origin + rot * Vec3A::from(self.fit.offset_m);
-        pose.head = Affine3A {
-            matrix3: Mat3A::from_quat(rot),
-            translation: center_model * inv_scale,
-        };
+        pose.head = self.head_frame_of(&self.world(&self.head, clip_t), &self.head);
         pose.spheres.clear();
         for (joint, offset_m, radius_m) in &self.spheres {
             let (rot, origin) = self.joint_frame(joint, clip_t);
@@ -145,10 +145,22 @@ impl Motion {
                 radius_m: c.radius_m,
             });
         }
+        self.write_carriers(clip_t, &mut pose.carriers);
+    }
+
+    /// The head frame (head frame → pose world) when the head joint's world matrix is `w`:
+    /// the joint's rest-aligned rotation, at the fitted head centre.
+    pub(super) fn head_frame_of(&self, w: &Affine3A, head: &JointChain) -> Affine3A {
+        let rot = rigid_rotation(w) * head.rest_align;
+        let center_model = w.translation + rot * Vec3A::from(self.fit.offset_m);
+        Affine3A {
+            matrix3: Mat3A::from_quat(rot),
+            translation: center_model / self.fit.scale,
+        }
     }
 
     /// World matrix of a joint at clip time (model units, including node scales).
-    fn world(&self, joint: &JointChain, clip_t: f32) -> Affine3A {
+    pub(super) fn world(&self, joint: &JointChain, clip_t: f32) -> Affine3A {
         let mut m = Affine3A::IDENTITY;
         for &i in &joint.chain {
             m *= self.nodes[i].local(clip_t);

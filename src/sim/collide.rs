@@ -72,6 +72,9 @@ pub struct Colliders {
     pub spheres: Vec<SphereCollider>,
     /// Body capsules (a character's limbs and torso), world; see `capsule.rs`.
     pub capsules: Vec<CapsuleCollider>,
+    /// Head frame → world for each bone that carries roots (`GuideSet::carrier`: a groom kept
+    /// as authored on its character); empty for hair on a head.
+    pub carriers: Vec<Affine3A>,
 }
 
 impl Colliders {
@@ -82,6 +85,7 @@ impl Colliders {
             head_radii_m,
             spheres: Vec::new(),
             capsules: Vec::new(),
+            carriers: Vec::new(),
         }
     }
 

@@ -5,7 +5,7 @@
 //! for all guides before them (`step.rs`, `density.rs`).
 //!
 //! 1. **Kinematic root segment.** Particles 0 and 1 are the rest positions carried by the head
-//!    transform: the root sits on the scalp and the first link keeps its rest direction relative
+//!    transform (or by the bone that carries the guide, `GuideSet::carrier`): the root sits on the scalp and the first link keeps its rest direction relative
 //!    to the head, the slant at which the hair leaves its follicle (the rest generator starts a
 //!    generated guide 25° above the scalp, toward its comb). A follicle does not pivot, so a
 //!    rigid first link is the physical reading, and it removes the need for a stiff (and
@@ -18,7 +18,8 @@
 //!    solutions of `dv/dt = −c v` over the step, so they do not depend on `dt`.
 //! 3. **Root-to-tip sweep** (Gauss–Seidel, each particle sees its predecessor's final position):
 //!    - a) *Bending.* `Q` is a rotation carrying rest directions (head frame) to the current
-//!      frame of the previous link, parallel-transported down the strand: `Q₁ = R_head`, and
+//!      frame of the previous link, parallel-transported down the strand: `Q₁ = R_head` (the
+//!      carrier's rotation for a carried guide), and
 //!      after link i is placed with direction `dᵢ`, `Qᵢ = arc(Qᵢ₋₁ rᵢ → dᵢ) · Qᵢ₋₁` (the
 //!      minimal rotation). The target of link i is `tᵢ = Qᵢ₋₁ rᵢ`: the rest bend between
 //!      links i−1 and i, including its plane, so waves and curls keep their shape and their
@@ -178,10 +179,28 @@ pub(super) struct StepInputs<'a> {
     pub(super) consts: &'a Consts,
     pub(super) head: Affine3A,
     pub(super) head_rot: Quat,
+    /// Head frame → world of each bone that carries roots, and its rotation
+    /// (`Colliders::carriers`); the guides' carrier indices are in `shape.carrier`.
+    pub(super) carriers: &'a [Affine3A],
+    pub(super) carrier_rot: &'a [Quat],
     pub(super) scene: &'a CollisionScene<'a>,
     /// No collider moved since the step before (stage 3d).
     pub(super) still_scene: bool,
     pub(super) grid: Option<&'a DensityGrid>,
+}
+
+impl StepInputs<'_> {
+    /// Head frame → world for guide `g`'s root, and its rotation: its carrier's, or the
+    /// head's when it has none (hair on a head) or the carrier is missing.
+    #[inline]
+    fn root_frame(&self, g: usize) -> (Affine3A, Quat) {
+        match self.shape.carrier.get(g).map(|&c| c as usize) {
+            Some(c) if c < self.carriers.len() && c < self.carrier_rot.len() => {
+                (self.carriers[c], self.carrier_rot[c])
+            }
+            _ => (self.head, self.head_rot),
+        }
+    }
 }
 
 /// One step of guide `g` (module doc for the stages).
@@ -200,17 +219,19 @@ pub(super) fn step_guide(g: usize, guide: Guide, inputs: &StepInputs) -> GuideSt
     let rest = &shape.rest[base..base + ppg];
     let mut stats = GuideStats::default();
     prev.copy_from_slice(pos);
+    let (root_frame, root_rot) = inputs.root_frame(g);
 
     // 1. Kinematic root segment.
     for i in 0..2.min(ppg) {
-        pos[i] = Vec3::from(inputs.head.transform_point3a(rest[i]));
+        pos[i] = Vec3::from(root_frame.transform_point3a(rest[i]));
         corr[i] = Vec3A::ZERO;
     }
     // 2. Forces and prediction.
     stats.repelled = predict(pos, prev, vel, c, inputs.grid);
     // 3. Root-to-tip sweep: bending, follow the leader, collisions.
     let rest_dir = &shape.rest_dir[base..base + ppg];
-    stats.max_penetration_m = sweep(pos, prev, corr, rest_dir, shape.link_m[g], inputs);
+    let link = shape.link_m[g];
+    stats.max_penetration_m = sweep(pos, prev, corr, rest_dir, link, root_rot, inputs);
     // 4. Velocities with the DFTL correction of the next particle.
     update_velocities(pos, prev, vel, corr, c);
     // 5. Bending damping, root to tip (after the velocities it damps).
@@ -224,7 +245,7 @@ pub(super) fn step_guide(g: usize, guide: Guide, inputs: &StepInputs) -> GuideSt
     // A guide that went non-finite restarts from its rest shape, at rest.
     if !pos.iter().chain(vel.iter()).all(|p| p.is_finite()) {
         for i in 0..ppg {
-            pos[i] = Vec3::from(inputs.head.transform_point3a(rest[i]));
+            pos[i] = Vec3::from(root_frame.transform_point3a(rest[i]));
             prev[i] = pos[i];
             vel[i] = Vec3::ZERO;
         }
@@ -285,12 +306,13 @@ fn sweep(
     corr: &mut [Vec3A],
     rest_dir: &[Vec3A],
     link: f32,
+    root_rot: Quat,
     inputs: &StepInputs,
 ) -> f32 {
     let ppg = pos.len();
     let (bend_k, inv_link) = (inputs.consts.bend_k, 1.0 / link);
     let mut max_penetration_m = 0.0f32;
-    let mut q = inputs.head_rot;
+    let mut q = root_rot;
     let mut p_prev = Vec3A::from(pos[1.min(ppg - 1)]);
     for i in 2..ppg {
         // Unit to rounding: q is a unit quaternion, rest_dir a unit vector.
@@ -308,7 +330,7 @@ fn sweep(
             max_penetration_m = max_penetration_m.max(inputs.scene.penetration_m(p_final));
         }
         // |p_final − p_prev| = L to rounding, so no square root is needed; q is rebuilt from
-        // the head rotation every step, so rounding drift cannot accumulate beyond one strand.
+        // the root's rotation every step, so rounding drift cannot accumulate beyond one strand.
         let actual_dir = (p_final - p_prev) * inv_link;
         q = bend::rotation_arc(target_dir, actual_dir) * q;
         pos[i] = Vec3::from(p_final);

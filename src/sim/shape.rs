@@ -34,6 +34,8 @@ pub(super) struct Shape {
     pub(super) particle_volume_m3: Vec<f32>,
     /// Weights of the exact bending damping over one step (`bend::damping_weights`).
     pub(super) damping_weights: Vec<f32>,
+    /// Per guide, the bone that carries its root (`GuideSet::carrier`; empty: the head).
+    pub(super) carrier: Vec<u32>,
 }
 
 /// Cross-section of real hair (m²) each guide stands for (module doc): every fibre of every
@@ -96,6 +98,7 @@ impl Shape {
             link_m,
             particle_volume_m3,
             damping_weights: bend::damping_weights(bend_damp, ppg),
+            carrier: guides.carrier.iter().take(count).copied().collect(),
         }
     }
 

@@ -41,7 +41,8 @@ pub struct SimState {
 }
 
 impl SimState {
-    /// The guides in their rest shape attached to the head at `colliders.head`, at rest, at
+    /// The guides in their rest shape attached to the head at `colliders.head` (or to their
+    /// carriers, `GuideSet::carrier`), at rest, at
     /// time `t_s`. Particles the rest shape puts inside a body sphere (or the head) are moved
     /// out root to tip with the same projection the simulator uses, so the first step starts
     /// from a valid state instead of popping out of a collider at high speed. The first two
@@ -64,6 +65,7 @@ impl SimState {
         let mut positions = Vec::with_capacity(n);
         for g in 0..count {
             let rest = guides.guide(g);
+            let head = guides.root_frame(g, head, &colliders.carriers);
             let link = sanitized_link_m(guides.link_length_m[g]);
             let mut prev = Vec3A::ZERO;
             for (i, r) in rest.iter().enumerate() {

@@ -102,6 +102,8 @@ pub struct Simulator {
     self_collision_possible: bool,
     /// Self-collision on (the default when possible) or off.
     self_collision: bool,
+    /// Scratch: the rotation of each carrier in `colliders.carriers`, for the step.
+    carrier_rot: Vec<Quat>,
 }
 
 impl Simulator {
@@ -150,6 +152,7 @@ impl Simulator {
             grid: DensityGrid::new(cell_m, if self_collision { reach_m } else { 0.0 }),
             self_collision_possible: self_collision,
             self_collision,
+            carrier_rot: Vec::new(),
         }
     }
 
@@ -241,9 +244,15 @@ impl Simulator {
         let cap = f64::from(self.params.max_catch_up_s);
         if t_end_s - state.time_s > cap {
             let restart_s = t_end_s - cap;
+            copy_colliders(&self.colliders, &mut self.prev_colliders);
             colliders_at(restart_s, &mut self.colliders);
             self.sanitize_colliders(state.head);
-            carry_rigidly(state, self.colliders.head);
+            carry_rigidly(
+                state,
+                &self.colliders,
+                &self.prev_colliders.carriers,
+                &self.shape.carrier,
+            );
             stats.dropped_s = restart_s - state.time_s;
             state.origin_s = restart_s;
             state.steps = 0;
@@ -272,12 +281,19 @@ impl Simulator {
         stats
     }
 
-    /// Keeps the previous head transform if the closure produced a non-finite one, and the
-    /// head semi-axes given to `new` if it produced invalid ones (if those are invalid too,
-    /// the ellipsoid test simply finds nothing inside).
+    /// Keeps the previous head transform if the closure produced a non-finite one (a
+    /// non-finite carrier takes the head's), and the head semi-axes given to `new` if it
+    /// produced invalid ones (if those are invalid too, the ellipsoid test simply finds
+    /// nothing inside).
     fn sanitize_colliders(&mut self, previous_head: Affine3A) {
         if !self.colliders.head.is_finite() {
             self.colliders.head = previous_head;
+        }
+        let head = self.colliders.head;
+        for c in &mut self.colliders.carriers {
+            if !c.is_finite() {
+                *c = head;
+            }
         }
         let r = self.colliders.head_radii_m;
         if !(r.is_finite() && r.min_element() > 0.0) {
@@ -306,11 +322,20 @@ impl Simulator {
         };
         let scene = CollisionScene::new(&self.colliders);
         let head = self.colliders.head;
+        self.carrier_rot.clear();
+        self.carrier_rot.extend(
+            self.colliders
+                .carriers
+                .iter()
+                .map(|c| Quat::from_mat3a(&c.matrix3).normalize()),
+        );
         let inputs = StepInputs {
             shape: &self.shape,
             consts: &self.consts,
             head,
             head_rot: Quat::from_mat3a(&head.matrix3).normalize(),
+            carriers: &self.colliders.carriers,
+            carrier_rot: &self.carrier_rot,
             scene: &scene,
             still_scene,
             grid: (self.self_collision && self.grid.is_active()).then_some(&self.grid),
@@ -350,26 +375,51 @@ fn copy_colliders(from: &Colliders, to: &mut Colliders) {
     to.head_radii_m = from.head_radii_m;
     to.spheres.clone_from(&from.spheres);
     to.capsules.clone_from(&from.capsules);
+    to.carriers.clone_from(&from.carriers);
 }
 
-/// Moves the whole state rigidly from its head pose to `new_head` (used when a time gap is
-/// skipped): positions, previous positions and velocities.
-fn carry_rigidly(state: &mut SimState, new_head: Affine3A) {
-    let delta = new_head * state.head.inverse();
-    for p in state
-        .positions
-        .iter_mut()
-        .chain(state.prev_positions.iter_mut())
-    {
-        *p = delta.transform_point3(*p);
-    }
-    for v in &mut state.velocities {
-        *v = delta.transform_vector3(*v);
+/// Moves the whole state rigidly from its head pose to `new.head` (used when a time gap is
+/// skipped): positions, previous positions and velocities. A guide carried by a bone
+/// (`carrier_of`) moves with its carrier, from `old_carriers` (the carriers of the state's
+/// time) to `new.carriers`; when the old ones are not known (a simulator that has not stepped
+/// this state), with the head.
+fn carry_rigidly(
+    state: &mut SimState,
+    new: &Colliders,
+    old_carriers: &[Affine3A],
+    carrier_of: &[u32],
+) {
+    let head_delta = new.head * state.head.inverse();
+    let carried = old_carriers.len() == new.carriers.len() && !carrier_of.is_empty();
+    let deltas: Vec<Affine3A> = if carried {
+        new.carriers
+            .iter()
+            .zip(old_carriers)
+            .map(|(n, o)| *n * o.inverse())
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let guides = state.still_steps.len();
+    let ppg = state.positions.len() / guides.max(1);
+    for g in 0..guides {
+        let delta = carrier_of
+            .get(g)
+            .and_then(|&c| deltas.get(c as usize))
+            .copied()
+            .unwrap_or(head_delta);
+        let span = g * ppg..(g + 1) * ppg;
+        for p in state.positions[span.clone()]
+            .iter_mut()
+            .chain(state.prev_positions[span.clone()].iter_mut())
+        {
+            *p = delta.transform_point3(*p);
+        }
+        for v in &mut state.velocities[span] {
+            *v = delta.transform_vector3(*v);
+        }
     }
     state.anchor.copy_from_slice(&state.positions);
     state.still_steps.iter_mut().for_each(|s| *s = 0);
-    state.head = new_head;
+    state.head = new.head;
 }
-
-#[cfg(test)]
-mod tests;

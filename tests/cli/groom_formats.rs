@@ -10,6 +10,25 @@ use std::path::Path;
 
 /// Share of the 96×96 frame's pixels that differ from its top-left corner (the background).
 fn hair_share(png_path: &Path) -> f64 {
+    let differ = covered(png_path);
+    differ.iter().filter(|d| **d).count() as f64 / differ.len() as f64
+}
+
+/// Width and height, pixels, of the box around the 96×96 frame's pixels that differ from its
+/// top-left corner.
+fn covered_box(png_path: &Path) -> (usize, usize) {
+    let differ = covered(png_path);
+    let (mut lo, mut hi) = ((96, 96), (0, 0));
+    for (i, _) in differ.iter().enumerate().filter(|(_, d)| **d) {
+        let (x, y) = (i % 96, i / 96);
+        lo = (lo.0.min(x), lo.1.min(y));
+        hi = (hi.0.max(x), hi.1.max(y));
+    }
+    (hi.0.saturating_sub(lo.0) + 1, hi.1.saturating_sub(lo.1) + 1)
+}
+
+/// Which pixels of the 96×96 frame differ from its top-left corner, row by row.
+fn covered(png_path: &Path) -> Vec<bool> {
     let decoder = png::Decoder::new(std::io::BufReader::new(
         std::fs::File::open(png_path).unwrap_or_else(|e| panic!("{}: {e}", png_path.display())),
     ));
@@ -20,11 +39,9 @@ fn hair_share(png_path: &Path) -> f64 {
     let channels = info.color_type.samples();
     let px: Vec<&[u8]> = buf[..info.buffer_size()].chunks_exact(channels).collect();
     let corner = px[0];
-    let differ = px
-        .iter()
-        .filter(|p| p.iter().zip(corner).any(|(a, b)| a.abs_diff(*b) > 8))
-        .count();
-    differ as f64 / px.len() as f64
+    px.iter()
+        .map(|p| p.iter().zip(corner).any(|(a, b)| a.abs_diff(*b) > 8))
+        .collect()
 }
 
 #[test]
@@ -125,9 +142,48 @@ fn fur_is_refused_naming_the_flag_that_keeps_it_as_authored() {
         stderr(&o)
     );
     assert!(hair_share(&out.join("frame_00000.png")) > 0.05);
-    // Pinned in place, the groom follows no motion; the unit needs the mode.
-    let o = run(&["--groom-as-authored", "--animation", "x.glb"]);
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    // The unit needs the mode.
     let o = run(&["--groom-unit-m", "0.01"]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}
+
+#[test]
+fn fur_kept_as_authored_on_its_character_follows_its_bones() {
+    let dir = scratch_dir("cli-groom-on-character");
+    let dance = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("animations/dance.glb");
+    // Fur on every 2nd vertex of the dance's own character, in its frame and metres.
+    let motion = wisp::motion::Motion::load(&dance, &wisp::motion::MotionOptions::default())
+        .expect("the dance loads");
+    let rest = motion.character().expect("a character").rest_positions();
+    let fur = wisp::groom::synthetic_fur(rest, 2, 0.015);
+    let path = dir.join("fur.hair");
+    let points = wisp::groom::FUR_POINTS;
+    wisp::export::cyhair::write_hair(&path, &fur.points, points, 5e-5, "fur").unwrap();
+    let out = dir.join("frames");
+    let o = wisp(&[
+        "render",
+        "--animation",
+        dance.to_str().unwrap(),
+        "--hairstyle",
+        path.to_str().unwrap(),
+        "--groom-as-authored",
+        "--frames",
+        "2",
+        "--start-s",
+        "3.7",
+        "--width",
+        "96",
+        "--height",
+        "96",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(err.contains("kept as authored at 1 m a unit"), "{err}");
+    assert!(err.contains("pinned to the nearest of its bones"), "{err}");
+    // The whole figure is framed, not the head: a standing body, taller than wide with its
+    // arms out (82 × 46 px measured), where a head close-up fills the frame.
+    let (w, h) = covered_box(&out.join("frame_00001.png"));
+    assert!(h > 60 && 2 * h > 3 * w, "covered box {w}×{h} px");
 }

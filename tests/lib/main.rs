@@ -28,6 +28,7 @@ mod fiber_tables;
 mod framing;
 mod groom_formats;
 mod groom_import;
+mod groom_on_bones;
 mod groom_partial;
 mod groom_sparse;
 mod hairstyle;

@@ -298,7 +298,8 @@ fn still_is_still() {
         Pose {
             head,
             spheres: vec![],
-            capsules: vec![]
+            capsules: vec![],
+            carriers: vec![]
         }
     );
     assert_eq!(m.sample(12.3).head, head);

@@ -39,7 +39,8 @@ pub struct HairArgs {
     #[arg(long, value_name = "DEG", value_parser = parse_finite_f32, allow_hyphen_values = true)]
     pub groom_turn_deg: Option<f32>,
     /// Keep an imported groom where it was authored (fur, a groom without its head): roots
-    /// pinned in place, not fitted onto a head; no motion
+    /// pinned in place (with --animation, each to the nearest bone of that file's character,
+    /// which the groom was authored on), not fitted onto a head
     #[arg(long)]
     pub groom_as_authored: bool,
     /// Metres per unit of a groom kept as authored [default: guessed from its size]
@@ -50,7 +51,12 @@ pub struct HairArgs {
 impl HairArgs {
     /// The hairstyle, and the hair of an imported groom when `--hairstyle` names strand files
     /// (the import's figures go to stderr).
-    pub fn load(&self) -> Result<(Hairstyle, ImportedHair), AppError> {
+    /// `authored_on`: where the character of a groom kept as authored has its head, when
+    /// there is one (`--groom-as-authored` with `--animation`).
+    pub fn load(
+        &self,
+        authored_on: Option<wisp::groom::AuthoredFrame>,
+    ) -> Result<(Hairstyle, ImportedHair), AppError> {
         let (files, styles): (Vec<&String>, Vec<&String>) = self
             .hairstyle
             .iter()
@@ -72,6 +78,7 @@ impl HairArgs {
             yaw_rad: self.groom_turn_deg.map(f32::to_radians),
             as_authored: self.groom_as_authored,
             unit_m: self.groom_unit_m,
+            authored_on,
         };
         let paths: Vec<&Path> = files.iter().map(|f| Path::new(f.as_str())).collect();
         let started = std::time::Instant::now();
@@ -139,6 +146,7 @@ fn report_import(groom: &Groom, seconds: f64) {
         scale: 1.0,
         yaw_rad: 0.0,
         offset_m: Vec3::ZERO,
+        upright: glam::Quat::IDENTITY,
     });
     let placed = match r.as_authored_unit_m {
         Some((unit, guessed)) => format!(

@@ -42,7 +42,7 @@ use wisp::engine::{Engine, EngineConfig};
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
 use wisp::quality::Quality;
-use wisp::scene::Scene;
+use wisp::scene::{CameraSetup, Framing, Scene};
 
 /// What is rendered: hair, motion, scene, each pass's options and the budget.
 #[derive(clap::Args, Debug, Clone)]
@@ -75,31 +75,46 @@ impl SceneArgs {
     /// Loads the motion and the hairstyle (and an imported groom's hair), and builds the scene
     /// and the engine configuration; refuses a groom whose roots miss the character's head.
     pub fn resolve(&self) -> Result<(Hairstyle, ImportedHair, Motion, EngineConfig), AppError> {
-        let motion = if self.hair.groom_as_authored {
-            // Roots pinned where the file has them: nothing moves them, and no head or body
-            // is drawn (the groom's own is not in the file).
-            if self.motion.animation.is_some() {
-                return Err(AppError::input(anyhow::anyhow!(
-                    "--groom-as-authored pins the groom's roots in place; it takes no \
-                     --animation (roots following a character's bones are not supported)"
-                )));
-            }
-            Motion::still(glam::Affine3A::IDENTITY)
+        let on_character = self.hair.groom_as_authored && self.motion.animation.is_some();
+        let mut motion = if self.hair.groom_as_authored {
+            // Roots pinned where the file has them, or on the bones of the character the
+            // groom was authored on.
+            self.motion.load_for_authored_groom()?
         } else {
             self.motion.load(self.hair_alone()?)?
         };
-        let (style, hair) = self.hair.load()?;
+        let authored_on = on_character.then(|| wisp::groom::AuthoredFrame {
+            upright: motion.file_turn(),
+            head_at_rest_m: glam::Vec3::from(motion.head_at_rest().translation),
+        });
+        let (style, mut hair) = self.hair.load(authored_on)?;
+        if on_character && let Some((guides, _)) = &mut hair {
+            let bones = wisp::engine::carry_roots_by_bones(guides, &mut motion)
+                .map_err(|e| AppError::input(anyhow::anyhow!("{}: {e}", self.motion.source())))?;
+            eprintln!(
+                "wisp: groom kept as authored on {}: each root pinned to the nearest of its \
+                 bones ({bones} carry roots); no body colliders",
+                self.motion.source()
+            );
+        }
         let (mut scene, quality) = self.scene_file.scene(&style, &motion)?;
-        if self.hair.groom_as_authored {
+        if self.hair.groom_as_authored && !on_character {
+            // No head or body is drawn: the groom's own is not in the file.
             scene.draw_solids = false;
+        }
+        if on_character && scene.camera == CameraSetup::Framed(None) {
+            // The groom covers the character, not only its head.
+            scene.camera = CameraSetup::Framed(Some(Framing::Full));
         }
         let mut config = self.config(scene, quality.unwrap_or(self.default_quality));
         if hair.is_some() {
             // An imported groom's hair falls from its captured pose: settle it in coarse steps.
             config.simulation.settle_step_s = Some(wisp::engine::GROOM_SETTLE_STEP_S);
         }
-        self.hair
-            .check_roots_on_head(&style, &hair, &motion, &self.motion.source())?;
+        if !self.hair.groom_as_authored {
+            self.hair
+                .check_roots_on_head(&style, &hair, &motion, &self.motion.source())?;
+        }
         Ok((style, hair, motion, config))
     }
 

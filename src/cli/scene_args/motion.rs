@@ -56,9 +56,34 @@ impl MotionArgs {
         })
     }
 
+    /// The motion of a groom kept as authored: the `--animation` file's character as the
+    /// file has it (in its own metres, no head fit) with no body colliders, since the groom
+    /// was authored around the character's own surface, which capsules would only
+    /// approximate; without `--animation`, nothing (the roots stay where the file has them).
+    pub fn load_for_authored_groom(&self) -> Result<Motion, AppError> {
+        if self.animation.is_none() {
+            return Ok(Motion::still(glam::Affine3A::IDENTITY));
+        }
+        let motion = self.load_clip_with(|opts| {
+            opts.fit = Some(Fit::IDENTITY);
+            opts.body_spheres = Some(Vec::new());
+            opts.body_capsules = false;
+        })?;
+        Ok(if self.still {
+            motion.held_still()
+        } else {
+            motion
+        })
+    }
+
     /// The clip of the `--animation` file, or the embedded dance.
     fn load_clip(&self) -> Result<Motion, AppError> {
-        let opts = MotionOptions {
+        self.load_clip_with(|_| {})
+    }
+
+    /// [`Self::load_clip`] with the options the flags give changed by `adjust`.
+    fn load_clip_with(&self, adjust: impl FnOnce(&mut MotionOptions)) -> Result<Motion, AppError> {
+        let mut opts = MotionOptions {
             clip: self.clip.clone(),
             head_joint: self
                 .head_joint
@@ -75,6 +100,7 @@ impl MotionArgs {
                 .map(|(scale, offset_m)| Fit { scale, offset_m }),
             ..MotionOptions::default()
         };
+        adjust(&mut opts);
         match &self.animation {
             Some(path) => {
                 let motion = Motion::load(path, &opts).map_err(|e| self.motion_error(e))?;

@@ -15,6 +15,7 @@ fn points_inside_end_on_the_surfaces_and_points_outside_do_not_move() {
             b: Vec3::new(0.0, 1.45, 0.0),
             radius_m: 0.05,
         }],
+        carriers: Vec::new(),
     };
     let view = SolidsView::new(&c);
     let mut strand = vec![
@@ -47,6 +48,7 @@ fn pushed_strands_keep_their_segment_lengths() {
             radius_m: 0.05,
         }],
         capsules: Vec::new(),
+        carriers: Vec::new(),
     };
     let view = SolidsView::new(&c);
     let mut strand: Vec<Vec3> = (0..21)

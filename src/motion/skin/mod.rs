@@ -105,6 +105,12 @@ pub struct CharacterPose {
 }
 
 impl Character {
+    /// Vertex positions at the rest pose (the bind pose posed by the nodes' own transforms),
+    /// model metres: where a groom authored on the character was made.
+    pub fn rest_positions(&self) -> &[Vec3] {
+        &self.rest_model
+    }
+
     /// Vertices.
     pub fn vertex_count(&self) -> usize {
         self.bind_pos.len()

@@ -13,6 +13,7 @@ fn scene_colliders() -> Colliders {
             radius_m: 0.12,
         }],
         capsules: Vec::new(),
+        carriers: Vec::new(),
     }
 }
 

@@ -8,6 +8,7 @@ fn one_guide(rest: Vec<Vec3>, link: f32) -> GuideSet {
         rest,
         link_length_m: vec![link],
         root_normal: vec![Vec3::NEG_Y],
+        carrier: Vec::new(),
     }
 }
 
@@ -227,6 +228,7 @@ fn at_rest_moves_hair_out_of_a_sphere_it_starts_in() {
             radius_m: 0.05,
         }],
         capsules: Vec::new(),
+        carriers: Vec::new(),
     };
     let state = SimState::at_rest(&guides, &colliders, 0.0);
     for p in &state.positions[2..] {
