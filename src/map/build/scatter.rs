@@ -88,30 +88,44 @@ impl ColumnSort<'_> {
 /// in passes that walk the counters in memory order (a column-major walk strides over the
 /// chunks' rows): the column totals and their exclusive prefix into `starts` (one more entry
 /// than the columns), then each chunk's cursor in a column after the column's start and the
-/// earlier chunks' counts there. Returns the total. No sum wraps while the counts add up to
-/// less than 2^32.
+/// earlier chunks' counts there. Returns the total.
+///
+/// The scatter's writes rely on every total, prefix and cursor here being exact, so each sum
+/// is checked where it is made ([`sum_within_u32`]) and a sum past `u32::MAX` panics instead
+/// of wrapping: a wrapped prefix would send two chunks' writes to the same places. A cursor
+/// is at most its column's end, itself a prefix, so the cursors cannot pass the checked total.
 fn cursors(counts: &mut [u32], starts: &mut Vec<u32>, running: &mut [u32]) -> u32 {
     let cols = running.len();
     starts.clear();
     starts.resize(cols + 1, 0);
     for row in counts.chunks_exact(cols) {
         for (total, n) in starts.iter_mut().zip(row) {
-            *total += n;
+            *total = sum_within_u32(*total, *n);
         }
     }
     let mut acc = 0u32;
     for start in starts.iter_mut() {
-        (*start, acc) = (acc, acc + *start);
+        (*start, acc) = (acc, sum_within_u32(acc, *start));
     }
     running.copy_from_slice(&starts[..cols]);
     for row in counts.chunks_exact_mut(cols) {
         for (next, count) in running.iter_mut().zip(row) {
             let n_k = *count;
             *count = *next; // becomes this chunk's write cursor in the column
-            *next += n_k;
+            *next = sum_within_u32(*next, n_k);
         }
     }
     acc
+}
+
+/// `a + b`, panicking (in every build, not only with overflow checks) when the sum passes
+/// `u32::MAX`: the invariant the scatter's raw writes stand on. [`ColumnSort::run`] refuses
+/// more than `u32::MAX` pieces and the memory budget keeps a map far below that, so the
+/// panic marks a broken invariant, never an input.
+#[inline]
+fn sum_within_u32(a: u32, b: u32) -> u32 {
+    a.checked_add(b)
+        .expect("counting sort: a column total or cursor passed u32::MAX")
 }
 
 /// A buffer as a raw pointer that parallel chunks write through, each to its own places (see
@@ -121,3 +135,6 @@ struct SharedSlice<T>(*mut T);
 // SAFETY: the chunks write disjoint places of one live allocation (`out`, borrowed mutably for
 // the whole of `ColumnSort::run`), which outlives the parallel scope.
 unsafe impl<T: Send> Sync for SharedSlice<T> {}
+
+#[cfg(test)]
+mod tests;
