@@ -100,7 +100,11 @@ impl Emitter {
             return None;
         }
         // A light among the hair (inside the grid's bounding sphere) sends into the whole
-        // sphere of directions: 1 − cos θmax = 2.
+        // sphere of directions: 1 − cos θmax = 2. The axis and 1 − cos θmax are chosen by two
+        // selects, not as one tuple: with the tuple, the release build (rustc 1.95,
+        // `-C target-cpu=x86-64-v2`) once returned the axis with its y lane zeroed (the x86
+        // backend reloaded a spilled `axis.xy` with `movss`). Keep the two selects;
+        // `tests.rs` keeps the tuple form as a test that fails if it miscompiles again.
         let inside = !(dist > radius);
         let axis = if inside { Vec3::Z } else { to / dist };
         // 1 − √(1 − s²) = s² / (1 + √(1 − s²)), without the cancellation.

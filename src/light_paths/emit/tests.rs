@@ -172,3 +172,33 @@ fn the_cone_footprint_holds_every_cell_with_fiber() {
         "the oblique sheet takes {oblique_share} of its cone"
     );
 }
+
+/// A point light's axis points from the light to the grid's centre in every lane, for lights
+/// off every axis (each with a y component). The guard on a miscompile (`Emitter::cone`):
+/// with the axis and 1 − cos θmax chosen as one tuple, the release build (rustc 1.95,
+/// `-C target-cpu=x86-64-v2`) zeroed the axis's y lane; this test, run on the tuple form of
+/// the code where it was seen, fails for the first light (axis (0, 0, −0.316) instead of
+/// (0, 0.949, −0.316)). The tuple alone in a small function compiles right, so the
+/// reproduction is the emitter itself.
+#[test]
+fn a_point_lights_axis_points_at_the_grid_in_every_lane() {
+    let mut rng = SplitMix64::new(23);
+    let (cells, _) = sheet(&mut rng);
+    let centre = cells.origin + cells.dims.as_vec3() * (0.5 * cells.cell_m);
+    for offset in [
+        Vec3::new(0.0, -3.0, 1.0),
+        Vec3::new(0.3, 0.3, 0.3),
+        Vec3::new(-0.2, 0.01, 0.0),
+        Vec3::new(0.0, 20.0, 0.0),
+    ] {
+        let light = Light::point(centre + offset, Vec3::splat(3.0)).expect("light");
+        let emitter = Emitter::new(&cells, &light, 1_000).expect("emitter");
+        let to = centre - (centre + offset);
+        let want = to / to.length();
+        assert!(
+            (emitter.axis - want).abs().max_element() < 1e-6,
+            "light at {offset}: axis {} instead of {want}",
+            emitter.axis
+        );
+    }
+}
