@@ -104,7 +104,7 @@ impl Emitter {
         // selects, not as one tuple: with the tuple, the release build (rustc 1.95,
         // `-C target-cpu=x86-64-v2`) once returned the axis with its y lane zeroed (the x86
         // backend reloaded a spilled `axis.xy` with `movss`). Keep the two selects;
-        // `tests.rs` keeps the tuple form as a test that fails if it miscompiles again.
+        // `tests.rs` checks the axis in every lane (it fails on the tuple form where seen).
         let inside = !(dist > radius);
         let axis = if inside { Vec3::Z } else { to / dist };
         // 1 − √(1 − s²) = s² / (1 + √(1 − s²)), without the cancellation.
