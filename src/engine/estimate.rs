@@ -48,7 +48,7 @@ pub fn estimate(
         config.scene.draw_solids,
     ));
     memory.extend(ShadingPass::estimate(&config.shading, &sizes));
-    memory.extend(RasterPass::estimate(&sizes));
+    memory.extend(RasterPass::estimate(&config.raster, &sizes));
     memory.extend(AnimationPass::estimate(motion, &sizes));
     if plan.export_png {
         memory.push(FrameWriter::estimate(sizes.width, sizes.height));

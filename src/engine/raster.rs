@@ -17,8 +17,8 @@ use crate::interp::StrandGeometry;
 use crate::map::Solid;
 use crate::motion::{Character, CharacterPose};
 use crate::raster::{
-    Bundle, Camera, Framebuffer, LineScratch, LineStyle, Mesh, MeshScratch, Polylines, Surface,
-    Texture, draw_ellipsoid, draw_mesh, seen_points,
+    Bundle, Camera, Framebuffer, LineScratch, LineStyle, LineWidth, MAX_WIDTH_PX, Mesh,
+    MeshScratch, Polylines, Surface, Texture, draw_ellipsoid, draw_mesh, seen_points,
 };
 #[cfg(doc)]
 use crate::raster::{draw_polylines, draw_seen_polylines};
@@ -42,6 +42,18 @@ pub struct RasterConfig {
 /// single scattering reads 0.91 of the path tracer at 1 px, 0.92 at 0.5 px and at 0.25 px
 /// (ACCURACY.md).
 pub const DEFAULT_MIN_LINE_WIDTH_PX: f32 = 0.5;
+
+impl RasterConfig {
+    /// The narrowest a hair line is drawn, pixels: the width model's minimum (or its fixed
+    /// width), at most [`MAX_WIDTH_PX`]; what the memory budget sizes the line raster by.
+    pub fn narrowest_drawn_px(&self) -> f32 {
+        let px = match self.line.width {
+            LineWidth::Pixels(w) => w,
+            LineWidth::Projected { min_px } => min_px,
+        };
+        if px > 0.0 { px.min(MAX_WIDTH_PX) } else { 0.0 }
+    }
+}
 
 impl Default for RasterConfig {
     fn default() -> Self {
@@ -227,8 +239,9 @@ impl RasterPass {
         &self.widths_m
     }
 
-    /// The framebuffer, the hair's line raster and the character's raster.
-    pub fn estimate(sizes: &RunSizes) -> Vec<MemoryPart> {
+    /// The framebuffer, the hair's line raster (its lines at least as wide as `config` draws
+    /// them) and the character's raster.
+    pub fn estimate(config: &RasterConfig, sizes: &RunSizes) -> Vec<MemoryPart> {
         let (w, h) = (sizes.width, sizes.height);
         let mut parts = vec![
             MemoryPart {
@@ -245,9 +258,10 @@ impl RasterPass {
                     w,
                     h,
                     sizes.sample_len_m * sizes.px_per_m,
+                    config.narrowest_drawn_px() as f64,
                     sizes.fibers_per_strand.round() >= 2.0,
                 ) + sizes.points * POINT_BYTES as u64,
-                set_by: "render strands × strands.points (× --segment-pieces), and --height",
+                set_by: "render strands × strands.points (× --segment-pieces), --height and --min-line-width-px",
             },
         ];
         if sizes.character_vertices > 0 {

@@ -10,10 +10,12 @@
 //! segments array uses `d_segments` for every strand; missing arrays take the header's
 //! defaults. The writer is `crate::export::cyhair`, which shares these constants.
 //!
-//! The sizes of all present arrays are added up (in u64, so a hostile count cannot overflow)
-//! and compared with the file size before any array is allocated.
+//! The strand count is checked against the most a groom may have, and the sizes of all
+//! present arrays are added up (in u64, so a hostile count cannot overflow) and compared with
+//! the file size, from the header alone (`check_cyhair_header`, before the body is read).
 
 use super::strands::{Bytes, StrandFile, StrandFileError};
+use crate::hairstyle::MAX_STRANDS;
 use glam::Vec3;
 
 /// Size of the header in bytes.
@@ -42,7 +44,7 @@ pub fn info_of(bytes: &[u8]) -> String {
 pub fn parse_cyhair(bytes: &[u8], file: &str) -> Result<StrandFile, StrandFileError> {
     let r = Bytes { bytes, file };
     let h = Header::read(&r)?;
-    h.check_file_size(&r)?;
+    h.check_file_size(&r, bytes.len() as u64)?;
     // From here every array lies inside the file.
     let pts = h.points as usize;
     let mut at = HEADER_BYTES;
@@ -83,6 +85,14 @@ pub fn parse_cyhair(bytes: &[u8], file: &str) -> Result<StrandFile, StrandFileEr
         thickness: Some(thickness),
         colors,
     })
+}
+
+/// Checks the header of a `.hair` file of `file_len` bytes from its first bytes `head` (at
+/// least the header, or the whole file): the counts against the caps and the file's size, so
+/// a file that declares more than a groom may hold is refused before its body is read.
+pub fn check_cyhair_header(head: &[u8], file_len: u64, file: &str) -> Result<(), StrandFileError> {
+    let r = Bytes { bytes: head, file };
+    Header::read(&r)?.check_file_size(&r, file_len)
 }
 
 /// The header fields the reader uses.
@@ -136,6 +146,15 @@ impl Header {
         if h.hairs == 0 {
             return Err(r.malformed(4, "hair_count must be at least 1 (got 0)"));
         }
+        if h.hairs as u64 > MAX_STRANDS {
+            return Err(r.malformed(
+                4,
+                format!(
+                    "hair_count {} is over the limit of {MAX_STRANDS} strands a groom may have",
+                    h.hairs
+                ),
+            ));
+        }
         if h.points > MAX_POINTS {
             return Err(r.malformed(
                 8,
@@ -148,9 +167,9 @@ impl Header {
         Ok(h)
     }
 
-    /// Refuses a file shorter than the header and the arrays it announces (sizes added in
-    /// u64, so no count can overflow).
-    fn check_file_size(&self, r: &Bytes) -> Result<(), StrandFileError> {
+    /// Refuses a file of `len` bytes shorter than the header and the arrays it announces
+    /// (sizes added in u64, so no count can overflow).
+    fn check_file_size(&self, r: &Bytes, len: u64) -> Result<(), StrandFileError> {
         let (h, n) = (self.hairs as u64, self.points as u64);
         let mut need = HEADER_BYTES as u64 + 12 * n;
         for (bit, size) in [
@@ -163,12 +182,11 @@ impl Header {
                 need += size;
             }
         }
-        if (r.bytes.len() as u64) < need {
+        if len < need {
             return Err(r.malformed(
-                r.bytes.len() as u64,
+                len,
                 format!(
-                    "the file has {} bytes, but the header announces {need} ({} strands, {} points, arrays {:#x})",
-                    r.bytes.len(),
+                    "the file has {len} bytes, but the header announces {need} ({} strands, {} points, arrays {:#x})",
                     self.hairs,
                     self.points,
                     self.arrays

@@ -4,23 +4,18 @@
 //!
 //! The dataset marks scalp points without hair as strands of 1 point (or 0): they are kept as
 //! the file has them, and the groom builder drops and counts them as it does zero-length
-//! strands. Every count is checked against the bytes left before anything is allocated, and
+//! strands. The strand count is checked against the most a groom may have and the file's
+//! size from the header alone (`check_hairsalon_header`, before the body is read); every
+//! count is checked against the bytes left before anything is allocated, and
 //! bytes after the last strand are refused (a file of another format would otherwise pass).
 
 use super::strands::{Bytes, StrandFile, StrandFileError};
+use crate::hairstyle::MAX_STRANDS;
 
 /// Parses a `.data` file's bytes; `file` names it in errors.
 pub fn parse_hairsalon(bytes: &[u8], file: &str) -> Result<StrandFile, StrandFileError> {
     let r = Bytes { bytes, file };
-    let strands = r.u32_at(0, "strand count")? as i32;
-    if strands < 1 {
-        return Err(r.malformed(
-            0,
-            format!("the strand count must be at least 1 (got {strands})"),
-        ));
-    }
-    // Each strand takes at least its 4-byte point count.
-    r.check_array(4, strands as u64, 4, "strand point counts")?;
+    let strands = strand_count(&r, bytes.len() as u64)?;
     let mut strand_points = Vec::with_capacity(strands as usize);
     let mut points = Vec::new();
     let mut at = 4usize;
@@ -53,4 +48,36 @@ pub fn parse_hairsalon(bytes: &[u8], file: &str) -> Result<StrandFile, StrandFil
         thickness: None,
         colors: None,
     })
+}
+
+/// Checks the header of a `.data` file of `file_len` bytes from its first bytes `head`: the
+/// strand count against the most a groom may have and the file's size, so a file that
+/// declares more than a groom may hold is refused before its body is read.
+pub fn check_hairsalon_header(
+    head: &[u8],
+    file_len: u64,
+    file: &str,
+) -> Result<(), StrandFileError> {
+    strand_count(&Bytes { bytes: head, file }, file_len).map(|_| ())
+}
+
+/// The strand count at the start of `r`, in a file of `file_len` bytes: at least 1, at most
+/// [`MAX_STRANDS`], and each strand's 4-byte point count inside the file.
+fn strand_count(r: &Bytes, file_len: u64) -> Result<i32, StrandFileError> {
+    let strands = r.u32_at(0, "strand count")? as i32;
+    if strands < 1 {
+        return Err(r.malformed(
+            0,
+            format!("the strand count must be at least 1 (got {strands})"),
+        ));
+    }
+    if strands as u64 > MAX_STRANDS {
+        return Err(r.malformed(
+            0,
+            format!("the strand count {strands} is over the limit of {MAX_STRANDS} strands a groom may have"),
+        ));
+    }
+    // Each strand takes at least its 4-byte point count.
+    r.check_array_within(file_len, 4, strands as u64, 4, "strand point counts")?;
+    Ok(strands)
 }

@@ -24,6 +24,7 @@
 //! reader loop or allocate past the file. Errors name the file, the element and the rule.
 
 use super::strands::{StrandFile, StrandFileError};
+use crate::hairstyle::MAX_STRANDS;
 use glam::Vec3;
 use ply_rs_bw::parser::{Parser, Reader};
 use ply_rs_bw::ply::{
@@ -62,8 +63,8 @@ pub fn parse_ply(bytes: &[u8], file: &str) -> Result<StrandFile, StrandFileError
             file: file.to_string(),
             rule: short_message(&e),
         })?;
-    check_sizes(&header, reader.get_ref().len()).map_err(|(el, rule)| ply(&el, rule))?;
-    let layout = Layout::of(&header).map_err(|(el, rule)| ply(&el, rule))?;
+    let payload_bytes = reader.get_ref().len() as u64;
+    let layout = check_counts(&header, payload_bytes).map_err(|(el, rule)| ply(&el, rule))?;
     let mut vertices = Vec::new();
     let mut counts = Vec::new();
     let mut edges = Vec::new();
@@ -108,6 +109,53 @@ pub fn parse_ply(bytes: &[u8], file: &str) -> Result<StrandFile, StrandFileError
         thickness: None,
         colors: None,
     })
+}
+
+/// Checks the header of a `.ply` file of `file_len` bytes from its first bytes `head`: the
+/// element counts against the caps (at most [`MAX_STRANDS`] strands in a strand element) and
+/// the file's size, so a file that declares more than a groom may hold is refused before its
+/// body is read. A header that does not end within `head` is left to [`parse_ply`].
+pub fn check_ply_header(head: &[u8], file_len: u64, file: &str) -> Result<(), StrandFileError> {
+    let mut reader = Reader::new(head);
+    let header = match Parser::<Skip>::new().read_header(&mut reader) {
+        Ok(header) => header,
+        Err(_) if (head.len() as u64) < file_len => return Ok(()),
+        Err(e) => {
+            return Err(StrandFileError::PlyHeader {
+                file: file.to_string(),
+                rule: short_message(&e),
+            });
+        }
+    };
+    let header_bytes = (head.len() - reader.get_ref().len()) as u64;
+    check_counts(&header, file_len.saturating_sub(header_bytes))
+        .map(|_| ())
+        .map_err(|(element, rule)| StrandFileError::Ply {
+            file: file.to_string(),
+            element,
+            rule,
+        })
+}
+
+/// The header's element counts against the caps and the `payload_bytes` after the header
+/// (`check_sizes`), and the strand element's against [`MAX_STRANDS`]; then the layout.
+/// Errors: (element, rule).
+fn check_counts(header: &Header, payload_bytes: u64) -> Result<Layout, (String, String)> {
+    check_sizes(header, payload_bytes)?;
+    let layout = Layout::of(header)?;
+    if let Some((name, _)) = &layout.counts
+        && let Some(def) = header.elements.get(name)
+        && def.count as u64 > MAX_STRANDS
+    {
+        return Err((
+            name.clone(),
+            format!(
+                "the header declares {} strands, over the limit of {MAX_STRANDS} strands a groom may have",
+                def.count
+            ),
+        ));
+    }
+    Ok(layout)
 }
 
 /// The PLY reader's message on one line: whole when short, else its line number and its
@@ -233,7 +281,7 @@ fn first_scalar(
 
 /// Refuses an element count over [`MAX_ELEMENTS`] or a header whose elements need more bytes
 /// than the `payload_bytes` after it (a lower bound: list lengths are not known yet).
-fn check_sizes(header: &Header, payload_bytes: usize) -> Result<(), (String, String)> {
+fn check_sizes(header: &Header, payload_bytes: u64) -> Result<(), (String, String)> {
     let mut need = 0u64;
     for (name, def) in header.elements.iter() {
         if def.count > MAX_ELEMENTS {
@@ -254,7 +302,7 @@ fn check_sizes(header: &Header, payload_bytes: usize) -> Result<(), (String, Str
             })
             .sum();
         need += each * def.count as u64;
-        if need > payload_bytes as u64 {
+        if need > payload_bytes {
             return Err((
                 name.clone(),
                 format!(

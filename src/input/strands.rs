@@ -111,7 +111,18 @@ impl Bytes<'_> {
         item_bytes: u64,
         what: &str,
     ) -> Result<(), StrandFileError> {
-        let len = self.bytes.len() as u64;
+        self.check_array_within(self.bytes.len() as u64, offset, count, item_bytes, what)
+    }
+    /// [`Self::check_array`] in a file of `len` bytes, of which `self.bytes` may hold only the
+    /// first (a header checked before the body is read).
+    pub fn check_array_within(
+        &self,
+        len: u64,
+        offset: u64,
+        count: u64,
+        item_bytes: u64,
+        what: &str,
+    ) -> Result<(), StrandFileError> {
         let end = count
             .checked_mul(item_bytes)
             .and_then(|b| b.checked_add(offset));

@@ -154,6 +154,11 @@ fn huge_declared_counts_are_refused_before_allocating() {
         ("b.tfx", encode_tfx4(&strands)),
     ] {
         bytes[4..8].copy_from_slice(&u32::MAX.to_le_bytes());
+        let (offset, rule) = malformed(parse_strand_file(&bytes, name));
+        assert_eq!(offset, 4, "{rule}");
+        assert!(rule.contains("over the limit of 2000000 strands"), "{rule}");
+        // At the strand cap (2,000,000) of 4,096 vertices: 98 GB of positions.
+        bytes[4..8].copy_from_slice(&2_000_000u32.to_le_bytes());
         bytes[8..12].copy_from_slice(&tfx::MAX_VERTICES_PER_STRAND.to_le_bytes());
         let (offset, rule) = malformed(parse_strand_file(&bytes, name));
         assert!(rule.contains("vertex positions"), "{rule}");
@@ -165,6 +170,10 @@ fn huge_declared_counts_are_refused_before_allocating() {
     // cyHair: the most points allowed, and more.
     let mut bytes = encode_cyhair(&strands);
     bytes[4..8].copy_from_slice(&u32::MAX.to_le_bytes());
+    let (offset, rule) = malformed(parse_strand_file(&bytes, "c.hair"));
+    assert_eq!(offset, 4, "{rule}");
+    assert!(rule.contains("over the limit of 2000000 strands"), "{rule}");
+    bytes[4..8].copy_from_slice(&2_000_000u32.to_le_bytes());
     bytes[8..12].copy_from_slice(&cyhair::MAX_POINTS.to_le_bytes());
     let (_, rule) = malformed(parse_strand_file(&bytes, "c.hair"));
     assert!(rule.contains("header announces"), "{rule}");

@@ -74,6 +74,13 @@ fn volume(mut config: EngineConfig, paths: u32) -> EngineConfig {
     config
 }
 
+/// `config` with its hair lines at least `px` wide (`--min-line-width-px`): each segment then
+/// covers `px` pixels of every row it crosses, so the raster's fragments grow with it.
+fn min_line_width(mut config: EngineConfig, px: f32) -> EngineConfig {
+    config.raster.line.width = wisp::raster::LineWidth::Projected { min_px: px };
+    config
+}
+
 #[test]
 fn the_estimate_holds_the_peak_heap() {
     let cases: Vec<(&str, Hairstyle, EngineConfig)> = vec![
@@ -106,6 +113,16 @@ fn the_estimate_holds_the_peak_heap() {
             "smooth, --shading volume",
             Hairstyle::default_smooth(),
             volume(small(), 200_000),
+        ),
+        (
+            "smooth, --min-line-width-px 64 (the widest accepted)",
+            Hairstyle::default_smooth(),
+            min_line_width(small(), 64.0),
+        ),
+        (
+            "dense, --min-line-width-px 64",
+            smooth_with(|v| v["wisps"]["strands_per_wisp"] = json!(40)),
+            min_line_width(small(), 64.0),
         ),
         (
             "dense, --shading volume",

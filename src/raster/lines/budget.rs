@@ -4,6 +4,7 @@
 use super::bins;
 use super::fibers::Fibers;
 use super::fragment::Frag;
+use super::polyline::MAX_WIDTH_PX;
 use super::scratch::LineScratch;
 use super::seen;
 use super::segment::{Seg, SegColors};
@@ -18,6 +19,13 @@ const SETUP_CHUNK: u64 = bins::SETUP_CHUNK as u64;
 const FRAG_BYTES: u64 = size_of::<Frag>() as u64;
 /// The densest band's fragments over the mean band's (see [`LineScratch::estimated_bytes`]).
 const DENSEST_BAND: f64 = 5.0;
+/// Bytes a segment adds to the raster's peak when lines are drawn at least [`MAX_WIDTH_PX`]
+/// wide instead of the 0.5 px default (`tests/lib/hostile_budget.rs`, one thread, 200 × 200:
+/// smooth's 100,500 segments 120 → 436 MB, 3.1 KB a segment; dense's 160,800 241 → 554 MB,
+/// 1.9 KB; `wisp render --still` at 800 × 800 on 2 threads, 142 → 493 MB resident,
+/// 3.5 KB), taken in proportion to the width between the two (measured at 16 px: 64 MB of
+/// the 100 MB this gives; at 4 px, 15 MB of 22 MB).
+const WIDEST_LINE_BYTES_PER_SEGMENT: f64 = 4096.0;
 
 impl LineScratch {
     /// Bytes the line raster keeps ([`draw_polylines`](super::draw::draw_polylines), or
@@ -37,11 +45,16 @@ impl LineScratch {
     /// bands; measured over the bands of a frame, the densest holds 3.5 times the mean for
     /// smooth, 2.9 for curly and 3.7 for dense, at 1280×720 and 800×800 alike).
     /// Lines that stand for `bundles` of fibres add a table of how each segment draws them.
+    /// Lines drawn at least `min_drawn_px` wide (the width model's minimum, at most
+    /// [`MAX_WIDTH_PX`]) cover that many pixels of each row: past the 0.5 px default they add
+    /// up to [`WIDEST_LINE_BYTES_PER_SEGMENT`], in proportion to the width (measured: the
+    /// fragment model above, made for thin lines, is not).
     pub fn estimated_bytes(
         segments: u64,
         width: u32,
         height: u32,
         rows_per_segment: f64,
+        min_drawn_px: f64,
         bundles: bool,
     ) -> u64 {
         let bands = (height as u64).div_ceil(BAND_ROWS).max(1);
@@ -72,8 +85,11 @@ impl LineScratch {
         } else {
             0
         };
+        let widening = ((min_drawn_px - 0.5) / (MAX_WIDTH_PX as f64 - 0.5)).clamp(0.0, 1.0);
+        let wide_lines = (segments as f64 * WIDEST_LINE_BYTES_PER_SEGMENT * widening) as u64;
         binned
             .saturating_mul(per_binned)
+            .saturating_add(wide_lines)
             .saturating_add(fibers)
             .saturating_add(colors)
             .saturating_add(kept)
