@@ -14,7 +14,6 @@ mod export;
 mod fiber;
 mod groom_formats;
 mod hostile;
-mod hostile_output;
 mod hostile_work_flags;
 mod quality;
 mod render_formats;
