@@ -36,6 +36,7 @@ mod hostile_budget;
 mod hostile_cases;
 mod hostile_headers;
 mod hostile_loaders;
+mod hostile_resume;
 mod level_tf;
 mod map_accuracy;
 mod map_contact;

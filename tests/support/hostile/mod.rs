@@ -8,6 +8,7 @@
 
 pub mod cache;
 pub mod formats;
+pub mod frames;
 pub mod headers;
 pub mod mutate;
 
