@@ -1,6 +1,11 @@
 //! The `wisp` command line: see `wisp --help`. A thin layer over the `wisp` library: argument
 //! parsing (clap), error reporting (anyhow), the window (minifb) and file formats at the edge
 //! live here only, so the library carries none of them.
+//!
+//! `unsafe` is denied here as in the library; one module allows it: `cli/signals.rs`, one libc
+//! call that sets a signal's disposition.
+
+#![deny(unsafe_code)]
 
 mod cli;
 

@@ -7,7 +7,7 @@ use super::error::CacheError;
 use super::format::{self, CHECKSUM_BYTES, CacheHeader, FIXED_HEADER_BYTES};
 use super::state::{self, RecordError};
 use crate::hairstyle::Hairstyle;
-use crate::input::{ReadError, open_regular};
+use crate::input::{ReadError, open_regular, printable};
 use crate::motion::{Motion, Pose};
 use glam::Vec3;
 use std::fs::File;
@@ -239,11 +239,4 @@ fn check_made_for(h: &CacheHeader, e: &Expected, file: &str) -> Result<(), Cache
         )));
     }
     Ok(())
-}
-
-/// A name from a file, safe to print: control characters become `?`.
-fn printable(s: &str) -> String {
-    s.chars()
-        .map(|c| if c.is_control() { '?' } else { c })
-        .collect()
 }

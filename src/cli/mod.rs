@@ -8,7 +8,8 @@
 //! *_cmd           one command each
 //! parse           the flags' number and vector parsers
 //! shard, threads  frame ranges and shards; the worker pool
-//! errors, terminal, output_file   exit codes; stdout and printable names; output paths
+//! errors, terminal, output_file   exit codes; stdout, and stderr printed safely; output paths
+//! signals         SIGXFSZ ignored, so a write over `ulimit -f` is an error naming the file
 //! ```
 //!
 //! Exit codes: 0 success, 2 bad input (flags, files, output paths, or a run over its memory or
@@ -34,6 +35,7 @@ mod errors;
 mod output_file;
 mod parse;
 mod scene_args;
+mod signals;
 mod threads;
 
 pub use errors::AppError;
@@ -87,12 +89,17 @@ pub enum Command {
 
 /// Parses the command line and runs it; errors go to stderr with their exit code.
 pub fn main() -> ExitCode {
+    signals::ignore_file_size_limit_signal();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
+        Err(e) if e.use_stderr() => {
+            // Plain text through the safe `eprint!`: clap echoes the value it refused.
+            eprint!("{}", e.render());
+            return ExitCode::from(2);
+        }
         Err(e) => {
-            let code = if e.use_stderr() { 2 } else { 0 };
             let _ = e.print();
-            return ExitCode::from(code);
+            return ExitCode::SUCCESS;
         }
     };
     match threads::start_pool(cli.threads).and_then(|()| run(cli.command)) {

@@ -1,10 +1,13 @@
 //! What the commands write to the terminal: `print!` and `println!` that stop quietly when the
-//! reader of standard output has gone, and names from input files made safe to print.
+//! reader of standard output has gone, and `eprint!` and `eprintln!` that print control
+//! characters as `?`.
 //!
 //! The standard `print!` panics when standard output is a pipe its reader has closed (`wisp …
 //! | head`: the reader had what it wanted); these end the process with exit code 141, as a
-//! program killed by SIGPIPE. Declared with `#[macro_use]` first in `cli`, they shadow the
-//! standard macros in every command.
+//! program killed by SIGPIPE. Every message on stderr (errors, warnings, progress) echoes
+//! paths and names from outside, so each line goes through [`printable`] there: a file named
+//! with an escape sequence cannot clear the screen. Declared with `#[macro_use]` first in
+//! `cli`, these macros shadow the standard ones in every command.
 
 /// `print!` that ends the process quietly (exit code 141) on a closed pipe.
 macro_rules! print {
@@ -23,6 +26,23 @@ macro_rules! println {
     };
 }
 
+/// `eprint!` with control characters printed as `?` (newlines kept).
+macro_rules! eprint {
+    ($($arg:tt)*) => {
+        $crate::cli::terminal::write_stderr(format_args!($($arg)*))
+    };
+}
+
+/// `eprintln!` with control characters printed as `?`.
+macro_rules! eprintln {
+    () => {
+        eprint!("\n")
+    };
+    ($($arg:tt)*) => {
+        $crate::cli::terminal::write_stderr(format_args!("{}\n", format_args!($($arg)*)))
+    };
+}
+
 /// Writes to standard output; a closed pipe ends the process with code 141, any other write
 /// error with code 1 and a message.
 pub fn write_stdout(args: std::fmt::Arguments) {
@@ -36,13 +56,24 @@ pub fn write_stdout(args: std::fmt::Arguments) {
     }
 }
 
-/// A name from an input file (hairstyle, clip, joint) safe to print on a terminal: control
-/// characters (an escape sequence could clear the screen) become `?`.
-pub fn printable(name: &str) -> String {
-    name.chars()
-        .map(|c| if c.is_control() { '?' } else { c })
-        .collect()
+/// Writes to standard error, each line through [`printable`]. A failed write is ignored (there
+/// is nowhere left to report it).
+pub fn write_stderr(args: std::fmt::Arguments) {
+    use std::io::Write;
+    let _ = std::io::stderr()
+        .lock()
+        .write_all(terminal_lines(&args.to_string()).as_bytes());
 }
+
+/// `text` with its lines kept and every other control character as `?`.
+fn terminal_lines(text: &str) -> String {
+    text.split('\n')
+        .map(printable)
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+pub use wisp::input::printable;
 
 #[cfg(test)]
 mod tests;

@@ -10,15 +10,18 @@
 //!
 //! [`json`] holds the strict JSON reading shared by the JSON formats; [`tfx`], [`cyhair`],
 //! [`ply`] and [`hairsalon`] read captured strands ([`strands`]) for groom import;
-//! [`strand_file`] picks the reader.
+//! [`strand_file`] picks the reader. [`printable`] makes a name from a file safe to print.
 
 pub mod cyhair;
 pub mod hairsalon;
 pub mod json;
 pub mod ply;
+mod printable;
 pub mod strand_file;
 pub mod strands;
 pub mod tfx;
+
+pub use printable::printable;
 
 use std::io::Read;
 use std::path::Path;

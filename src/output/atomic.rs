@@ -18,7 +18,9 @@ pub enum OutputError {
         path: PathBuf,
         error: std::io::Error,
     },
-    #[error("{}: PNG encoding failed: {message}", path.display())]
+    /// The encoder or decoder refused (its message says which format); a failed write is
+    /// [`OutputError::Io`].
+    #[error("{}: {message}", path.display())]
     Encode { path: PathBuf, message: String },
     #[error("{}: image buffer has {got} samples, expected {expected} for {width}x{height} {channels}", path.display())]
     Size {

@@ -52,9 +52,15 @@ pub fn write_exr_rgba_f32(
         image
             .write()
             .to_buffered(&mut writer)
-            .map_err(|e| OutputError::Encode {
-                path: path.into(),
-                message: format!("OpenEXR: {e}"),
+            .map_err(|e| match e {
+                exr::error::Error::Io(error) => OutputError::Io {
+                    path: path.into(),
+                    error,
+                },
+                e => OutputError::Encode {
+                    path: path.into(),
+                    message: format!("OpenEXR encoding failed: {e}"),
+                },
             })?;
         writer.into_inner().map_err(|e| OutputError::Io {
             path: path.into(),

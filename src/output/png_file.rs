@@ -36,10 +36,7 @@ pub fn write_png_rgb8(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Resul
             enc.set_depth(png::BitDepth::Eight);
             enc.set_compression(png::Compression::Fast);
             enc.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
-            let enc_err = |e: png::EncodingError| OutputError::Encode {
-                path: path.into(),
-                message: e.to_string(),
-            };
+            let enc_err = |e| encode_error(path, e);
             let mut writer = enc.write_header().map_err(enc_err)?;
             writer.write_image_data(rgb).map_err(enc_err)?;
             writer.finish().map_err(enc_err)?;
@@ -87,13 +84,10 @@ pub fn write_png_rgba16(
             enc.set_depth(png::BitDepth::Sixteen);
             enc.set_compression(png::Compression::Fast);
             enc.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
-            let enc_err = |e: png::EncodingError| OutputError::Encode {
+            let enc_err = |e| encode_error(path, e);
+            let io_err = |error| OutputError::Io {
                 path: path.into(),
-                message: e.to_string(),
-            };
-            let io_err = |e: std::io::Error| OutputError::Encode {
-                path: path.into(),
-                message: e.to_string(),
+                error,
             };
             let mut writer = enc.write_header().map_err(enc_err)?;
             let mut stream = writer.stream_writer().map_err(enc_err)?;
@@ -111,6 +105,21 @@ pub fn write_png_rgba16(
             error: e.into_error(),
         })
     })
+}
+
+/// The encoder's error: a failed write (a full disk, the file-size limit) as
+/// [`OutputError::Io`], anything else as [`OutputError::Encode`].
+fn encode_error(path: &Path, e: png::EncodingError) -> OutputError {
+    match e {
+        png::EncodingError::IoError(error) => OutputError::Io {
+            path: path.into(),
+            error,
+        },
+        e => OutputError::Encode {
+            path: path.into(),
+            message: format!("PNG encoding failed: {e}"),
+        },
+    }
 }
 
 #[cfg(test)]

@@ -14,6 +14,7 @@ mod export;
 mod fiber;
 mod groom_formats;
 mod hostile;
+mod hostile_output;
 mod hostile_work_flags;
 mod quality;
 mod render_formats;
