@@ -10,7 +10,8 @@
 //!
 //! [`json`] holds the strict JSON reading shared by the JSON formats; [`tfx`], [`cyhair`],
 //! [`ply`] and [`hairsalon`] read captured strands ([`strands`]) for groom import;
-//! [`strand_file`] picks the reader. [`printable`] makes a name from a file safe to print.
+//! [`strand_file`] picks the reader; [`tfxmesh`] reads the mesh a TressFX groom was made on.
+//! [`printable`] makes a name from a file safe to print.
 
 pub mod cyhair;
 pub mod hairsalon;
@@ -20,6 +21,7 @@ mod printable;
 pub mod strand_file;
 pub mod strands;
 pub mod tfx;
+pub mod tfxmesh;
 
 pub use printable::printable;
 

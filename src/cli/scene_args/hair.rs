@@ -52,14 +52,17 @@ impl HairArgs {
     /// The hairstyle, and the hair of an imported groom when `--hairstyle` names strand files
     /// (the import's figures go to stderr).
     /// `authored_on`: where the character of a groom kept as authored has its head, when
-    /// there is one (`--groom-as-authored` with `--animation`).
+    /// there is one (`--groom-as-authored` with `--animation`). Also returns the metres per
+    /// unit of a groom kept as authored. Groom meshes (`.tfxmesh`) are left to
+    /// [`super::groom_mesh`].
     pub fn load(
         &self,
         authored_on: Option<wisp::groom::AuthoredFrame>,
-    ) -> Result<(Hairstyle, ImportedHair), AppError> {
+    ) -> Result<(Hairstyle, ImportedHair, Option<f32>), AppError> {
         let (files, styles): (Vec<&String>, Vec<&String>) = self
             .hairstyle
             .iter()
+            .filter(|a| !super::groom_mesh::is_groom_mesh(a))
             .partition(|a| wisp::input::strand_file::is_strand_file_name(a));
         if styles.len() > 1 || (styles.is_empty() && files.is_empty()) {
             return Err(AppError::input(anyhow::anyhow!(
@@ -71,7 +74,7 @@ impl HairArgs {
         let base = load_hairstyle(source)?;
         if files.is_empty() {
             warn_advisories(source, &base);
-            return Ok((base, None));
+            return Ok((base, None, None));
         }
         let opts = GroomOptions {
             wisps: self.groom_wisps.map(|w| w as usize),
@@ -93,7 +96,8 @@ impl HairArgs {
         // What the groom keeps of the hairstyle (not its curls: an imported groom has its own
         // shape) is checked as it will be drawn.
         warn_advisories(source, &groom.style);
-        Ok((groom.style, Some((groom.guides, groom.layout))))
+        let unit = groom.report.as_authored_unit_m.map(|(unit, _)| unit);
+        Ok((groom.style, Some((groom.guides, groom.layout)), unit))
     }
 
     /// Refuses (exit code 2) a groom whose roots do not lie on the character's head mesh

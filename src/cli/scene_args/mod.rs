@@ -26,6 +26,7 @@
 //! user (hair, motion, scene, light and shading, image, budget), across these structs.
 
 mod budget;
+mod groom_mesh;
 mod hair;
 mod hair_map;
 mod interpolation;
@@ -87,7 +88,11 @@ impl SceneArgs {
             upright: motion.file_turn(),
             head_at_rest_m: glam::Vec3::from(motion.head_at_rest().translation),
         });
-        let (style, mut hair) = self.hair.load(authored_on)?;
+        let (style, mut hair, unit_m) = self.hair.load(authored_on)?;
+        let meshes = self.groom_meshes()?;
+        if !meshes.is_empty() {
+            motion = groom_mesh::motion_of_meshes(&meshes, unit_m.unwrap_or(1.0))?;
+        }
         if on_character && let Some((guides, _)) = &mut hair {
             let bones = wisp::engine::carry_roots_by_bones(guides, &mut motion)
                 .map_err(|e| AppError::input(anyhow::anyhow!("{}: {e}", self.motion.source())))?;
@@ -98,11 +103,12 @@ impl SceneArgs {
             );
         }
         let (mut scene, quality) = self.scene_file.scene(&style, &motion)?;
-        if self.hair.groom_as_authored && !on_character {
-            // No head or body is drawn: the groom's own is not in the file.
+        if self.hair.groom_as_authored && !on_character && meshes.is_empty() {
+            // No head or body is drawn: the groom's own is not in the files.
             scene.draw_solids = false;
         }
-        if on_character && scene.camera == CameraSetup::Framed(None) {
+        let on_a_body = on_character || !meshes.is_empty();
+        if on_a_body && scene.camera == CameraSetup::Framed(None) {
             // The groom covers the character, not only its head.
             scene.camera = CameraSetup::Framed(Some(Framing::Full));
         }
@@ -116,6 +122,24 @@ impl SceneArgs {
                 .check_roots_on_head(&style, &hair, &motion, &self.motion.source())?;
         }
         Ok((style, hair, motion, config))
+    }
+
+    /// The groom's own meshes among `--hairstyle` (`.tfxmesh`): only for a groom kept as
+    /// authored without `--animation` (they are the groom's character).
+    fn groom_meshes(&self) -> Result<Vec<&str>, AppError> {
+        let meshes: Vec<&str> = (self.hair.hairstyle.iter())
+            .map(String::as_str)
+            .filter(|a| groom_mesh::is_groom_mesh(a))
+            .collect();
+        if !meshes.is_empty() && (!self.hair.groom_as_authored || self.motion.animation.is_some()) {
+            return Err(AppError::input(anyhow::anyhow!(
+                "--hairstyle {}: a groom's own mesh is drawn under the groom kept where it was \
+                 authored: give --groom-as-authored, and no --animation (the mesh is the \
+                 groom's character)",
+                meshes.join(",")
+            )));
+        }
+        Ok(meshes)
     }
 
     /// Whether no solids are drawn (`--no-solids`, or the scene file's `draw_solids`): with

@@ -30,6 +30,7 @@
 
 mod load;
 mod primitive;
+mod static_mesh;
 
 pub(crate) use load::load_character;
 
