@@ -92,7 +92,7 @@ impl Light {
     }
 
     /// At world point `p`: the unit direction toward the light (ωi) and the irradiance on a
-    /// surface facing it.
+    /// surface facing it (a point light's within [`crate::color::RADIANCE_MAX`]).
     #[inline]
     pub fn toward_and_irradiance(&self, p: Vec3) -> (Vec3, Vec3) {
         match *self {
@@ -105,7 +105,12 @@ impl Light {
                 let d2 = d
                     .length_squared()
                     .max(POINT_LIGHT_MIN_DISTANCE_M * POINT_LIGHT_MIN_DISTANCE_M);
-                (d * d2.sqrt().recip(), intensity / d2)
+                // I/d² overflows for a bright light near a point: saturate, not infinity
+                // (which a fibre's zero scattering would turn into NaN).
+                (
+                    d * d2.sqrt().recip(),
+                    crate::color::saturate_radiance(intensity / d2),
+                )
             }
         }
     }

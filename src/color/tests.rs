@@ -30,3 +30,17 @@ fn srgb16_endpoints_and_agreement_with_8_bit() {
         );
     }
 }
+
+#[test]
+fn radiance_saturates_instead_of_overflowing() {
+    let v = saturate_radiance(Vec3::new(f32::INFINITY, f32::NAN, -2.0));
+    assert_eq!(v, Vec3::new(RADIANCE_MAX, 0.0, 0.0));
+    // Ordinary radiance passes unchanged, to the bit.
+    assert_eq!(
+        saturate_radiance(Vec3::new(0.25, 7.0, 3e29)),
+        Vec3::new(0.25, 7.0, 3e29)
+    );
+    // The headroom the ceiling is chosen for: 16 lights' worth of terms at the ceiling, each
+    // times a scattering of 1e6, stay finite.
+    assert!((RADIANCE_MAX * 1e6 * 16.0).is_finite());
+}

@@ -176,21 +176,29 @@ impl Engine {
         let geom = map_geometry(&style, &config.hair_map);
         let simulation = SimulationPass::new(config.simulation, &style, &guides, pose, radii);
         let (style, layout) = thin_strands(style, layout, config.interpolation.strand_fraction);
+        let mut scene = config.scene;
+        // A point light too far for its map is the directional light it is (the command line
+        // has said so already, with the same rule).
+        crate::scene::far_light::far_point_lights_as_directional(
+            &mut scene.lights,
+            Vec3::from(pose.head.translation),
+            style.reach_m(),
+        );
         Self {
             fiber: Fiber::new(&style.fiber),
             simulation,
             interpolation: InterpolationPass::new(config.interpolation, pose, radii),
-            camera: CameraPass::new(&config.scene),
-            hair_map: HairMapPass::new(config.hair_map, geom, config.scene.lights.len()),
+            camera: CameraPass::new(&scene),
+            hair_map: HairMapPass::new(config.hair_map, geom, scene.lights.len()),
             occluders: OccluderPass::new(config.occluders, character),
             skin_texture: SkinTexturePass::new(config.skin_texture),
             shading: ShadingPass::new(config.shading),
-            raster: RasterPass::new(config.raster, &config.scene, &style, character),
+            raster: RasterPass::new(config.raster, &scene, &style, character),
             animation,
             style,
             guides,
             layout,
-            scene: config.scene,
+            scene,
             level: config.level,
             timings: StageTimings::default(),
             map_parts: MapPartTimings::default(),

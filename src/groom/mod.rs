@@ -166,8 +166,8 @@ pub fn build_groom(
     let ppg = base.guides.links as usize + 1;
     let n = base.strands.points as usize;
     let resampled = build::resample_placed(&kept, &placement, ppg, n);
-    let longest_m =
-        longest_placed_m(&resampled, &kept, files, placement.scale).map_err(&invalid)?;
+    let longest_m = longest_placed_m(&resampled, &kept, files, placement.scale, authored_unit)
+        .map_err(&invalid)?;
 
     let roots: Vec<Vec3> = resampled.render.chunks(n).map(|p| p[0]).collect();
     let density = density_of(&roots, base);
@@ -244,13 +244,15 @@ pub fn build_groom(
 }
 
 /// The longest placed render strand, metres, after checking that every resampled point is
-/// finite (coordinates may overflow once scaled by `scale`) and that it is at most 2 m. The
-/// error is the rule broken.
+/// finite (coordinates may overflow once scaled by `scale`) and that it is more than 0 and at
+/// most 2 m. `authored_unit` is the unit of a groom kept as authored (and whether it was
+/// guessed); `None` for a groom fitted to the head. The error is the rule broken.
 fn longest_placed_m(
     s: &build::Resampled,
     kept: &[strands::Kept],
     files: &[(String, StrandFile)],
     scale: f32,
+    authored_unit: Option<(f32, bool)>,
 ) -> Result<f32, String> {
     if let Some(i) = s.render.iter().position(|p| !p.is_finite()) {
         let k = kept[i / s.n];
@@ -260,12 +262,35 @@ fn longest_placed_m(
         ));
     }
     let longest_m = s.render.chunks(s.n).map(arc_length).fold(0.0f32, f32::max);
-    if !(longest_m > 0.0 && longest_m <= 2.0) {
-        return Err(format!(
-            "the longest strand is {longest_m:.3} m once fitted to the head: it must be more than 0 and at most 2 m"
-        ));
+    if longest_m > 0.0 && longest_m <= 2.0 {
+        return Ok(longest_m);
     }
-    Ok(longest_m)
+    let in_file = kept
+        .iter()
+        .map(|k| arc_length(k.points))
+        .fold(0.0f32, f32::max);
+    Err(match authored_unit {
+        Some((unit, guessed)) => format!(
+            "kept as authored at {unit:.3e} m per file unit ({}), the longest strand \
+             ({in_file:.3e} file units) is {longest_m:.3e} m: it must be more than 0 and at most \
+             2 m; give --groom-unit-m the metres one file unit stands for",
+            if guessed {
+                "guessed from the groom's size"
+            } else {
+                "--groom-unit-m"
+            }
+        ),
+        None if longest_m > 2.0 => format!(
+            "the longest strand is {longest_m:.3} m once fitted to the head (scale {scale:.3e}): \
+             at most 2 m"
+        ),
+        None => format!(
+            "the fit onto the head collapsed the groom: scaled by {scale:.3e}, its longest strand \
+             ({in_file:.3e} file units) comes out {longest_m:.3e} m long, and hair must be longer \
+             than 0: its roots lie in a line or a point, or its coordinates are too large for \
+             32-bit precision; --groom-as-authored keeps a groom where it was authored"
+        ),
+    })
 }
 
 /// The farthest the strands `s` reach from the head's centre, metres: a root's distance plus

@@ -10,7 +10,9 @@
 //! [`from_str`] refuses all of these, naming the field, after a normal serde pass: the value
 //! is serialized back and compared with the parsed text, so every place where the type has an
 //! object must hold an object in the file, and every number must have survived the conversion.
-//! Trailing text after the value is refused too.
+//! Trailing text after the value is refused too, and so is a field the type did not keep: serde's
+//! `deny_unknown_fields` does not reach the unit and newtype variants of an internally tagged
+//! enum (serde-rs/serde#2123, #2294), so `{"type": "unit_variant", "zzz": 1}` would load.
 
 use serde::Serialize;
 use serde::de::DeserializeOwned;
@@ -120,6 +122,21 @@ fn check_shape(given: &Value, kept: &Value, path: &mut String) -> Result<(), Jso
                     path.push_str(name);
                     check_shape(gv, kv, path)?;
                     path.truncate(len);
+                } else if !gv.is_null() {
+                    // Not kept: a field serde let through (a `null` is an absent option,
+                    // which is not written back).
+                    let names: Vec<&str> = k.keys().map(String::as_str).collect();
+                    return Err(here(
+                        path,
+                        format!(
+                            "unknown field `{name}`, expected {}",
+                            if names.is_empty() {
+                                "no fields".to_string()
+                            } else {
+                                format!("one of `{}`", names.join("`, `"))
+                            }
+                        ),
+                    ));
                 }
             }
             Ok(())

@@ -27,6 +27,18 @@ pub const HEAD_FOLLOWING_FOV_Y_RAD: f32 = std::f32::consts::PI / 6.0;
 pub enum CameraError {
     #[error("camera {field} must be finite (got {value})")]
     NonFinite { field: &'static str, value: Vec3 },
+    #[error(
+        "camera {field} {} is {distance_m:.3e} m from the origin: the eye and the target must \
+         lie within {max_m} m of it, where 32-bit positions still resolve 1 mm (the figure is \
+         held within it too)",
+        super::shown(*.value)
+    )]
+    TooFar {
+        field: &'static str,
+        value: Vec3,
+        distance_m: f64,
+        max_m: f32,
+    },
     #[error("camera eye and target must differ (both {0})")]
     EyeAtTarget(Vec3),
     #[error("camera up {up} must be non-zero and not parallel to the view direction {forward}")]
@@ -46,13 +58,28 @@ pub struct CameraSpec {
 }
 
 impl CameraSpec {
-    /// Checks that everything is finite, that eye and target differ (by more than 1 µm), that
+    /// Checks that everything is finite, that eye and target lie within
+    /// [`MAX_POSE_DISTANCE_M`](crate::motion::MAX_POSE_DISTANCE_M) of the origin (beyond, the
+    /// view direction is lost to rounding, and the figure is held within it), that eye and
+    /// target differ (by more than 1 µm), that
     /// `up` is not parallel to the view direction (sine of the angle above 1e-4) and that the
     /// vertical field of view is in (0, π) radians.
     pub fn new(eye: Vec3, target: Vec3, up: Vec3, fov_y_rad: f32) -> Result<Self, CameraError> {
         for (field, value) in [("eye", eye), ("target", target), ("up", up)] {
             if !value.is_finite() {
                 return Err(CameraError::NonFinite { field, value });
+            }
+        }
+        let max_m = crate::motion::MAX_POSE_DISTANCE_M;
+        for (field, value) in [("eye", eye), ("target", target)] {
+            let distance_m = value.as_dvec3().length();
+            if distance_m > f64::from(max_m) {
+                return Err(CameraError::TooFar {
+                    field,
+                    value,
+                    distance_m,
+                    max_m,
+                });
             }
         }
         let view = target - eye;

@@ -43,6 +43,7 @@
 
 use super::camera::{CameraError, CameraSetup, CameraSpec};
 use super::framing::Framing;
+use super::shown;
 use crate::light::{Light, LightError};
 use crate::quality::Quality;
 use glam::Vec3;
@@ -227,6 +228,35 @@ fn color(field: String, c: [f32; 3]) -> Result<Vec3, (String, String)> {
     }
 }
 
+/// The scene's exposure, `exposure_stops` (checked to lie in [−20, 20]): what multiplies every
+/// radiance of the scene by 2^stops.
+#[derive(Clone, Copy)]
+struct Exposure(f32);
+
+impl Exposure {
+    /// The colour `c` of `field` checked ([`color`]) and exposed, refused when the product
+    /// overflows a 32-bit float: ambient 3e38 at 20 stops would reach the pixels as infinity
+    /// (black after compositing). Finite products saturate in the shading instead
+    /// ([`crate::color::RADIANCE_MAX`]).
+    fn apply(self, field: String, c: [f32; 3]) -> Result<Vec3, (String, String)> {
+        let v = color(field.clone(), c)?;
+        let exposed = v * self.0.exp2();
+        if exposed.is_finite() {
+            return Ok(exposed);
+        }
+        Err((
+            field.clone(),
+            format!(
+                "{} × 2^{} (exposure_stops) = {}: the exposed value must be finite (at most \
+                 3.4e38, the largest 32-bit float); lower {field} or exposure_stops",
+                shown(v),
+                self.0,
+                shown(exposed)
+            ),
+        ))
+    }
+}
+
 /// Largest scene file read, bytes (a scene is a few hundred bytes; this only stops a wrong file
 /// from being read whole).
 pub const MAX_SCENE_FILE_BYTES: u64 = 1 << 20;
@@ -288,10 +318,10 @@ impl SceneFile {
                 format!("must be in [-20, 20] (got {})", self.exposure_stops),
             ));
         }
-        let gain = self.exposure_stops.exp2();
-        let lights = self.lights_with_gain(gain)?;
-        let ambient = color("ambient".into(), self.ambient)? * gain;
-        let background = color("background".into(), self.background)? * gain;
+        let exposure = Exposure(self.exposure_stops);
+        let lights = self.lights_exposed(exposure)?;
+        let ambient = exposure.apply("ambient".into(), self.ambient)?;
+        let background = exposure.apply("background".into(), self.background)?;
         Ok(Scene {
             width: self.image.width,
             height: self.image.height,
@@ -339,10 +369,12 @@ impl SceneFile {
                 .map_err(|e| {
                     let field = match e {
                         CameraError::NonFinite { field: "eye", .. }
+                        | CameraError::TooFar { field: "eye", .. }
                         | CameraError::EyeAtTarget(_) => "camera.position_m",
                         CameraError::NonFinite {
                             field: "target", ..
-                        } => "camera.target_m",
+                        }
+                        | CameraError::TooFar { .. } => "camera.target_m",
                         CameraError::NonFinite { .. } | CameraError::UpAlongView { .. } => {
                             "camera.up"
                         }
@@ -355,8 +387,8 @@ impl SceneFile {
         })
     }
 
-    /// The lights (one to [`MAX_LIGHTS`]), each checked and scaled by the exposure `gain`.
-    fn lights_with_gain(&self, gain: f32) -> Result<Vec<Light>, (String, String)> {
+    /// The lights (one to [`MAX_LIGHTS`]), each checked and exposed.
+    fn lights_exposed(&self, exposure: Exposure) -> Result<Vec<Light>, (String, String)> {
         if self.lights.is_empty() {
             return Err((
                 "lights".into(),
@@ -375,22 +407,22 @@ impl SceneFile {
         self.lights
             .iter()
             .enumerate()
-            .map(|(i, l)| light_of(i, l, gain))
+            .map(|(i, l)| light_of(i, l, exposure))
             .collect()
     }
 }
 
 /// Light `i` of the file, checked ([`Light::directional`], [`Light::point`]; an error names
-/// `lights[i]`'s field) and scaled by `gain`.
-fn light_of(i: usize, l: &LightJson, gain: f32) -> Result<Light, (String, String)> {
+/// `lights[i]`'s field) and exposed.
+fn light_of(i: usize, l: &LightJson, exposure: Exposure) -> Result<Light, (String, String)> {
     let field = |name: &str| format!("lights[{i}].{name}");
     Ok(match *l {
         LightJson::Directional {
             direction,
             irradiance,
         } => {
-            let e = color(field("irradiance"), irradiance)?;
-            Light::directional(Vec3::from(direction), e * gain).map_err(|err| {
+            let e = exposure.apply(field("irradiance"), irradiance)?;
+            Light::directional(Vec3::from(direction), e).map_err(|err| {
                 let name = match err {
                     LightError::Direction(_) => "direction",
                     _ => "irradiance",
@@ -402,8 +434,8 @@ fn light_of(i: usize, l: &LightJson, gain: f32) -> Result<Light, (String, String
             position_m,
             intensity,
         } => {
-            let i_rgb = color(field("intensity"), intensity)?;
-            Light::point(Vec3::from(position_m), i_rgb * gain).map_err(|err| {
+            let i_rgb = exposure.apply(field("intensity"), intensity)?;
+            Light::point(Vec3::from(position_m), i_rgb).map_err(|err| {
                 let name = match err {
                     LightError::Position(_) => "position_m",
                     _ => "intensity",

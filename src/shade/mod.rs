@@ -11,6 +11,7 @@
 
 mod bend;
 
+use crate::color::{RADIANCE_MAX, saturate_radiance};
 use crate::fiber::{Fiber, LightAtPoint, ShadingMode};
 use crate::light::Light;
 use crate::map::Shadows;
@@ -240,7 +241,8 @@ const MIN_CHUNK: usize = 256;
 
 /// The colour of one vertex at `p` along the fibre directions `dirs` (`bend`: one, or the two
 /// segments of a bent vertex, averaged): every light's contribution (its statistics from
-/// `light(k, p)`, once per light) plus ambient, clamped at 0, black if not finite.
+/// `light(k, p)`, once per light) plus ambient, saturated to [0, `RADIANCE_MAX`]
+/// ([`saturate_radiance`]: a sum that overflowed is the brightest radiance, not black).
 #[inline]
 fn shade_one(
     fiber: &Fiber,
@@ -266,14 +268,11 @@ fn shade_one(
                     + fiber.shade(lighting.mode, b, wi, wo, &at))
             }
         };
-        v += irradiance * f;
+        // Each light's term within ±RADIANCE_MAX: an overflowed term of either sign (a
+        // scattering can dip below 0) would meet one of the other sign as ∞ − ∞ = NaN.
+        v += (irradiance * f).clamp(Vec3::splat(-RADIANCE_MAX), Vec3::splat(RADIANCE_MAX));
     }
-    let v = v + ambient;
-    if v.is_finite() {
-        v.max(Vec3::ZERO)
-    } else {
-        Vec3::ZERO
-    }
+    saturate_radiance(v + ambient)
 }
 
 /// [`shade_vertices`] with the light statistics of vertex `i` at `p` from light `k` given by
@@ -350,10 +349,10 @@ fn shade_in_order<D, L>(
 /// Skin: Lambertian with albedo `albedo`, lit through the hair and past the other solids (each
 /// light's map gives T_f at the skin point, from its surface texture where it has one,
 /// [`Shadow::light_at_surface`]: hair casts its shadow on the head, the head on the body),
-/// plus ambient. The lookup point is moved off the surface along its normal by
-/// [`LightMap::surface_offset_m`] ("normal offset" shadow mapping), so that near the terminator,
-/// where the light grazes the surface, the solid does not shadow itself through the finite
-/// resolution of the occluder grid.
+/// plus ambient, saturated ([`saturate_radiance`]). The lookup point is moved off the surface
+/// along its normal by [`LightMap::surface_offset_m`] ("normal offset" shadow mapping), so
+/// that near the terminator, where the light grazes the surface, the solid does not shadow
+/// itself through the finite resolution of the occluder grid.
 #[inline]
 pub fn shade_skin(
     shadows: Shadows,
@@ -374,6 +373,5 @@ pub fn shade_skin(
             lit += irradiance * tf * cos * std::f32::consts::FRAC_1_PI;
         }
     }
-    let v = albedo * (lit + lighting.ambient);
-    if v.is_finite() { v } else { Vec3::ZERO }
+    saturate_radiance(albedo * (lit + lighting.ambient))
 }

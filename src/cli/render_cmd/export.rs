@@ -231,17 +231,20 @@ fn report(
 }
 
 /// Says on stderr what makes the first frame wrong or empty, instead of writing blank frames
-/// silently: render points that are not finite, hair wider than the map, a picture with
+/// silently: render points a light's map cannot hold, hair wider than the map, a picture with
 /// nothing but background.
 fn warn_about_first_frame(engine: &Engine) {
-    let stats = engine.map_stats();
-    if stats.skipped > 0 {
-        eprintln!(
-            "wisp: warning: {} of {} render points are not finite numbers and are not drawn",
-            stats.skipped,
-            stats.skipped + stats.samples
-        );
+    for (k, map) in engine.maps().iter().enumerate() {
+        let stats = map.stats();
+        if stats.skipped > 0 {
+            eprintln!(
+                "wisp: warning: {} of {} render points are left out of the map of lights[{k}] (not finite, or beyond the range of its cells): they neither cast nor receive that light's hair shadows",
+                stats.skipped,
+                stats.skipped + stats.samples
+            );
+        }
     }
+    let stats = engine.map_stats();
     if stats.overflow {
         let g = engine.map_geometry();
         eprintln!(

@@ -11,7 +11,8 @@ use std::path::PathBuf;
 use wisp::hairstyle::Hairstyle;
 use wisp::motion::Motion;
 use wisp::quality::Quality;
-use wisp::scene::file::{CameraJson, LightJson};
+use wisp::scene::far_light::{self, far_point_lights_as_directional};
+use wisp::scene::file::{CameraJson, LightJson, SceneError};
 use wisp::scene::{Framing, Scene, SceneFile};
 
 #[derive(clap::Args, Debug, Clone)]
@@ -142,6 +143,40 @@ impl SceneFileArgs {
         Ok(())
     }
 
+    /// A refused scene, naming the flags that set the field (the error names it as the scene
+    /// file does): `scene flags: camera.position_m (set by --camera-eye): ...`.
+    fn blame(&self, e: SceneError) -> AppError {
+        if let SceneError::Invalid { file, field, rule } = &e {
+            let mut flags: Vec<&str> = self.flag_of(field).into_iter().collect();
+            if self.exposure_stops.is_some() && rule.contains("exposure_stops") {
+                flags.push("--exposure-stops");
+            }
+            if !flags.is_empty() {
+                return AppError::input(anyhow::anyhow!(
+                    "{file}: {field} (set by {}): {rule}",
+                    flags.join(" and ")
+                ));
+            }
+        }
+        AppError::input(e)
+    }
+
+    /// The flag given that wrote the scene field `field` ([`Self::write_view`]), if any.
+    fn flag_of(&self, field: &str) -> Option<&'static str> {
+        let (given, flag) = match field {
+            "camera.position_m" => (self.camera_eye.is_some(), "--camera-eye"),
+            "camera.target_m" => (self.camera_target.is_some(), "--camera-target"),
+            "camera.up" => (self.camera_up.is_some(), "--camera-up"),
+            "camera.fov_y_deg" => (self.fov_deg.is_some(), "--fov-deg"),
+            "ambient" => (self.ambient.is_some(), "--ambient"),
+            "exposure_stops" => (self.exposure_stops.is_some(), "--exposure-stops"),
+            "lights[0].irradiance" => (self.irradiance.is_some(), "--irradiance"),
+            "lights[0].direction" => (self.light_dir.is_some(), "--light-dir"),
+            _ => (false, ""),
+        };
+        given.then_some(flag)
+    }
+
     /// The run's scene: [`Self::effective`], validated, with its point lights checked to lie
     /// beyond the reach of the hair of `style` on the head at the motion's first pose; and the
     /// quality level the flag or the file asks for.
@@ -151,11 +186,16 @@ impl SceneFileArgs {
         motion: &Motion,
     ) -> Result<(Scene, Option<Quality>), AppError> {
         let (name, file) = self.effective()?;
-        let scene = file.validate(&name).map_err(AppError::input)?;
+        let mut scene = file.validate(&name).map_err(|e| self.blame(e))?;
         let head = Vec3::from(motion.sample(0.0).head.translation);
         let reach = style.max_length_m() + style.head.radii_m.iter().copied().fold(0.0, f32::max);
         wisp::scene::file::check_point_lights_outside(&scene.lights, head, reach)
             .map_err(|(field, rule)| AppError::input(anyhow::anyhow!("{name}: {field}: {rule}")))?;
+        // Said here, once; the engine applies the same rule to the lights it is given.
+        let far_reach = style.reach_m();
+        for far in far_point_lights_as_directional(&mut scene.lights, head, far_reach) {
+            eprintln!("wisp: {name}: {}", far_light::describe(&far, far_reach));
+        }
         Ok((scene, file.quality))
     }
 }

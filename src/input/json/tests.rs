@@ -61,3 +61,44 @@ fn text_skips_a_utf8_bom_and_refuses_utf16() {
     let e = decode_text(b"{\n  \"a\": \xC3(").unwrap_err();
     assert!(e.message.contains("line 2 column 8"), "{e:?}");
 }
+
+/// serde's caveat (serde-rs/serde#2123, #2294): `deny_unknown_fields` on an internally tagged
+/// enum does not reach its unit variants.
+#[derive(Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+enum Tagged {
+    Bare,
+    Fields { x: f32 },
+}
+
+#[derive(Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Holder {
+    items: Vec<Tagged>,
+}
+
+#[test]
+fn refuses_an_unknown_field_in_a_unit_variant_of_a_tagged_enum() {
+    let text = r#"{"items": [{"type": "fields", "x": 1}, {"type": "bare", "zzz": [1, 2]}]}"#;
+    // serde alone lets it through: the caveat this check is for.
+    assert!(serde_json::from_str::<Holder>(text).is_ok());
+    let e = from_str::<Holder>(text).expect_err(text);
+    assert_eq!(e.field, "items[1]");
+    assert_eq!(e.message, "unknown field `zzz`, expected one of `type`");
+    // A struct variant is refused by serde itself, naming its fields.
+    let e = from_str::<Holder>(r#"{"items": [{"type": "fields", "x": 1, "zzz": 0}]}"#)
+        .expect_err("struct variant");
+    assert!(
+        e.message.contains("unknown field `zzz`, expected `x`"),
+        "{e:?}"
+    );
+    // An absent option written as null (not written back) is not an unknown field.
+    assert_eq!(from_str::<Maybe>(r#"{"o": null}"#), Ok(Maybe { o: None }));
+}
+
+#[derive(Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Maybe {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    o: Option<f32>,
+}

@@ -89,7 +89,9 @@ pub fn draw_ellipsoid(
                 }
                 let c = shade(hit.position, hit.normal);
                 let dst = &mut color_row[x];
-                *dst += (c - *dst) * hit.coverage;
+                // Weighted, not `dst + (c − dst)·coverage`, which loses `c` to rounding
+                // against a far brighter background (the mesh's shading says more).
+                *dst = *dst * (1.0 - hit.coverage) + c * hit.coverage;
                 let a = &mut coverage_row[x];
                 *a += (1.0 - *a) * hit.coverage;
                 if hit.centre_inside {

@@ -91,7 +91,9 @@ pub(super) fn shade_band(
             sum / shaded as f32
         };
         let a = shaded as f32 / SAMPLES as f32;
-        px.color[i] += (c - px.color[i]) * a;
+        // Weighted, not `dst + (c − dst)·a`: against a background 1e7 times brighter, the
+        // difference loses `c` to rounding and a fully covered pixel came out black.
+        px.color[i] = px.color[i] * (1.0 - a) + c * a;
         px.coverage[i] += (1.0 - px.coverage[i]) * a;
         if 2 * shaded >= SAMPLES {
             px.depth[i] = depths[layers[0].0];
