@@ -15,6 +15,7 @@ mod fiber;
 mod groom_formats;
 mod hostile;
 mod hostile_output;
+mod hostile_scene;
 mod hostile_work_flags;
 mod quality;
 mod render_formats;

@@ -37,6 +37,7 @@ mod hostile_cases;
 mod hostile_headers;
 mod hostile_loaders;
 mod hostile_resume;
+mod hostile_scene;
 mod level_tf;
 mod map_accuracy;
 mod map_contact;

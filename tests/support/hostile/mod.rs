@@ -11,6 +11,7 @@ pub mod formats;
 pub mod frames;
 pub mod headers;
 pub mod mutate;
+pub mod scene;
 
 /// Deterministic generator: a case is reproduced from its seed alone.
 pub struct Rng(wisp::hairstyle::SplitMix64);
