@@ -155,7 +155,8 @@ pub fn build_groom(
     let count = kept.len();
     let radii = Vec3::from(base.head.radii_m);
     let (on_head, authored_unit) = if opts.as_authored {
-        let (on_head, unit, guessed) = as_authored::as_authored(&kept, opts.unit_m, opts.authored_on);
+        let (on_head, unit, guessed) =
+            as_authored::as_authored(&kept, opts.unit_m, opts.authored_on);
         (on_head, Some((unit, guessed)))
     } else {
         let on_head = place::place_on_head(&kept, files, radii, opts.yaw_rad, &names)?;
