@@ -8,6 +8,25 @@ use crate::{stderr, wisp};
 use glam::Vec3;
 use std::path::Path;
 
+/// `wisp render --hairstyle HAIRSTYLE` of one 96×96 frame into `out`, with `extra` flags.
+fn render_96(hairstyle: &str, out: &Path, extra: &[&str]) -> std::process::Output {
+    let mut a = vec![
+        "render",
+        "--hairstyle",
+        hairstyle,
+        "--frames",
+        "1",
+        "--width",
+        "96",
+        "--height",
+        "96",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    a.extend_from_slice(extra);
+    wisp(&a)
+}
+
 /// Share of the 96×96 frame's pixels that differ from its top-left corner (the background).
 fn hair_share(png_path: &Path) -> f64 {
     let differ = covered(png_path);
@@ -114,23 +133,7 @@ fn fur_is_refused_naming_the_flag_that_keeps_it_as_authored() {
     )
     .unwrap();
     let out = dir.join("frames");
-    let run = |extra: &[&str]| {
-        let mut a = vec![
-            "render",
-            "--hairstyle",
-            path.to_str().unwrap(),
-            "--frames",
-            "1",
-            "--width",
-            "96",
-            "--height",
-            "96",
-            "--out",
-            out.to_str().unwrap(),
-        ];
-        a.extend_from_slice(extra);
-        wisp(&a)
-    };
+    let run = |extra: &[&str]| render_96(path.to_str().unwrap(), &out, extra);
     let o = run(&[]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("--groom-as-authored"), "{}", stderr(&o));
@@ -251,23 +254,7 @@ fn a_groom_with_its_own_tfxmesh_is_drawn_on_it() {
     .unwrap();
     let out = dir.join("frames");
     let hairstyle = format!("{},{}", fur.display(), mesh_path.display());
-    let run = |extra: &[&str]| {
-        let mut a = vec![
-            "render",
-            "--hairstyle",
-            &hairstyle,
-            "--frames",
-            "1",
-            "--width",
-            "96",
-            "--height",
-            "96",
-            "--out",
-            out.to_str().unwrap(),
-        ];
-        a.extend_from_slice(extra);
-        wisp(&a)
-    };
+    let run = |extra: &[&str]| render_96(&hairstyle, &out, extra);
     // Under white ambient light the grey ball shows between its fur (the key light's side is
     // shadowed by the fur: 312 strands carry a head of hair's fibres).
     let o = run(&["--groom-as-authored", "--ambient", "1,1,1"]);
