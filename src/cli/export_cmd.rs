@@ -26,7 +26,8 @@ pub struct ExportArgs {
 
 pub fn run(args: ExportArgs) -> Result<(), AppError> {
     let (style, hair, motion, mut config) = args.scene.resolve()?;
-    // A path tracer's reference scene has one directional light: refused before any work.
+    // A path tracer's reference scene has one light (directional or point): refused before
+    // any work.
     wisp::export::reference_light(&config.scene.lights)
         .map_err(|e| AppError::input(anyhow::anyhow!("export: {e}")))?;
     config.scene.background = Vec3::ZERO;

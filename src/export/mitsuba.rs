@@ -10,6 +10,12 @@
 //! | `alpha_r_deg` | `scale_tilt` (degrees) | same value and sign |
 //! | `azimuthal_roughness` ("chiang") | `azimuthal_roughness` | 1:1; Marschner 2003 has none, see [`MARSCHNER_AZIMUTHAL_ROUGHNESS`] |
 //!
+//! The scene's one light ([`reference_light`]) keeps its units: a directional light's
+//! irradiance is the `directional` emitter's `irradiance`, and a point light's radiant
+//! intensity I is the `point` emitter's `intensity`, which Mitsuba also turns into I / d² on a
+//! surface facing it at distance d (its `point` emitter's direction sampling), as wisp does
+//! ([`crate::light::Light::Point`]).
+//!
 //! The fibre is read as JSON (the hairstyle's `fiber` object) so that fields added by other
 //! fibre models (`model`, `azimuthal_roughness`) are mapped when present.
 
@@ -17,6 +23,9 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 use serde::{Deserialize, Serialize};
+
+use super::LightJson;
+use crate::light::Light;
 
 /// Azimuthal roughness given to Mitsuba for a Marschner 2003 fibre, which has none: 0.1 gives a
 /// trimmed-logistic scale of 0.024 rad (1.4°), close to a smooth fibre; smaller values are
@@ -82,6 +91,30 @@ pub fn mitsuba_hair(fiber: &serde_json::Value) -> MitsubaHair {
         ),
         azimuthal_roughness: azimuthal,
         scale_tilt: num("alpha_r_deg", 0.0),
+    }
+}
+
+/// The one light a reference scene describes (tools/reference renders exactly that): a
+/// directional or a point light, in wisp's units, or why `lights` is not such a scene.
+pub fn reference_light(lights: &[Light]) -> Result<LightJson, String> {
+    match lights {
+        [Light::Directional { travel, irradiance }] => Ok(LightJson::Directional {
+            direction: travel.get().to_array(),
+            irradiance: irradiance.to_array(),
+        }),
+        [
+            Light::Point {
+                position_m,
+                intensity,
+            },
+        ] => Ok(LightJson::Point {
+            position_m: position_m.to_array(),
+            intensity: intensity.to_array(),
+        }),
+        _ => Err(format!(
+            "a reference scene has exactly one light (directional or point); this scene has {}",
+            lights.len()
+        )),
     }
 }
 

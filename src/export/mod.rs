@@ -5,7 +5,8 @@
 //! [`write_reference_scene`] writes into a directory:
 //! - `hair.hair`: the render strands as cyHair ([`cyhair`]), metres, root first, thickness =
 //!   the fibre diameter (a path tracer draws each render strand as one fibre);
-//! - `scene.json`: [`ReferenceScene`] — camera, light (direction of travel, irradiance),
+//! - `scene.json`: [`ReferenceScene`] — camera, light ([`LightJson`]: a directional light's
+//!   direction of travel and irradiance, or a point light's position and intensity),
 //!   ambient, image size, fibres per strand, wisp's fibre parameters verbatim and their
 //!   mapping to Mitsuba 3's `hair` BSDF ([`mitsuba`]);
 //! - `wisp.exr`: the frame as linear RGBA float, coverage in alpha (RGB premultiplied: the
@@ -34,6 +35,7 @@ use crate::output::{OutputError, write_atomically, write_exr_rgba_f32, write_png
 use crate::scene::CameraSpec;
 use cyhair::CyHairError;
 use mitsuba::MitsubaHair;
+pub use mitsuba::reference_light;
 
 /// `scene.json`'s `format` value; bump the number when a field changes meaning.
 pub const SCENE_FORMAT: &str = "wisp-reference-scene/1";
@@ -92,12 +94,24 @@ pub struct CameraJson {
     pub fov_y_deg: f32,
 }
 
-/// A directional light: `direction` is the way its light travels (unit, world), `irradiance`
-/// is linear RGB on a surface facing it.
+/// The scene's one light, told apart by its fields (no tag, so a directional light's JSON is
+/// `{"direction", "irradiance"}` as it always was). Linear RGB in wisp's units (1 = white).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct LightJson {
-    pub direction: [f32; 3],
-    pub irradiance: [f32; 3],
+#[serde(untagged)]
+pub enum LightJson {
+    /// `direction` is the way its light travels (unit, world); `irradiance` on a surface
+    /// facing it (Mitsuba's `directional` emitter's `irradiance`).
+    Directional {
+        direction: [f32; 3],
+        irradiance: [f32; 3],
+    },
+    /// A point light at `position_m` (world metres) with radiant intensity `intensity` per
+    /// steradian: a surface facing it at distance d receives `intensity` / d², as wisp's
+    /// [`crate::light::Light::Point`] and Mitsuba's `point` emitter's `intensity` both mean.
+    Point {
+        position_m: [f32; 3],
+        intensity: [f32; 3],
+    },
 }
 
 /// Why a reference scene could not be written.
@@ -118,25 +132,6 @@ pub const WISP_EXR: &str = "wisp.exr";
 pub const WISP_PNG: &str = "wisp.png";
 pub const VERTEX_RGB: &str = "vertex_rgb.f32";
 
-/// The one directional light a reference scene describes (tools/reference renders exactly
-/// that): its direction of travel and irradiance, or why `lights` is not such a scene.
-pub fn reference_light(lights: &[crate::light::Light]) -> Result<(glam::Vec3, glam::Vec3), String> {
-    match lights {
-        [crate::light::Light::Directional { travel, irradiance }] => {
-            Ok((travel.get(), *irradiance))
-        }
-        _ => Err(format!(
-            "a reference scene has exactly one directional light; this scene has {} light(s){}",
-            lights.len(),
-            if lights.iter().any(|x| x.travel().is_none()) {
-                ", a point light among them"
-            } else {
-                ""
-            }
-        )),
-    }
-}
-
 impl ReferenceScene {
     /// The description of `engine`'s last rendered frame at time `time_s`.
     pub fn of_engine(engine: &Engine, time_s: f64) -> Result<ReferenceScene, String> {
@@ -148,7 +143,7 @@ impl ReferenceScene {
             .and_then(|t| serde_json::from_str::<serde_json::Value>(&t))
             .map_err(|e| e.to_string())?;
         let l = engine.shading.lighting(&engine.scene);
-        let (direction, irradiance) = reference_light(l.lights)?;
+        let light = reference_light(l.lights)?;
         let fb = engine.framebuffer();
         Ok(ReferenceScene {
             format: SCENE_FORMAT.into(),
@@ -171,10 +166,7 @@ impl ReferenceScene {
                 up: spec.up().to_array(),
                 fov_y_deg: spec.fov_y_rad().to_degrees(),
             },
-            light: LightJson {
-                direction: direction.to_array(),
-                irradiance: irradiance.to_array(),
-            },
+            light,
             ambient: l.ambient.to_array(),
             shading: format!("{:?}", l.mode),
             draw_solids: engine.scene.draw_solids,

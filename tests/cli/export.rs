@@ -1,11 +1,51 @@
-//! `wisp export` through the binary: the scene it writes carries the camera and light flags,
+//! `wisp export` through the binary: the scene it writes carries the camera and light flags
+//! (or a scene file's one point light),
 //! the EXR its size and coverage, and bad camera flags are bad input (exit 2).
 
 use crate::support::scratch_dir;
 use crate::wisp;
 use glam::Vec3;
-use wisp::export::ReferenceScene;
+use wisp::export::{LightJson, ReferenceScene};
 use wisp::output::read_exr_rgba_f32;
+
+/// A scene file's one point light is exported with the numbers it was given: its position in
+/// metres and its intensity (tools/reference/render.py's `point` emitter).
+#[test]
+fn export_writes_a_point_light() {
+    let dir = scratch_dir("export-cli-point");
+    let scene_file = dir.join("p.json");
+    std::fs::write(
+        &scene_file,
+        r#"{"lights": [{"type": "point", "position_m": [0.3, 0.2, 0.4], "intensity": [0.2, 0.1, 0.05]}]}"#,
+    )
+    .unwrap();
+    let out = dir.join("scene");
+    let o = wisp(&[
+        "export",
+        "--still",
+        "--no-solids",
+        "--ambient",
+        "0",
+        "--width",
+        "32",
+        "--height",
+        "32",
+        "--scene",
+        scene_file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let scene: ReferenceScene =
+        serde_json::from_str(&std::fs::read_to_string(out.join("scene.json")).unwrap()).unwrap();
+    assert_eq!(
+        scene.light,
+        LightJson::Point {
+            position_m: [0.3, 0.2, 0.4],
+            intensity: [0.2, 0.1, 0.05],
+        }
+    );
+}
 
 #[test]
 fn export_command_writes_the_scene_and_refuses_bad_cameras() {
@@ -40,10 +80,17 @@ fn export_command_writes_the_scene_and_refuses_bad_cameras() {
         serde_json::from_str(&std::fs::read_to_string(out.join("scene.json")).unwrap()).unwrap();
     assert_eq!(scene.camera.eye, [0.6, 0.0, 1.0]);
     assert!((scene.camera.fov_y_deg - 35.0).abs() < 1e-4);
-    assert_eq!(scene.light.irradiance, [1.0; 3]);
+    let LightJson::Directional {
+        direction,
+        irradiance,
+    } = scene.light
+    else {
+        panic!("a directional light was exported as {:?}", scene.light);
+    };
+    assert_eq!(irradiance, [1.0; 3]);
     assert_eq!(scene.ambient, [0.0; 3]);
     let s = std::f32::consts::FRAC_1_SQRT_2;
-    assert!((Vec3::from(scene.light.direction) - Vec3::new(-s, 0.0, -s)).length() < 1e-6);
+    assert!((Vec3::from(direction) - Vec3::new(-s, 0.0, -s)).length() < 1e-6);
     let (w, h, _, alpha) = read_exr_rgba_f32(&out.join("wisp.exr")).unwrap();
     assert_eq!((w, h), (48, 40));
     assert!(alpha.iter().any(|a| *a > 0.0));

@@ -173,15 +173,16 @@ fn bad_scene_files_exit_2_naming_file_field_and_rule() {
     }
 }
 
-/// `export` writes a path tracer's scene, which has one directional light: a scene with a
-/// point light is refused up front (exit 2), before any frame is rendered.
+/// `export` writes a path tracer's scene, which has one light (directional or point): a
+/// scene with two is refused up front (exit 2), before any frame is rendered.
 #[test]
 fn export_refuses_scenes_it_cannot_describe() {
     let dir = scratch_dir("scene-cli-export");
     let scene = dir.join("s.json");
     std::fs::write(
         &scene,
-        r#"{"lights": [{"type": "point", "position_m": [2, 0, 0], "intensity": [1, 1, 1]}]}"#,
+        r#"{"lights": [{"type": "point", "position_m": [2, 0, 0], "intensity": [1, 1, 1]},
+                      {"type": "directional", "direction": [0, -1, 0], "irradiance": [1, 1, 1]}]}"#,
     )
     .unwrap();
     let out = dir.join("out");
@@ -194,7 +195,8 @@ fn export_refuses_scenes_it_cannot_describe() {
         out.to_str().unwrap(),
     ]);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o.stderr));
-    assert!(text(&o.stderr).contains("one directional light"));
+    assert!(text(&o.stderr).contains("exactly one light"));
+    assert!(text(&o.stderr).contains("this scene has 2"));
     assert!(!out.join("scene.json").exists());
 }
 
