@@ -9,8 +9,10 @@ over the whole image: the ratio of the light each sends to the camera), reports 
 wisp / path traced, its standard error (from the path tracer's independent passes, --passes;
 wisp is deterministic), the ratio of the 10th-percentile luminance (the darkest hair) per
 pixel, a bracket on the ratio of the darkest tenth's mean luminance over 4 x 4 and 8 x 8
-blocks that the path tracer's noise cannot bias (darkest_tenth(); needs --passes), the
-coverage ratio, and the pixel count. Prints one Markdown table row, optionally writes the
+blocks that the path tracer's noise cannot bias (darkest_tenth(); needs --passes), the share
+of 8 x 8 px hair blocks (mean alpha >= --block-coverage, 0.5, in both) within 1.5x and 2x beside the path tracer's own block noise (its
+halves against each other; block_shares(); needs --passes), the coverage ratio, and the
+pixel count. Prints one Markdown table row, optionally writes the
 figures as JSON and a side-by-side PNG: wisp | path traced (same exposure, sRGB) | log2(wisp / path traced) of
 luminance summed over 8 x 8 blocks of compared pixels (blue: wisp darker, red: wisp
 brighter, white: equal, +-2 stops full scale; grey where fewer than a quarter of a block's
@@ -99,6 +101,72 @@ def darkest_tenth(wisp, ref, passes, mask, k, tail=10.0):
             "ref_high": high, "ratio": [float(lo_ratio), float(hi_ratio)], "within_2x": verdict}
 
 
+# The spatial measure: 8 x 8 px blocks of hair, each compared whole. A block counts when its
+# mean alpha is >= SHARE_COVERAGE in both images: the silhouette's blocks, where light
+# scattered many times shows first, count too, and the two renderers' coverage of a block
+# agrees within 2% there (5th-95th percentile of wisp / path tracer 0.998-1.016 over the
+# blocks >= 0.5 covered of dense blond back-lit at 256 px), so a block's ratio is its light's.
+SHARE_BLOCK = 8
+SHARE_FACTORS = (1.5, 2.0)
+SHARE_COVERAGE = 0.5
+
+
+def block_shares(wisp, ref, passes, k=SHARE_BLOCK, coverage=SHARE_COVERAGE, keep=None):
+    """Where the two images agree: over the k x k blocks whose mean alpha is >= `coverage` in
+    both images (hair blocks; `keep` optionally masks pixels out, e.g. a crop), the share whose
+    luminance ratio wisp / path tracer lies within each factor of SHARE_FACTORS (a block's
+    luminance is its summed premultiplied RGB, so a block is one sample of 64 pixels' light).
+
+    Beside it, the path tracer's own block noise, from `passes` split into halves A (the first
+    P/2) and B (the rest), both means of independent samples:
+    - `noise_halves`: the same shares for A / B. Each half has twice the variance of the full
+      mean, so this is what a perfect renderer would score against a reference of half the
+      samples (the convergence test: >= 97% within 1.5 means the blocks are converged);
+    - `noise_mean`: the shares of |ln(A / B)| / 2 within ln(factor). (ln A − ln B) / 2 has the
+      variance of the full mean's ln (each half 2σ², the difference 4σ², halved: σ²), so this
+      is what a perfect renderer would score against this reference (the noise ceiling);
+    - `corrected`: min(1, share / noise_mean): the share of blocks within the factor once the
+      reference's noise is divided out, assuming noise pushes a block out independently of
+      wisp's own error and rarely pushes a wrong block in (both hold when the wrong blocks lie
+      well outside the factor). An estimate, not a bound: it is the measure the noise does
+      not count as wisp's error."""
+    if passes is None or len(passes) < 2:
+        return None
+    k_cov = coverage * k * k
+    full = np.ones(wisp.shape[:2]) if keep is None else keep.astype(float)
+    hair = (block_sum(wisp[..., 3] * full, k) >= k_cov) & (block_sum(ref[..., 3] * full, k) >= k_cov)
+    n = int(hair.sum())
+    if n < 20:
+        return None
+    lum = lambda img: block_sum((img[..., :3] @ LUMA) * full, k)[hair]
+    half = len(passes) // 2
+    a, b = lum(passes[:half].mean(axis=0)), lum(passes[half:].mean(axis=0))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ln_w = np.abs(np.log(lum(wisp) / lum(ref)))
+        ln_ab = np.abs(np.log(a / b))
+    ln_w, ln_ab = np.nan_to_num(ln_w, nan=np.inf), np.nan_to_num(ln_ab, nan=np.inf)
+    out = {"block": k, "blocks": n, "coverage": coverage, "factors": list(SHARE_FACTORS),
+           "halves": [half, len(passes) - half]}
+    share = lambda v, f: float((v <= np.log(f)).mean())
+    out["within"] = [share(ln_w, f) for f in SHARE_FACTORS]
+    out["noise_halves"] = [share(ln_ab, f) for f in SHARE_FACTORS]
+    out["noise_mean"] = [share(ln_ab / 2, f) for f in SHARE_FACTORS]
+    out["corrected"] = [min(1.0, w / m) if m > 0 else None
+                        for w, m in zip(out["within"], out["noise_mean"])]
+    return out
+
+
+def share_cell(fig):
+    """The block shares of a figure as one table cell: "86 / 97% (PT halves 95 / 99%, noise
+    ceiling 99 / 100%)": wisp's share of 8 px blocks within 1.5x / 2x, then the path tracer's
+    halves against each other and what an exact wisp would score against this reference."""
+    b = fig.get("blocks8")
+    if not b:
+        return "-"
+    pc = lambda v: " / ".join(f"{100 * x:.0f}" for x in v)
+    return f"{pc(b['within'])}% (halves {pc(b['noise_halves'])}%, ceiling {pc(b['noise_mean'])}%)"
+
+
 def dark_cell(fig):
     """The darkest-tenth brackets of a figure as one table cell, e.g. "4px 0.35-3.92, 8px
     1.24-1.80" (">= x" when the path tracer's darkest tenth of the mean image is 0)."""
@@ -110,7 +178,8 @@ def dark_cell(fig):
     return ", ".join(parts)
 
 
-def compare(wisp, ref, passes=None, coverage=0.99, region="auto", min_pixels=500, crop=1.0):
+def compare(wisp, ref, passes=None, coverage=0.99, region="auto", min_pixels=500, crop=1.0,
+            block_coverage=SHARE_COVERAGE):
     """Figures over the compared region: "covered" (alpha >= coverage in both), "all" (every
     pixel: the ratio of the images' summed premultiplied RGB, i.e. of the light each renderer
     sends to the camera; what sparse hair such as isolated fibres needs, where no pixel is
@@ -153,6 +222,9 @@ def compare(wisp, ref, passes=None, coverage=0.99, region="auto", min_pixels=500
         out.update(p10_wisp=float(p10w), p10_ref=float(p10r),
                    p10_ratio=float(p10w / p10r) if p10r > 0 else None)
         if passes is not None and len(passes) >= 2:
+            shares = block_shares(wisp, ref, passes, coverage=block_coverage, keep=keep)
+            if shares is not None:
+                out[f"blocks{SHARE_BLOCK}"] = shares
             for k in DARK_BLOCKS:
                 d = darkest_tenth(wisp, ref, passes, mask, k)
                 if d is not None:
@@ -162,7 +234,7 @@ def compare(wisp, ref, passes=None, coverage=0.99, region="auto", min_pixels=500
 
 def markdown_row(label, fig):
     if "ratio" not in fig:
-        return f"| {label} | no pixel covered in both | | | 0 |"
+        return f"| {label} | no pixel covered in both | | | | 0 |"
     ratio = " / ".join(f"{v:.2f}" for v in fig["ratio"])
     se = " / ".join(f"{v:.3f}" for v in fig.get("ratio_se", [float("nan")] * 3))
     p10 = "-" if "p10_wisp" not in fig else (
@@ -170,7 +242,8 @@ def markdown_row(label, fig):
     dark = dark_cell(fig)
     if dark:
         p10 += f"; darkest tenth {dark}"
-    return f"| {label} | {ratio} | {se} | {p10} | {fig['pixels']} {fig['region']} |"
+    return (f"| {label} | {ratio} | {se} | {p10} | {share_cell(fig)} | "
+            f"{fig['pixels']} {fig['region']} |")
 
 
 def side_by_side(mi, wisp, ref, mask, path, block=8):
@@ -210,6 +283,9 @@ def main():
     ap.add_argument("ref_exr")
     ap.add_argument("--passes", help="the path tracer's passes (.npy [P, H, W, 4]) for errors")
     ap.add_argument("--coverage", type=float, default=0.99)
+    ap.add_argument("--block-coverage", type=float, default=SHARE_COVERAGE,
+                    help="a block of the spatial measure counts when its mean alpha is at least "
+                    "this in both images")
     ap.add_argument("--region", choices=["auto", "covered", "all"], default="auto",
                     help="compared pixels (see compare()); auto falls back to all below 500 covered pixels")
     ap.add_argument("--crop", type=float, default=1.0,
@@ -227,7 +303,8 @@ def main():
     passes = np.load(args.passes).astype(np.float64) if args.passes else None
     if not 0.0 < args.crop <= 1.0:
         raise SystemExit(f"compare.py: --crop {args.crop}: must lie in (0, 1]")
-    fig, mask = compare(wisp, ref, passes, args.coverage, args.region, crop=args.crop)
+    fig, mask = compare(wisp, ref, passes, args.coverage, args.region, crop=args.crop,
+                        block_coverage=args.block_coverage)
     fig["crop"] = args.crop
     fig["label"] = args.label
     if not np.isfinite(wisp).all():
