@@ -15,8 +15,8 @@ Mitsuba's, weighted by the BSDF). This module keeps Mitsuba's scene, intersectio
   fibre's interior is the BSDF's business (the `hair` BSDF is a whole-fibre scattering
   function), so the fibre does not shadow itself.
 
-Otherwise it is Mitsuba's `path` integrator: next-event estimation of the (delta) directional
-light at every interaction whose depth + 1 < max_depth, BSDF sampling to continue, Russian
+Otherwise it is Mitsuba's `path` integrator: next-event estimation of the (delta) light, the
+scene's directional or point light (whose shadow rays end at it), at every interaction whose depth + 1 < max_depth, BSDF sampling to continue, Russian
 roulette from depth 5 with probability min(max throughput, 0.95), a box pixel filter, alpha =
 the camera ray's coverage. With `spawn="mitsuba"` it starts rays where Mitsuba does
 (`SurfaceInteraction.spawn_ray`), which reproduces Mitsuba's own renders within their noise
@@ -66,13 +66,19 @@ def _vec(mi, x, kind):
     return kind(x[:, 0], x[:, 1], x[:, 2])
 
 
-def lit_at(mi, mscene, fibres, prim, p, hit, to_light, delta_m):
+def lit_at(mi, mscene, fibres, prim, p, hit, to_light, delta_m, light_pos=None):
     """Whether the light in direction `to_light` (Mitsuba Vector3f, unit) reaches surface points
     `p` of curves `prim` (numpy, the `hit` lanes only): a shadow ray leaving each fibre as
-    `leave` starts it."""
+    `leave` starts it. A point light at `light_pos` (metres) ends the ray just short of it; a
+    directional light's ray is unbounded."""
     d = np.array(to_light, np.float64).T
     start = leave(fibres, prim, p, unit(d), delta_m)
-    shadow = mi.Ray3f(_vec(mi, start, mi.Point3f), to_light)
+    if light_pos is None:
+        shadow = mi.Ray3f(_vec(mi, start, mi.Point3f), to_light)
+    else:
+        maxt = np.linalg.norm(np.asarray(light_pos, np.float64) - start, axis=1) * (1 - 1e-4)
+        shadow = mi.Ray3f(_vec(mi, start, mi.Point3f), to_light,
+                          mi.Float(maxt.astype(np.float32)), 0.0, [])
     return ~np.array(mscene.ray_test(shadow, mi.Bool(hit)), bool) & hit
 
 
@@ -96,6 +102,7 @@ def render(mi, mscene, scene, strands, spp, seed, max_depth, spawn="fibre", delt
     n = w * h * spp
     rng = np.random.default_rng([seed, max_depth, 7])
     fibres = Fibres(strands)
+    light_pos = scene["light"].get("position_m")
     ctx = mi.BSDFContext()
     sensor = mscene.sensors()[0]
     pixel = np.arange(n) // spp
@@ -128,9 +135,10 @@ def render(mi, mscene, scene, strands, spp, seed, max_depth, spawn="fibre", delt
             False, active)
         f = bsdf.eval(ctx, si, si.to_local(ds.d), active)
         if spawn == "mitsuba":
-            lit = ~np.array(mscene.ray_test(si.spawn_ray(ds.d), active), bool) & hit
+            shadow = si.spawn_ray(ds.d) if light_pos is None else si.spawn_ray_to(ds.p)
+            lit = ~np.array(mscene.ray_test(shadow, active), bool) & hit
         else:
-            lit = lit_at(mi, mscene, fibres, prim, p, hit, ds.d, delta_m)
+            lit = lit_at(mi, mscene, fibres, prim, p, hit, ds.d, delta_m, light_pos)
         contrib = np.array(f, np.float64).T * np.array(em_weight, np.float64).T
         radiance[lane] += np.where(lit[:, None], throughput * contrib, 0.0)
         # Continue by sampling the BSDF.

@@ -7,8 +7,9 @@
 Reads SCENE_DIR/scene.json and its .hair file, builds the same scene for Mitsuba 3.9.1 — the
 render strands as `bsplinecurve` fibres (one per polyline segment, exactly straight, radius
 from the .hair thickness), the `hair` BSDF with the parameters wisp mapped in
-`scene.json:mitsuba_hair_bsdf` (../shared/reference/MAPPING.md), a `directional` emitter with
-the scene's irradiance, a `perspective` sensor with `fov_axis = "y"` and a box pixel filter,
+`scene.json:mitsuba_hair_bsdf` (../shared/reference/MAPPING.md), the scene's one light (a
+`directional` emitter with its irradiance, or a `point` emitter with its position and
+intensity), a `perspective` sensor with `fov_axis = "y"` and a box pixel filter,
 a black background — and renders it for each `max_depth` (2 = single scattering with hard
 shadows, 64 = all orders) in `passes` independent passes of spp/passes samples (seeds 0, 1,
 ..., or from --first-seed on: passes to add to a finished render). The integrator is `fibre_trace.py`'s by default (`fibre`): Mitsuba's path tracing with rays
@@ -21,7 +22,8 @@ the two differ only by the offset). Writes, per depth D:
 
     SCENE_DIR/mitsuba_dD.exr         mean of the passes, linear RGBA (alpha = coverage)
     SCENE_DIR/mitsuba_dD_passes.npy  the passes, float32 [passes, H, W, 4] (standard errors)
-    SCENE_DIR/mitsuba_dD.json        spp, passes, seconds, variant, version, integrator
+    SCENE_DIR/mitsuba_dD.json        spp, passes, seconds (wall, and CPU over all threads),
+                                     variant, version, integrator
 
 Set DRJIT_LIBLLVM_PATH for the llvm variants (see tools/reference/README.md).
 """
@@ -37,6 +39,17 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hairfile  # noqa: E402
 import fibre_trace  # noqa: E402
+
+
+def emitter(light):
+    """scene.json's light as a Mitsuba emitter: `directional` with its irradiance, or `point`
+    with its radiant intensity (W/sr in wisp's units; Mitsuba's `point` emitter gives I / d²
+    on a surface facing it at distance d, as wisp does)."""
+    if "position_m" in light:
+        return {"type": "point", "position": light["position_m"],
+                "intensity": {"type": "rgb", "value": light["intensity"]}}
+    return {"type": "directional", "direction": light["direction"],
+            "irradiance": {"type": "rgb", "value": light["irradiance"]}}
 
 
 def build_scene(mi, scene, curves_path, spp_per_pass, max_depth):
@@ -65,11 +78,7 @@ def build_scene(mi, scene, curves_path, spp_per_pass, max_depth):
                 },
                 "sampler": {"type": "independent", "sample_count": spp_per_pass},
             },
-            "light": {
-                "type": "directional",
-                "direction": light["direction"],
-                "irradiance": {"type": "rgb", "value": light["irradiance"]},
-            },
+            "light": emitter(light),
             "hair": {"type": "bsplinecurve", "filename": curves_path, "bsdf": bsdf},
         }
     )
@@ -122,7 +131,7 @@ def main():
         mscene = build_scene(mi, scene, curves, per_pass, depth)
         load_s = time.time() - t0
         passes = []
-        t0 = time.time()
+        t0, cpu0 = time.time(), time.process_time()
         for seed in range(args.first_seed, args.first_seed + args.passes):
             if strands is None:
                 img = np.array(mi.render(mscene, seed=seed, spp=per_pass))
@@ -131,7 +140,7 @@ def main():
                 img = fibre_trace.render(mi, mscene, scene, strands, per_pass, seed, depth,
                                          spawn, args.ray_offset_m)
             passes.append(np.asarray(img, dtype=np.float32))
-        render_s = time.time() - t0
+        render_s, render_cpu_s = time.time() - t0, time.process_time() - cpu0
         stack = np.stack(passes)
         mean = stack.mean(axis=0)
         base = os.path.join(args.scene_dir, f"mitsuba_d{depth}")
@@ -143,6 +152,7 @@ def main():
             "passes": args.passes,
             "first_seed": args.first_seed,
             "render_s": render_s,
+            "render_cpu_s": render_cpu_s,
             "load_s": load_s,
             "curve_convert_s": convert_s,
             "variant": args.variant,

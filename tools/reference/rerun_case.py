@@ -4,11 +4,12 @@ path tracer's renders cached there (the same exported strands and camera), so a 
 shading is measured in seconds instead of re-rendering with Mitsuba.
 
 usage: rerun_case.py OUTDIR TABLEDIR case colour light kind [wisp flags...]
-  case: dense | isolated | curly; colour: blond | brown | red; light: front | side | back;
+  case: dense | isolated | curly; colour: blond | brown | red; light: front | side | back |
+  point (the table's TABLEDIR/<case>/point_light.json);
   kind: dual | single. TABLEDIR/styles/*.json are the table's hairstyles (edit a copy to try
   other fibre parameters). REF_DEPTH (environment) picks the path tracer's render that dual
   is compared with, mitsuba_d<REF_DEPTH>.exr (default 64; 256 reaches the far side of dense
-  hair, ACCURACY.md section 2). WISP (environment) is the wisp binary (default target/release/wisp);
+  hair, ACCURACY.md section 2). The image size is the rendered scene's. WISP (environment) is the wisp binary (default target/release/wisp);
   it must export the same strands as the binary that made the table. DUAL_SHADING (environment)
   is wisp's --shading for the all-orders kind (default dual; `volume` for light paths through
   the volume); the single kind is always `single`. Writes OUTDIR/<case>-
@@ -32,9 +33,11 @@ if not os.path.exists(ref):
 wisp = os.environ.get("WISP", "target/release/wisp")
 style = os.path.join(table, "styles", f"{'dense-'+colour if case=='dense' else ('isolated-blond' if case=='isolated' else 'curly')}.json")
 cam = json.load(open(os.path.join(table, case, "camera", "scene.json")))["camera"]
-size = 400
-common = [wisp, "export", "--hairstyle", style, "--still", "--no-solids", "--ambient", "0", "--irradiance", "1", "--width", str(size), "--height", str(size)]
-view = ["--camera-eye", rt.vec(cam["eye"]), "--camera-target", rt.vec(cam["target"]), "--camera-up", rt.vec(cam["up"]), "--fov-deg", f"{cam['fov_y_deg']:.6g}", "--light-dir", rt.vec(rt.light_dir(cam, light))]
+# The image size the path tracer rendered (run_table.py --size).
+image = json.load(open(os.path.join(ref_dir, "scene.json")))["image"]
+common = [wisp, "export", "--hairstyle", style, "--still", "--no-solids", "--ambient", "0", "--width", str(image["width"]), "--height", str(image["height"])]
+view = ["--camera-eye", rt.vec(cam["eye"]), "--camera-target", rt.vec(cam["target"]), "--camera-up", rt.vec(cam["up"]), "--fov-deg", f"{cam['fov_y_deg']:.6g}"]
+view += rt.light_flags(os.path.join(table, case), cam, light)
 shading = os.environ.get("DUAL_SHADING", "dual") if kind == "dual" else "single"
 d = os.path.join(out, f"{case}-{colour}-{light}-{kind}")
 p = subprocess.run(common + view + ["--shading", shading, "--out", d] + extra, capture_output=True, text=True)

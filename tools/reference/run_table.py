@@ -2,12 +2,14 @@
 """Regenerates issue 14's comparison table: wisp against Mitsuba 3 (not run by CI).
 
     run_table.py [--out DIR] [--size 400] [--spp 128] [--passes 8] [--only dense,isolated,curly]
-                 [--lights front,side,back] [--kinds dual,single] [--set FIELD=VALUE ...]
+                 [--colours blond,brown,red] [--lights front,side,back,point] [--depth 64]
+                 [--kinds dual,single] [--set FIELD=VALUE ...]
 
 For every case it writes hairstyle JSON generated from the presets into DIR/styles (no new
 preset files), exports the frame with `wisp export` (dual and single shading), renders the
 path-traced reference with render.py (max_depth 64 = all orders, 2 = single scattering with
-hard shadows) and compares with compare.py. Cases:
+hard shadows; --depth sets the first, 256 for the far side of dense hair) and compares with
+compare.py. Cases:
 
 - dense: the smooth preset with 12x the render strands (40,200 strands), 1 fibre each, still
   head, alpha_R = 0, eccentricity 1; blond and brown; front, side and back light;
@@ -17,7 +19,10 @@ hard shadows) and compares with compare.py. Cases:
 Every case: no head drawn, ambient 0, light irradiance 1, black background, the same fixed
 camera for both renderers (the head-following framing of the first export, then fixed).
 Lights are relative to that camera: front travels along the view direction, side across it
-(from the image's right), back toward the camera. Blond and brown are pbrt's eumelanin
+(from the image's right), back toward the camera; point (only with --lights point) is a point
+light 0.5 m from the head's centre toward the camera, the image's right and up, of intensity
+d² for the median distance d to the hair (irradiance 1 there; point_light()), written as the
+scene file DIR/<case>/point_light.json. Blond and brown are pbrt's eumelanin
 concentrations 0.3 and 1.3: sigma_a = c x (0.419, 0.697, 1.37) per unit radius.
 
 Results go to DIR/results.jsonl (one line per comparison) and DIR/table.md; side-by-side
@@ -44,7 +49,13 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
 EUMELANIN = np.array([0.419, 0.697, 1.37])
 COLOURS = {"blond": 0.3, "brown": 1.3}
-LIGHTS = ["front", "side", "back"]
+LIGHTS = ["front", "side", "back", "point"]
+# The point light: this far from the still head's centre (wisp's world origin), beyond the
+# smooth preset's reach of 0.465 m (0.34 m x 1.08 + the head's 0.098 m), which wisp requires of
+# a point light (`scene::file::check_point_lights_outside`); from the camera's side, above and
+# from the image's right, so that it lights the hair obliquely.
+POINT_DISTANCE_M = 0.5
+POINT_LIGHT_FILE = "point_light.json"
 
 
 def style_variant(preset, name, strand_factor=1, strands_per_wisp=None, sigma_a=None, model=None):
@@ -103,12 +114,48 @@ def cases(only, model):
 
 
 def light_dir(camera, which):
+    f, right, _ = camera_frame(camera)
+    return {"front": f, "side": -right, "back": -f}[which]
+
+
+def camera_frame(camera):
+    """The camera's forward, right and up unit vectors (world)."""
     eye, target, up = (np.array(camera[k], float) for k in ("eye", "target", "up"))
     f = target - eye
     f /= np.linalg.norm(f)
     right = np.cross(f, up)
     right /= np.linalg.norm(right)
-    return {"front": f, "side": -right, "back": -f}[which]
+    return f, right, np.cross(right, f)
+
+
+def point_light(camera, hair_points):
+    """The point light's position (metres) and intensity (W/sr, grey): POINT_DISTANCE_M from the
+    head's centre along (toward the camera + right + up), and bright enough that the median
+    distance d to the hair's points receives irradiance 1 (I = d², rounded to 3 digits)."""
+    f, right, up = camera_frame(camera)
+    way = -f + right + up
+    pos = POINT_DISTANCE_M * way / np.linalg.norm(way)
+    d = float(np.median(np.linalg.norm(hair_points - pos, axis=1)))
+    return pos, float(f"{d * d:.3g}")
+
+
+def light_flags(case_dir, camera, which, create=False):
+    """wisp's flags for the light `which` (front, side, back: a directional light of irradiance
+    1 relative to the camera; point: the scene file CASE_DIR/point_light.json, which `create`
+    writes from the camera probe's strands in CASE_DIR/camera)."""
+    if which != "point":
+        return ["--irradiance", "1", "--light-dir", vec(light_dir(camera, which))]
+    path = os.path.join(case_dir, POINT_LIGHT_FILE)
+    if create and not os.path.exists(path):
+        import hairfile
+        pts = hairfile.Strands(os.path.join(case_dir, "camera", "hair.hair")).points
+        pos, intensity = point_light(camera, pts)
+        json.dump({"lights": [{"type": "point", "position_m": [round(float(x), 6) for x in pos],
+                               "intensity": [intensity] * 3}]}, open(path, "w"), indent=1)
+    if not os.path.exists(path):
+        sys.exit(f"run_table.py: {path} missing: the point light's scene file (run_table.py "
+                 "--lights point writes it)")
+    return ["--scene", path]
 
 
 def run(cmd, env=None):
@@ -136,9 +183,12 @@ def write_table(out_dir):
                  f"(R / G / B) over pixels covered >= 0.99 in both (isolated fibres, which cover no pixel: summed over the whole image); +- one standard error of "
                  f"the path tracer's mean; p10 = ratio of 10th-percentile luminance per pixel ('PT 0': the "
                  f"path tracer's per-pixel p10 is 0), then the bracket on the ratio of the darkest tenth's "
-                 f"mean luminance over 4 and 8 px blocks (compare.py darkest_tenth()).\n")
-    lines.append("| case | hair | light | dual / all orders | +- | p10 | single / single | +- | p10 | px | coverage wisp / PT | wisp ms (dual) | Mitsuba s (d64 / d2) |")
-    lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+                 f"mean luminance over 4 and 8 px blocks (compare.py darkest_tenth()); the share of 8 px "
+                 f"hair blocks within 1.5x / 2x, then the path tracer's halves against each other "
+                 f"and the share an exact wisp would score against this reference (compare.py "
+                 f"block_shares()).\n")
+    lines.append("| case | hair | light | dual / all orders | +- | p10 | 8 px blocks within 1.5 / 2x | single / single | +- | p10 | 8 px blocks within 1.5 / 2x | px | coverage wisp / PT | wisp ms (dual) | Mitsuba s (all / d2) |")
+    lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     keys = sorted({k[:3] for k in by_key}, key=lambda k: (["dense", "isolated", "curly"].index(k[0]), k[1], LIGHTS.index(k[2])))
     f3 = lambda v: " / ".join(f"{x:.2f}" for x in v)
     se3 = lambda v: " / ".join(f"{x:.3f}" for x in v)
@@ -151,9 +201,10 @@ def write_table(out_dir):
                 p10 = "-" if "p10_wisp" not in r else (
                     (f"{r['p10_ratio']:.2f}" if r["p10_ratio"] not in (None, float("inf")) else "PT 0")
                     + (f"; {dark}" if dark else ""))
-                cells += [f3(r["ratio"]), se3(r.get("ratio_se", [np.nan] * 3)), p10]
+                cells += [f3(r["ratio"]), se3(r.get("ratio_se", [np.nan] * 3)), p10,
+                          compare.share_cell(r)]
             else:
-                cells += ["-", "-", "-"]
+                cells += ["-", "-", "-", "-"]
         r = d or s or {}
         cells.append(f"{r.get('pixels', '-')}" + (" (whole image)" if r.get("region") == "all" else ""))
         cells.append(f"{r['coverage_ratio']:.3f}" if "coverage_ratio" in r else "-")
@@ -172,7 +223,14 @@ def main():
     ap.add_argument("--spp", type=int, default=128)
     ap.add_argument("--passes", type=int, default=8)
     ap.add_argument("--only", default="dense,isolated,curly")
-    ap.add_argument("--lights", default="front,side,back", help="which of front,side,back")
+    ap.add_argument("--colours", default="blond,brown,red",
+                    help="which hair colours of the cases (dense: blond, brown; curly: red)")
+    ap.add_argument("--depth", type=int, default=64,
+                    help="the path tracer's max_depth for the all-orders column (256 reaches the "
+                    "far side of dense hair: README, 'Depth')")
+    ap.add_argument("--lights", default="front,side,back",
+                    help="which of front,side,back,point (point: a point light POINT_DISTANCE_M "
+                    "from the head, point_light())")
     ap.add_argument("--kinds", default="dual,single", help="which of dual,single (a single-only run takes minutes)")
     ap.add_argument("--model", help="set fiber.model in every hairstyle (e.g. chiang)")
     ap.add_argument("--dual-shading", default="dual", help="wisp --shading for the all-orders column")
@@ -197,25 +255,25 @@ def main():
     camera = {}
     lights, kinds = args.lights.split(","), args.kinds.split(",")
     for case, colour, light, style in cases(args.only.split(","), args.model):
-        if light not in lights:
+        if light not in lights or colour not in args.colours.split(","):
             continue
         for assignment in args.set:
             set_field(style, assignment)
         style_path = os.path.join(styles_dir, f"{style['name']}.json")
         json.dump(style, open(style_path, "w"), indent=1)
         common = [args.wisp, "export", "--quiet", "--hairstyle", style_path, "--still",
-                  "--no-solids", "--ambient", "0", "--irradiance", "1",
+                  "--no-solids", "--ambient", "0",
                   "--width", str(args.size), "--height", str(args.size)]
         if case not in camera:
             # The head-following framing of this hairstyle, then fixed for every light.
             probe = os.path.join(args.out, case, "camera")
-            run(common + ["--out", probe])
+            run(common + ["--irradiance", "1", "--out", probe])
             camera[case] = json.load(open(os.path.join(probe, "scene.json")))["camera"]
         cam = camera[case]
         view = ["--camera-eye", vec(cam["eye"]), "--camera-target", vec(cam["target"]),
-                "--camera-up", vec(cam["up"]), "--fov-deg", f"{cam['fov_y_deg']:.6g}",
-                "--light-dir", vec(light_dir(cam, light))]
-        for kind, shading, depth in (("dual", args.dual_shading, 64), ("single", args.single_shading, 2)):
+                "--camera-up", vec(cam["up"]), "--fov-deg", f"{cam['fov_y_deg']:.6g}"]
+        view += light_flags(os.path.join(args.out, case), cam, light, create=True)
+        for kind, shading, depth in (("dual", args.dual_shading, args.depth), ("single", args.single_shading, 2)):
             if kind not in kinds:
                 continue
             d = os.path.join(args.out, case, f"{colour}-{light}-{kind}")

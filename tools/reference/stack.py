@@ -9,8 +9,8 @@ Each SCENE_DIR holds mitsuba_dD_passes.npy and mitsuba_dD.json from render.py, a
 scene (the same scene.json and hair file: checked) and with seeds that do not overlap (checked:
 first_seed .. first_seed + passes). OUT_SCENE_DIR gets the scene's files (copied from the
 first), the mean of every pass as mitsuba_dD.exr, the passes stacked as
-mitsuba_dD_passes.npy (so compare.py's standard errors count them all) and a json whose spp
-and render_s are the sums. Example, dense brown back-lit at 1,664 spp (ACCURACY.md §2):
+mitsuba_dD_passes.npy (so compare.py's standard errors count them all) and a json whose spp,
+render_s and render_cpu_s are the sums. Example, dense brown back-lit at 1,664 spp (ACCURACY.md §2):
 
     render.py /tmp/bb --spp 1024 --passes 64 --depth 64 --first-seed 40
     stack.py /tmp/bb1664 TABLE/dense/brown-back-dual /tmp/bb256a /tmp/bb256b /tmp/bb
@@ -68,6 +68,8 @@ def main():
         "spp": sum(i["spp"] for i in infos),
         "passes": int(stack.shape[0]),
         "render_s": sum(i["render_s"] for i in infos),
+        "render_cpu_s": (sum(i["render_cpu_s"] for i in infos)
+                         if all("render_cpu_s" in i for i in infos) else None),
         "seeds": sorted(seeds),
         "stacked_from": [os.path.abspath(d) for d in args.dirs],
     })
