@@ -12,7 +12,9 @@ usage: rerun_case.py OUTDIR TABLEDIR case colour light kind [wisp flags...]
   hair, ACCURACY.md section 2). The image size is the rendered scene's. WISP (environment) is the wisp binary (default target/release/wisp);
   it must export the same strands as the binary that made the table. DUAL_SHADING (environment)
   is wisp's --shading for the all-orders kind (default dual; `volume` for light paths through
-  the volume); the single kind is always `single`. Writes OUTDIR/<case>-
+  the volume); the single kind is always `single`. REUSE_WISP=1 (environment) compares
+  again without re-running wisp when OUTDIR holds this case's export made with the same
+  command (a reference stacked with more samples). Writes OUTDIR/<case>-
   <colour>-<light>-<kind>/ (wisp's export) and OUTDIR/cmp-<same>.png and .json (compare.py's).
 """
 import json, os, subprocess, sys
@@ -40,8 +42,15 @@ view = ["--camera-eye", rt.vec(cam["eye"]), "--camera-target", rt.vec(cam["targe
 view += rt.light_flags(os.path.join(table, case), cam, light)
 shading = os.environ.get("DUAL_SHADING", "dual") if kind == "dual" else "single"
 d = os.path.join(out, f"{case}-{colour}-{light}-{kind}")
-p = subprocess.run(common + view + ["--shading", shading, "--out", d] + extra, capture_output=True, text=True)
-if p.returncode: sys.exit(p.stderr)
+cmd = common + view + ["--shading", shading, "--out", d] + extra
+# REUSE_WISP=1 keeps an export this script made with the very same command (binary, flags)
+# and only compares again: against a reference stacked with more samples, say.
+stamp = os.path.join(d, "rerun_case.json")
+if not (os.environ.get("REUSE_WISP") == "1" and os.path.exists(stamp)
+        and json.load(open(stamp)).get("cmd") == cmd):
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode: sys.exit(p.stderr)
+    json.dump({"cmd": cmd}, open(stamp, "w"), indent=1)
 # The comparison means something only for the strands the path tracer rendered: a binary or a
 # hairstyle that settles the hair differently compares other hair (back light, whose radiance
 # is the silhouette's fringe, moved 12% that way once).
