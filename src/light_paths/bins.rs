@@ -9,6 +9,7 @@
 //! The merge adds each slot's flights in the order the blocks left them, one range of slots
 //! per thread, so the sums are the same bits for any thread count.
 
+use super::moments::Moment;
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
@@ -99,40 +100,72 @@ impl Bins {
     }
 
     /// The non-empty bins per slot, as records: starts per slot (`slots + 1`), each bin's mean
-    /// direction (unit) and its light. Slots are independent, so the result is the same for
-    /// any thread count.
-    pub(super) fn finish(self) -> (Vec<u32>, Vec<Vec3>, Vec<Vec3>) {
+    /// direction (unit) and its light; with `strongest` = Some(k), only each slot's k
+    /// strongest bins (by the sum of their channels, ties in bin order) are records and the
+    /// rest are summed per slot into moments (`moments.rs`; empty otherwise). Slots are
+    /// independent, so the result is the same for any thread count.
+    pub(super) fn finish(self, strongest: Option<usize>) -> Finished {
         let per = self.n * self.n;
         let slots = self.sum.len() / per;
-        let jobs: Vec<(Vec<u32>, Vec<Vec3>, Vec<Vec3>)> = (0..slots.div_ceil(SLOTS_PER_JOB))
+        let jobs: Vec<Finished> = (0..slots.div_ceil(SLOTS_PER_JOB))
             .into_par_iter()
             .map(|job| {
-                let (mut counts, mut dirs, mut light) = (Vec::new(), Vec::new(), Vec::new());
+                let mut out = Finished::default();
+                let mut order: Vec<usize> = Vec::with_capacity(per);
                 for slot in job * SLOTS_PER_JOB..((job + 1) * SLOTS_PER_JOB).min(slots) {
                     let bins = slot * per..(slot + 1) * per;
-                    let before = dirs.len();
-                    for (s, m) in self.sum[bins.clone()].iter().zip(&self.moment[bins]) {
-                        if s.element_sum() > 0.0 {
-                            dirs.push(m.normalize_or_zero());
-                            light.push(*s);
-                        }
+                    let (sum, moment) = (&self.sum[bins.clone()], &self.moment[bins]);
+                    order.clear();
+                    order.extend((0..per).filter(|&k| sum[k].element_sum() > 0.0));
+                    let keep = strongest.unwrap_or(per).min(order.len());
+                    if keep < order.len() {
+                        // Stable: equal bins stay in bin order.
+                        order.sort_by(|&a, &b| {
+                            sum[b].element_sum().total_cmp(&sum[a].element_sum())
+                        });
                     }
-                    counts.push((dirs.len() - before) as u32);
+                    let mut rest = Moment::default();
+                    for &k in &order[keep..] {
+                        rest.add(moment[k].normalize_or_zero(), sum[k]);
+                    }
+                    if strongest.is_some() {
+                        out.rest.push(rest);
+                    }
+                    for &k in &order[..keep] {
+                        out.from.push(moment[k].normalize_or_zero());
+                        out.light.push(sum[k]);
+                    }
+                    out.starts.push(keep as u32);
                 }
-                (counts, dirs, light)
+                out
             })
             .collect();
-        let mut starts = Vec::with_capacity(slots + 1);
-        starts.push(0u32);
-        let (mut dirs, mut light) = (Vec::new(), Vec::new());
-        for (counts, d, l) in jobs {
-            for k in counts {
-                let last = starts.last().copied().unwrap_or(0);
-                starts.push(last + k);
+        let mut all = Finished {
+            starts: Vec::with_capacity(slots + 1),
+            ..Default::default()
+        };
+        all.starts.push(0u32);
+        for job in jobs {
+            for k in job.starts {
+                let last = all.starts.last().copied().unwrap_or(0);
+                all.starts.push(last + k);
             }
-            dirs.extend(d);
-            light.extend(l);
+            all.from.extend(job.from);
+            all.light.extend(job.light);
+            all.rest.extend(job.rest);
         }
-        (starts, dirs, light)
+        all
     }
+}
+
+/// The merged records of every slot ([`Bins::finish`]).
+#[derive(Default)]
+pub(super) struct Finished {
+    /// Per slot, its records' range `starts[s]..starts[s + 1]` (per job while merging: counts).
+    pub(super) starts: Vec<u32>,
+    pub(super) from: Vec<Vec3>,
+    pub(super) light: Vec<Vec3>,
+    /// Per slot, the light of the bins not kept as records, as moments (empty when every bin
+    /// is kept).
+    pub(super) rest: Vec<Moment>,
 }

@@ -13,6 +13,8 @@
 //! the cells' light, at the cost of one cell, and the same point picks the same cell every run.
 
 use super::LightPaths;
+use super::moments::Moment;
+use super::response::AngularResponse;
 use crate::fiber::{Fiber, LightAtPoint, ShadingMode};
 use glam::Vec3;
 
@@ -23,7 +25,17 @@ impl LightPaths {
     /// The multiply scattered radiance toward unit `wo` of a fibre of unit tangent `u` at `p`
     /// (W/(m²·sr), RGB): Σ S(ωi, ωo) cos θi × the record's share of ∫ L dω, over the records
     /// of one cell near `p`, chosen with trilinear probabilities by `pick` ∈ [0, 1)³.
-    pub fn indirect(&self, fiber: &Fiber, p: Vec3, u: Vec3, wo: Vec3, pick: Vec3) -> Vec3 {
+    /// With [`super::Directions::Strongest`], `response` gathers the cell's other bins from
+    /// their moments (`moments.rs`).
+    pub fn indirect(
+        &self,
+        fiber: &Fiber,
+        response: Option<&AngularResponse>,
+        p: Vec3,
+        u: Vec3,
+        wo: Vec3,
+        pick: Vec3,
+    ) -> Vec3 {
         let Some(c) = self.pick_cell(p, pick) else {
             return Vec3::ZERO;
         };
@@ -36,6 +48,9 @@ impl LightPaths {
         for (wi, e) in self.from[a..b].iter().zip(&self.fluence[a..b]) {
             // S cos θi: single scattering of unshadowed light from ωi.
             sum += fiber.shade(ShadingMode::SingleScattering, u, *wi, wo, &UNSHADOWED) * *e;
+        }
+        if let (Some(rest), Some(response)) = (self.moments.get(slot), response) {
+            sum += rest_of(rest, response, u, wo);
         }
         if sum.is_finite() {
             sum.max(Vec3::ZERO)
@@ -62,6 +77,21 @@ impl LightPaths {
         }
         Some(cells.index(c.as_uvec3()))
     }
+}
+
+/// ∫ S cos θi L dωi for the light `rest` keeps as moments, toward unit `wo` from a fibre of
+/// unit tangent `u`, through `response`'s tables.
+pub(super) fn rest_of(rest: &Moment, response: &AngularResponse, u: Vec3, wo: Vec3) -> Vec3 {
+    let sin_o = u.dot(wo).clamp(-1.0, 1.0);
+    let w = (wo - u * sin_o).normalize_or_zero();
+    // Along the fibre, every direction across it is ωo's: any pair will do (the tables' ww and
+    // vv agree there).
+    let (w, v) = if w == Vec3::ZERO {
+        u.any_orthonormal_pair()
+    } else {
+        (w, u.cross(w))
+    };
+    rest.gather(&response.at(sin_o.asin()), (u, w, v))
 }
 
 /// Three numbers in [0, 1) from a hash of `i` (SplitMix64's finaliser), for

@@ -42,7 +42,10 @@
 //!    Σ S(ωi, ωo) cos θi · light over the bins of one cell near it (drawn with trilinear
 //!    probabilities from a hash of the point, so the cells blend without an 8× cost). The
 //!    light that reaches it directly is the single-scattering shader's, as in Moon et al.: the
-//!    two add up to all orders.
+//!    two add up to all orders. With [`Directions::Strongest`] only a cell's strongest bins
+//!    are gathered so, and the rest from their moments to the second order through tables of
+//!    the fibre's integrals (`moments.rs`, `response.rs`): a bounded gather, since the light
+//!    away from the strongest bins is spread enough for the second order.
 //!
 //! Deterministic for any thread count: paths are traced in fixed blocks, each from its own
 //! seed, and each wave's records are added to the bins in block order.
@@ -54,11 +57,14 @@ mod bins;
 mod cells;
 mod emit;
 mod gather;
+mod moments;
 mod records;
+mod response;
 mod trace;
 
 pub use cells::StrandPoints;
 pub use gather::pick_of;
+pub use response::AngularResponse;
 
 use crate::fiber::Fiber;
 use crate::light::Light;
@@ -93,6 +99,22 @@ pub struct LightPathParams {
     /// Most bytes the bins may take: cells are enlarged (by 2^⅓ at a time) until the cells
     /// points gather from fit (dense one-fibre hair at 4 mm: 125,000 cells, 384 MB).
     pub max_bins_bytes: u64,
+    /// How each cell's light by direction is gathered: every bin through the fibre's BCSDF,
+    /// or only its strongest and the rest through their moments.
+    pub directions: Directions,
+}
+
+/// How a cell keeps the light that crosses it by direction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Directions {
+    /// Every non-empty one of its `bins_per_axis`² octahedral bins, each gathered through the
+    /// BCSDF (`bins.rs`).
+    #[default]
+    Bins,
+    /// Its strongest bins, at most this many, each gathered through the BCSDF, and the rest as
+    /// moments up to the second order gathered through tabulated integrals of the BCSDF
+    /// (`moments.rs`, `response.rs`): a bounded gather.
+    Strongest(u32),
 }
 
 impl Default for LightPathParams {
@@ -103,6 +125,7 @@ impl Default for LightPathParams {
             seed: 0x5EED_0F11_6A7E,
             bins_per_axis: 8,
             max_bins_bytes: 768_000_000,
+            directions: Directions::Bins,
         }
     }
 }
@@ -117,6 +140,9 @@ pub struct LightPaths {
     from: Vec<Vec3>,
     /// Power × length ÷ cell volume (W/m², RGB): each record's share of ∫ L dω.
     fluence: Vec<Vec3>,
+    /// Per slot, the moments of the bins not kept as records ([`Directions::Strongest`];
+    /// empty when every bin is).
+    moments: Vec<moments::Moment>,
     /// The cell edge used, metres (`LightPathParams::cell_m`, or larger to fit the bins).
     pub cell_m: f32,
     /// Scatterings the paths met (two runs that agree meet the same number).
@@ -144,13 +170,23 @@ impl LightPaths {
             Some(emitter) => trace_in_waves(&cells, fiber, &emitter, params, &mut bins),
             None => 0,
         };
-        let (starts, from, fluence) = bins.finish();
+        let strongest = match params.directions {
+            Directions::Bins => None,
+            Directions::Strongest(k) => Some(k as usize),
+        };
+        let bins::Finished {
+            starts,
+            from,
+            light: fluence,
+            rest: moments,
+        } = bins.finish(strongest);
         Some(LightPaths {
             cell_m: cells.cell_m,
             cells,
             starts,
             from,
             fluence,
+            moments,
             scatterings,
         })
     }

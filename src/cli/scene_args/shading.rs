@@ -4,6 +4,7 @@
 use crate::cli::parse_finite_f32;
 use wisp::engine::ShadingConfig;
 use wisp::fiber::ShadingMode;
+use wisp::light_paths::Directions;
 
 /// Fibre shader choice on the command line.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -19,7 +20,7 @@ pub enum ShadingArg {
     // model, no ambient on the hair).
     Visibility,
     // Single scattering plus multiply scattered light from paths traced through the hair
-    // volume (seconds per frame).
+    // volume (the path count and cells set by the quality level).
     Volume,
 }
 
@@ -55,19 +56,25 @@ pub fn parse_volume_cell_mm(s: &str) -> Result<f32, String> {
 #[derive(clap::Args, Debug, Clone)]
 #[command(next_help_heading = "Light and shading")]
 pub struct ShadingArgs {
-    /// Shader: dual, single, kajiya-kay, visibility or volume [default: dual; volume at
-    /// --quality reference]
+    /// Shader: dual, single, kajiya-kay, visibility or volume [default: volume at --quality
+    /// final and reference, dual at preview]
     #[arg(long, value_name = "SHADER", value_enum, hide_possible_values = true)]
     pub shading: Option<ShadingArg>,
-    /// --shading volume: cell edge, mm, 0.5–100 [default: 4]
+    /// --shading volume: cell edge, mm, 0.5–100 [default: 6 at --quality final, else 4]
     #[arg(long, value_name = "MM", value_parser = parse_volume_cell_mm)]
     pub volume_cell_mm: Option<f32>,
-    /// --shading volume: paths per light, 1000–50000000 [default: 2000000]
+    /// --shading volume: paths per light, 1000–50000000 [default: 200000 at --quality final,
+    /// else 2000000]
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1000..=50_000_000))]
     pub volume_paths: Option<u32>,
     /// --shading volume: N × N direction bins per cell, 1–16 [default: 8]
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=16))]
     pub volume_bins: Option<u32>,
+    /// --shading volume: each cell's strongest N direction bins gathered through the fibre,
+    /// the rest through tables of its moments, 1–256 [default: 16 at --quality final, else
+    /// every bin]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=256))]
+    pub volume_strongest: Option<u32>,
 }
 
 impl ShadingArgs {
@@ -84,6 +91,9 @@ impl ShadingArgs {
         }
         if let Some(n) = self.volume_bins {
             config.light_paths.bins_per_axis = n;
+        }
+        if let Some(k) = self.volume_strongest {
+            config.light_paths.directions = Directions::Strongest(k);
         }
     }
 }
