@@ -10,10 +10,12 @@ use serde::{Deserialize, Serialize};
 pub enum Quality {
     /// For a live window: fewer, thicker strands, a coarser simulation step and skin texture.
     Preview,
-    /// For exported frames: the engine's defaults.
+    /// For exported frames: the engine's defaults, shaded with light paths (a tenth of
+    /// `Reference`'s) instead of dual scattering.
     #[default]
     Final,
-    /// The most accurate the engine does: the light paths' shader, finer steps and pieces.
+    /// The most accurate the engine does: the light paths' shader with all its paths, finer
+    /// steps and pieces.
     Reference,
 }
 

@@ -1,5 +1,6 @@
 //! Quality levels (`wisp::quality`, `EngineConfig::at_quality`): a level is a set of pass
-//! configs; `final` is the engine's defaults; `preview` draws half the strands with the fibres
+//! configs; `final` is the engine's defaults but for the shader (light paths, where the
+//! library's default stays dual scattering); `preview` draws half the strands with the fibres
 //! of all, the same on any thread count; the budget's estimate follows the level. Their time
 //! and image error are measured by `wisp bench --quality-list` (BENCHMARKS.md), not here.
 
@@ -19,7 +20,14 @@ fn final_is_the_default_configuration_and_each_level_says_its_name() {
     assert_eq!(fin.interpolation, default.interpolation);
     assert_eq!(fin.hair_map, default.hair_map);
     assert_eq!(fin.skin_texture, default.skin_texture);
-    assert_eq!(fin.shading, default.shading);
+    // The shader is the one choice final makes over the library's defaults: light paths
+    // (ACCURACY.md §2) where `EngineConfig::default()` keeps dual scattering.
+    assert_eq!(
+        default.shading.mode,
+        wisp::fiber::ShadingMode::DualScattering
+    );
+    assert_eq!(fin.shading.mode, wisp::fiber::ShadingMode::Volume);
+    assert!(fin.shading.light_paths.paths < reference_paths());
     assert_eq!(default.level, Quality::Final);
     for q in Quality::ALL {
         assert_eq!(EngineConfig::at_quality(q).level, q);
@@ -34,6 +42,13 @@ fn final_is_the_default_configuration_and_each_level_says_its_name() {
     assert!(preview.simulation.step_s > Some(1.0 / 480.0));
     assert!(reference.simulation.step_s < Some(1.0 / 480.0));
     assert_eq!(reference.shading.mode, wisp::fiber::ShadingMode::Volume);
+}
+
+fn reference_paths() -> u32 {
+    EngineConfig::at_quality(Quality::Reference)
+        .shading
+        .light_paths
+        .paths
 }
 
 fn preview_at(width: u32) -> EngineConfig {
