@@ -6,11 +6,12 @@
 //! dual scattering's global and local terms where light reaches hair off its shadow ray.
 //!
 //! Why: dual scattering (Zinke 2008) carries forward-scattered light along the straight shadow
-//! ray only. Against a path tracer, back-lit dense hair then leaves a band inside the
-//! silhouette 5–20× too dark (ACCURACY.md §2): it is lit by light scattered four or more
-//! times that diffuses in from the rim (paths of up to three bounces bring a tenth of its
-//! light). Paths that scatter through the hair carry that light, and bring every darkest tenth
-//! within 2× of the path tracer's. A single scalar per cell gets the colours 17–22% wrong,
+//! ray only. Against a path tracer, back-lit dense silhouettes then read a stop dark and a
+//! side-lit far third 1–2 stops bright (ACCURACY.md §2: 36–48% of 8 px hair blocks within
+//! 1.5× side-lit and point-lit): light scattered four or more times diffuses there from
+//! where it entered (paths of up to three bounces bring a tenth of a back-lit rim's light).
+//! Paths that scatter through the hair carry that light (64–93% of those blocks, the rest
+//! mostly the path tracer's own noise). A single scalar per cell gets the colours 17–22% wrong,
 //! because the fibre's response depends on where the light comes from; so each cell keeps its
 //! light by direction and the fibre's far-field BCSDF is integrated against it (ACCURACY.md,
 //! "Decisions and their evidence", the light paths).
@@ -88,7 +89,8 @@ pub struct LightPathParams {
     /// default, 2,000,000, is what dense hair's darkest tenth needs: with 1,000,000 brown
     /// side-lit read 0.49–1.24 of the path tracer's, with 2,000,000 0.57–1.46, as with 4,000,000
     /// (ACCURACY.md §2 and its decisions): the fewer the paths, the noisier the dim cells, and
-    /// noise darkens a darkest tenth.
+    /// noise darkens a darkest tenth. The `final` quality level traces 200,000 in 6 mm cells
+    /// (`engine::quality`), as close to the path tracer's blocks as these.
     pub paths: u32,
     /// Seed of the paths' random numbers.
     pub seed: u64,

@@ -194,3 +194,31 @@ fn the_bench_quality_report_has_flip_and_tf_figures_and_draws_its_plot() {
         assert!(stderr(&o).contains("--plot"), "{extra:?}: {}", stderr(&o));
     }
 }
+
+/// `final` shades with light paths traced anew each frame from the same seed, so a still head
+/// gives the same frames: no flicker (issue 61 asks for consecutive frames of `render --still`
+/// identical, or within one 8-bit level in 99.9% of the pixels).
+#[test]
+fn final_light_paths_do_not_flicker_on_a_still_head() {
+    let dir = scratch_dir("cli-quality-still");
+    let out = dir.join("still");
+    let o = wisp(&[
+        "render",
+        "--still",
+        "--frames",
+        "3",
+        "--width",
+        "96",
+        "--height",
+        "96",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let frame = |i: usize| std::fs::read(out.join(format!("frame_{i:05}.png"))).expect("frame");
+    assert!(
+        frame(0) == frame(1) && frame(1) == frame(2),
+        "still frames differ"
+    );
+}
