@@ -9,7 +9,8 @@
 //! parse           the flags' number and vector parsers
 //! shard, threads  frame ranges and shards; the worker pool
 //! errors, terminal, output_file   exit codes; stdout, and stderr printed safely; output paths
-//! signals         SIGXFSZ ignored, so a write over `ulimit -f` is an error naming the file
+//! process         SIGXFSZ ignored (a write over `ulimit -f` is an error naming the file);
+//!                 freed memory kept for the next frame
 //! ```
 //!
 //! Exit codes: 0 success, 2 bad input (flags, files, output paths, or a run over its memory or
@@ -34,8 +35,8 @@ pub mod shard;
 mod errors;
 mod output_file;
 mod parse;
+mod process;
 mod scene_args;
-mod signals;
 mod threads;
 
 pub use errors::AppError;
@@ -89,7 +90,8 @@ pub enum Command {
 
 /// Parses the command line and runs it; errors go to stderr with their exit code.
 pub fn main() -> ExitCode {
-    signals::ignore_file_size_limit_signal();
+    process::ignore_file_size_limit_signal();
+    process::keep_freed_memory_for_reuse();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) if e.use_stderr() => {
