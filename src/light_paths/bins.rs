@@ -32,9 +32,16 @@ pub(super) fn octahedral_bin(d: Vec3, n: usize) -> usize {
 /// The bins of every slot (a cell points gather from, `Cells::slot`).
 pub(super) struct Bins {
     n: usize,
-    /// Per slot and bin: summed light (W/m², RGB) and Σ light × direction.
-    sum: Vec<Vec3>,
-    moment: Vec<Vec3>,
+    /// Per slot and bin: summed light (W/m², RGB) and Σ light × direction, side by side so
+    /// that adding a flight touches one cache line.
+    bins: Vec<Bin>,
+}
+
+/// One direction bin of one slot.
+#[derive(Clone, Copy, Default)]
+struct Bin {
+    sum: Vec3,
+    moment: Vec3,
 }
 
 impl Bins {
@@ -43,8 +50,7 @@ impl Bins {
         let n = n.max(1);
         Self {
             n,
-            sum: vec![Vec3::ZERO; slots * n * n],
-            moment: vec![Vec3::ZERO; slots * n * n],
+            bins: vec![Bin::default(); slots * n * n],
         }
     }
 
@@ -59,15 +65,15 @@ impl Bins {
     #[cfg(test)]
     pub(super) fn add(&mut self, slot: usize, from: Vec3, e: Vec3) {
         let k = slot * self.n * self.n + octahedral_bin(from, self.n);
-        if let (Some(s), Some(m)) = (self.sum.get_mut(k), self.moment.get_mut(k)) {
-            *s += e;
-            *m += from * e.element_sum();
+        if let Some(b) = self.bins.get_mut(k) {
+            b.sum += e;
+            b.moment += from * e.element_sum();
         }
     }
 
     /// The slots per range of [`Bins::add_all`]: one range per thread.
     pub(super) fn span(&self) -> (usize, usize) {
-        let slots = self.sum.len() / (self.n * self.n);
+        let slots = self.bins.len() / (self.n * self.n);
         let span = slots.div_ceil(rayon::current_num_threads().max(1)).max(1);
         (span, slots.div_ceil(span).max(1))
     }
@@ -82,18 +88,17 @@ impl Bins {
     {
         let (n, per) = (self.n, self.n * self.n);
         let span = span.max(1);
-        self.sum
+        self.bins
             .par_chunks_mut(span * per)
-            .zip(self.moment.par_chunks_mut(span * per))
             .enumerate()
-            .for_each(|(job, (sum, moment))| {
-                let range = job * span..job * span + sum.len() / per;
+            .for_each(|(job, bins)| {
+                let range = job * span..job * span + bins.len() / per;
                 for (slot, from, e) in flights(job) {
                     let slot = slot as usize;
                     if range.contains(&slot) {
-                        let k = (slot - range.start) * per + octahedral_bin(from, n);
-                        sum[k] += e;
-                        moment[k] += from * e.element_sum();
+                        let b = &mut bins[(slot - range.start) * per + octahedral_bin(from, n)];
+                        b.sum += e;
+                        b.moment += from * e.element_sum();
                     }
                 }
             });
@@ -106,34 +111,35 @@ impl Bins {
     /// independent, so the result is the same for any thread count.
     pub(super) fn finish(self, strongest: Option<usize>) -> Finished {
         let per = self.n * self.n;
-        let slots = self.sum.len() / per;
+        let slots = self.bins.len() / per;
         let jobs: Vec<Finished> = (0..slots.div_ceil(SLOTS_PER_JOB))
             .into_par_iter()
             .map(|job| {
                 let mut out = Finished::default();
                 let mut order: Vec<usize> = Vec::with_capacity(per);
                 for slot in job * SLOTS_PER_JOB..((job + 1) * SLOTS_PER_JOB).min(slots) {
-                    let bins = slot * per..(slot + 1) * per;
-                    let (sum, moment) = (&self.sum[bins.clone()], &self.moment[bins]);
+                    let bins = &self.bins[slot * per..(slot + 1) * per];
+                    let sum = |k: usize| bins[k].sum;
+                    let moment = |k: usize| bins[k].moment;
                     order.clear();
-                    order.extend((0..per).filter(|&k| sum[k].element_sum() > 0.0));
+                    order.extend((0..per).filter(|&k| sum(k).element_sum() > 0.0));
                     let keep = strongest.unwrap_or(per).min(order.len());
                     if keep < order.len() {
                         // Stable: equal bins stay in bin order.
                         order.sort_by(|&a, &b| {
-                            sum[b].element_sum().total_cmp(&sum[a].element_sum())
+                            sum(b).element_sum().total_cmp(&sum(a).element_sum())
                         });
                     }
                     let mut rest = Moment::default();
                     for &k in &order[keep..] {
-                        rest.add(moment[k].normalize_or_zero(), sum[k]);
+                        rest.add(moment(k).normalize_or_zero(), sum(k));
                     }
                     if strongest.is_some() {
                         out.rest.push(rest);
                     }
                     for &k in &order[..keep] {
-                        out.from.push(moment[k].normalize_or_zero());
-                        out.light.push(sum[k]);
+                        out.from.push(moment(k).normalize_or_zero());
+                        out.light.push(sum(k));
                     }
                     out.starts.push(keep as u32);
                 }

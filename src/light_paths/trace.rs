@@ -200,26 +200,23 @@ impl Walker<'_> {
         rng: &mut SplitMix64,
     ) -> Option<Vec3> {
         let cells = self.cells;
-        let (first, last) = (
-            cells.starts[index] as usize,
-            cells.starts[index + 1] as usize,
-        );
-        if last <= first {
+        let step = cells.steps[index];
+        let (first, count) = (step.first as usize, step.count as usize);
+        if count == 0 {
             return None;
         }
-        let longest = cells.longest[index];
-        let majorant = self.sigma_per_len * (last - first) as f32 * longest;
+        let majorant = self.sigma_per_len * step.count_longest_m;
         loop {
             let s = -(rng.open_unit_f64() as f32).ln() / majorant;
             if !(*t + s < t_exit) {
                 return None;
             }
             *t += s;
-            let j = first
-                + ((rng.open_unit_f64() * (last - first) as f64) as usize).min(last - first - 1);
-            let u = cells.tangents[j];
-            let sin = d.cross(u).length();
-            let accept = cells.lengths[j] / longest * sin;
+            let j = first + ((rng.open_unit_f64() * count as f64) as usize).min(count - 1);
+            // Tangent, and length over the cell's longest.
+            let piece = cells.pieces[j];
+            let u = piece.truncate();
+            let accept = piece.w * d.cross(u).length();
             if (rng.open_unit_f64() as f32) < accept {
                 return Some(u);
             }
@@ -253,7 +250,7 @@ fn record(
     length_m: f32,
     records: &mut Vec<Record>,
 ) {
-    let slot = cells.slot[index];
+    let slot = cells.steps[index].slot;
     if slot != NO_SLOT {
         records.push(Record {
             slot,
