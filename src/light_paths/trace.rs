@@ -11,7 +11,7 @@
 //! it needs no intersection with a fibre and is unbiased, whatever the pieces' spread.
 //!
 //! **Scattering.** At a collision the path's new direction and the factor its power takes come
-//! from `fiber::chiang_sample::sample_scatter`: Chiang et al. 2016's lobes sampled as pbrt-v3
+//! from `fiber::chiang_sample::ScatterSampler`: Chiang et al. 2016's lobes sampled as pbrt-v3
 //! §9.9.6 does, at a random offset across the fibre, so the factor's expectation is the
 //! far-field ḡ the gather evaluates. After [`ROULETTE_AFTER`] scatterings a path whose largest
 //! channel w has fallen below its start's w₀ survives with probability q = w / w₀ and is
@@ -25,8 +25,7 @@ use super::cells::{Cells, NO_SLOT};
 use super::emit::{Emit, Emitter};
 use super::records::{BlockRecords, Record};
 use crate::fiber::Fiber;
-use crate::fiber::chiang::{ChiangConstants, TrimmedLogistic};
-use crate::fiber::chiang_sample::sample_scatter;
+use crate::fiber::chiang_sample::ScatterSampler;
 use crate::rng::SplitMix64;
 use glam::{IVec3, Vec3};
 use rayon::prelude::*;
@@ -58,11 +57,7 @@ pub(super) fn trace(
     blocks: std::ops::Range<u32>,
     (span, ranges): (usize, usize),
 ) -> Traced {
-    let c = fiber.chiang_constants();
-    let scatter = Scatter {
-        constants: c,
-        logistic: TrimmedLogistic::new(c.s),
-    };
+    let scatter = ScatterSampler::new(fiber.chiang_constants());
     let walker = Walker {
         cells,
         sigma_per_len: 2.0 * radius_m / cells.cell_m.powi(3),
@@ -89,13 +84,6 @@ pub(super) fn trace(
     }
 }
 
-/// The fibre's scattering a path samples at each collision: Chiang's constants and the
-/// logistic of its azimuthal lobes.
-struct Scatter<'a> {
-    constants: &'a ChiangConstants,
-    logistic: TrimmedLogistic,
-}
-
 /// Flies paths through the cells (module doc).
 pub(super) struct Walker<'a> {
     pub(super) cells: &'a Cells,
@@ -109,7 +97,7 @@ impl Walker<'_> {
     fn path(
         &self,
         (start, mut d, power): Emit,
-        scatter: &Scatter,
+        scatter: &ScatterSampler,
         rng: &mut SplitMix64,
         records: &mut Vec<Record>,
     ) -> u64 {
@@ -122,13 +110,7 @@ impl Walker<'_> {
                 return bounces as u64;
             };
             let xi = std::array::from_fn(|_| rng.open_unit_f64());
-            let Some(s) = sample_scatter(
-                scatter.constants,
-                &scatter.logistic,
-                u.as_dvec3(),
-                -d.as_dvec3(),
-                xi,
-            ) else {
+            let Some(s) = scatter.sample(u.as_dvec3(), -d.as_dvec3(), xi) else {
                 return bounces as u64;
             };
             bounces += 1;

@@ -6,21 +6,20 @@ use crate::fiber::chiang::n_bar_direct;
 use crate::fiber::{FiberModel, FiberParams};
 use crate::rng::SplitMix64;
 
-fn constants(sigma_a: [f32; 3], alpha_r_deg: f32) -> (ChiangConstants, TrimmedLogistic) {
-    let c = ChiangConstants::from_params(&FiberParams {
+fn constants(sigma_a: [f32; 3], alpha_r_deg: f32) -> ChiangConstants {
+    ChiangConstants::from_params(&FiberParams {
         model: FiberModel::Chiang,
         sigma_a,
         alpha_r_deg,
         ..Default::default()
-    });
-    (c, TrimmedLogistic::new(c.s))
+    })
 }
 
 fn xi(rng: &mut SplitMix64) -> [f64; 5] {
     std::array::from_fn(|_| rng.open_unit_f64())
 }
 
-/// Unit direction at inclination θ to u = +Z and azimuth φ from +X (the frame `sample_scatter`
+/// Unit direction at inclination θ to u = +Z and azimuth φ from +X (the frame `ScatterSampler::sample`
 /// builds for `from` in the XZ plane at φ = 0).
 fn dir(theta: f64, phi: f64) -> DVec3 {
     DVec3::new(
@@ -33,11 +32,14 @@ fn dir(theta: f64, phi: f64) -> DVec3 {
 #[test]
 fn white_fiber_weights_are_one_and_directions_unit() {
     // σa = 0: Σ_p A_p = 1 at every h, so the weight A_p / P_p is exactly 1 per sample.
-    let (c, l) = constants([0.0; 3], -7.5);
+    let c = constants([0.0; 3], -7.5);
+    let sampler = ScatterSampler::new(&c);
     let mut rng = SplitMix64::new(3);
     for k in 0..20_000 {
         let from = dir(-1.5 + 3.0 * (k as f64 / 20_000.0), 0.0);
-        let s = sample_scatter(&c, &l, DVec3::Z, from, xi(&mut rng)).expect("a sample");
+        let s = sampler
+            .sample(DVec3::Z, from, xi(&mut rng))
+            .expect("a sample");
         assert!((s.dir.length() - 1.0).abs() < 1e-12, "{:?}", s.dir);
         for w in s.weight {
             assert!((w - 1.0).abs() < 1e-12, "weight {w} at sample {k}");
@@ -68,7 +70,8 @@ fn logistic_sample_inverts_its_cdf() {
 /// absorption included.
 #[test]
 fn expectations_match_quadrature_of_the_far_field_model() {
-    let (c, l) = constants([0.545, 0.906, 1.78], -7.5);
+    let c = constants([0.545, 0.906, 1.78], -7.5);
+    let sampler = ScatterSampler::new(&c);
     let a = DVec3::new(-0.5, 0.3, -0.6).normalize();
     type TestFn = fn(DVec3, DVec3) -> f64;
     let tests: [(&str, TestFn); 5] = [
@@ -113,7 +116,7 @@ fn expectations_match_quadrature_of_the_far_field_model() {
         let mut mc = [[0.0f64; 3]; 5];
         let mut sq = [[0.0f64; 3]; 5];
         for _ in 0..n {
-            let Some(s) = sample_scatter(&c, &l, DVec3::Z, from, xi(&mut rng)) else {
+            let Some(s) = sampler.sample(DVec3::Z, from, xi(&mut rng)) else {
                 continue;
             };
             for (t, (_, g)) in tests.iter().enumerate() {
