@@ -8,7 +8,7 @@ use crate::budget::{MemoryPart, grouped};
 use crate::fiber::{Fiber, FiberParams, ShadingMode};
 use crate::interp::StrandGeometry;
 use crate::light_paths::{
-    AngularResponse, Directions, LightPathParams, LightPaths, StrandPoints, pick_of,
+    AngularResponse, Directions, LightPathParams, LightPaths, Solids, StrandPoints, pick_of,
 };
 use crate::map::Shadows;
 use crate::scene::Scene;
@@ -122,6 +122,7 @@ impl ShadingPass {
         // The solids stop light where they are drawn (the head and body's colliders stand for
         // them, a character's capsules for its mesh), prepared once (the head's inverse).
         let colliders = CollisionScene::new(input.colliders);
+        let bounds = input.colliders.solid_bounds_m();
         let solids = input.scene.draw_solids;
         let response = matches!(self.config.light_paths.directions, Directions::Strongest(_))
             .then(|| self.response_of(input.fiber));
@@ -137,7 +138,10 @@ impl ShadingPass {
                 &points,
                 light,
                 &self.config.light_paths,
-                solids.then_some(|p: Vec3| colliders.penetration_m(p.into())),
+                solids.then_some(Solids {
+                    depth_m: |p: Vec3| colliders.penetration_m(p.into()),
+                    within_m: &bounds,
+                }),
             ) else {
                 continue;
             };

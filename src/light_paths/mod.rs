@@ -106,6 +106,16 @@ pub struct LightPathParams {
     pub directions: Directions,
 }
 
+/// The solids (head, body) that stop light paths.
+#[derive(Clone, Debug)]
+pub struct Solids<'a, D> {
+    /// How deep a point lies inside a solid, metres (0 outside).
+    pub depth_m: D,
+    /// Boxes (lowest and highest corners, metres) that hold every point of positive depth:
+    /// only cells there are asked.
+    pub within_m: &'a [(Vec3, Vec3)],
+}
+
 /// How a cell keeps the light that crosses it by direction.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Directions {
@@ -153,18 +163,18 @@ pub struct LightPaths {
 
 impl LightPaths {
     /// Traces `params.paths` light paths of `light` through the hair `points` stand for, with
-    /// `fiber`'s Chiang constants. `solid_depth_m(p)`, when given, says how deep `p` lies inside
-    /// a solid (0 outside): light that enters one is absorbed. `None` when there is no hair.
+    /// `fiber`'s Chiang constants. Light that enters one of the `solids`, when given, is
+    /// absorbed. `None` when there is no hair.
     pub fn build<D: Fn(Vec3) -> f32 + Sync>(
         fiber: &Fiber,
         points: &StrandPoints,
         light: &Light,
         params: &LightPathParams,
-        solid_depth_m: Option<D>,
+        solids: Option<Solids<D>>,
     ) -> Option<LightPaths> {
         let mut cells = cells_within_budget(points, params)?;
-        if let Some(depth) = &solid_depth_m {
-            cells.mark_solids(depth);
+        if let Some(solids) = &solids {
+            cells.mark_solids(&solids.depth_m, solids.within_m);
         }
         let mut bins = bins::Bins::new(cells.slots, params.bins_per_axis.max(1) as usize);
         // No emitter: the light cannot reach the hair, and no path is traced.

@@ -10,7 +10,9 @@ use crate::light::Light;
 use crate::rng::SplitMix64;
 
 /// No solids (the type of the closure `LightPaths::build` would take).
-const NO_SOLIDS: Option<fn(Vec3) -> f32> = None;
+const NO_SOLIDS: Option<Solids<fn(Vec3) -> f32>> = None;
+/// A box around everything.
+const EVERYWHERE: [(Vec3, Vec3); 1] = [(Vec3::NEG_INFINITY, Vec3::INFINITY)];
 
 fn chiang(sigma_a: [f32; 3]) -> Fiber {
     Fiber::new(&FiberParams {
@@ -231,7 +233,7 @@ fn a_distant_point_light_is_a_directional_light_of_irradiance_i_over_d_squared()
 /// A solid between the light and the hair takes all its light: a layer over the hair's top
 /// (every cell above it), lit from straight above, leaves no record; without it the same paths
 /// leave thousands. Cells only partly inside a solid let light pass (the depth must exceed
-/// half a cell's diagonal).
+/// half a cell's diagonal), and only the cells in the solids' boxes are asked.
 #[test]
 fn solids_absorb_the_light_that_enters_them() {
     let fiber = chiang([0.2, 0.3, 0.5]);
@@ -245,22 +247,39 @@ fn solids_absorb_the_light_that_enters_them() {
     let overhead = Light::directional(-Vec3::Y, Vec3::ONE).expect("light");
     let roof = |q: Vec3| if q.y > 0.0065 { 1.0 } else { 0.0 };
     let shallow = |q: Vec3| if q.y > 0.0065 { 1e-4 } else { 0.0 };
-    let build = |depth: Option<&(dyn Fn(Vec3) -> f32 + Sync)>| {
+    // The roof's box, and one beside the slab that holds none of it.
+    let over = [(Vec3::new(-1.0, 0.0065, -1.0), Vec3::splat(1.0))];
+    let beside = [(Vec3::new(0.5, 0.0, 0.5), Vec3::splat(1.0))];
+    let build = |depth: Option<&(dyn Fn(Vec3) -> f32 + Sync)>, within: &[(Vec3, Vec3)]| {
         LightPaths::build(
             &fiber,
             &points(&p, &u, &l),
             &overhead,
             &params,
-            depth.map(|f| move |q: Vec3| f(q)),
+            depth.map(|f| Solids {
+                depth_m: move |q: Vec3| f(q),
+                within_m: within,
+            }),
         )
         .expect("light paths")
         .records()
     };
-    let (open, roofed, thin) = (build(None), build(Some(&roof)), build(Some(&shallow)));
+    let open = build(None, &EVERYWHERE);
     assert!(open > 1_000, "{open} records with no solid");
-    assert_eq!(roofed, 0, "light passed the roof");
+    assert_eq!(build(Some(&roof), &EVERYWHERE), 0, "light passed the roof");
     assert_eq!(
-        thin, open,
+        build(Some(&roof), &over),
+        0,
+        "light passed the roof in its box"
+    );
+    assert_eq!(
+        build(Some(&roof), &beside),
+        open,
+        "a solid's cells were asked outside its boxes"
+    );
+    assert_eq!(
+        build(Some(&shallow), &EVERYWHERE),
+        open,
         "a solid shallower than half a cell's diagonal stops nothing"
     );
 }

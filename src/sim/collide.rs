@@ -89,6 +89,33 @@ impl Colliders {
         }
     }
 
+    /// A box (lowest and highest corners, world metres) around each solid: the head
+    /// ellipsoid, each sphere and each capsule. Every point of positive
+    /// [`Colliders::penetration_m`] lies in one.
+    pub fn solid_bounds_m(&self) -> Vec<(Vec3, Vec3)> {
+        // The ellipsoid's half extent along world axis i: |row i of M·diag(r)|.
+        let m = glam::Mat3::from(self.head.matrix3);
+        let r = self.head_radii_m;
+        let half = Vec3::new(
+            (m.row(0) * r).length(),
+            (m.row(1) * r).length(),
+            (m.row(2) * r).length(),
+        );
+        let centre = Vec3::from(self.head.translation);
+        let mut boxes = vec![(centre - half, centre + half)];
+        for sp in &self.spheres {
+            boxes.push((
+                sp.center - Vec3::splat(sp.radius_m),
+                sp.center + Vec3::splat(sp.radius_m),
+            ));
+        }
+        for c in &self.capsules {
+            let r = Vec3::splat(c.radius_m);
+            boxes.push((c.a.min(c.b) - r, c.a.max(c.b) + r));
+        }
+        boxes
+    }
+
     /// Conservative penetration depth (metres, 0 outside) of world point `p` into the head
     /// ellipsoid or any sphere: for the ellipsoid, `(1 − |q/r|) · max(r)` bounds the distance
     /// to the surface from above (the distance along the ray from the centre is at least the

@@ -159,3 +159,51 @@ fn penetration_bound_is_zero_outside_and_positive_inside() {
     let p = c.head.translation;
     assert!((scene.penetration_m(p) - c.penetration_m(p.into())).abs() < 1e-6);
 }
+
+/// Every point of positive depth, for the turned head, a sphere and a slanted capsule, lies in
+/// one of `solid_bounds_m`'s boxes, and the head's box is tight: points inside the ellipsoid
+/// reach within 2 mm of each of its six faces.
+#[test]
+fn solid_bounds_hold_every_point_inside_a_solid() {
+    let mut c = scene_colliders();
+    c.capsules.push(CapsuleCollider {
+        a: Vec3::new(-0.2, 1.1, 0.0),
+        b: Vec3::new(0.25, 1.45, -0.3),
+        radius_m: 0.05,
+    });
+    let boxes = c.solid_bounds_m();
+    assert_eq!(boxes.len(), 3);
+    let scene = CollisionScene::new(&c);
+    let mut rng = crate::rng::SplitMix64::new(5);
+    let mut sample =
+        |lo: Vec3, hi: Vec3| lo + (hi - lo) * Vec3::new(rng.unit(), rng.unit(), rng.unit());
+    let in_a_box = |p: Vec3| {
+        boxes
+            .iter()
+            .any(|(a, b)| p.cmpge(*a).all() && p.cmple(*b).all())
+    };
+    let mut inside = 0;
+    for _ in 0..400_000 {
+        let p = sample(Vec3::new(-0.4, 0.9, -0.6), Vec3::new(0.5, 1.8, 0.3));
+        if scene.penetration_m(p.into()) > 0.0 {
+            inside += 1;
+            assert!(in_a_box(p), "{p} lies inside a solid but in no box");
+        }
+    }
+    assert!(inside > 5_000, "{inside} points inside");
+    let (a, b) = boxes[0];
+    let margin = Vec3::splat(0.01);
+    let mut reach = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+    for _ in 0..200_000 {
+        let p = sample(a - margin, b + margin);
+        let q = c.head.inverse().transform_point3(p) / c.head_radii_m;
+        if q.length() < 1.0 {
+            assert!(in_a_box(p), "{p} lies inside the head but in no box");
+            reach = (reach.0.min(p), reach.1.max(p));
+        }
+    }
+    assert!(
+        (reach.0 - a).max_element() < 0.002 && (b - reach.1).max_element() < 0.002,
+        "head box {a}..{b}, reached {reach:?}"
+    );
+}
