@@ -9,8 +9,10 @@ use crate::fiber::{FiberModel, FiberParams};
 use crate::light::Light;
 use crate::rng::SplitMix64;
 
+/// The solids of a depth function.
+type DepthSolids = Solids<'static, fn(Vec3) -> f32>;
 /// No solids (the type of the closure `LightPaths::build` would take).
-const NO_SOLIDS: Option<Solids<fn(Vec3) -> f32>> = None;
+const NO_SOLIDS: Option<DepthSolids> = None;
 /// A box around everything.
 const EVERYWHERE: [(Vec3, Vec3); 1] = [(Vec3::NEG_INFINITY, Vec3::INFINITY)];
 
