@@ -70,18 +70,6 @@ impl StrandPoints<'_> {
 /// One piece of fibre before filing: its cell, unit tangent and metres of fibre.
 type Piece = (u32, Vec3, f32);
 
-/// What a light path's step through a cell reads: its pieces' range, their count times the
-/// longest (metres of fibre: the delta-tracking majorant over 2r/V) and its slot. Kept side by
-/// side per cell so that a step costs one cache line, not four (the merged arrays cost the
-/// paths' tracing a fifth of its time).
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct CellSteps {
-    pub(crate) first: u32,
-    pub(crate) count: u32,
-    pub(crate) count_longest_m: f32,
-    pub(crate) slot: u32,
-}
-
 /// The hair as fibre pieces filed by cell (module doc).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Cells {
@@ -93,8 +81,6 @@ pub(crate) struct Cells {
     /// Per piece, by cell: its unit tangent and its length of fibre (metres × fibres) over
     /// its cell's longest (in `w`): what a tentative collision reads, in one load.
     pub(crate) pieces: Vec<Vec4>,
-    /// Per cell, what a path's step through it reads, in one load ([`CellSteps`]).
-    pub(crate) steps: Vec<CellSteps>,
     /// Per cell, the longest piece (metres of fibre).
     pub(crate) longest: Vec<f32>,
     /// Per cell, whether it lies wholly inside a solid (head, body): light that enters it is
@@ -226,20 +212,9 @@ impl Cells {
         }
     }
 
-    /// Fills `steps` from the filed pieces and the slots, and scales each piece's length by
-    /// its cell's longest.
+    /// Scales each piece's length by its cell's longest: the acceptance of a tentative
+    /// collision (`trace.rs`) is then one product.
     fn pack(&mut self) {
-        self.steps = (0..self.count())
-            .map(|c| {
-                let (first, last) = (self.starts[c], self.starts[c + 1]);
-                CellSteps {
-                    first,
-                    count: last - first,
-                    count_longest_m: (last - first) as f32 * self.longest[c],
-                    slot: self.slot[c],
-                }
-            })
-            .collect();
         for c in 0..self.count() {
             let longest = self.longest[c];
             for piece in &mut self.pieces[self.starts[c] as usize..self.starts[c + 1] as usize] {

@@ -182,12 +182,15 @@ impl Walker<'_> {
         rng: &mut SplitMix64,
     ) -> Option<Vec3> {
         let cells = self.cells;
-        let step = cells.steps[index];
-        let (first, count) = (step.first as usize, step.count as usize);
+        let (first, last) = (
+            cells.starts[index] as usize,
+            cells.starts[index + 1] as usize,
+        );
+        let count = last.saturating_sub(first);
         if count == 0 {
             return None;
         }
-        let majorant = self.sigma_per_len * step.count_longest_m;
+        let majorant = self.sigma_per_len * (count as f32 * cells.longest[index]);
         loop {
             let s = -(rng.open_unit_f64() as f32).ln() / majorant;
             if !(*t + s < t_exit) {
@@ -232,7 +235,7 @@ fn record(
     length_m: f32,
     records: &mut Vec<Record>,
 ) {
-    let slot = cells.steps[index].slot;
+    let slot = cells.slot[index];
     if slot != NO_SLOT {
         records.push(Record {
             slot,
