@@ -49,7 +49,8 @@ struct LevelChoices {
 /// strongest direction bins gathered through the fibre and the rest through their moments
 /// (ACCURACY.md §2 and its decisions: fewer bins read side-lit dense blond darker, 0.82–0.86
 /// of the path tracer with 4 or 8 against 0.89–0.91 with 16; 8 mm cells spread light past
-/// back-lit silhouettes). Its bins are capped at 256 MB, a third of `reference`'s: the smooth
+/// back-lit silhouettes; half the paths, 100,000, lose up to 7 points of blocks within 2× in
+/// the side- and point-lit cases, BENCHMARKS.md). Its bins are capped at 256 MB, a third of `reference`'s: the smooth
 /// dance's need about 110 MB at 6 mm (cells grow past the cap), and the run's memory estimate
 /// counts the cap.
 fn final_light_paths() -> LightPathParams {
