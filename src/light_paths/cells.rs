@@ -103,7 +103,7 @@ impl Cells {
         let pieces = cells.cut(points);
         cells.file(&pieces);
         cells.number_slots();
-        cells.pack();
+        cells.scale_to_longest();
         Some(cells)
     }
 
@@ -153,7 +153,7 @@ impl Cells {
     }
 
     /// Sorts `pieces` by cell (counting sort, stable): fills `starts`, `pieces` (their
-    /// lengths in `w`, over the longest once [`Cells::pack`] has run)
+    /// lengths in `w`, over the longest once [`Cells::scale_to_longest`] has run)
     /// and each cell's `longest`.
     fn file(&mut self, pieces: &[Piece]) {
         let count = self.count();
@@ -214,7 +214,7 @@ impl Cells {
 
     /// Scales each piece's length by its cell's longest: the acceptance of a tentative
     /// collision (`trace.rs`) is then one product.
-    fn pack(&mut self) {
+    fn scale_to_longest(&mut self) {
         for c in 0..self.count() {
             let longest = self.longest[c];
             for piece in &mut self.pieces[self.starts[c] as usize..self.starts[c + 1] as usize] {
