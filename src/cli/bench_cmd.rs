@@ -164,10 +164,19 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         motion.clip_name()
     );
 
+    let levels = Quality::ALL
+        .iter()
+        .map(|&q| {
+            let mut c = args.scene.config(config.scene.clone(), q);
+            c.simulation.settle_step_s = config.simulation.settle_step_s;
+            (q, c)
+        })
+        .collect();
     let scene = BenchScene {
         style,
         hair,
         motion,
+        levels,
         config,
     };
     let parts = args.parts();
@@ -276,12 +285,14 @@ fn check_one(
 type Json = serde_json::Map<String, serde_json::Value>;
 
 /// What every part of the benchmark runs: the resolved hairstyle, hair, motion and engine
-/// configuration.
+/// configuration, and each quality level's configuration with the flags given written over
+/// its choices (as `render --quality` does).
 struct BenchScene {
     style: Hairstyle,
     hair: super::ImportedHair,
     motion: Motion,
     config: EngineConfig,
+    levels: Vec<(Quality, EngineConfig)>,
 }
 
 impl BenchScene {

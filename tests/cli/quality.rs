@@ -119,6 +119,7 @@ fn the_bench_quality_report_has_flip_and_tf_figures_and_draws_its_plot() {
         ];
         wisp(&[&base[..], extra].concat())
     };
+    // A flag given is written over every level's choice, as with `render --quality`.
     let o = run(
         "preview,final",
         &[
@@ -126,6 +127,8 @@ fn the_bench_quality_report_has_flip_and_tf_figures_and_draws_its_plot() {
             plot.to_str().unwrap(),
             "--json",
             json.to_str().unwrap(),
+            "--volume-paths",
+            "5000",
         ],
     );
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
@@ -148,7 +151,10 @@ fn the_bench_quality_report_has_flip_and_tf_figures_and_draws_its_plot() {
     for level in levels {
         let tf = level["tf_mae"].as_f64().unwrap();
         assert!((0.0..0.2).contains(&tf), "{level}");
+        assert_eq!(level["shading"]["volume_paths"], 5000, "{level}");
     }
+    assert_eq!(levels[0]["shading"]["mode"], "DualScattering");
+    assert_eq!(levels[1]["shading"]["mode"], "Volume");
     let flip = levels[0]["vs_final"]["flip_mean"].as_f64().unwrap();
     assert!(flip > 0.0 && flip < 1.0, "preview against final: {flip}");
     assert!(v["quality_tf_reference"]["vertices"].as_u64().unwrap() > 0);

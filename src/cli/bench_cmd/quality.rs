@@ -70,12 +70,18 @@ pub fn last_time_s() -> f64 {
     SNAPSHOT_TIMES_S[SNAPSHOT_TIMES_S.len() - 1]
 }
 
-/// The level's configuration for the bench's scene.
+/// The level's configuration for the bench's scene, the flags given written over the
+/// level's choices (`--shading`, `--volume-paths`, `--map-res`, …, as `render --quality`).
 pub fn level_config(scene: &BenchScene, quality: Quality) -> EngineConfig {
-    EngineConfig {
-        scene: scene.config.scene.clone(),
-        ..EngineConfig::at_quality(quality)
-    }
+    scene
+        .levels
+        .iter()
+        .find(|(q, _)| *q == quality)
+        .map(|(_, c)| c.clone())
+        .unwrap_or_else(|| EngineConfig {
+            scene: scene.config.scene.clone(),
+            ..EngineConfig::at_quality(quality)
+        })
 }
 
 /// The guide particles at each snapshot time, and every guide's tip at every 1/30 s up to the
@@ -240,6 +246,12 @@ pub fn quality_part(
     let (mut entries, points) = print_errors(&runs, &masks);
     print_tf(&runs, &tf_reference, json);
     print_map_rates(scene, levels, &camera, &mut entries);
+    for (&level, entry) in levels.iter().zip(entries.iter_mut()) {
+        // What the level ran with, the flags written over its choices.
+        let shading = level_config(scene, level).shading;
+        entry["shading"] = serde_json::json!({"mode": format!("{:?}", shading.mode),
+            "volume_paths": shading.light_paths.paths});
+    }
     json.insert("quality".into(), entries.into());
     Ok(points)
 }
