@@ -1,6 +1,6 @@
 //! Times one stage (`shade`, `map`, `raster` or `solids`: the character and head alone, lit
 //! through the maps as in a frame) alone on a fixed hair state of smooth at
-//! 1280×720, for A/B runs of two builds (`farm-bench --vs`, or callgrind with
+//! 1280×720, for A/B runs of two builds (alternated whole-process timings, or callgrind with
 //! `--toggle-collect`): `cargo run --release --example stage_loop -- [REPS] [STAGE] [STYLE]
 //! [CONTACT_MM]`. STYLE: `smooth` (default), `curly`, `dense`, or `smoothxK` (smooth with K
 //! times the strands, one fibre each, as `wisp accuracy --single-fibre-strands K`);
