@@ -53,3 +53,17 @@ impl std::fmt::Display for Quality {
         f.write_str(self.name())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::Quality;
+
+    /// `Quality::ALL` lists the levels in declaration order, so `level as usize` indexes an
+    /// array built from it (`wisp bench`'s level configurations).
+    #[test]
+    fn all_is_in_declaration_order() {
+        for (i, q) in Quality::ALL.iter().enumerate() {
+            assert_eq!(*q as usize, i, "{q}");
+        }
+    }
+}

@@ -164,14 +164,11 @@ pub fn run(args: BenchArgs) -> Result<(), AppError> {
         motion.clip_name()
     );
 
-    let levels = Quality::ALL
-        .iter()
-        .map(|&q| {
-            let mut c = args.scene.config(config.scene.clone(), q);
-            c.simulation.settle_step_s = config.simulation.settle_step_s;
-            (q, c)
-        })
-        .collect();
+    let levels = Quality::ALL.map(|q| {
+        let mut c = args.scene.config(config.scene.clone(), q);
+        c.simulation.settle_step_s = config.simulation.settle_step_s;
+        c
+    });
     let scene = BenchScene {
         style,
         hair,
@@ -292,7 +289,8 @@ struct BenchScene {
     hair: super::ImportedHair,
     motion: Motion,
     config: EngineConfig,
-    levels: Vec<(Quality, EngineConfig)>,
+    /// In the order of `Quality::ALL` (its declaration order: `level as usize`).
+    levels: [EngineConfig; 3],
 }
 
 impl BenchScene {

@@ -269,8 +269,7 @@ impl Cells {
     /// Marks the cells whose centre lies deeper than half their diagonal inside a solid
     /// (`depth_m(p)`: how deep `p` lies inside one, metres, 0 outside), so wholly inside. Only
     /// the cells whose centres lie in one of the boxes `within` (lowest and highest corners,
-    /// metres), which hold every point of positive depth, are asked: on the dance a tenth of
-    /// the grid.
+    /// metres), which hold every point of positive depth, are asked.
     pub(super) fn mark_solids(
         &mut self,
         depth_m: &(impl Fn(Vec3) -> f32 + Sync),

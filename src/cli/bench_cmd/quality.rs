@@ -73,15 +73,7 @@ pub fn last_time_s() -> f64 {
 /// The level's configuration for the bench's scene, the flags given written over the
 /// level's choices (`--shading`, `--volume-paths`, `--map-res`, …, as `render --quality`).
 pub fn level_config(scene: &BenchScene, quality: Quality) -> EngineConfig {
-    scene
-        .levels
-        .iter()
-        .find(|(q, _)| *q == quality)
-        .map(|(_, c)| c.clone())
-        .unwrap_or_else(|| EngineConfig {
-            scene: scene.config.scene.clone(),
-            ..EngineConfig::at_quality(quality)
-        })
+    scene.levels[quality as usize].clone()
 }
 
 /// The guide particles at each snapshot time, and every guide's tip at every 1/30 s up to the
