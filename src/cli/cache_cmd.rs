@@ -261,11 +261,41 @@ pub fn render_from_cache(args: RenderArgs) -> Result<(), AppError> {
         );
     }
     export_frames(&mut engine, &todo, &output, started, |engine, i| {
+        light_paths_from_slot_start(engine, &mut reader, &header, i)?;
         let t = header.frame_time_s(i);
         let positions = reader.read_frame(i, engine.motion()).map_err(cache_error)?;
         engine.set_guide_state(t, positions);
         Ok(t)
     })
+}
+
+/// With light paths built once per slot of motion (`ShadingConfig::paths_interval_s`): when
+/// cache frame `i`'s slot began at an earlier frame and its paths are not built (a shard or
+/// `--first-frame` that starts inside a slot), the slot's first frame is set first, so that
+/// the paths are built from its hair as a run from the start builds them.
+fn light_paths_from_slot_start(
+    engine: &mut Engine,
+    reader: &mut CacheReader,
+    header: &CacheHeader,
+    i: u32,
+) -> Result<(), AppError> {
+    let Some(slot) = engine.light_paths_slot(header.frame_time_s(i)) else {
+        return Ok(());
+    };
+    if engine.light_paths_built_in(slot) {
+        return Ok(());
+    }
+    let mut first = i;
+    while first > 0 && engine.light_paths_slot(header.frame_time_s(first - 1)) == Some(slot) {
+        first -= 1;
+    }
+    if first < i {
+        let positions = reader
+            .read_frame(first, engine.motion())
+            .map_err(cache_error)?;
+        engine.set_guide_state(header.frame_time_s(first), positions);
+    }
+    Ok(())
 }
 
 /// The cache frames this run renders: `--frames` from `--first-frame` (all from it by

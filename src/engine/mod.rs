@@ -34,6 +34,7 @@ mod hair_map;
 mod interpolation;
 mod map_rate;
 mod occluders;
+mod paths_rate;
 mod quality;
 mod raster;
 mod reuse;
@@ -62,13 +63,13 @@ pub use setup::{
     carry_roots_by_bones, fit_style_to_character, roots_of_guides_on_head, roots_on_head,
     write_colliders,
 };
-pub use shading::{ShadingConfig, ShadingInput, ShadingPass};
+pub use shading::{PathsInput, ShadingConfig, ShadingInput, ShadingPass};
 pub use simulation::{GROOM_SETTLE_STEP_S, SimulationConfig, SimulationPass};
 pub use sizes::{RunSizes, SizedBy};
 pub use skin_texture::{SkinTextureConfig, SkinTexturePass};
 pub use timings::{MapPartTimings, StageTimings};
 
-use crate::fiber::Fiber;
+use crate::fiber::{Fiber, ShadingMode};
 use crate::hairstyle::{GuideSet, Hairstyle, StrandLayout, generate, thin_strands};
 use crate::interp::StrandGeometry;
 use crate::map::{BuiltEarlier, LightMap, MapGeometry, MapStats, Shadows};
@@ -79,6 +80,7 @@ use crate::shade::shade_skin;
 use crate::sim::SimState;
 use glam::{Affine3A, Vec3};
 use map_rate::MapSchedule;
+use paths_rate::{PathsKey, PathsSchedule, slot_of};
 use std::time::Instant;
 
 /// The hairstyle, its hair, the scene and the passes of a frame.
@@ -111,6 +113,11 @@ pub struct Engine {
     map_schedule: MapSchedule,
     head_at_build: Affine3A,
     lit_earlier: bool,
+    /// When the light paths were last built (`ShadingConfig::paths_interval_s`), and the
+    /// seconds the last build outside a render took, counted once in the next render's
+    /// shading (a build for frames never rendered is not).
+    paths_schedule: PathsSchedule,
+    paths_built_s: f64,
 }
 
 impl Engine {
@@ -205,6 +212,8 @@ impl Engine {
             map_schedule: MapSchedule::default(),
             head_at_build: Affine3A::IDENTITY,
             lit_earlier: false,
+            paths_schedule: PathsSchedule::default(),
+            paths_built_s: 0.0,
         }
     }
 
@@ -281,6 +290,14 @@ impl Engine {
         self.timings.animation_s = (t1 - t0).as_secs_f64();
         self.timings.simulation_s = (t2 - t1).as_secs_f64();
         self.timings.interpolation_s = (t3 - t2).as_secs_f64();
+        // A slot's light paths are built from its first frame's hair, rendered or not, so that
+        // every run through these times builds from the same hair (`paths_rate`).
+        if self.shading.config.paths_interval_s > 0.0 {
+            let built_s = self.build_paths_when_due();
+            if built_s > 0.0 {
+                self.paths_built_s = built_s;
+            }
+        }
     }
 
     /// One whole frame at time `t_s`.
@@ -308,7 +325,7 @@ impl Engine {
         self.draw_hair(draw_seen_polylines);
         let t4 = Instant::now();
         self.timings.map_s = (t1 - t0).as_secs_f64();
-        self.timings.shading_s = (t3 - t2).as_secs_f64();
+        self.timings.shading_s = (t3 - t2).as_secs_f64() + std::mem::take(&mut self.paths_built_s);
         self.timings.raster_s = ((t2 - t1) + (t4 - t3)).as_secs_f64();
         self.raster.framebuffer()
     }
@@ -390,6 +407,7 @@ impl Engine {
     /// Shades every point, or with `only_seen` those the raster found drawable (the rest
     /// black).
     fn shade_points(&mut self, only_seen: bool) {
+        self.build_paths_when_due();
         let input = ShadingInput {
             fiber: &self.fiber,
             fibers_per_strand: self.style.strands.fibers_per_strand,
@@ -397,13 +415,73 @@ impl Engine {
             strands: self.interpolation.strands(),
             eye: self.camera.camera().eye(),
             seen: only_seen.then_some(self.raster.seen()),
-            colliders: self.interpolation.colliders(),
         };
         let shadows = lit_by(
             (&self.hair_map, &self.occluders, &self.skin_texture),
             self.head_back(),
         );
-        self.shading.run(shadows, &input);
+        let paths_back = self
+            .paths_schedule
+            .head_back(self.animation.time_s(), self.animation.pose().head);
+        self.shading.run(shadows, &input, paths_back);
+    }
+
+    /// Builds the light paths from the current hair when the light-path shader is on and
+    /// they are due (`paths_rate`); returns the seconds that took.
+    fn build_paths_when_due(&mut self) -> f64 {
+        if self.shading.config.mode != ShadingMode::Volume {
+            return 0.0;
+        }
+        let t_s = self.animation.time_s();
+        let key = PathsKey {
+            lights: &self.scene.lights,
+            params: &self.shading.config.light_paths,
+            fiber: self.fiber.params(),
+        };
+        if !self
+            .paths_schedule
+            .due(t_s, self.shading.config.paths_interval_s, &key)
+        {
+            return 0.0;
+        }
+        let started = Instant::now();
+        let input = PathsInput {
+            fiber: &self.fiber,
+            fibers_per_strand: self.style.strands.fibers_per_strand,
+            scene: &self.scene,
+            strands: self.interpolation.strands(),
+            colliders: self.interpolation.colliders(),
+        };
+        self.shading.build_light_paths(&input);
+        let key = PathsKey {
+            lights: &self.scene.lights,
+            params: &self.shading.config.light_paths,
+            fiber: self.fiber.params(),
+        };
+        self.paths_schedule
+            .built(t_s, &key, self.animation.pose().head);
+        started.elapsed().as_secs_f64()
+    }
+
+    /// With the light paths built once per slot of motion (`paths_rate`): the slot of the
+    /// frame at `t_s`, and whether the paths for it are built. A run that starts inside a slot
+    /// with hair set from outside (`set_guide_state`) sets its first frame's hair first, to
+    /// build from it as a run from the start does. `None` when the paths are built for every
+    /// frame or not used.
+    pub fn light_paths_slot(&self, t_s: f64) -> Option<i64> {
+        let interval_s = self.shading.config.paths_interval_s;
+        (self.shading.config.mode == ShadingMode::Volume && interval_s > 0.0)
+            .then(|| slot_of(t_s, interval_s))
+    }
+
+    /// Whether the light paths last built are for `slot` (of [`Engine::light_paths_slot`]).
+    pub fn light_paths_built_in(&self, slot: i64) -> bool {
+        let interval_s = self.shading.config.paths_interval_s;
+        interval_s > 0.0
+            && self
+                .paths_schedule
+                .built_at_s()
+                .is_some_and(|t_s| slot_of(t_s, interval_s) == slot)
     }
 
     /// The raster pass alone: clears the image, draws the solids (lit through the maps) and

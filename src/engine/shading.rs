@@ -15,7 +15,7 @@ use crate::scene::Scene;
 use crate::shade::{Lighting, VertexColors, VertexGeometry, shade_vertices};
 use crate::sim::Colliders;
 use crate::sim::collide::CollisionScene;
-use glam::Vec3;
+use glam::{Affine3A, Vec3};
 use rayon::prelude::*;
 use std::sync::Arc;
 
@@ -26,6 +26,10 @@ pub struct ShadingConfig {
     pub mode: ShadingMode,
     /// The light paths of [`ShadingMode::Volume`] (unused by the other shaders).
     pub light_paths: LightPathParams,
+    /// The light paths are built once per this many seconds of motion, in slots aligned to
+    /// the motion's clock, and read by the slot's later frames where the head was at the
+    /// build (`paths_rate`); 0: every frame.
+    pub paths_interval_s: f64,
 }
 
 impl Default for ShadingConfig {
@@ -33,6 +37,7 @@ impl Default for ShadingConfig {
         Self {
             mode: ShadingMode::DualScattering,
             light_paths: LightPathParams::default(),
+            paths_interval_s: 0.0,
         }
     }
 }
@@ -48,6 +53,15 @@ pub struct ShadingInput<'a> {
     pub eye: Vec3,
     /// Per point, whether the raster will draw it (`None`: shade every point).
     pub seen: Option<&'a [bool]>,
+}
+
+/// What the light paths are built from: the hair, the solids and the lights at one time.
+#[derive(Clone, Copy)]
+pub struct PathsInput<'a> {
+    pub fiber: &'a Fiber,
+    pub fibers_per_strand: f32,
+    pub scene: &'a Scene,
+    pub strands: &'a StrandGeometry,
     /// The head and body colliders, which stop the light paths where solids are drawn.
     pub colliders: &'a Colliders,
 }
@@ -60,6 +74,12 @@ pub struct ShadingPass {
     /// The fibre's moment integrals for [`Directions::Strongest`], with the fibre they are
     /// of: made once per fibre (about 1.4 M BCSDF evaluations), not per frame.
     response: Option<(FiberParams, Arc<AngularResponse>)>,
+    /// Each light's light paths as last built ([`ShadingPass::build_light_paths`]), in the
+    /// order of the scene's lights (`None`: no hair, or the light cannot reach it).
+    paths: Vec<Option<LightPaths>>,
+    /// The render-strand points the light paths were built from, indexed as now: a frame
+    /// lit by an earlier build gathers each point where it was then (`engine::paths_rate`).
+    positions_then: Vec<Vec3>,
 }
 
 impl ShadingPass {
@@ -71,9 +91,10 @@ impl ShadingPass {
     }
 
     /// Shades the points of `input` (all, or those it says the raster will draw; the rest
-    /// black) through `shadows`, plus each light's multiply scattered light with the
-    /// light-path shader.
-    pub fn run(&mut self, shadows: Shadows, input: &ShadingInput) {
+    /// black) through `shadows`, plus, with the light-path shader, each light's multiply
+    /// scattered light from the paths last built, read through `paths_back` (world now →
+    /// world at their build) when they were built for an earlier frame.
+    pub fn run(&mut self, shadows: Shadows, input: &ShadingInput, paths_back: Option<Affine3A>) {
         let strands = input.strands;
         shade_vertices(
             input.fiber,
@@ -90,7 +111,7 @@ impl ShadingPass {
             &mut self.colors,
         );
         if self.config.mode == ShadingMode::Volume {
-            self.add_light_paths(input);
+            self.gather_light_paths(input, paths_back);
         }
     }
 
@@ -115,25 +136,26 @@ impl ShadingPass {
         }
     }
 
-    /// Adds each light's multiply scattered light, from light paths traced through the hair,
-    /// to the points shaded.
-    fn add_light_paths(&mut self, input: &ShadingInput) {
+    /// Traces each light's paths through the hair of `input` and keeps them for the frames
+    /// that gather them.
+    pub fn build_light_paths(&mut self, input: &PathsInput) {
         let strands = input.strands;
         // The solids stop light where they are drawn (the head and body's colliders stand for
         // them, a character's capsules for its mesh), prepared once (the head's inverse).
         let colliders = CollisionScene::new(input.colliders);
         let bounds = input.colliders.solid_bounds_m();
         let solids = input.scene.draw_solids;
-        let response = matches!(self.config.light_paths.directions, Directions::Strongest(_))
-            .then(|| self.response_of(input.fiber));
         let points = StrandPoints {
             positions: &strands.positions,
             tangents: &strands.tangents,
             lengths_m: &strands.lengths_m,
             fibers_per_strand: input.fibers_per_strand,
         };
+        self.positions_then.clear();
+        self.positions_then.extend_from_slice(&strands.positions);
+        self.paths.clear();
         for light in &input.scene.lights {
-            let Some(paths) = LightPaths::build(
+            self.paths.push(LightPaths::build(
                 input.fiber,
                 &points,
                 light,
@@ -142,9 +164,19 @@ impl ShadingPass {
                     depth_m: |p: Vec3| colliders.penetration_m(p.into()),
                     within_m: &bounds,
                 }),
-            ) else {
-                continue;
-            };
+            ));
+        }
+    }
+
+    /// Adds each light's multiply scattered light, from the light paths last built, to the
+    /// points shaded. With `back` (world now → world at an earlier build), each point is read
+    /// where it was at the build, its tangent and view carried back with the head.
+    fn gather_light_paths(&mut self, input: &ShadingInput, back: Option<Affine3A>) {
+        let strands = input.strands;
+        let response = matches!(self.config.light_paths.directions, Directions::Strongest(_))
+            .then(|| self.response_of(input.fiber));
+        let then = &self.positions_then;
+        for paths in self.paths.iter().flatten() {
             self.colors
                 .colors_mut()
                 .par_iter_mut()
@@ -165,6 +197,16 @@ impl ShadingPass {
                     if wo == Vec3::ZERO {
                         return;
                     }
+                    let (p, u, wo) = match back {
+                        Some(b) => (
+                            then.get(i)
+                                .copied()
+                                .unwrap_or_else(|| b.transform_point3(p)),
+                            b.transform_vector3(u),
+                            b.transform_vector3(wo),
+                        ),
+                        None => (p, u, wo),
+                    };
                     *c += paths.indirect(input.fiber, response.as_deref(), p, u, wo, pick_of(i));
                 });
         }
@@ -195,7 +237,7 @@ impl ShadingPass {
             parts.push(MemoryPart {
                 what: "light paths (--shading volume)",
                 product: format!(
-                    "{} light(s) × {} render points, bins at most {} MB",
+                    "{} light(s) × {} render points, bins at most {} MB; the points at the build",
                     sizes.lights,
                     grouped(points),
                     config.light_paths.max_bins_bytes / 1_000_000
@@ -206,7 +248,8 @@ impl ShadingPass {
                     extent_m,
                     &config.light_paths,
                 )
-                .saturating_mul(sizes.lights),
+                .saturating_mul(sizes.lights)
+                .saturating_add(points * size_of::<Vec3>() as u64),
                 set_by: "render points, --volume-cell-mm and --volume-bins",
             });
         }

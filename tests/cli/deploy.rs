@@ -115,6 +115,78 @@ fn simulate_then_two_local_shards_give_the_bytes_of_one_render() {
     }
 }
 
+/// Light paths built once per slot of motion (`--volume-hz`) are built from the slot's first
+/// frame in every run: a cache render that starts inside a slot (`--first-frame`, as a shard
+/// does) sets that frame's hair first, and gives the bytes of a render from the start. At 6
+/// builds a second, the clip's frames 0.5–0.63 s lie in one slot (0.5–0.67 s), so frames 2
+/// and 3 are read through a build two and three frames old.
+#[test]
+fn a_cache_render_inside_a_light_path_slot_gives_the_bytes_of_one_render() {
+    let dir = scratch("cache-cli-path-slots");
+    let cache = dir.join("run.wcache");
+    let clip = ["--frames", "5", "--start-s", "0.5"];
+    let paths = [
+        "--quality",
+        "final",
+        "--volume-hz",
+        "6",
+        "--volume-paths",
+        "20000",
+    ];
+    // Large enough that the light paths' change shows in 8-bit pixels.
+    let scene = ["--width", "120", "--height", "120", "--map-res", "64"];
+    run(Command::new(WISP)
+        .args(["--threads", "2", "simulate", "--quiet", "--out"])
+        .arg(&cache)
+        .args(clip)
+        .args(scene));
+    let single = dir.join("single");
+    run(Command::new(WISP)
+        .args(["--threads", "2", "render", "--quiet", "--out"])
+        .arg(&single)
+        .args(clip)
+        .args(scene)
+        .args(paths));
+    let part = dir.join("part");
+    run(Command::new(WISP)
+        .args(["--threads", "1", "render", "--quiet", "--cache"])
+        .arg(&cache)
+        .args(["--first-frame", "2", "--frames", "2", "--out"])
+        .arg(&part)
+        .args(scene)
+        .args(paths));
+    let want = frames(&single);
+    let got = frames(&part);
+    assert_eq!(got.len(), 2);
+    for (name, bytes) in &got {
+        let same = want.iter().find(|(n, _)| n == name).map(|(_, b)| b);
+        assert!(same == Some(bytes), "{name} differs from the single run");
+    }
+    // The paths a build old read otherwise than a build of their own would: without the
+    // slot's first frame, the part's frames would differ (a render of frame 2 alone at every
+    // frame's rate is not the bytes).
+    let own = dir.join("own");
+    run(Command::new(WISP)
+        .args(["--threads", "1", "render", "--quiet", "--cache"])
+        .arg(&cache)
+        .args(["--first-frame", "2", "--frames", "1", "--out"])
+        .arg(&own)
+        .args(scene)
+        .args([
+            "--quality",
+            "final",
+            "--volume-hz",
+            "0",
+            "--volume-paths",
+            "20000",
+        ]));
+    assert_ne!(
+        frames(&own)[0].1,
+        got[0].1,
+        "frame 2 read through its own build"
+    );
+}
+
 /// A failing shard makes the runner fail, with wisp's message (here: the cache was made for
 /// another hairstyle), under either runner.
 #[test]

@@ -39,6 +39,7 @@ mod hostile_loaders;
 mod hostile_resume;
 mod hostile_scene;
 mod level_tf;
+mod light_path_rate;
 mod map_accuracy;
 mod map_contact;
 mod map_exact;

@@ -75,6 +75,11 @@ pub struct ShadingArgs {
     /// every bin]
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=256))]
     pub volume_strongest: Option<u32>,
+    /// --shading volume: builds of the light paths per second of motion, 1–1000, or 0 for
+    /// every frame; the frames between read the last build where the head was then
+    /// [default: every frame (final's rate is being measured)]
+    #[arg(long, value_name = "HZ", value_parser = clap::value_parser!(u32).range(0..=1000), help_heading = "Quality")]
+    pub volume_hz: Option<u32>,
 }
 
 impl ShadingArgs {
@@ -94,6 +99,9 @@ impl ShadingArgs {
         }
         if let Some(k) = self.volume_strongest {
             config.light_paths.directions = Directions::Strongest(k);
+        }
+        if let Some(hz) = self.volume_hz {
+            config.paths_interval_s = if hz == 0 { 0.0 } else { 1.0 / hz as f64 };
         }
     }
 }
