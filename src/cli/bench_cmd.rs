@@ -20,9 +20,9 @@
 //! `--parts` chooses among them. Results go to stdout as tables and, with `--json FILE`, as
 //! JSON.
 
-mod map_rate;
 mod plot;
 mod quality;
+mod rate;
 
 use super::{AppError, SceneArgs};
 use std::path::PathBuf;

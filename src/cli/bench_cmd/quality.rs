@@ -19,7 +19,9 @@
 //! level is the scene's (image, camera, lights) with that level's pass configs; other pass
 //! flags are not applied.
 
-use super::map_rate::{SPAN_S, WINDOW_FPS, map_rate_error};
+use super::rate::{
+    CONVERGED_PATHS, EXPORT_FPS, RateError, SPAN_S, WINDOW_FPS, map_rate_error, paths_rate_error,
+};
 use super::{BenchArgs, BenchScene, Json, Timed, scaling_row, time_stages};
 use crate::cli::AppError;
 use glam::Vec3;
@@ -237,7 +239,7 @@ pub fn quality_part(
     };
     let (mut entries, points) = print_errors(&runs, &masks);
     print_tf(&runs, &tf_reference, json);
-    print_map_rates(scene, levels, &camera, &mut entries);
+    print_rates(scene, levels, &camera, &mut entries);
     for (&level, entry) in levels.iter().zip(entries.iter_mut()) {
         // What the level ran with, the flags written over its choices.
         let shading = level_config(scene, level).shading;
@@ -248,46 +250,100 @@ pub fn quality_part(
     Ok(points)
 }
 
-/// Prints the error of each level's map rate (`map_rate`) where it builds its maps on some
-/// frames only, and adds it to the level's JSON entry.
-fn print_map_rates(
+/// Prints the error of each level's lower rates (`rate`): its hair maps and its light paths
+/// where they are built on some frames only, and adds them to the level's JSON entry.
+fn print_rates(
     scene: &BenchScene,
     levels: &[Quality],
     camera: &CameraPass,
     entries: &mut [serde_json::Value],
 ) {
-    let mut header = false;
-    for (&level, entry) in levels.iter().zip(entries) {
-        let config = level_config(scene, level);
-        let Some(e) = map_rate_error(scene, &config, camera) else {
-            continue;
+    let configs: Vec<EngineConfig> = levels.iter().map(|&l| level_config(scene, l)).collect();
+    let maps = levels.iter().zip(&configs).filter_map(|(&level, config)| {
+        let e = map_rate_error(scene, config, camera)?;
+        Some((level, 1.0 / config.hair_map.rebuild_interval_s, e, None))
+    });
+    let heading =
+        format!("hair maps built at the level's rate against every frame, {WINDOW_FPS} frames");
+    print_rate_table(
+        &heading,
+        "map_rate",
+        WINDOW_FPS,
+        maps.collect(),
+        levels,
+        entries,
+    );
+    let paths = levels.iter().zip(&configs).filter_map(|(&level, config)| {
+        let (e, every) = paths_rate_error(scene, config, camera)?;
+        Some((level, 1.0 / config.shading.paths_interval_s, e, Some(every)))
+    });
+    let heading = format!(
+        "light paths built at the level's rate, and for every frame, against {CONVERGED_PATHS}× the paths built for every frame, {EXPORT_FPS} frames"
+    );
+    print_rate_table(
+        &heading,
+        "paths_rate",
+        EXPORT_FPS,
+        paths.collect(),
+        levels,
+        entries,
+    );
+}
+
+/// A level's rate error: the level, builds a second, the error of its rate and, for the light
+/// paths (whose rate is measured against converged paths), the error of a build for every
+/// frame.
+type RateRow = (Quality, f64, RateError, Option<RateError>);
+
+/// One stage's rate errors `rows`, printed under `heading` and written as `key` into the
+/// levels' JSON entries.
+fn print_rate_table(
+    heading: &str,
+    key: &str,
+    fps: f64,
+    rows: Vec<RateRow>,
+    levels: &[Quality],
+    entries: &mut [serde_json::Value],
+) {
+    if rows.is_empty() {
+        return;
+    }
+    println!(
+        "\n{heading} a second over {:.1}–{:.1} s of the dance (the late light alone):",
+        SPAN_S.0, SPAN_S.1
+    );
+    println!(
+        "{:>10} {:>8} {:>14} {:>14} {:>8}",
+        "level", "builds/s", "mean rel. lum.", "95th pct", "FLIP"
+    );
+    let json = |e: &RateError| {
+        serde_json::json!({"frames": e.frames, "mean_rel_luminance": e.mean_rel_luminance,
+            "p95_rel_luminance": e.p95_rel_luminance, "flip_mean": e.flip})
+    };
+    for (level, hz, e, every) in rows {
+        let line = |what: &str, e: &RateError| {
+            println!(
+                "{:>10} {:>8} {:>13.2}% {:>13.2}% {:>8.4}",
+                level.name(),
+                what,
+                e.mean_rel_luminance * 100.0,
+                e.p95_rel_luminance * 100.0,
+                e.flip
+            )
         };
-        if !std::mem::replace(&mut header, true) {
-            println!(
-                "
-maps built {:.0} times a second of motion against every frame, {} frames a \
-                 second over {:.1}–{:.1} s of the dance (the shadows' lateness alone):",
-                1.0 / config.hair_map.rebuild_interval_s,
-                WINDOW_FPS,
-                SPAN_S.0,
-                SPAN_S.1
-            );
-            println!(
-                "{:>10} {:>14} {:>14} {:>8}",
-                "level", "mean rel. lum.", "95th pct", "FLIP"
-            );
+        line(&format!("{hz:.1}"), &e);
+        if let Some(n) = &every {
+            line("every", n);
         }
-        println!(
-            "{:>10} {:>13.2}% {:>13.2}% {:>8.4}",
-            level.name(),
-            e.mean_rel_luminance * 100.0,
-            e.p95_rel_luminance * 100.0,
-            e.flip
-        );
-        entry["map_rate"] = serde_json::json!({"hz": 1.0 / config.hair_map.rebuild_interval_s,
-            "window_fps": WINDOW_FPS, "frames": e.frames,
-            "mean_rel_luminance": e.mean_rel_luminance, "p95_rel_luminance": e.p95_rel_luminance,
-            "flip_mean": e.flip});
+        if let Some(i) = levels.iter().position(|&l| l == level) {
+            let mut v = json(&e);
+            v["hz"] = hz.into();
+            v["fps"] = fps.into();
+            if let Some(n) = &every {
+                v["every_frame"] = json(n);
+            }
+            entries[i][key] = v;
+        }
     }
 }
 
