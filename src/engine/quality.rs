@@ -14,6 +14,7 @@
 //! | segment pieces | 1 | 1 | 2 |
 //! | shader | dual scattering | light paths (`volume`) | light paths (`volume`) |
 //! | light paths per light | | 200,000 | 2,000,000 |
+//! | light paths built | | 6 times a second of motion | every frame |
 //! | light-path cells | | 6 mm | 4 mm |
 //! | direction bins gathered through the fibre, per cell | | the 16 strongest, the rest as moments | all |
 //! | contact shadows (one-fibre strands) | off | off | 120 mm |
@@ -42,6 +43,7 @@ struct LevelChoices {
     segment_pieces: u32,
     mode: ShadingMode,
     light_paths: LightPathParams,
+    paths_interval_s: f64,
     contact: ContactShadowing,
 }
 
@@ -63,6 +65,16 @@ fn final_light_paths() -> LightPathParams {
     }
 }
 
+/// `final` builds its light paths 6 times a second of motion (every fifth frame of a 30 frames a
+/// second export) and the frames between gather them where the hair was then
+/// (`engine::paths_rate`): its shading about 3× dual scattering's on the dance instead of 8–10×,
+/// for light late by up to a sixth of a second. Over the dance's fastest 0.7 s, against 10×
+/// the paths built for every frame, the mean relative luminance error over the hair is 5.3%
+/// where a build for every frame has its own noise's 2.6%; halving the paths and building 10
+/// times a second costs as much time and reads 5.1%, but would lose stills' accuracy, which a
+/// lower rate leaves as it was (BENCHMARKS.md, "`final`'s light paths").
+const FINAL_PATHS_INTERVAL_S: f64 = 1.0 / 6.0;
+
 fn choices(quality: Quality) -> LevelChoices {
     match quality {
         Quality::Preview => LevelChoices {
@@ -74,6 +86,7 @@ fn choices(quality: Quality) -> LevelChoices {
             segment_pieces: 1,
             mode: ShadingMode::DualScattering,
             light_paths: LightPathParams::default(),
+            paths_interval_s: 0.0,
             contact: ContactShadowing::Off,
         },
         Quality::Final => LevelChoices {
@@ -85,6 +98,7 @@ fn choices(quality: Quality) -> LevelChoices {
             segment_pieces: 1,
             mode: ShadingMode::Volume,
             light_paths: final_light_paths(),
+            paths_interval_s: FINAL_PATHS_INTERVAL_S,
             contact: ContactShadowing::Off,
         },
         Quality::Reference => LevelChoices {
@@ -96,6 +110,7 @@ fn choices(quality: Quality) -> LevelChoices {
             segment_pieces: 2,
             mode: ShadingMode::Volume,
             light_paths: LightPathParams::default(),
+            paths_interval_s: 0.0,
             contact: ContactShadowing::WindowM(DEFAULT_CONTACT_WINDOW_M),
         },
     }
@@ -113,6 +128,7 @@ impl EngineConfig {
         self.skin_texture.texels_per_column = c.texels_per_column;
         self.shading.mode = c.mode;
         self.shading.light_paths = c.light_paths;
+        self.shading.paths_interval_s = c.paths_interval_s;
         self.hair_map.contact = c.contact;
         self.hair_map.cell_scale = c.map_cell_scale;
         self.hair_map.rebuild_interval_s = c.map_interval_s;

@@ -155,6 +155,15 @@ fn the_bench_quality_report_has_flip_and_tf_figures_and_draws_its_plot() {
     }
     assert_eq!(levels[0]["shading"]["mode"], "DualScattering");
     assert_eq!(levels[1]["shading"]["mode"], "Volume");
+    // final's light paths at 6 builds a second: their late light and a build for every
+    // frame's, both against converged paths, and only final has them.
+    let rate = &levels[1]["paths_rate"];
+    assert_eq!(rate["hz"], 6.0, "{rate}");
+    for e in [rate, &rate["every_frame"]] {
+        let mean = e["mean_rel_luminance"].as_f64().unwrap();
+        assert!(mean > 0.0 && mean < 1.0, "{e}");
+    }
+    assert!(levels[0].get("paths_rate").is_none());
     let flip = levels[0]["vs_final"]["flip_mean"].as_f64().unwrap();
     assert!(flip > 0.0 && flip < 1.0, "preview against final: {flip}");
     assert!(v["quality_tf_reference"]["vertices"].as_u64().unwrap() > 0);
@@ -167,6 +176,8 @@ fn the_bench_quality_report_has_flip_and_tf_figures_and_draws_its_plot() {
             both.to_str().unwrap(),
             "--plot-with",
             json.to_str().unwrap(),
+            "--volume-paths",
+            "5000",
         ],
     );
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));

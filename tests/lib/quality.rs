@@ -42,6 +42,9 @@ fn final_is_the_default_configuration_and_each_level_says_its_name() {
     assert!(preview.simulation.step_s > Some(1.0 / 480.0));
     assert!(reference.simulation.step_s < Some(1.0 / 480.0));
     assert_eq!(reference.shading.mode, wisp::fiber::ShadingMode::Volume);
+    // final builds its light paths 6 times a second of motion, reference for every frame.
+    assert!((fin.shading.paths_interval_s - 1.0 / 6.0).abs() < 1e-12);
+    assert_eq!(reference.shading.paths_interval_s, 0.0);
 }
 
 fn reference_paths() -> u32 {

@@ -76,8 +76,8 @@ pub struct ShadingArgs {
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=256))]
     pub volume_strongest: Option<u32>,
     /// --shading volume: builds of the light paths per second of motion, 1–1000, or 0 for
-    /// every frame; the frames between read the last build where the head was then
-    /// [default: every frame (final's rate is being measured)]
+    /// every frame; the frames between gather the last build where their hair was then
+    /// [default: 6 at --quality final, else every frame]
     #[arg(long, value_name = "HZ", value_parser = clap::value_parser!(u32).range(0..=1000), help_heading = "Quality")]
     pub volume_hz: Option<u32>,
 }
