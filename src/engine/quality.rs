@@ -67,8 +67,8 @@ fn final_light_paths() -> LightPathParams {
 
 /// `final` builds its light paths 6 times a second of motion (every fifth frame of a 30 frames a
 /// second export) and the frames between gather them where the hair was then
-/// (`engine::paths_rate`): its shading about 3× dual scattering's on the dance instead of 8–10×,
-/// for light late by up to a sixth of a second. Over the dance's fastest 0.7 s, against 10×
+/// (`engine::paths_rate`): its shading 3.4–4.1× dual scattering's on the dance instead of
+/// 9.4–9.9×, for light late by up to a sixth of a second. Over the dance's fastest 0.7 s, against 10×
 /// the paths built for every frame, the mean relative luminance error over the hair is 5.3%
 /// where a build for every frame has its own noise's 2.6%; halving the paths and building 10
 /// times a second costs as much time and reads 5.1%, but would lose stills' accuracy, which a
