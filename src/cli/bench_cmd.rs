@@ -2,7 +2,8 @@
 //!
 //! 1. **Scaling**: the whole pipeline (animation, simulation, interpolation, map, shading,
 //!    raster) over `--frames` frames of the dance, once per thread count, in rayon pools built
-//!    in this process; per-stage medians and the speed-up over the first count.
+//!    in this process; per-stage medians (means when the level builds its maps or light paths
+//!    on some frames only) and the speed-up over the first count.
 //! 2. **Self-collision**: peak cell volume fraction, hair volume (filled cells) and simulation
 //!    time with and without the density repulsion of Bertails §4.1, and its share of a frame.
 //! 3. **Speed against error**: one hair state (the dance at `--at-s`), the map built at each
@@ -309,9 +310,12 @@ impl BenchScene {
 }
 
 /// Scaling over threads: the whole pipeline over `--frames` frames once per thread count,
-/// per-stage medians and the speed-up over the first count; then the map stage by part.
+/// per-stage medians (means when some frames build what the others reuse: a median would
+/// leave the builds out) and the speed-up over the first count; then the map stage by part.
 fn scaling_part(args: &BenchArgs, scene: &BenchScene, json: &mut Json) -> Result<(), AppError> {
-    println!("\nper-stage median ms per frame:");
+    let timed = Timed::for_config(args, &scene.config);
+    let summary = if timed.mean { "mean" } else { "median" };
+    println!("\nper-stage {summary} ms per frame:");
     println!(
         "threads  {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}  speed-up",
         "animation", "simulation", "interp", "map", "shading", "raster", "total"
@@ -320,7 +324,6 @@ fn scaling_part(args: &BenchArgs, scene: &BenchScene, json: &mut Json) -> Result
     let mut scaling = Vec::new();
     let mut map_parts = Vec::new();
     for &threads in &args.threads_list {
-        let timed = Timed::medians(args);
         let (med, parts_ms) = time_stages(timed, || scene.engine(), threads)?;
         map_parts.push((threads, parts_ms));
         let base = *base_total.get_or_insert(med[6]);
@@ -354,11 +357,15 @@ struct Timed {
 }
 
 impl Timed {
-    fn medians(args: &BenchArgs) -> Self {
+    /// `args`' frames, summed up by their median unless `config` builds its hair maps or its
+    /// light paths on some frames only.
+    fn for_config(args: &BenchArgs, config: &EngineConfig) -> Self {
+        let paths = config.shading.mode == wisp::fiber::ShadingMode::Volume
+            && config.shading.paths_interval_s > 0.0;
         Self {
             frames: args.frames,
             fps: args.fps,
-            mean: false,
+            mean: paths || config.hair_map.rebuild_interval_s > 0.0,
         }
     }
 }

@@ -361,7 +361,7 @@ fn time_level(
     for &threads in &args.threads_list {
         let timed = Timed {
             mean: true,
-            ..Timed::medians(args)
+            ..Timed::for_config(args, config)
         };
         let (stage_ms, parts_ms) =
             time_stages(timed, || scene.engine_with(config.clone()), threads)?;
