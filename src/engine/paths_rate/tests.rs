@@ -4,21 +4,38 @@ use crate::light::Light;
 use crate::light_paths::LightPathParams;
 use glam::{Affine3A, Vec3};
 
-fn lights() -> Vec<Light> {
-    vec![Light::Point {
-        position_m: Vec3::new(0.0, 2.0, 0.0),
-        intensity: Vec3::ONE,
-    }]
+/// What a build is made with, owned, for [`PathsKey`]s borrowing it.
+struct Made {
+    lights: Vec<Light>,
+    params: LightPathParams,
+    fiber: FiberParams,
+}
+
+impl Made {
+    fn new() -> Self {
+        Self {
+            lights: vec![Light::Point {
+                position_m: Vec3::new(0.0, 2.0, 0.0),
+                intensity: Vec3::ONE,
+            }],
+            params: LightPathParams::default(),
+            fiber: FiberParams::default(),
+        }
+    }
+
+    fn key(&self) -> PathsKey<'_> {
+        PathsKey {
+            lights: &self.lights,
+            params: &self.params,
+            fiber: &self.fiber,
+        }
+    }
 }
 
 /// Builds over `frames` frames at `fps` with slots of `interval_s`: which frames built.
 fn builds(first: u32, frames: u32, fps: f64, interval_s: f64) -> Vec<u32> {
-    let (lights, params, fiber) = (lights(), LightPathParams::default(), FiberParams::default());
-    let key = PathsKey {
-        lights: &lights,
-        params: &params,
-        fiber: &fiber,
-    };
+    let made = Made::new();
+    let key = made.key();
     let mut s = PathsSchedule::default();
     let mut built = Vec::new();
     for i in first..first + frames {
@@ -48,12 +65,8 @@ fn slots_are_aligned_to_the_clock() {
 #[test]
 fn a_zero_interval_builds_every_frame() {
     assert_eq!(builds(0, 5, 30.0, 0.0), vec![0, 1, 2, 3, 4]);
-    let (lights, params, fiber) = (lights(), LightPathParams::default(), FiberParams::default());
-    let key = PathsKey {
-        lights: &lights,
-        params: &params,
-        fiber: &fiber,
-    };
+    let made = Made::new();
+    let key = made.key();
     let mut s = PathsSchedule::default();
     s.built(0.5, &key, Affine3A::from_translation(Vec3::X));
     assert!(s.head_back(0.5, Affine3A::IDENTITY).is_none());
@@ -62,12 +75,8 @@ fn a_zero_interval_builds_every_frame() {
 /// Other lights, other parameters, another fibre, no build yet or a NaN time build at once; within a slot, the same key does not.
 #[test]
 fn a_changed_key_builds_at_once() {
-    let (lights, params, fiber) = (lights(), LightPathParams::default(), FiberParams::default());
-    let key = PathsKey {
-        lights: &lights,
-        params: &params,
-        fiber: &fiber,
-    };
+    let made = Made::new();
+    let key = made.key();
     let mut s = PathsSchedule::default();
     s.built(0.0, &key, Affine3A::IDENTITY);
     assert!(!s.due(0.05, 0.1, &key));
@@ -85,7 +94,7 @@ fn a_changed_key_builds_at_once() {
     ));
     let fewer = LightPathParams {
         paths: 1000,
-        ..params
+        ..made.params
     };
     assert!(s.due(
         0.05,
@@ -96,8 +105,8 @@ fn a_changed_key_builds_at_once() {
         }
     ));
     let other = FiberParams {
-        radius_m: fiber.radius_m * 2.0,
-        ..fiber.clone()
+        radius_m: made.fiber.radius_m * 2.0,
+        ..made.fiber.clone()
     };
     assert!(s.due(
         0.05,
@@ -115,12 +124,8 @@ fn a_changed_key_builds_at_once() {
 /// carried by the head back to where it was at the build.
 #[test]
 fn head_back_undoes_the_heads_motion() {
-    let (lights, params, fiber) = (lights(), LightPathParams::default(), FiberParams::default());
-    let key = PathsKey {
-        lights: &lights,
-        params: &params,
-        fiber: &fiber,
-    };
+    let made = Made::new();
+    let key = made.key();
     let then = Affine3A::from_rotation_translation(
         glam::Quat::from_rotation_y(0.3),
         Vec3::new(0.1, 1.6, 0.0),
