@@ -433,9 +433,10 @@ impl Engine {
             return 0.0;
         }
         let t_s = self.animation.time_s();
+        let params = self.shading.config.light_paths;
         let key = PathsKey {
             lights: &self.scene.lights,
-            params: &self.shading.config.light_paths,
+            params: &params,
             fiber: self.fiber.params(),
         };
         if !self
@@ -453,11 +454,6 @@ impl Engine {
             colliders: self.interpolation.colliders(),
         };
         self.shading.build_light_paths(&input);
-        let key = PathsKey {
-            lights: &self.scene.lights,
-            params: &self.shading.config.light_paths,
-            fiber: self.fiber.params(),
-        };
         self.paths_schedule
             .built(t_s, &key, self.animation.pose().head);
         started.elapsed().as_secs_f64()
