@@ -6,9 +6,11 @@
 //! ends' `f·w/z` (f the focal length in pixels), exact for the area of the screen trapezoid a
 //! segment of linearly varying projected width covers. A segment under the minimum is drawn
 //! at the minimum with its opacity lowered in proportion, which conserves its summed coverage
-//! (length × projected width × opacity) while sub-pixel lines stay free of aliasing: dense
-//! thin lines accumulate toward full coverage (`tests/lib/raster_coverage.rs`), and lines side by
-//! side hide what is behind them as their summed width does (`tests/lib/raster_lines.rs`).
+//! (length × projected width × opacity) while sub-pixel lines stay smooth: dense thin lines
+//! accumulate toward full coverage (`tests/lib/raster_coverage.rs`), and lines side by side
+//! hide what is behind them as their summed width does (`tests/lib/raster_lines.rs`). The 16
+//! sub-samples count one line's coverage within max(2%, 0.2 px / drawn width): they alias on
+//! slopes near 1/2 (25% at 0.7 px drawn, 8% at 1 px; the coverage test's sweep).
 
 use super::bundle::Profiles;
 use super::polyline::{LineStyle, LineWidth, MAX_WIDTH_PX, Polylines};
