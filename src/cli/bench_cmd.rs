@@ -360,12 +360,10 @@ impl Timed {
     /// `args`' frames, summed up by their median unless `config` builds its hair maps or its
     /// light paths on some frames only.
     fn for_config(args: &BenchArgs, config: &EngineConfig) -> Self {
-        let paths = config.shading.mode == wisp::fiber::ShadingMode::Volume
-            && config.shading.paths_interval_s > 0.0;
         Self {
             frames: args.frames,
             fps: args.fps,
-            mean: paths || config.hair_map.rebuild_interval_s > 0.0,
+            mean: config.shading.paths_at_rate() || config.hair_map.rebuild_interval_s > 0.0,
         }
     }
 }

@@ -292,7 +292,7 @@ impl Engine {
         self.timings.interpolation_s = (t3 - t2).as_secs_f64();
         // A slot's light paths are built from its first frame's hair, rendered or not, so that
         // every run through these times builds from the same hair (`paths_rate`).
-        if self.shading.config.paths_interval_s > 0.0 {
+        if self.shading.config.paths_at_rate() {
             let built_s = self.build_paths_when_due();
             if built_s > 0.0 {
                 self.paths_built_s = built_s;
@@ -465,15 +465,16 @@ impl Engine {
     /// build from it as a run from the start does. `None` when the paths are built for every
     /// frame or not used.
     pub fn light_paths_slot(&self, t_s: f64) -> Option<i64> {
-        let interval_s = self.shading.config.paths_interval_s;
-        (self.shading.config.mode == ShadingMode::Volume && interval_s > 0.0)
-            .then(|| slot_of(t_s, interval_s))
+        let config = &self.shading.config;
+        config
+            .paths_at_rate()
+            .then(|| slot_of(t_s, config.paths_interval_s))
     }
 
     /// Whether the light paths last built are for `slot` (of [`Engine::light_paths_slot`]).
     pub fn light_paths_built_in(&self, slot: i64) -> bool {
         let interval_s = self.shading.config.paths_interval_s;
-        interval_s > 0.0
+        self.shading.config.paths_at_rate()
             && self
                 .paths_schedule
                 .built_at_s()

@@ -82,6 +82,14 @@ pub struct ShadingPass {
     positions_then: Vec<Vec3>,
 }
 
+impl ShadingConfig {
+    /// Whether the light paths are built on some frames only: the light-path shader with a
+    /// rate (`paths_interval_s` > 0).
+    pub fn paths_at_rate(&self) -> bool {
+        self.mode == ShadingMode::Volume && self.paths_interval_s > 0.0
+    }
+}
+
 impl ShadingPass {
     pub fn new(config: ShadingConfig) -> Self {
         Self {

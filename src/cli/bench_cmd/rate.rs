@@ -68,9 +68,7 @@ pub fn paths_rate_error(
     config: &EngineConfig,
     camera: &CameraPass,
 ) -> Option<(RateError, RateError)> {
-    if config.shading.mode != wisp::fiber::ShadingMode::Volume
-        || config.shading.paths_interval_s <= 0.0
-    {
+    if !config.shading.paths_at_rate() {
         return None;
     }
     let mut every_frame = config.clone();
